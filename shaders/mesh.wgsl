@@ -1,0 +1,183 @@
+// Blinn-Phong with tangent-space normal mapping, and the TBN debug views.
+// Conventions: see the crate docs (src/lib.rs). The CPU reference of every function here is
+// src/shading.rs; keep the two in step.
+//
+// Entry points form the pipeline variants (src/render/pipelines.rs):
+//   vs_plain  + fs_plain          mesh without tangents, material without normal map
+//   vs_tangent + fs_tangent       mesh with tangents, material without normal map
+//   vs_tangent + fs_normal_mapped mesh with tangents and a normal map
+//
+// Prepended at build time: frame.wgsl (the Frame uniform, group 0).
+
+struct Object {
+    model: mat4x4<f32>,
+    normal_matrix: mat4x4<f32>, // inverse-transpose of model (upper 3x3 used)
+    base_color: vec4<f32>,      // linear factor
+    specular: vec4<f32>,        // rgb = k_s, a = shininess
+    handedness: f32,            // sign(det(model)), multiplies tangent w
+    normal_scale: f32,          // the material's normalTexture.scale
+    _pad: vec2<f32>,
+};
+
+@group(1) @binding(0) var<uniform> object: Object;
+@group(1) @binding(1) var base_color_texture: texture_2d<f32>; // sRGB view: samples are linear
+@group(1) @binding(2) var material_sampler: sampler;
+@group(1) @binding(3) var normal_texture: texture_2d<f32>;     // linear view
+
+// True when the target stores sRGB-encoded values (Rgba8UnormSrgb): debug colours are then
+// decoded first so the stored bytes equal 0.5·v + 0.5.
+override TARGET_ENCODES_SRGB: bool = true;
+
+const VIEW_TANGENT: u32 = 1u;
+const VIEW_BITANGENT: u32 = 2u;
+const VIEW_NORMAL: u32 = 3u;
+const VIEW_SHADING_NORMAL: u32 = 4u;
+
+struct VertexOutput {
+    @builtin(position) clip_position: vec4<f32>,
+    @location(0) world_position: vec3<f32>,
+    @location(1) world_normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) world_tangent: vec4<f32>,
+};
+
+fn to_world(position: vec3<f32>, normal: vec3<f32>, uv: vec2<f32>, tangent: vec4<f32>) -> VertexOutput {
+    var out: VertexOutput;
+    let world = object.model * vec4<f32>(position, 1.0);
+    out.clip_position = frame.view_proj * world;
+    out.world_position = world.xyz;
+    out.world_normal = (object.normal_matrix * vec4<f32>(normal, 0.0)).xyz;
+    out.uv = uv;
+    out.world_tangent = vec4<f32>((object.model * vec4<f32>(tangent.xyz, 0.0)).xyz, tangent.w * object.handedness);
+    return out;
+}
+
+@vertex
+fn vs_plain(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>, @location(2) uv: vec2<f32>) -> VertexOutput {
+    return to_world(position, normal, uv, vec4<f32>(0.0));
+}
+
+@vertex
+fn vs_tangent(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) tangent: vec4<f32>,
+) -> VertexOutput {
+    return to_world(position, normal, uv, tangent);
+}
+
+// ---- guarded vector helpers (src/math.rs) ----
+
+fn normalize_or(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
+    let length_squared = dot(v, v);
+    if length_squared >= 1e-30 && length_squared < 1e30 {
+        return v * inverseSqrt(length_squared);
+    }
+    return fallback;
+}
+
+// glam's Vec3::any_orthonormal_vector.
+fn any_perpendicular(n: vec3<f32>) -> vec3<f32> {
+    let s = select(-1.0, 1.0, n.z >= 0.0);
+    let a = -1.0 / (s + n.z);
+    let b = n.x * n.y * a;
+    return vec3<f32>(b, s + n.y * n.y * a, -n.y);
+}
+
+fn orthonormalize_tangent(t: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    return normalize_or(t - n * dot(n, t), any_perpendicular(n));
+}
+
+// ---- surface frame ----
+
+fn geometric_normal(in: VertexOutput, front_facing: bool) -> vec3<f32> {
+    let n = normalize_or(in.world_normal, vec3<f32>(0.0, 0.0, 1.0));
+    // Only double-sided materials draw back faces; there N flips, and with it B.
+    return select(-n, n, front_facing);
+}
+
+struct TangentFrame {
+    t: vec3<f32>,
+    b: vec3<f32>,
+};
+
+fn tangent_frame(in: VertexOutput, n: vec3<f32>) -> TangentFrame {
+    let t = orthonormalize_tangent(in.world_tangent.xyz, n);
+    let w = select(1.0, -1.0, in.world_tangent.w < 0.0);
+    return TangentFrame(t, w * cross(n, t));
+}
+
+// shading::perturbed_normal
+fn perturbed_normal(n: vec3<f32>, frame_tb: TangentFrame, texel: vec3<f32>, strength: f32) -> vec3<f32> {
+    let decoded = normalize_or(texel * 2.0 - 1.0, vec3<f32>(0.0, 0.0, 1.0));
+    let scaled = vec3<f32>(decoded.xy * strength, max(decoded.z, 0.0));
+    let nt = normalize_or(scaled, vec3<f32>(0.0, 0.0, 1.0));
+    return normalize_or(frame_tb.t * nt.x + frame_tb.b * nt.y + n * nt.z, n);
+}
+
+// shading::blinn_phong
+fn blinn_phong(albedo: vec3<f32>, n_geo: vec3<f32>, n_shading: vec3<f32>, position: vec3<f32>) -> vec3<f32> {
+    let l = normalize_or(frame.light_pos.xyz - position, n_geo);
+    let v = normalize_or(frame.camera_pos.xyz - position, n_geo);
+    let h = normalize_or(l + v, n_geo);
+    let self_shadow = smoothstep(0.0, frame.self_shadow_fade, dot(n_geo, l));
+    let n_dot_l = max(dot(n_shading, l), 0.0);
+    let n_dot_h = max(dot(n_shading, h), 0.0);
+    var specular = 0.0;
+    if n_dot_l > 0.0 && n_dot_h > 0.0 {
+        specular = pow(n_dot_h, object.specular.a);
+    }
+    return albedo * frame.ambient.rgb
+        + self_shadow * frame.light_color.rgb * (albedo * n_dot_l + object.specular.rgb * specular);
+}
+
+fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
+    return select(pow((c + 0.055) / 1.055, vec3<f32>(2.4)), c / 12.92, c <= vec3<f32>(0.04045));
+}
+
+// A debug colour that must be *stored* as given.
+fn stored(c: vec3<f32>) -> vec4<f32> {
+    if TARGET_ENCODES_SRGB {
+        return vec4<f32>(srgb_to_linear(c), 1.0);
+    }
+    return vec4<f32>(c, 1.0);
+}
+
+fn surface_color(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_shading: vec3<f32>) -> vec4<f32> {
+    switch frame.view_mode {
+        case VIEW_TANGENT: { return stored(0.5 * frame_tb.t + 0.5); }
+        case VIEW_BITANGENT: { return stored(0.5 * frame_tb.b + 0.5); }
+        case VIEW_NORMAL: { return stored(0.5 * n_geo + 0.5); }
+        case VIEW_SHADING_NORMAL: { return stored(0.5 * n_shading + 0.5); }
+        default: {
+            let albedo = textureSample(base_color_texture, material_sampler, in.uv).rgb * object.base_color.rgb;
+            return vec4<f32>(blinn_phong(albedo, n_geo, n_shading, in.world_position), 1.0);
+        }
+    }
+}
+
+@fragment
+fn fs_plain(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    let n = geometric_normal(in, front_facing);
+    // No tangents: the T and B views show the zero vector (mid grey).
+    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0)), n);
+}
+
+@fragment
+fn fs_tangent(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    let n = geometric_normal(in, front_facing);
+    return surface_color(in, n, tangent_frame(in, n), n);
+}
+
+@fragment
+fn fs_normal_mapped(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    let n = geometric_normal(in, front_facing);
+    let frame_tb = tangent_frame(in, n);
+    let texel = textureSample(normal_texture, material_sampler, in.uv).rgb;
+    var n_shading = n;
+    if frame.bump_enabled != 0u {
+        n_shading = perturbed_normal(n, frame_tb, texel, frame.strength * object.normal_scale);
+    }
+    return surface_color(in, n, frame_tb, n_shading);
+}

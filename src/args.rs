@@ -1,0 +1,52 @@
+//! Parsers for command-line and panel values: sizes, vectors, camera, on/off.
+
+use glam::Vec3;
+
+/// `"WxH"` → `[W, H]` in pixels (each at least 1).
+pub fn parse_size(text: &str) -> Result<[u32; 2], String> {
+    let (w, h) = text.trim().split_once(['x', 'X']).ok_or_else(|| format!("size {text:?}: expected WxH, e.g. 1280x720"))?;
+    let side = |s: &str| s.trim().parse::<u32>().ok().filter(|&v| v > 0);
+    match (side(w), side(h)) {
+        (Some(w), Some(h)) => Ok([w, h]),
+        _ => Err(format!("size {text:?}: width and height must be whole numbers of pixels, at least 1")),
+    }
+}
+
+/// `"a,b,c"` → three finite numbers.
+pub fn parse_triple(text: &str) -> Result<[f32; 3], String> {
+    let values: Vec<f32> = text.split(',').map(|s| s.trim().parse::<f32>()).collect::<Result<_, _>>().map_err(|_| format!("{text:?}: expected three numbers separated by commas"))?;
+    match values[..] {
+        [a, b, c] if values.iter().all(|v| v.is_finite()) => Ok([a, b, c]),
+        _ => Err(format!("{text:?}: expected three finite numbers separated by commas")),
+    }
+}
+
+pub fn parse_vec3(text: &str) -> Result<Vec3, String> {
+    parse_triple(text).map(Vec3::from_array)
+}
+
+pub fn parse_on_off(text: &str) -> Result<bool, String> {
+    match text {
+        "on" => Ok(true),
+        "off" => Ok(false),
+        _ => Err(format!("{text:?}: expected on or off")),
+    }
+}
+
+pub fn parse_finite(text: &str) -> Result<f32, String> {
+    text.trim().parse::<f32>().ok().filter(|v| v.is_finite()).ok_or_else(|| format!("{text:?}: expected a finite number"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_good_values_and_rejects_bad_ones() {
+        assert_eq!(parse_size("1280x720"), Ok([1280, 720]));
+        assert!(parse_size("0x720").is_err() && parse_size("big").is_err());
+        assert_eq!(parse_vec3("1, -2,3.5"), Ok(Vec3::new(1.0, -2.0, 3.5)));
+        assert!(parse_vec3("1,2").is_err() && parse_vec3("1,2,nan").is_err());
+        assert!(parse_finite("inf").is_err());
+    }
+}

@@ -1,0 +1,14 @@
+//! Counts of the work the core does, so tests can prove that a scene gets only what it needs.
+
+/// Monotonic counters owned by a [`crate::render::Renderer`].
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+pub struct WorkCounters {
+    /// Vertex tangent frames generated with MikkTSpace (frames supplied by a mesh are not counted).
+    pub tangent_frames_generated: u64,
+    /// Textures uploaded to the GPU (each mip chain counts once).
+    pub textures_uploaded: u64,
+    /// Render pipelines compiled (each variant once; later uses hit the cache).
+    pub pipelines_built: u64,
+    /// Frames drawn by [`crate::render::Renderer::render`].
+    pub frames_drawn: u64,
+}

@@ -1,0 +1,22 @@
+//! Error types, one per fallible area.
+
+use std::path::PathBuf;
+
+/// Failures of the GPU side: no adapter, bad request, readback or file output.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    #[error("no GPU adapter available (tried WGPU_BACKEND={backend}): {reason}")]
+    NoAdapter { backend: String, reason: String },
+    #[error("could not open the GPU device: {0}")]
+    Device(String),
+    #[error("viewport size {width}x{height} is empty: both sides must be at least 1 pixel")]
+    EmptyViewport { width: u32, height: u32 },
+    #[error("viewport size {width}x{height} exceeds the adapter's limit of {limit} pixels per side")]
+    ViewportTooLarge { width: u32, height: u32, limit: u32 },
+    #[error("reading the rendered image back from the GPU failed: {0}")]
+    Readback(String),
+    #[error("no scene has been given to the renderer")]
+    NoScene,
+    #[error("could not write {path}: {reason}")]
+    Write { path: PathBuf, reason: String },
+}

@@ -1,0 +1,136 @@
+//! The `bumpview` command: the viewer (default) and `render`, a headless picture.
+
+mod args;
+#[cfg(feature = "ui")]
+mod app;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use bumpview::render::capture::{render_image, write_png_atomically};
+use bumpview::render::{Gpu, Renderer};
+use bumpview::scene::builtin::teaching_scene;
+use bumpview::shading::ViewMode;
+use bumpview::viewer::ViewerState;
+use clap::{Parser, Subcommand};
+use glam::Vec3;
+
+#[derive(Parser)]
+#[command(name = "bumpview", version, about = "A viewer and teaching tool for bump and normal mapping")]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+    /// Viewer: close after this many frames have been presented (for tests and CI).
+    #[arg(long, value_name = "FRAMES")]
+    exit_after: Option<u64>,
+    /// Viewer: with --exit-after, save a screenshot of the whole window (UI included) here first.
+    #[arg(long, value_name = "PATH", requires = "exit_after")]
+    capture_window: Option<PathBuf>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Draw the built-in scene offscreen (no window, no display) and write a PNG.
+    Render(RenderArgs),
+}
+
+#[derive(clap::Args)]
+struct RenderArgs {
+    /// Where to write the PNG.
+    #[arg(long)]
+    out: PathBuf,
+    /// Image size in pixels.
+    #[arg(long, default_value = "1280x720", value_parser = args::parse_size)]
+    size: [u32; 2],
+    /// What to show: lit, tangent, bitangent, normal or shading-normal.
+    #[arg(long, default_value = "lit", value_parser = parse_view)]
+    view: ViewMode,
+    /// Bump mapping on or off.
+    #[arg(long, default_value = "on", value_parser = args::parse_on_off)]
+    bump: bool,
+    /// Bump strength (0 is flat, negative inverts the relief).
+    #[arg(long, default_value = "1", value_parser = args::parse_finite, allow_hyphen_values = true)]
+    strength: f32,
+    /// Light position X,Y,Z in metres (world space, +Y up).
+    #[arg(long, value_parser = args::parse_vec3, allow_hyphen_values = true)]
+    light: Option<Vec3>,
+    /// Camera YAW,PITCH,DISTANCE: degrees about +Y (0 looks along −Z), degrees above the
+    /// target, metres from it.
+    #[arg(long, value_parser = args::parse_triple, allow_hyphen_values = true)]
+    camera: Option<[f32; 3]>,
+    /// Hide the light marker.
+    #[arg(long)]
+    no_light_marker: bool,
+}
+
+fn parse_view(text: &str) -> Result<ViewMode, String> {
+    ViewMode::from_name(text).ok_or_else(|| {
+        let names: Vec<_> = ViewMode::ALL.iter().map(|m| m.name()).collect();
+        format!("{text:?}: expected one of {}", names.join(", "))
+    })
+}
+
+fn render(args: RenderArgs) -> Result<(), String> {
+    let scene = teaching_scene();
+    let mut state = ViewerState::new(&scene);
+    state.shading.view = args.view;
+    state.shading.bump_enabled = args.bump;
+    state.shading.strength = args.strength;
+    state.shading.show_light_marker = !args.no_light_marker;
+    if let Some(light) = args.light {
+        state.light.position = light;
+    }
+    if let Some([yaw, pitch, distance]) = args.camera {
+        if distance <= 0.0 {
+            return Err(format!("camera distance {distance} must be positive"));
+        }
+        state.camera.yaw = yaw.to_radians();
+        state.camera.pitch = 0.0;
+        state.camera.orbit(0.0, pitch.to_radians());
+        state.camera.distance = distance;
+    }
+    let gpu = Gpu::headless().map_err(|e| e.to_string())?;
+    let mut renderer = Renderer::from_gpu(&gpu);
+    renderer.set_scene(&scene);
+    let image = render_image(&mut renderer, args.size, &state.frame_params()).map_err(|e| e.to_string())?;
+    write_png_atomically(&image, &args.out).map_err(|e| e.to_string())?;
+    println!("wrote {} ({}x{}, {})", args.out.display(), args.size[0], args.size[1], gpu.adapter_name());
+    Ok(())
+}
+
+#[cfg(feature = "ui")]
+fn viewer(cli: &Cli) -> Result<(), String> {
+    app::run(app::Options { exit_after: cli.exit_after, capture_window: cli.capture_window.clone() })
+}
+
+#[cfg(not(feature = "ui"))]
+fn viewer(_cli: &Cli) -> Result<(), String> {
+    Err("this build has no viewer (built without the `ui` feature); use `bumpview render`".into())
+}
+
+fn main() -> ExitCode {
+    let mut cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if !e.use_stderr() => {
+            let _ = e.print();
+            return ExitCode::SUCCESS;
+        }
+        Err(e) => {
+            // One line: the first line of clap's message names the bad flag or value.
+            let message = e.to_string();
+            eprintln!("bumpview: {}", message.lines().next().unwrap_or("bad arguments").trim_start_matches("error: "));
+            return ExitCode::from(2);
+        }
+    };
+    let result = match cli.command.take() {
+        Some(Command::Render(args)) => render(args),
+        None => viewer(&cli),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("bumpview: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}

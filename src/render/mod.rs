@@ -1,0 +1,226 @@
+//! The wgpu renderer. It draws into any texture view it is given, so the window, screenshots
+//! and tests share one code path: [`Renderer::render`]. Depth-tested, with 4× MSAA where the
+//! adapter supports it for the target format.
+
+pub mod capture;
+pub mod gpu;
+pub mod pipelines;
+mod scene_gpu;
+mod uniforms;
+
+use glam::Mat4;
+
+use crate::counters::WorkCounters;
+use crate::error::RenderError;
+use crate::scene::{Light, OrbitCamera, Scene};
+use crate::shading::ShadingSettings;
+pub use gpu::Gpu;
+use pipelines::{DEPTH_FORMAT, Pass, PipelineKey, Pipelines};
+use scene_gpu::GpuScene;
+use uniforms::FrameUniform;
+
+/// Everything that decides one picture, besides the scene and the target size.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameParams {
+    pub camera: OrbitCamera,
+    pub light: Light,
+    pub shading: ShadingSettings,
+}
+
+/// Where to draw: a view of a 2D texture of `format`, `size` pixels.
+pub struct RenderTarget<'a> {
+    pub view: &'a wgpu::TextureView,
+    pub format: wgpu::TextureFormat,
+    pub size: [u32; 2],
+}
+
+/// Background colour (linear RGB): a dark blue-grey that neither debug colours nor lit
+/// bricks are confused with.
+const CLEAR_COLOR: wgpu::Color = wgpu::Color { r: 0.02, g: 0.025, b: 0.035, a: 1.0 };
+
+/// Multisampled colour and depth attachments for one target size and format.
+struct FrameTargets {
+    size: [u32; 2],
+    format: wgpu::TextureFormat,
+    samples: u32,
+    msaa_color: Option<wgpu::TextureView>,
+    depth: wgpu::TextureView,
+}
+
+pub struct Renderer {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    adapter: wgpu::Adapter,
+    pipelines: Pipelines,
+    frame_uniform: wgpu::Buffer,
+    frame_bind_group: wgpu::BindGroup,
+    scene: Option<GpuScene>,
+    targets: Option<FrameTargets>,
+    counters: WorkCounters,
+}
+
+impl Renderer {
+    pub fn new(device: wgpu::Device, queue: wgpu::Queue, adapter: wgpu::Adapter) -> Self {
+        let pipelines = Pipelines::new(&device);
+        let frame_uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame"),
+            size: std::mem::size_of::<FrameUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let frame_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("frame"),
+            layout: &pipelines.layouts.frame,
+            entries: &[wgpu::BindGroupEntry { binding: 0, resource: frame_uniform.as_entire_binding() }],
+        });
+        Renderer { device, queue, adapter, pipelines, frame_uniform, frame_bind_group, scene: None, targets: None, counters: WorkCounters::default() }
+    }
+
+    pub fn from_gpu(gpu: &Gpu) -> Self {
+        Renderer::new(gpu.device.clone(), gpu.queue.clone(), gpu.adapter.clone())
+    }
+
+    pub fn device(&self) -> &wgpu::Device {
+        &self.device
+    }
+
+    pub fn queue(&self) -> &wgpu::Queue {
+        &self.queue
+    }
+
+    /// Replaces the scene: generates the tangents it needs and uploads what it uses.
+    pub fn set_scene(&mut self, scene: &Scene) {
+        self.scene = Some(scene_gpu::upload(&self.device, &self.queue, &self.pipelines.layouts, scene, &mut self.counters));
+    }
+
+    /// The work done so far.
+    pub fn counters(&self) -> WorkCounters {
+        self.counters
+    }
+
+    /// The pipeline variants built so far.
+    pub fn built_pipelines(&self) -> Vec<PipelineKey> {
+        self.pipelines.built().copied().collect()
+    }
+
+    /// The largest width or height a target may have.
+    pub fn max_target_size(&self) -> u32 {
+        self.device.limits().max_texture_dimension_2d
+    }
+
+    /// An error for an empty or oversized target.
+    pub fn check_target_size(&self, size: [u32; 2]) -> Result<(), RenderError> {
+        let [width, height] = size;
+        let limit = self.max_target_size();
+        if width == 0 || height == 0 {
+            Err(RenderError::EmptyViewport { width, height })
+        } else if width > limit || height > limit {
+            Err(RenderError::ViewportTooLarge { width, height, limit })
+        } else {
+            Ok(())
+        }
+    }
+
+    /// 4 when the adapter can render and resolve 4× MSAA in `format`, else 1.
+    pub fn sample_count(&self, format: wgpu::TextureFormat) -> u32 {
+        let features = self.adapter.get_texture_format_features(format);
+        let resolvable = features.flags.contains(wgpu::TextureFormatFeatureFlags::MULTISAMPLE_RESOLVE);
+        if resolvable && features.flags.sample_count_supported(4) { 4 } else { 1 }
+    }
+
+    fn ensure_targets(&mut self, size: [u32; 2], format: wgpu::TextureFormat) {
+        let samples = self.sample_count(format);
+        if self.targets.as_ref().is_some_and(|t| t.size == size && t.format == format && t.samples == samples) {
+            return;
+        }
+        let texture = |label: &str, format| {
+            self.device
+                .create_texture(&wgpu::TextureDescriptor {
+                    label: Some(label),
+                    size: wgpu::Extent3d { width: size[0], height: size[1], depth_or_array_layers: 1 },
+                    mip_level_count: 1,
+                    sample_count: samples,
+                    dimension: wgpu::TextureDimension::D2,
+                    format,
+                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                    view_formats: &[],
+                })
+                .create_view(&Default::default())
+        };
+        let msaa_color = (samples > 1).then(|| texture("msaa colour", format));
+        let depth = texture("depth", DEPTH_FORMAT);
+        self.targets = Some(FrameTargets { size, format, samples, msaa_color, depth });
+    }
+
+    /// Records one frame of the current scene into `encoder`, drawing into `target`.
+    /// Uniforms are written to the queue now; the frame appears when `encoder` is submitted.
+    pub fn render(&mut self, encoder: &mut wgpu::CommandEncoder, target: &RenderTarget, params: &FrameParams) -> Result<(), RenderError> {
+        self.check_target_size(target.size)?;
+        let scene = self.scene.as_ref().ok_or(RenderError::NoScene)?;
+        let aspect = target.size[0] as f32 / target.size[1] as f32;
+        self.queue.write_buffer(&self.frame_uniform, 0, bytemuck::bytes_of(&FrameUniform::new(params, scene.ambient, aspect)));
+        let marker_model = Mat4::from_translation(params.light.position);
+        self.queue.write_buffer(&scene.marker.model, 0, bytemuck::bytes_of(&marker_model.to_cols_array()));
+
+        let samples = self.sample_count(target.format);
+        let key = |pass| PipelineKey { pass, format: target.format, samples };
+        let mut passes: Vec<Pass> = scene.instances.iter().map(|i| i.pass).collect();
+        if params.shading.show_light_marker {
+            passes.push(Pass::LightMarker);
+        }
+        for pass in passes {
+            self.pipelines.ensure(&self.device, key(pass), &mut self.counters);
+        }
+        self.ensure_targets(target.size, target.format);
+        let (Some(scene), Some(targets)) = (self.scene.as_ref(), self.targets.as_ref()) else {
+            unreachable!("scene checked and targets made above");
+        };
+
+        let (view, resolve_target) = match &targets.msaa_color {
+            Some(msaa) => (msaa, Some(target.view)),
+            None => (target.view, None),
+        };
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("scene"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target,
+                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(CLEAR_COLOR), store: wgpu::StoreOp::Store },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &targets.depth,
+                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Discard }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_bind_group(0, &self.frame_bind_group, &[]);
+        for instance in &scene.instances {
+            let mesh = &scene.meshes[instance.mesh];
+            pass.set_pipeline(self.pipelines.get(&key(instance.pass)));
+            pass.set_bind_group(1, &instance.bind_group, &[]);
+            pass.set_vertex_buffer(0, mesh.positions.slice(..));
+            pass.set_vertex_buffer(1, mesh.normals.slice(..));
+            pass.set_vertex_buffer(2, mesh.uvs.slice(..));
+            if let Some(tangents) = &mesh.tangents {
+                pass.set_vertex_buffer(3, tangents.slice(..));
+            }
+            pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+        }
+        if params.shading.show_light_marker {
+            let marker = &scene.marker;
+            pass.set_pipeline(self.pipelines.get(&key(Pass::LightMarker)));
+            pass.set_bind_group(1, &marker.bind_group, &[]);
+            pass.set_vertex_buffer(0, marker.positions.slice(..));
+            pass.set_index_buffer(marker.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..marker.index_count, 0, 0..1);
+        }
+        drop(pass);
+        self.counters.frames_drawn += 1;
+        Ok(())
+    }
+}

@@ -1,0 +1,212 @@
+//! Render pipelines, one variant per combination of what a mesh and material actually have,
+//! built on first use and cached. Cheap toggles (bump, strength, view) are uniforms instead.
+
+use std::collections::HashMap;
+
+use crate::counters::WorkCounters;
+
+/// Shader sources, embedded at build time; frame.wgsl is the shared Frame uniform.
+pub const MESH_WGSL: &str = concat!(include_str!("../../shaders/frame.wgsl"), include_str!("../../shaders/mesh.wgsl"));
+pub const MARKER_WGSL: &str = concat!(include_str!("../../shaders/frame.wgsl"), include_str!("../../shaders/marker.wgsl"));
+
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// What a drawn mesh needs from its pipeline.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Variant {
+    /// Positions, normals, UVs; no tangent stream, no normal map.
+    Plain,
+    /// Adds the tangent stream (tangents supplied by the mesh, shown in the T/B views).
+    Tangent,
+    /// Adds the tangent stream and the normal map.
+    NormalMapped,
+}
+
+/// A pipeline in the cache.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Pass {
+    Mesh { variant: Variant, cull_back_faces: bool },
+    LightMarker,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct PipelineKey {
+    pub pass: Pass,
+    pub format: wgpu::TextureFormat,
+    pub samples: u32,
+}
+
+/// Bind group layouts: group 0 is the frame, group 1 the object and its material.
+pub struct Layouts {
+    pub frame: wgpu::BindGroupLayout,
+    pub plain_material: wgpu::BindGroupLayout,
+    pub normal_mapped_material: wgpu::BindGroupLayout,
+    pub marker: wgpu::BindGroupLayout,
+}
+
+fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Buffer { ty: wgpu::BufferBindingType::Uniform, has_dynamic_offset: false, min_binding_size: None },
+        count: None,
+    }
+}
+
+fn texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: true },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+fn sampler_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+        count: None,
+    }
+}
+
+impl Layouts {
+    fn new(device: &wgpu::Device) -> Self {
+        let layout = |label: &str, entries: &[wgpu::BindGroupLayoutEntry]| {
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries })
+        };
+        let plain = [uniform_entry(0), texture_entry(1), sampler_entry(2)];
+        let normal_mapped = [uniform_entry(0), texture_entry(1), sampler_entry(2), texture_entry(3)];
+        Layouts {
+            frame: layout("frame", &[uniform_entry(0)]),
+            plain_material: layout("plain material", &plain),
+            normal_mapped_material: layout("normal-mapped material", &normal_mapped),
+            marker: layout("light marker", &[uniform_entry(0)]),
+        }
+    }
+
+    /// The group-1 layout a mesh variant binds.
+    pub fn material(&self, variant: Variant) -> &wgpu::BindGroupLayout {
+        match variant {
+            Variant::Plain | Variant::Tangent => &self.plain_material,
+            Variant::NormalMapped => &self.normal_mapped_material,
+        }
+    }
+}
+
+/// Layouts, shader modules and the cache of built pipelines.
+pub struct Pipelines {
+    pub layouts: Layouts,
+    mesh_module: wgpu::ShaderModule,
+    marker_module: wgpu::ShaderModule,
+    cache: HashMap<PipelineKey, wgpu::RenderPipeline>,
+}
+
+const POSITION: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: 12,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![0 => Float32x3],
+};
+const NORMAL: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: 12,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![1 => Float32x3],
+};
+const UV: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: 8,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![2 => Float32x2],
+};
+const TANGENT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: 16,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![3 => Float32x4],
+};
+
+impl Pipelines {
+    pub fn new(device: &wgpu::Device) -> Self {
+        let module = |label: &str, source: &'static str| {
+            device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(label),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            })
+        };
+        Pipelines {
+            layouts: Layouts::new(device),
+            mesh_module: module("mesh.wgsl", MESH_WGSL),
+            marker_module: module("marker.wgsl", MARKER_WGSL),
+            cache: HashMap::new(),
+        }
+    }
+
+    /// Builds the pipeline for `key` unless it is cached.
+    pub fn ensure(&mut self, device: &wgpu::Device, key: PipelineKey, counters: &mut WorkCounters) {
+        if !self.cache.contains_key(&key) {
+            let pipeline = self.build(device, key);
+            counters.pipelines_built += 1;
+            self.cache.insert(key, pipeline);
+        }
+    }
+
+    /// A pipeline previously made by [`Pipelines::ensure`].
+    pub fn get(&self, key: &PipelineKey) -> &wgpu::RenderPipeline {
+        &self.cache[key]
+    }
+
+    /// The keys built so far.
+    pub fn built(&self) -> impl Iterator<Item = &PipelineKey> {
+        self.cache.keys()
+    }
+
+    fn build(&self, device: &wgpu::Device, key: PipelineKey) -> wgpu::RenderPipeline {
+        let encodes_srgb = [("TARGET_ENCODES_SRGB", if key.format.is_srgb() { 1.0 } else { 0.0 })];
+        let (module, group1, vs, fs, buffers, cull_mode, constants): (_, _, _, _, &[_], _, &[(&str, f64)]) = match key.pass {
+            Pass::Mesh { variant, cull_back_faces } => {
+                let (vs, fs, buffers): (_, _, &[_]) = match variant {
+                    Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
+                    Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
+                    Variant::NormalMapped => ("vs_tangent", "fs_normal_mapped", &[POSITION, NORMAL, UV, TANGENT]),
+                };
+                let cull = cull_back_faces.then_some(wgpu::Face::Back);
+                (&self.mesh_module, self.layouts.material(variant), vs, fs, buffers, cull, &encodes_srgb)
+            }
+            Pass::LightMarker => {
+                (&self.marker_module, &self.layouts.marker, "vs_marker", "fs_marker", &[POSITION], Some(wgpu::Face::Back), &[])
+            }
+        };
+        let buffers: Vec<_> = buffers.iter().cloned().map(Some).collect();
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("bumpview"),
+            bind_group_layouts: &[Some(&self.layouts.frame), Some(group1)],
+            immediate_size: 0,
+        });
+        let options = wgpu::PipelineCompilationOptions { constants, ..Default::default() };
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(&format!("{key:?}")),
+            layout: Some(&layout),
+            vertex: wgpu::VertexState { module, entry_point: Some(vs), buffers: &buffers, compilation_options: options.clone() },
+            primitive: wgpu::PrimitiveState { cull_mode, ..Default::default() },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: wgpu::MultisampleState { count: key.samples, ..Default::default() },
+            fragment: Some(wgpu::FragmentState {
+                module,
+                entry_point: Some(fs),
+                targets: &[Some(wgpu::ColorTargetState { format: key.format, blend: None, write_mask: wgpu::ColorWrites::ALL })],
+                compilation_options: options,
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+    }
+}

@@ -1,0 +1,225 @@
+//! A scene's GPU resources. Only what the scene's materials use is uploaded: no tangent
+//! stream for meshes drawn without one, no normal map for a material that has none.
+
+use glam::{Vec2, Vec3, Vec4};
+use wgpu::util::DeviceExt;
+
+use super::pipelines::{Layouts, Pass, Variant};
+use super::uniforms::ObjectUniform;
+use crate::counters::WorkCounters;
+use crate::scene::{Scene, TextureImage, TextureKind};
+use crate::tangent::generate_mikktspace;
+
+pub struct GpuMesh {
+    pub positions: wgpu::Buffer,
+    pub normals: wgpu::Buffer,
+    pub uvs: wgpu::Buffer,
+    pub tangents: Option<wgpu::Buffer>,
+    pub indices: wgpu::Buffer,
+    pub index_count: u32,
+}
+
+pub struct GpuInstance {
+    pub mesh: usize,
+    pub pass: Pass,
+    pub bind_group: wgpu::BindGroup,
+}
+
+/// The light marker: an octahedron whose model matrix follows the light.
+pub struct GpuMarker {
+    pub positions: wgpu::Buffer,
+    pub indices: wgpu::Buffer,
+    pub index_count: u32,
+    pub model: wgpu::Buffer,
+    pub bind_group: wgpu::BindGroup,
+}
+
+pub struct GpuScene {
+    pub meshes: Vec<GpuMesh>,
+    pub instances: Vec<GpuInstance>,
+    pub marker: GpuMarker,
+    pub ambient: Vec3,
+}
+
+/// Light marker size, metres from centre to tip.
+pub const MARKER_RADIUS: f32 = 0.06;
+
+fn buffer<T: bytemuck::Pod>(device: &wgpu::Device, label: &str, data: &[T], usage: wgpu::BufferUsages) -> wgpu::Buffer {
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents: bytemuck::cast_slice(data), usage })
+}
+
+/// The per-attribute array, or zeros when the mesh lacks it or it has the wrong length.
+fn stream<T: Copy + Default>(values: &[T], count: usize) -> Vec<T> {
+    if values.len() == count { values.to_vec() } else { vec![T::default(); count] }
+}
+
+/// Uploads textures on first use, each once.
+struct TextureCache<'a> {
+    device: &'a wgpu::Device,
+    queue: &'a wgpu::Queue,
+    views: Vec<Option<wgpu::TextureView>>,
+    white: Option<wgpu::TextureView>,
+}
+
+impl TextureCache<'_> {
+    fn upload(&self, image: &TextureImage, counters: &mut WorkCounters) -> wgpu::TextureView {
+        let format = match image.kind {
+            TextureKind::Color => wgpu::TextureFormat::Rgba8UnormSrgb,
+            TextureKind::NormalMap => wgpu::TextureFormat::Rgba8Unorm,
+        };
+        let mips = image.mip_chain();
+        let texture = self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(&image.name),
+            size: wgpu::Extent3d { width: image.width, height: image.height, depth_or_array_layers: 1 },
+            mip_level_count: mips.len() as u32,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        });
+        for (level, mip) in mips.iter().enumerate() {
+            self.queue.write_texture(
+                wgpu::TexelCopyTextureInfo { texture: &texture, mip_level: level as u32, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
+                &mip.rgba,
+                wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4 * mip.width), rows_per_image: Some(mip.height) },
+                wgpu::Extent3d { width: mip.width, height: mip.height, depth_or_array_layers: 1 },
+            );
+        }
+        counters.textures_uploaded += 1;
+        texture.create_view(&Default::default())
+    }
+
+    fn get(&mut self, scene: &Scene, index: usize, counters: &mut WorkCounters) -> wgpu::TextureView {
+        if self.views[index].is_none() {
+            self.views[index] = Some(self.upload(&scene.textures[index], counters));
+        }
+        self.views[index].clone().expect("uploaded above")
+    }
+
+    /// A 1×1 white colour texture for materials without a base colour texture.
+    fn white(&mut self, counters: &mut WorkCounters) -> wgpu::TextureView {
+        if self.white.is_none() {
+            let image = TextureImage { name: "white".into(), width: 1, height: 1, kind: TextureKind::Color, rgba: vec![255; 4] };
+            self.white = Some(self.upload(&image, counters));
+        }
+        self.white.clone().expect("uploaded above")
+    }
+}
+
+/// The variant an instance is drawn with: normal-mapped when the material has a normal map
+/// and the mesh has UVs; with the tangent stream when the mesh supplies tangents; else plain.
+fn variant_of(scene: &Scene, mesh: usize, material: usize) -> Variant {
+    let mesh = &scene.meshes[mesh];
+    let has_uvs = mesh.uvs.len() == mesh.positions.len();
+    if scene.materials[material].needs_tangents() && has_uvs {
+        Variant::NormalMapped
+    } else if mesh.tangents.as_ref().is_some_and(|t| t.len() == mesh.positions.len()) {
+        Variant::Tangent
+    } else {
+        Variant::Plain
+    }
+}
+
+/// The light marker's geometry: an octahedron of radius [`MARKER_RADIUS`] around the origin.
+fn octahedron() -> (Vec<Vec3>, Vec<u32>) {
+    let positions = [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z].map(|v| v * MARKER_RADIUS).to_vec();
+    let mut indices = vec![];
+    for (a, b) in [(0u32, 4u32), (4, 1), (1, 5), (5, 0)] {
+        indices.extend([b, a, 2, a, b, 3]);
+    }
+    (positions, indices)
+}
+
+pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, scene: &Scene, counters: &mut WorkCounters) -> GpuScene {
+    let variants: Vec<Variant> = scene.instances.iter().map(|i| variant_of(scene, i.mesh, i.material)).collect();
+    let usage = wgpu::BufferUsages::VERTEX;
+    let meshes = scene
+        .meshes
+        .iter()
+        .enumerate()
+        .map(|(index, mesh)| {
+            let count = mesh.positions.len();
+            let drawn_with = |v: Variant| scene.instances.iter().zip(&variants).any(|(i, &w)| i.mesh == index && w == v);
+            let tangents = if drawn_with(Variant::NormalMapped) && mesh.tangents.is_none() {
+                counters.tangent_frames_generated += count as u64;
+                Some(generate_mikktspace(mesh))
+            } else if drawn_with(Variant::NormalMapped) || drawn_with(Variant::Tangent) {
+                mesh.tangents.clone()
+            } else {
+                None
+            };
+            GpuMesh {
+                positions: buffer(device, "positions", &mesh.positions, usage),
+                normals: buffer(device, "normals", &stream(&mesh.normals, count), usage),
+                uvs: buffer(device, "uvs", &stream::<Vec2>(&mesh.uvs, count), usage),
+                tangents: tangents.map(|t| buffer(device, "tangents", &stream::<Vec4>(&t, count), usage)),
+                indices: buffer(device, "indices", &mesh.indices, wgpu::BufferUsages::INDEX),
+                index_count: mesh.indices.len() as u32,
+            }
+        })
+        .collect();
+
+    let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("material"),
+        address_mode_u: wgpu::AddressMode::Repeat,
+        address_mode_v: wgpu::AddressMode::Repeat,
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        mipmap_filter: wgpu::MipmapFilterMode::Linear,
+        ..Default::default()
+    });
+    let mut textures = TextureCache { device, queue, views: vec![None; scene.textures.len()], white: None };
+    let instances = scene
+        .instances
+        .iter()
+        .zip(variants)
+        .map(|(instance, variant)| {
+            let material = &scene.materials[instance.material];
+            let uniform = buffer(device, "object", &[ObjectUniform::new(instance, material)], wgpu::BufferUsages::UNIFORM);
+            let base_color = match material.base_color_texture {
+                Some(t) => textures.get(scene, t, counters),
+                None => textures.white(counters),
+            };
+            let mut entries = vec![
+                wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&base_color) },
+                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&sampler) },
+            ];
+            let normal_map = match (variant, &material.normal_map) {
+                (Variant::NormalMapped, Some(map)) => Some(textures.get(scene, map.texture, counters)),
+                _ => None,
+            };
+            if let Some(view) = &normal_map {
+                entries.push(wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::TextureView(view) });
+            }
+            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(&scene.meshes[instance.mesh].name),
+                layout: layouts.material(variant),
+                entries: &entries,
+            });
+            GpuInstance { mesh: instance.mesh, pass: Pass::Mesh { variant, cull_back_faces: !material.double_sided }, bind_group }
+        })
+        .collect();
+
+    let (positions, indices) = octahedron();
+    let model = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("light marker model"),
+        size: 64,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("light marker"),
+        layout: &layouts.marker,
+        entries: &[wgpu::BindGroupEntry { binding: 0, resource: model.as_entire_binding() }],
+    });
+    let marker = GpuMarker {
+        positions: buffer(device, "marker positions", &positions, usage),
+        indices: buffer(device, "marker indices", &indices, wgpu::BufferUsages::INDEX),
+        index_count: indices.len() as u32,
+        model,
+        bind_group,
+    };
+    GpuScene { meshes, instances, marker, ambient: scene.ambient }
+}

@@ -1,0 +1,75 @@
+//! Uniform blocks, laid out exactly as the WGSL structs in `shaders/frame.wgsl` and `shaders/mesh.wgsl`.
+
+use bytemuck::{Pod, Zeroable};
+use glam::{Mat4, Vec3};
+
+use super::FrameParams;
+use crate::scene::{Instance, Material};
+use crate::shading::SELF_SHADOW_FADE;
+
+/// WGSL `Frame`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+pub struct FrameUniform {
+    view_proj: [[f32; 4]; 4],
+    camera_pos: [f32; 4],
+    light_pos: [f32; 4],
+    light_color: [f32; 4],
+    ambient: [f32; 4],
+    strength: f32,
+    bump_enabled: u32,
+    view_mode: u32,
+    self_shadow_fade: f32,
+}
+
+impl FrameUniform {
+    pub fn new(params: &FrameParams, ambient: Vec3, aspect: f32) -> Self {
+        FrameUniform {
+            view_proj: params.camera.view_projection(aspect).to_cols_array_2d(),
+            camera_pos: params.camera.eye().extend(1.0).to_array(),
+            light_pos: params.light.position.extend(1.0).to_array(),
+            light_color: params.light.color.extend(1.0).to_array(),
+            ambient: ambient.extend(1.0).to_array(),
+            strength: params.shading.strength,
+            bump_enabled: params.shading.bump_enabled as u32,
+            view_mode: params.shading.view.shader_index(),
+            self_shadow_fade: SELF_SHADOW_FADE,
+        }
+    }
+}
+
+/// WGSL `Object`: one per drawn instance.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+pub struct ObjectUniform {
+    model: [[f32; 4]; 4],
+    normal_matrix: [[f32; 4]; 4],
+    base_color: [f32; 4],
+    specular: [f32; 4],
+    handedness: f32,
+    normal_scale: f32,
+    _pad: [f32; 2],
+}
+
+impl ObjectUniform {
+    /// Normals go through the inverse-transpose of the model matrix; tangent `w` is
+    /// multiplied by `sign(det(model))` (crate conventions).
+    pub fn new(instance: &Instance, material: &Material) -> Self {
+        let model = instance.transform;
+        let determinant = model.determinant();
+        let normal_matrix = if determinant.is_finite() && determinant != 0.0 {
+            model.inverse().transpose()
+        } else {
+            Mat4::IDENTITY
+        };
+        ObjectUniform {
+            model: model.to_cols_array_2d(),
+            normal_matrix: normal_matrix.to_cols_array_2d(),
+            base_color: material.base_color_factor.to_array(),
+            specular: material.specular.extend(material.shininess.max(1.0)).to_array(),
+            handedness: if determinant < 0.0 { -1.0 } else { 1.0 },
+            normal_scale: material.normal_map.as_ref().map_or(1.0, |n| n.scale),
+            _pad: [0.0; 2],
+        }
+    }
+}

@@ -1,0 +1,92 @@
+//! Scene data as plain arrays: meshes, materials, textures, instances, light and camera.
+//! Conventions (UV origin, tangent handedness, colour spaces) are in the crate docs.
+
+pub mod builtin;
+pub mod bricks;
+pub mod camera;
+pub mod texture;
+
+use glam::{Mat4, Vec2, Vec3, Vec4};
+
+pub use camera::OrbitCamera;
+pub use texture::{TextureImage, TextureKind};
+
+/// Indexed triangle mesh in its own (model) space.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mesh {
+    pub name: String,
+    /// Positions in metres, model space.
+    pub positions: Vec<Vec3>,
+    /// Unit normals, model space.
+    pub normals: Vec<Vec3>,
+    /// Texture coordinates, origin top-left, v down (crate conventions).
+    pub uvs: Vec<Vec2>,
+    /// MikkTSpace-style tangents `(T.xyz, w)`, model space; `None` when the mesh supplies none.
+    pub tangents: Option<Vec<Vec4>>,
+    /// Three indices per triangle, counter-clockwise front faces.
+    pub indices: Vec<u32>,
+}
+
+/// A tangent-space normal map slot with its glTF `scale` (bump strength multiplier).
+#[derive(Debug, Clone, PartialEq)]
+pub struct NormalMap {
+    pub texture: usize,
+    pub scale: f32,
+}
+
+/// Blinn-Phong material. Texture fields index [`Scene::textures`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    pub name: String,
+    /// Linear RGBA multiplier of the base colour texture.
+    pub base_color_factor: Vec4,
+    /// sRGB colour texture.
+    pub base_color_texture: Option<usize>,
+    pub normal_map: Option<NormalMap>,
+    /// Linear specular colour k_s.
+    pub specular: Vec3,
+    /// Blinn-Phong exponent (≥ 1).
+    pub shininess: f32,
+    /// Draw back faces too, with the frame flipped.
+    pub double_sided: bool,
+}
+
+/// One placed mesh: indices into [`Scene::meshes`] and [`Scene::materials`], and its
+/// model→world transform.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Instance {
+    pub mesh: usize,
+    pub material: usize,
+    pub transform: Mat4,
+}
+
+/// A point light without distance falloff (the classic lecture model): radiance `color`
+/// arrives from `position` (world space, metres).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Light {
+    pub position: Vec3,
+    /// Linear RGB.
+    pub color: Vec3,
+}
+
+/// Everything the renderer draws.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    pub meshes: Vec<Mesh>,
+    pub materials: Vec<Material>,
+    pub textures: Vec<TextureImage>,
+    pub instances: Vec<Instance>,
+    /// Linear RGB ambient light, multiplied by the albedo.
+    pub ambient: Vec3,
+    /// The light a new view starts with.
+    pub default_light: Light,
+    /// The camera a new view starts with and that "reset camera" returns to.
+    pub default_camera: OrbitCamera,
+}
+
+impl Material {
+    /// Whether drawing this material needs per-vertex tangents.
+    pub fn needs_tangents(&self) -> bool {
+        self.normal_map.is_some()
+    }
+}

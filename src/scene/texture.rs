@@ -1,0 +1,96 @@
+//! CPU images with their colour space, and their mip chains.
+
+use glam::Vec3;
+
+use crate::math::{linear_to_srgb, normalize_or, srgb_to_linear};
+
+/// How a texture's values are to be read; decides its GPU format and how mips average.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum TextureKind {
+    /// sRGB-encoded colour (base colour).
+    Color,
+    /// Tangent-space normal map, linear, `n = 2·rgb − 1`.
+    NormalMap,
+}
+
+/// An RGBA8 image, rows top to bottom.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TextureImage {
+    pub name: String,
+    pub width: u32,
+    pub height: u32,
+    pub kind: TextureKind,
+    /// `width · height · 4` bytes.
+    pub rgba: Vec<u8>,
+}
+
+impl TextureImage {
+    /// RGBA bytes of texel `(x, y)`, coordinates wrapped into the image.
+    pub fn texel(&self, x: i64, y: i64) -> [u8; 4] {
+        let x = x.rem_euclid(self.width as i64) as usize;
+        let y = y.rem_euclid(self.height as i64) as usize;
+        let i = (y * self.width as usize + x) * 4;
+        self.rgba[i..i + 4].try_into().expect("4 bytes")
+    }
+
+    /// The next mip level (half size, at least 1×1), by a 2×2 box filter: colour averaged
+    /// in linear light, normals decoded, averaged and re-normalised.
+    pub fn downsampled(&self) -> TextureImage {
+        let (w, h) = ((self.width / 2).max(1), (self.height / 2).max(1));
+        let mut rgba = Vec::with_capacity((w * h * 4) as usize);
+        for y in 0..h as i64 {
+            for x in 0..w as i64 {
+                let texels = [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(dx, dy)| {
+                    let sx = (2 * x + dx).min(self.width as i64 - 1);
+                    let sy = (2 * y + dy).min(self.height as i64 - 1);
+                    self.texel(sx, sy)
+                });
+                let alpha = texels.iter().map(|t| t[3] as f32).sum::<f32>() / 4.0;
+                let rgb = match self.kind {
+                    TextureKind::Color => {
+                        let mean = texels.iter().fold(Vec3::ZERO, |acc, t| {
+                            acc + Vec3::new(t[0] as f32, t[1] as f32, t[2] as f32)
+                                .map(|c| srgb_to_linear(c / 255.0))
+                        }) / 4.0;
+                        mean.map(linear_to_srgb)
+                    }
+                    TextureKind::NormalMap => {
+                        let sum = texels.iter().fold(Vec3::ZERO, |acc, t| {
+                            acc + Vec3::new(t[0] as f32, t[1] as f32, t[2] as f32) / 127.5 - 1.0
+                        });
+                        normalize_or(sum, Vec3::Z) * 0.5 + 0.5
+                    }
+                };
+                rgba.extend(rgb.to_array().map(|c| (c * 255.0).round() as u8));
+                rgba.push(alpha.round() as u8);
+            }
+        }
+        TextureImage { name: self.name.clone(), width: w, height: h, kind: self.kind, rgba }
+    }
+
+    /// This image followed by its mip levels down to 1×1.
+    pub fn mip_chain(&self) -> Vec<TextureImage> {
+        let mut chain = vec![self.clone()];
+        while let Some(last) = chain.last().filter(|t| t.width > 1 || t.height > 1) {
+            chain.push(last.downsampled());
+        }
+        chain
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mip_chain_ends_at_one_texel_and_keeps_normals_unit() {
+        let rgba = [[255, 128, 128, 255], [0, 128, 128, 255], [128, 255, 128, 255], [128, 128, 255, 255]]
+            .concat();
+        let image = TextureImage { name: "n".into(), width: 2, height: 2, kind: TextureKind::NormalMap, rgba };
+        let chain = image.mip_chain();
+        assert_eq!(chain.len(), 2);
+        let t = chain[1].texel(0, 0);
+        let n = Vec3::new(t[0] as f32, t[1] as f32, t[2] as f32) / 127.5 - 1.0;
+        assert!((n.length() - 1.0).abs() < 0.02, "{n}");
+    }
+}

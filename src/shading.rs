@@ -1,0 +1,187 @@
+//! What a pixel shows, and a CPU reference of the shading in `shaders/mesh.wgsl`.
+//!
+//! The GPU and this module implement the same formulas line for line; tests render with the
+//! GPU and compare against these functions. All vectors are world space and unit length
+//! unless stated; colours are linear RGB.
+
+use glam::{Vec3, Vec4};
+
+use crate::height::decode_normal;
+use crate::math::{handedness, normalize_or, orthonormalize_tangent, smoothstep};
+use crate::scene::Light;
+
+/// Width of the self-shadow fade in units of `N_geo · L` (a cosine): the light fades in
+/// smoothly from grazing (0) to `N_geo · L = 0.1` (about 84° from the normal).
+pub const SELF_SHADOW_FADE: f32 = 0.1;
+
+/// What the view shows. Debug views show a world-space unit vector `v` as `0.5·v + 0.5`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum ViewMode {
+    /// Blinn-Phong shading.
+    #[default]
+    Lit,
+    /// The tangent `T` after Gram-Schmidt against the geometric normal.
+    Tangent,
+    /// The bitangent `B = w · cross(N, T)`.
+    Bitangent,
+    /// The geometric (interpolated vertex) normal.
+    Normal,
+    /// The normal after the normal map and bump strength.
+    ShadingNormal,
+}
+
+impl ViewMode {
+    pub const ALL: [ViewMode; 5] =
+        [ViewMode::Lit, ViewMode::Tangent, ViewMode::Bitangent, ViewMode::Normal, ViewMode::ShadingNormal];
+
+    /// The next mode in [`ViewMode::ALL`], wrapping around.
+    pub fn next(self) -> ViewMode {
+        let i = ViewMode::ALL.iter().position(|&m| m == self).unwrap_or(0);
+        ViewMode::ALL[(i + 1) % ViewMode::ALL.len()]
+    }
+
+    /// The index the shader switches on (`frame.view_mode`).
+    pub fn shader_index(self) -> u32 {
+        self as u32
+    }
+
+    /// Name as used on the command line and in the panel.
+    pub fn name(self) -> &'static str {
+        match self {
+            ViewMode::Lit => "lit",
+            ViewMode::Tangent => "tangent",
+            ViewMode::Bitangent => "bitangent",
+            ViewMode::Normal => "normal",
+            ViewMode::ShadingNormal => "shading-normal",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<ViewMode> {
+        ViewMode::ALL.into_iter().find(|m| m.name() == name)
+    }
+}
+
+/// The cheap toggles: they are shader uniforms, never a pipeline change.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShadingSettings {
+    pub bump_enabled: bool,
+    /// Bump strength `s`, glTF `normalTexture.scale` semantics, multiplied with the
+    /// material's own scale. 0 is flat, negative inverts.
+    pub strength: f32,
+    pub view: ViewMode,
+    pub show_light_marker: bool,
+}
+
+impl Default for ShadingSettings {
+    fn default() -> Self {
+        ShadingSettings { bump_enabled: true, strength: 1.0, view: ViewMode::Lit, show_light_marker: true }
+    }
+}
+
+/// The normal after the normal map: decode the texel, clamp `z ≥ 0` (a tangent-space normal
+/// never points into the surface), scale by `(s, s, 1)`, normalise, take it from tangent to
+/// world space with `T` (Gram-Schmidt against `n_geo`) and `B = w · cross(N, T)`.
+/// `texel_rgb` is the normal map value in 0..1; `n_geo` is unit.
+pub fn perturbed_normal(n_geo: Vec3, tangent: Vec4, texel_rgb: Vec3, strength: f32) -> Vec3 {
+    let decoded = decode_normal(texel_rgb);
+    let scaled = Vec3::new(decoded.x * strength, decoded.y * strength, decoded.z.max(0.0));
+    let n_tangent = normalize_or(scaled, Vec3::Z);
+    let t = orthonormalize_tangent(tangent.truncate(), n_geo);
+    let b = handedness(tangent) * n_geo.cross(t);
+    normalize_or(t * n_tangent.x + b * n_tangent.y + n_geo * n_tangent.z, n_geo)
+}
+
+/// Everything Blinn-Phong needs at one surface point.
+#[derive(Debug, Clone, Copy)]
+pub struct LightingInputs {
+    /// Linear albedo (base colour texture × factor).
+    pub albedo: Vec3,
+    /// Unit geometric normal, facing the viewer's side for double-sided back faces.
+    pub geometric_normal: Vec3,
+    /// Unit normal used for lighting (equals `geometric_normal` without bump).
+    pub shading_normal: Vec3,
+    /// Point position, metres.
+    pub position: Vec3,
+    pub eye: Vec3,
+    pub light: Light,
+    pub ambient: Vec3,
+    pub specular: Vec3,
+    pub shininess: f32,
+}
+
+/// Blinn-Phong with ambient, diffuse and specular, and geometric self-shadowing:
+/// `albedo·ambient + fade(N_geo·L) · light · (albedo·max(N·L, 0) + k_s·max(N·H, 0)^shininess)`,
+/// where `fade` is `smoothstep(0, SELF_SHADOW_FADE, ·)` and the specular term is zero
+/// where `N·L ≤ 0`. Degenerate directions (light or eye on the point) fall back to `N_geo`.
+pub fn blinn_phong(p: &LightingInputs) -> Vec3 {
+    let n_geo = p.geometric_normal;
+    let l = normalize_or(p.light.position - p.position, n_geo);
+    let v = normalize_or(p.eye - p.position, n_geo);
+    let h = normalize_or(l + v, n_geo);
+    let self_shadow = smoothstep(0.0, SELF_SHADOW_FADE, n_geo.dot(l));
+    let n_dot_l = p.shading_normal.dot(l).max(0.0);
+    let n_dot_h = p.shading_normal.dot(h).max(0.0);
+    let specular = if n_dot_l > 0.0 && n_dot_h > 0.0 { n_dot_h.powf(p.shininess) } else { 0.0 };
+    p.albedo * p.ambient + self_shadow * p.light.color * (p.albedo * n_dot_l + p.specular * specular)
+}
+
+/// The stored colour of a debug view for unit vector `v`.
+pub fn debug_color(v: Vec3) -> Vec3 {
+    v * 0.5 + 0.5
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn inputs() -> LightingInputs {
+        LightingInputs {
+            albedo: Vec3::new(0.5, 0.4, 0.3),
+            geometric_normal: Vec3::Z,
+            shading_normal: Vec3::Z,
+            position: Vec3::ZERO,
+            eye: Vec3::new(0.0, 0.0, 2.0),
+            light: Light { position: Vec3::new(0.0, 0.0, 3.0), color: Vec3::ONE },
+            ambient: Vec3::splat(0.1),
+            specular: Vec3::splat(0.2),
+            shininess: 16.0,
+        }
+    }
+
+    #[test]
+    fn head_on_light_gives_ambient_plus_full_diffuse_and_specular() {
+        let p = inputs();
+        let expected = p.albedo * 0.1 + p.albedo + Vec3::splat(0.2);
+        assert!((blinn_phong(&p) - expected).length() < 1e-6);
+    }
+
+    #[test]
+    fn light_below_the_geometric_surface_leaves_only_ambient_even_if_bumped_towards_it() {
+        let mut p = inputs();
+        p.light.position = Vec3::new(3.0, 0.0, -0.1);
+        p.shading_normal = Vec3::new(1.0, 0.0, 0.2).normalize();
+        assert!((blinn_phong(&p) - p.albedo * 0.1).length() < 1e-7);
+    }
+
+    #[test]
+    fn flat_texel_or_zero_strength_keeps_the_geometric_normal() {
+        let n = Vec3::new(0.0, 1.0, 0.0);
+        let t = Vec4::new(1.0, 0.0, 0.0, 1.0);
+        let bumpy = Vec3::new(0.8, 0.3, 0.7);
+        assert!((perturbed_normal(n, t, Vec3::new(0.5, 0.5, 1.0), 3.0) - n).length() < 1e-6);
+        assert!((perturbed_normal(n, t, bumpy, 0.0) - n).length() < 1e-6);
+        let inverted = perturbed_normal(n, t, bumpy, -1.0);
+        let plain = perturbed_normal(n, t, bumpy, 1.0);
+        assert!((inverted.x + plain.x).abs() < 1e-6 && (inverted.y - plain.y).abs() < 1e-6);
+    }
+
+    #[test]
+    fn extreme_strength_stays_finite_and_unit() {
+        let n = Vec3::Z;
+        let t = Vec4::new(1.0, 0.0, 0.0, -1.0);
+        for s in [-1000.0, 1000.0, f32::MAX] {
+            let v = perturbed_normal(n, t, Vec3::new(0.6, 0.45, 0.9), s);
+            assert!(v.is_finite() && (v.length() - 1.0).abs() < 1e-5, "{s}: {v}");
+        }
+    }
+}
