@@ -1,0 +1,58 @@
+//! Helpers shared by the GPU integration tests. They run on whatever adapter wgpu finds —
+//! on CI Mesa's lavapipe, pinned by WGPU_BACKEND in .ci/run. A missing adapter fails the
+//! test; it never skips.
+#![allow(dead_code)] // each test binary uses a different subset
+
+use bumpview::render::{FrameParams, Gpu, Renderer};
+use bumpview::scene::builtin::{WALL_Z, teaching_scene};
+use bumpview::scene::{OrbitCamera, Scene};
+use bumpview::viewer::ViewerState;
+use glam::{Vec2, Vec3};
+
+pub fn renderer_for(scene: &Scene) -> Renderer {
+    let gpu = Gpu::headless().unwrap_or_else(|e| panic!("GPU tests need an adapter (install mesa-vulkan-drivers): {e}"));
+    let mut renderer = Renderer::from_gpu(&gpu);
+    renderer.set_scene(scene);
+    renderer
+}
+
+/// The built-in scene's default picture without the light marker.
+pub fn default_params(scene: &Scene) -> FrameParams {
+    let mut state = ViewerState::new(scene);
+    state.shading.show_light_marker = false;
+    state.frame_params()
+}
+
+/// Looking straight at the wall from `distance` metres, centred on (0, 1.5): at 256 pixels
+/// and 0.3 m one pixel covers about 0.56 brick texels, so sampling magnifies and reads mip 0.
+pub fn close_wall_params(scene: &Scene, distance: f32) -> FrameParams {
+    let mut params = default_params(scene);
+    params.camera = OrbitCamera { target: Vec3::new(0.0, 1.5, WALL_Z), yaw: 0.0, pitch: 0.0, distance, ..params.camera };
+    params.light.position = Vec3::new(0.12, 1.62, WALL_Z + 0.35);
+    params
+}
+
+pub fn scene() -> Scene {
+    teaching_scene()
+}
+
+/// Where the ray through pixel `(x, y)`'s centre meets the plane `dot(n, p) = d`, if in front.
+pub fn hit_plane(camera: &OrbitCamera, size: [u32; 2], x: u32, y: u32, n: Vec3, d: f32) -> Option<Vec3> {
+    let (origin, dir) = camera.ray_through_pixel(Vec2::new(x as f32 + 0.5, y as f32 + 0.5), Vec2::new(size[0] as f32, size[1] as f32));
+    let denom = n.dot(dir);
+    if denom.abs() < 1e-6 {
+        return None;
+    }
+    let t = (d - n.dot(origin)) / denom;
+    (t > 0.0).then(|| origin + dir * t)
+}
+
+/// An 8-bit stored value as 0..1.
+pub fn unit(byte: u8) -> f32 {
+    byte as f32 / 255.0
+}
+
+/// A stored debug colour decoded back to the unit vector it shows.
+pub fn decode_debug(pixel: &image::Rgba<u8>) -> Vec3 {
+    (Vec3::new(unit(pixel[0]), unit(pixel[1]), unit(pixel[2])) * 2.0 - 1.0).normalize_or_zero()
+}
