@@ -46,7 +46,7 @@ struct RenderArgs {
     #[arg(long, default_value = "lit", value_parser = parse_view)]
     view: ViewMode,
     /// Bump mapping on or off.
-    #[arg(long, default_value = "on", value_parser = args::parse_on_off)]
+    #[arg(long, default_value = "on", value_parser = args::parse_on_off, action = clap::ArgAction::Set)]
     bump: bool,
     /// Bump strength (0 is flat, negative inverts the relief).
     #[arg(long, default_value = "1", value_parser = args::parse_finite, allow_hyphen_values = true)]

@@ -121,9 +121,15 @@ impl Renderer {
         }
     }
 
-    /// 4 when the adapter can render and resolve 4× MSAA in `format`, else 1.
+    /// 4 when the device can render and resolve 4× MSAA in `format`, else 1. Adapter-specific
+    /// format features count only when the device enabled them.
     pub fn sample_count(&self, format: wgpu::TextureFormat) -> u32 {
-        let features = self.adapter.get_texture_format_features(format);
+        let device_features = self.device.features();
+        let features = if device_features.contains(wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES) {
+            self.adapter.get_texture_format_features(format)
+        } else {
+            format.guaranteed_format_features(device_features)
+        };
         let resolvable = features.flags.contains(wgpu::TextureFormatFeatureFlags::MULTISAMPLE_RESOLVE);
         if resolvable && features.flags.sample_count_supported(4) { 4 } else { 1 }
     }

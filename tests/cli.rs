@@ -1,0 +1,52 @@
+//! The `bumpview render` command as a user runs it: a PNG on success, one line and a
+//! non-zero status on any failure.
+
+use std::process::Command;
+
+fn bumpview(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_bumpview")).args(args).output().expect("run bumpview")
+}
+
+fn stderr_lines(output: &std::process::Output) -> Vec<String> {
+    // Drivers may log their own lines (e.g. about XDG_RUNTIME_DIR); ours start with "bumpview:".
+    String::from_utf8_lossy(&output.stderr).lines().filter(|l| l.starts_with("bumpview:")).map(str::to_owned).collect()
+}
+
+#[test]
+fn render_writes_a_png_of_the_requested_size() {
+    let dir = std::env::temp_dir().join(format!("bumpview-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("wall.png");
+    let output = bumpview(&[
+        "render", "--out", out.to_str().unwrap(), "--size", "200x120", "--view", "shading-normal", "--bump", "on",
+        "--strength", "-1.5", "--light", "-1,2,1.5", "--camera", "10,15,4",
+    ]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let image = image::open(&out).unwrap();
+    assert_eq!((image.width(), image.height()), (200, 120));
+    // Not blank: the picture has more than one colour.
+    let rgb = image.to_rgb8();
+    let first = rgb.get_pixel(0, 0);
+    assert!(rgb.pixels().any(|p| p != first));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn failures_exit_non_zero_with_one_line() {
+    let cases: [&[&str]; 6] = [
+        &["render", "--out", "x.png", "--frobnicate"],
+        &["render", "--out", "x.png", "--view", "sideways"],
+        &["render", "--out", "x.png", "--size", "0x10"],
+        &["render", "--out", "x.png", "--light", "1,2"],
+        &["render", "--out", "x.png", "--bump", "maybe"],
+        &["render", "--out", "/nonexistent-dir/x.png", "--size", "16x16"],
+    ];
+    for args in cases {
+        let output = bumpview(args);
+        assert!(!output.status.success(), "{args:?} succeeded");
+        let lines = stderr_lines(&output);
+        assert_eq!(lines.len(), 1, "{args:?}: {:?}", String::from_utf8_lossy(&output.stderr));
+    }
+    let unwritable = bumpview(&["render", "--out", "/nonexistent-dir/x.png", "--size", "16x16"]);
+    assert!(stderr_lines(&unwritable)[0].contains("/nonexistent-dir/x.png"));
+}

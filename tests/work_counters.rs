@@ -1,0 +1,52 @@
+//! The core counts its work, so a scene provably gets only what it needs.
+
+mod common;
+
+use bumpview::render::capture::render_image;
+use bumpview::render::pipelines::{Pass, Variant};
+use common::*;
+
+#[test]
+fn scene_without_normal_maps_generates_no_tangents_and_no_tangent_pipeline() {
+    let mut scene = scene();
+    for material in &mut scene.materials {
+        material.normal_map = None;
+    }
+    for mesh in &mut scene.meshes {
+        mesh.tangents = None;
+    }
+    let mut renderer = renderer_for(&scene);
+    render_image(&mut renderer, [64, 48], &default_params(&scene)).unwrap();
+    let counters = renderer.counters();
+    assert_eq!(counters.tangent_frames_generated, 0);
+    assert_eq!(counters.textures_uploaded, 1, "only the colour texture is used");
+    for key in renderer.built_pipelines() {
+        assert!(matches!(key.pass, Pass::Mesh { variant: Variant::Plain, .. } | Pass::LightMarker), "{key:?}");
+    }
+}
+
+#[test]
+fn built_in_scene_generates_tangents_only_where_missing_and_caches_pipelines() {
+    let scene = scene();
+    let mut renderer = renderer_for(&scene);
+    // Wall and floor need MikkTSpace; the torus brings its analytic frame.
+    let generated: usize = scene.meshes.iter().filter(|m| m.tangents.is_none()).map(|m| m.positions.len()).sum();
+    assert_eq!(scene.meshes.iter().filter(|m| m.tangents.is_some()).count(), 1);
+    assert_eq!(renderer.counters().tangent_frames_generated, generated as u64);
+    assert_eq!(renderer.counters().textures_uploaded, 2, "colour and normal map, once each");
+
+    let params = default_params(&scene);
+    render_image(&mut renderer, [64, 48], &params).unwrap();
+    let after_first = renderer.counters();
+    // Double-sided wall/floor and single-sided torus: two normal-mapped variants.
+    assert_eq!(after_first.pipelines_built, 2);
+    let mut toggled = params;
+    toggled.shading.bump_enabled = false;
+    toggled.shading.view = bumpview::shading::ViewMode::Tangent;
+    toggled.shading.strength = -2.0;
+    render_image(&mut renderer, [64, 48], &toggled).unwrap();
+    let after_second = renderer.counters();
+    assert_eq!(after_second.pipelines_built, after_first.pipelines_built, "toggles are uniforms");
+    assert_eq!(after_second.textures_uploaded, after_first.textures_uploaded);
+    assert_eq!(after_second.frames_drawn, 2);
+}
