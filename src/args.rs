@@ -4,7 +4,8 @@ use glam::Vec3;
 
 /// `"WxH"` → `[W, H]` in pixels (each at least 1).
 pub fn parse_size(text: &str) -> Result<[u32; 2], String> {
-    let (w, h) = text.trim().split_once(['x', 'X']).ok_or_else(|| format!("size {text:?}: expected WxH, e.g. 1280x720"))?;
+    let (w, h) =
+        text.trim().split_once(['x', 'X']).ok_or_else(|| format!("size {text:?}: expected WxH, e.g. 1280x720"))?;
     let side = |s: &str| s.trim().parse::<u32>().ok().filter(|&v| v > 0);
     match (side(w), side(h)) {
         (Some(w), Some(h)) => Ok([w, h]),
@@ -14,7 +15,11 @@ pub fn parse_size(text: &str) -> Result<[u32; 2], String> {
 
 /// `"a,b,c"` → three finite numbers.
 pub fn parse_triple(text: &str) -> Result<[f32; 3], String> {
-    let values: Vec<f32> = text.split(',').map(|s| s.trim().parse::<f32>()).collect::<Result<_, _>>().map_err(|_| format!("{text:?}: expected three numbers separated by commas"))?;
+    let values: Vec<f32> = text
+        .split(',')
+        .map(|s| s.trim().parse::<f32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("{text:?}: expected three numbers separated by commas"))?;
     match values[..] {
         [a, b, c] if values.iter().all(|v| v.is_finite()) => Ok([a, b, c]),
         _ => Err(format!("{text:?}: expected three finite numbers separated by commas")),
@@ -34,7 +39,11 @@ pub fn parse_on_off(text: &str) -> Result<bool, String> {
 }
 
 pub fn parse_finite(text: &str) -> Result<f32, String> {
-    text.trim().parse::<f32>().ok().filter(|v| v.is_finite()).ok_or_else(|| format!("{text:?}: expected a finite number"))
+    text.trim()
+        .parse::<f32>()
+        .ok()
+        .filter(|v| v.is_finite())
+        .ok_or_else(|| format!("{text:?}: expected a finite number"))
 }
 
 #[cfg(test)]

@@ -57,7 +57,13 @@ impl HeightField {
                 rgba.push(255);
             }
         }
-        TextureImage { name: name.to_owned(), width: self.width, height: self.height, kind: TextureKind::NormalMap, rgba }
+        TextureImage {
+            name: name.to_owned(),
+            width: self.width,
+            height: self.height,
+            kind: TextureKind::NormalMap,
+            rgba,
+        }
     }
 }
 

@@ -1,8 +1,8 @@
 //! The `bumpview` command: the viewer (default) and `render`, a headless picture.
 
-mod args;
 #[cfg(feature = "ui")]
 mod app;
+mod args;
 
 use std::path::PathBuf;
 use std::process::ExitCode;

@@ -113,7 +113,9 @@ mod tests {
         let mut mesh = quad(false);
         mesh.uvs = vec![Vec2::ZERO; 4];
         for t in generate_mikktspace(&mesh) {
-            assert!(t.is_finite() && (t.truncate().length() - 1.0).abs() < 1e-5 && t.truncate().dot(Vec3::Z).abs() < 1e-5);
+            assert!(
+                t.is_finite() && (t.truncate().length() - 1.0).abs() < 1e-5 && t.truncate().dot(Vec3::Z).abs() < 1e-5
+            );
         }
     }
 }

@@ -23,15 +23,24 @@ pub enum Command {
     SetLightPosition(Vec3),
     /// Moves the light parallel to the screen by a drag of `pixels` in a viewport
     /// `viewport_height` pixels tall, keeping its depth from the eye.
-    DragLight { pixels: Vec2, viewport_height: f32 },
+    DragLight {
+        pixels: Vec2,
+        viewport_height: f32,
+    },
     SetLightOrbit(bool),
     ToggleLightOrbit,
     SetLightMarker(bool),
     /// Yaw and pitch increments, radians.
-    OrbitCamera { d_yaw: f32, d_pitch: f32 },
+    OrbitCamera {
+        d_yaw: f32,
+        d_pitch: f32,
+    },
     /// Multiplies the camera distance.
     Zoom(f32),
-    PanCamera { pixels: Vec2, viewport_height: f32 },
+    PanCamera {
+        pixels: Vec2,
+        viewport_height: f32,
+    },
     ResetCamera,
     /// Advances animations by `seconds`.
     Tick(f32),
@@ -157,7 +166,10 @@ mod tests {
         state.apply(Command::Tick(1.0));
         let after = state.light.position;
         assert_ne!(before, after);
-        let radius = |p: Vec3| { let d = p - state.camera.target; Vec2::new(d.x, d.z).length() };
+        let radius = |p: Vec3| {
+            let d = p - state.camera.target;
+            Vec2::new(d.x, d.z).length()
+        };
         assert!((radius(before) - radius(after)).abs() < 1e-5);
         assert!((before.y - after.y).abs() < 1e-6);
     }

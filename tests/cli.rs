@@ -18,8 +18,21 @@ fn render_writes_a_png_of_the_requested_size() {
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("wall.png");
     let output = bumpview(&[
-        "render", "--out", out.to_str().unwrap(), "--size", "200x120", "--view", "shading-normal", "--bump", "on",
-        "--strength", "-1.5", "--light", "-1,2,1.5", "--camera", "10,15,4",
+        "render",
+        "--out",
+        out.to_str().unwrap(),
+        "--size",
+        "200x120",
+        "--view",
+        "shading-normal",
+        "--bump",
+        "on",
+        "--strength",
+        "-1.5",
+        "--light",
+        "-1,2,1.5",
+        "--camera",
+        "10,15,4",
     ]);
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     let image = image::open(&out).unwrap();

@@ -25,15 +25,18 @@ fn surface_at(camera: &bumpview::scene::OrbitCamera, size: [u32; 2], x: i64, y: 
         return Surface::Other;
     }
     let (x, y) = (x as u32, y as u32);
-    let (origin, dir) = camera.ray_through_pixel(Vec2::new(x as f32 + 0.5, y as f32 + 0.5), Vec2::new(size[0] as f32, size[1] as f32));
+    let (origin, dir) =
+        camera.ray_through_pixel(Vec2::new(x as f32 + 0.5, y as f32 + 0.5), Vec2::new(size[0] as f32, size[1] as f32));
     let to_centre = TORUS_CENTER - origin;
     let closest = to_centre - dir * to_centre.dot(dir);
     if closest.length() < TORUS_MAJOR_RADIUS + TORUS_MINOR_RADIUS + 0.05 {
         return Surface::Other;
     }
     let distance = |p: Option<Vec3>| p.map_or(f32::INFINITY, |p| (p - origin).length());
-    let wall = hit_plane(camera, size, x, y, Vec3::Z, WALL_Z).filter(|p| (WALL_X[0]..WALL_X[1]).contains(&p.x) && (WALL_Y[0]..WALL_Y[1]).contains(&p.y));
-    let floor = hit_plane(camera, size, x, y, Vec3::Y, 0.0).filter(|p| (WALL_X[0]..WALL_X[1]).contains(&p.x) && (FLOOR_Z[0]..FLOOR_Z[1]).contains(&p.z));
+    let wall = hit_plane(camera, size, x, y, Vec3::Z, WALL_Z)
+        .filter(|p| (WALL_X[0]..WALL_X[1]).contains(&p.x) && (WALL_Y[0]..WALL_Y[1]).contains(&p.y));
+    let floor = hit_plane(camera, size, x, y, Vec3::Y, 0.0)
+        .filter(|p| (WALL_X[0]..WALL_X[1]).contains(&p.x) && (FLOOR_Z[0]..FLOOR_Z[1]).contains(&p.z));
     match (distance(wall), distance(floor)) {
         (w, f) if w.is_finite() && w < f => Surface::Wall,
         (_, f) if f.is_finite() => Surface::Floor,
@@ -54,7 +57,9 @@ fn check_view(view: ViewMode, expected_wall: Option<[f32; 3]>, expected_floor: O
     for y in (0..size[1] as i64).step_by(4) {
         for x in (0..size[0] as i64).step_by(4) {
             let surface = surface_at(&params.camera, size, x, y);
-            let interior = [(-3, 0), (3, 0), (0, -3), (0, 3)].iter().all(|(dx, dy)| surface_at(&params.camera, size, x + dx, y + dy) == surface);
+            let interior = [(-3, 0), (3, 0), (0, -3), (0, 3)]
+                .iter()
+                .all(|(dx, dy)| surface_at(&params.camera, size, x + dx, y + dy) == surface);
             let expected = match surface {
                 Surface::Wall if interior => expected_wall.map(|e| (e, 0)),
                 Surface::Floor if interior => expected_floor.map(|e| (e, 1)),
@@ -64,7 +69,10 @@ fn check_view(view: ViewMode, expected_wall: Option<[f32; 3]>, expected_floor: O
                 let pixel = image.get_pixel(x as u32, y as u32);
                 for c in 0..3 {
                     let stored = unit(pixel[c]);
-                    assert!((stored - expected[c]).abs() <= 2.0 / 255.0, "{view:?} {surface:?} at ({x}, {y}): {pixel:?} vs {expected:?}");
+                    assert!(
+                        (stored - expected[c]).abs() <= 2.0 / 255.0,
+                        "{view:?} {surface:?} at ({x}, {y}): {pixel:?} vs {expected:?}"
+                    );
                 }
                 checked[which] += 1;
             }
@@ -107,7 +115,8 @@ fn normal_vs_shading_normal(bump: bool, strength: f32) -> Vec<(f32, f32)> {
     let mut angles = vec![];
     for y in (0..size[1]).step_by(3) {
         for x in (0..size[0]).step_by(3) {
-            let gpu = decode_debug(normal.get_pixel(x, y)).angle_between(decode_debug(shading.get_pixel(x, y))).to_degrees();
+            let gpu =
+                decode_debug(normal.get_pixel(x, y)).angle_between(decode_debug(shading.get_pixel(x, y))).to_degrees();
             let uv = wall_uv(hit_plane(&params.camera, size, x, y, Vec3::Z, WALL_Z).unwrap());
             let texel = (uv * field.width as f32).floor();
             let cpu = field.normal_central(texel.x as i64, texel.y as i64).angle_between(Vec3::Z).to_degrees();
@@ -135,7 +144,13 @@ fn with_bump_the_mortar_edges_tilt_the_normal() {
     let edges: Vec<f32> = angles.iter().filter(|(_, cpu)| *cpu > 25.0).map(|(gpu, _)| *gpu).collect();
     let faces: Vec<f32> = angles.iter().filter(|(_, cpu)| *cpu < 2.0).map(|(gpu, _)| *gpu).collect();
     let mean = |v: &[f32]| v.iter().sum::<f32>() / v.len() as f32;
-    println!("edges: {} pixels, mean {:.1}°; faces: {} pixels, mean {:.2}°", edges.len(), mean(&edges), faces.len(), mean(&faces));
+    println!(
+        "edges: {} pixels, mean {:.1}°; faces: {} pixels, mean {:.2}°",
+        edges.len(),
+        mean(&edges),
+        faces.len(),
+        mean(&faces)
+    );
     assert!(edges.len() > 100 && faces.len() > 100);
     assert!(mean(&edges) > 20.0, "mean tilt on mortar edges {}°", mean(&edges));
     assert!(mean(&faces) < 3.0, "mean tilt on brick faces {}°", mean(&faces));

@@ -95,7 +95,12 @@ fn percentile(sorted: &[f32], p: f32) -> f32 {
 fn flat_wall_matches_cpu_blinn_phong() {
     let diffs = differences(false, 1.0);
     let max = diffs.last().copied().unwrap();
-    println!("flat: median {} p99 {} max {max} over {} pixels", percentile(&diffs, 0.5), percentile(&diffs, 0.99), diffs.len());
+    println!(
+        "flat: median {} p99 {} max {max} over {} pixels",
+        percentile(&diffs, 0.5),
+        percentile(&diffs, 0.99),
+        diffs.len()
+    );
     assert!(max <= 1.0, "max difference {max} steps");
 }
 

@@ -19,7 +19,12 @@ pub struct FloatImage {
 
 /// Renders one frame at `size` into a fresh texture of `format` and returns its bytes,
 /// tightly packed, rows top to bottom.
-fn render_offscreen(renderer: &mut Renderer, size: [u32; 2], format: wgpu::TextureFormat, params: &FrameParams) -> Result<Vec<u8>, RenderError> {
+fn render_offscreen(
+    renderer: &mut Renderer,
+    size: [u32; 2],
+    format: wgpu::TextureFormat,
+    params: &FrameParams,
+) -> Result<Vec<u8>, RenderError> {
     renderer.check_target_size(size)?;
     let [width, height] = size;
     let extent = wgpu::Extent3d { width, height, depth_or_array_layers: 1 };
@@ -51,7 +56,11 @@ fn render_offscreen(renderer: &mut Renderer, size: [u32; 2], format: wgpu::Textu
         texture.as_image_copy(),
         wgpu::TexelCopyBufferInfo {
             buffer: &buffer,
-            layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(padded_row_bytes), rows_per_image: None },
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded_row_bytes),
+                rows_per_image: None,
+            },
         },
         extent,
     );
@@ -76,7 +85,11 @@ fn render_offscreen(renderer: &mut Renderer, size: [u32; 2], format: wgpu::Textu
 }
 
 /// Renders one frame offscreen as an sRGB RGBA8 image: the pixels a screenshot holds.
-pub fn render_image(renderer: &mut Renderer, size: [u32; 2], params: &FrameParams) -> Result<image::RgbaImage, RenderError> {
+pub fn render_image(
+    renderer: &mut Renderer,
+    size: [u32; 2],
+    params: &FrameParams,
+) -> Result<image::RgbaImage, RenderError> {
     let bytes = render_offscreen(renderer, size, IMAGE_FORMAT, params)?;
     Ok(image::RgbaImage::from_raw(size[0], size[1], bytes).expect("4 bytes per pixel"))
 }
@@ -84,7 +97,10 @@ pub fn render_image(renderer: &mut Renderer, size: [u32; 2], params: &FrameParam
 /// Renders one frame offscreen to a float target: raw shader output, NaN and infinity kept.
 pub fn render_float(renderer: &mut Renderer, size: [u32; 2], params: &FrameParams) -> Result<FloatImage, RenderError> {
     let bytes = render_offscreen(renderer, size, FLOAT_FORMAT, params)?;
-    let pixels = bytes.chunks_exact(16).map(|p| std::array::from_fn(|i| f32::from_le_bytes(p[i * 4..i * 4 + 4].try_into().expect("4 bytes")))).collect();
+    let pixels = bytes
+        .chunks_exact(16)
+        .map(|p| std::array::from_fn(|i| f32::from_le_bytes(p[i * 4..i * 4 + 4].try_into().expect("4 bytes"))))
+        .collect();
     Ok(FloatImage { width: size[0], height: size[1], pixels })
 }
 

@@ -73,7 +73,17 @@ impl Renderer {
             layout: &pipelines.layouts.frame,
             entries: &[wgpu::BindGroupEntry { binding: 0, resource: frame_uniform.as_entire_binding() }],
         });
-        Renderer { device, queue, adapter, pipelines, frame_uniform, frame_bind_group, scene: None, targets: None, counters: WorkCounters::default() }
+        Renderer {
+            device,
+            queue,
+            adapter,
+            pipelines,
+            frame_uniform,
+            frame_bind_group,
+            scene: None,
+            targets: None,
+            counters: WorkCounters::default(),
+        }
     }
 
     pub fn from_gpu(gpu: &Gpu) -> Self {
@@ -90,7 +100,8 @@ impl Renderer {
 
     /// Replaces the scene: generates the tangents it needs and uploads what it uses.
     pub fn set_scene(&mut self, scene: &Scene) {
-        self.scene = Some(scene_gpu::upload(&self.device, &self.queue, &self.pipelines.layouts, scene, &mut self.counters));
+        self.scene =
+            Some(scene_gpu::upload(&self.device, &self.queue, &self.pipelines.layouts, scene, &mut self.counters));
     }
 
     /// The work done so far.
@@ -160,11 +171,20 @@ impl Renderer {
 
     /// Records one frame of the current scene into `encoder`, drawing into `target`.
     /// Uniforms are written to the queue now; the frame appears when `encoder` is submitted.
-    pub fn render(&mut self, encoder: &mut wgpu::CommandEncoder, target: &RenderTarget, params: &FrameParams) -> Result<(), RenderError> {
+    pub fn render(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &RenderTarget,
+        params: &FrameParams,
+    ) -> Result<(), RenderError> {
         self.check_target_size(target.size)?;
         let scene = self.scene.as_ref().ok_or(RenderError::NoScene)?;
         let aspect = target.size[0] as f32 / target.size[1] as f32;
-        self.queue.write_buffer(&self.frame_uniform, 0, bytemuck::bytes_of(&FrameUniform::new(params, scene.ambient, aspect)));
+        self.queue.write_buffer(
+            &self.frame_uniform,
+            0,
+            bytemuck::bytes_of(&FrameUniform::new(params, scene.ambient, aspect)),
+        );
         let marker_model = Mat4::from_translation(params.light.position);
         self.queue.write_buffer(&scene.marker.model, 0, bytemuck::bytes_of(&marker_model.to_cols_array()));
 

@@ -7,7 +7,8 @@ use crate::counters::WorkCounters;
 
 /// Shader sources, embedded at build time; frame.wgsl is the shared Frame uniform.
 pub const MESH_WGSL: &str = concat!(include_str!("../../shaders/frame.wgsl"), include_str!("../../shaders/mesh.wgsl"));
-pub const MARKER_WGSL: &str = concat!(include_str!("../../shaders/frame.wgsl"), include_str!("../../shaders/marker.wgsl"));
+pub const MARKER_WGSL: &str =
+    concat!(include_str!("../../shaders/frame.wgsl"), include_str!("../../shaders/marker.wgsl"));
 
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -48,7 +49,11 @@ fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Buffer { ty: wgpu::BufferBindingType::Uniform, has_dynamic_offset: false, min_binding_size: None },
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
         count: None,
     }
 }
@@ -165,20 +170,27 @@ impl Pipelines {
 
     fn build(&self, device: &wgpu::Device, key: PipelineKey) -> wgpu::RenderPipeline {
         let encodes_srgb = [("TARGET_ENCODES_SRGB", if key.format.is_srgb() { 1.0 } else { 0.0 })];
-        let (module, group1, vs, fs, buffers, cull_mode, constants): (_, _, _, _, &[_], _, &[(&str, f64)]) = match key.pass {
-            Pass::Mesh { variant, cull_back_faces } => {
-                let (vs, fs, buffers): (_, _, &[_]) = match variant {
-                    Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
-                    Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
-                    Variant::NormalMapped => ("vs_tangent", "fs_normal_mapped", &[POSITION, NORMAL, UV, TANGENT]),
-                };
-                let cull = cull_back_faces.then_some(wgpu::Face::Back);
-                (&self.mesh_module, self.layouts.material(variant), vs, fs, buffers, cull, &encodes_srgb)
-            }
-            Pass::LightMarker => {
-                (&self.marker_module, &self.layouts.marker, "vs_marker", "fs_marker", &[POSITION], Some(wgpu::Face::Back), &[])
-            }
-        };
+        let (module, group1, vs, fs, buffers, cull_mode, constants): (_, _, _, _, &[_], _, &[(&str, f64)]) =
+            match key.pass {
+                Pass::Mesh { variant, cull_back_faces } => {
+                    let (vs, fs, buffers): (_, _, &[_]) = match variant {
+                        Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
+                        Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
+                        Variant::NormalMapped => ("vs_tangent", "fs_normal_mapped", &[POSITION, NORMAL, UV, TANGENT]),
+                    };
+                    let cull = cull_back_faces.then_some(wgpu::Face::Back);
+                    (&self.mesh_module, self.layouts.material(variant), vs, fs, buffers, cull, &encodes_srgb)
+                }
+                Pass::LightMarker => (
+                    &self.marker_module,
+                    &self.layouts.marker,
+                    "vs_marker",
+                    "fs_marker",
+                    &[POSITION],
+                    Some(wgpu::Face::Back),
+                    &[],
+                ),
+            };
         let buffers: Vec<_> = buffers.iter().cloned().map(Some).collect();
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("bumpview"),
@@ -189,7 +201,12 @@ impl Pipelines {
         device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(&format!("{key:?}")),
             layout: Some(&layout),
-            vertex: wgpu::VertexState { module, entry_point: Some(vs), buffers: &buffers, compilation_options: options.clone() },
+            vertex: wgpu::VertexState {
+                module,
+                entry_point: Some(vs),
+                buffers: &buffers,
+                compilation_options: options.clone(),
+            },
             primitive: wgpu::PrimitiveState { cull_mode, ..Default::default() },
             depth_stencil: Some(wgpu::DepthStencilState {
                 format: DEPTH_FORMAT,
@@ -202,7 +219,11 @@ impl Pipelines {
             fragment: Some(wgpu::FragmentState {
                 module,
                 entry_point: Some(fs),
-                targets: &[Some(wgpu::ColorTargetState { format: key.format, blend: None, write_mask: wgpu::ColorWrites::ALL })],
+                targets: &[Some(wgpu::ColorTargetState {
+                    format: key.format,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
                 compilation_options: options,
             }),
             multiview_mask: None,

@@ -45,7 +45,11 @@ pub struct GpuScene {
 pub const MARKER_RADIUS: f32 = 0.06;
 
 fn buffer<T: bytemuck::Pod>(device: &wgpu::Device, label: &str, data: &[T], usage: wgpu::BufferUsages) -> wgpu::Buffer {
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents: bytemuck::cast_slice(data), usage })
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: bytemuck::cast_slice(data),
+        usage,
+    })
 }
 
 /// The per-attribute array, or zeros when the mesh lacks it or it has the wrong length.
@@ -80,9 +84,18 @@ impl TextureCache<'_> {
         });
         for (level, mip) in mips.iter().enumerate() {
             self.queue.write_texture(
-                wgpu::TexelCopyTextureInfo { texture: &texture, mip_level: level as u32, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
+                wgpu::TexelCopyTextureInfo {
+                    texture: &texture,
+                    mip_level: level as u32,
+                    origin: wgpu::Origin3d::ZERO,
+                    aspect: wgpu::TextureAspect::All,
+                },
                 &mip.rgba,
-                wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4 * mip.width), rows_per_image: Some(mip.height) },
+                wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(4 * mip.width),
+                    rows_per_image: Some(mip.height),
+                },
                 wgpu::Extent3d { width: mip.width, height: mip.height, depth_or_array_layers: 1 },
             );
         }
@@ -100,7 +113,13 @@ impl TextureCache<'_> {
     /// A 1×1 white colour texture for materials without a base colour texture.
     fn white(&mut self, counters: &mut WorkCounters) -> wgpu::TextureView {
         if self.white.is_none() {
-            let image = TextureImage { name: "white".into(), width: 1, height: 1, kind: TextureKind::Color, rgba: vec![255; 4] };
+            let image = TextureImage {
+                name: "white".into(),
+                width: 1,
+                height: 1,
+                kind: TextureKind::Color,
+                rgba: vec![255; 4],
+            };
             self.white = Some(self.upload(&image, counters));
         }
         self.white.clone().expect("uploaded above")
@@ -131,7 +150,13 @@ fn octahedron() -> (Vec<Vec3>, Vec<u32>) {
     (positions, indices)
 }
 
-pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, scene: &Scene, counters: &mut WorkCounters) -> GpuScene {
+pub fn upload(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    layouts: &Layouts,
+    scene: &Scene,
+    counters: &mut WorkCounters,
+) -> GpuScene {
     let variants: Vec<Variant> = scene.instances.iter().map(|i| variant_of(scene, i.mesh, i.material)).collect();
     let usage = wgpu::BufferUsages::VERTEX;
     let meshes = scene
@@ -140,7 +165,8 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, sce
         .enumerate()
         .map(|(index, mesh)| {
             let count = mesh.positions.len();
-            let drawn_with = |v: Variant| scene.instances.iter().zip(&variants).any(|(i, &w)| i.mesh == index && w == v);
+            let drawn_with =
+                |v: Variant| scene.instances.iter().zip(&variants).any(|(i, &w)| i.mesh == index && w == v);
             let tangents = if drawn_with(Variant::NormalMapped) && mesh.tangents.is_none() {
                 counters.tangent_frames_generated += count as u64;
                 Some(generate_mikktspace(mesh))
@@ -176,7 +202,8 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, sce
         .zip(variants)
         .map(|(instance, variant)| {
             let material = &scene.materials[instance.material];
-            let uniform = buffer(device, "object", &[ObjectUniform::new(instance, material)], wgpu::BufferUsages::UNIFORM);
+            let uniform =
+                buffer(device, "object", &[ObjectUniform::new(instance, material)], wgpu::BufferUsages::UNIFORM);
             let base_color = match material.base_color_texture {
                 Some(t) => textures.get(scene, t, counters),
                 None => textures.white(counters),
@@ -198,7 +225,11 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, sce
                 layout: layouts.material(variant),
                 entries: &entries,
             });
-            GpuInstance { mesh: instance.mesh, pass: Pass::Mesh { variant, cull_back_faces: !material.double_sided }, bind_group }
+            GpuInstance {
+                mesh: instance.mesh,
+                pass: Pass::Mesh { variant, cull_back_faces: !material.double_sided },
+                bind_group,
+            }
         })
         .collect();
 

@@ -57,11 +57,8 @@ impl ObjectUniform {
     pub fn new(instance: &Instance, material: &Material) -> Self {
         let model = instance.transform;
         let determinant = model.determinant();
-        let normal_matrix = if determinant.is_finite() && determinant != 0.0 {
-            model.inverse().transpose()
-        } else {
-            Mat4::IDENTITY
-        };
+        let normal_matrix =
+            if determinant.is_finite() && determinant != 0.0 { model.inverse().transpose() } else { Mat4::IDENTITY };
         ObjectUniform {
             model: model.to_cols_array_2d(),
             normal_matrix: normal_matrix.to_cols_array_2d(),

@@ -104,15 +104,21 @@ pub fn brick_color_texture() -> TextureImage {
         for x in 0..TILE_TEXELS {
             let sample = brick_sample(x, y);
             let id = sample.brick_id;
-            let brick = Vec3::new(0.62, 0.27, 0.18) * (0.8 + 0.35 * hash01(id, 5))
-                + Vec3::new(0.05, 0.03, 0.0) * hash01(id, 6);
+            let brick =
+                Vec3::new(0.62, 0.27, 0.18) * (0.8 + 0.35 * hash01(id, 5)) + Vec3::new(0.05, 0.03, 0.0) * hash01(id, 6);
             let grain = 0.88 + 0.12 * value_noise(x, y, 4, 7);
             let color = (mortar + (brick - mortar) * brick_mask(&sample)) * grain;
             rgba.extend(color.to_array().map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8));
             rgba.push(255);
         }
     }
-    TextureImage { name: "bricks (colour)".into(), width: TILE_TEXELS, height: TILE_TEXELS, kind: TextureKind::Color, rgba }
+    TextureImage {
+        name: "bricks (colour)".into(),
+        width: TILE_TEXELS,
+        height: TILE_TEXELS,
+        kind: TextureKind::Color,
+        rgba,
+    }
 }
 
 #[cfg(test)]

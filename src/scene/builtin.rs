@@ -36,7 +36,8 @@ pub fn floor_uv(p: Vec3) -> Vec2 {
 /// A flat rectangle split into `cells × cells` quads with one normal and UVs from `uv_of`.
 fn grid_plane(name: &str, corner: Vec3, edge_u: Vec3, edge_v: Vec3, normal: Vec3, uv_of: fn(Vec3) -> Vec2) -> Mesh {
     const CELLS: u32 = 8;
-    let mut mesh = Mesh { name: name.into(), positions: vec![], normals: vec![], uvs: vec![], tangents: None, indices: vec![] };
+    let mut mesh =
+        Mesh { name: name.into(), positions: vec![], normals: vec![], uvs: vec![], tangents: None, indices: vec![] };
     for j in 0..=CELLS {
         for i in 0..=CELLS {
             let p = corner + edge_u * (i as f32 / CELLS as f32) + edge_v * (j as f32 / CELLS as f32);
@@ -83,7 +84,14 @@ pub fn torus_mesh(segments: u32, sides: u32) -> Mesh {
     let (big_r, r) = (TORUS_MAJOR_RADIUS, TORUS_MINOR_RADIUS);
     let u_repeats = (TAU * big_r / BRICK_TILE_M).round().max(1.0);
     let v_repeats = 1.0;
-    let mut mesh = Mesh { name: "torus".into(), positions: vec![], normals: vec![], uvs: vec![], tangents: Some(vec![]), indices: vec![] };
+    let mut mesh = Mesh {
+        name: "torus".into(),
+        positions: vec![],
+        normals: vec![],
+        uvs: vec![],
+        tangents: Some(vec![]),
+        indices: vec![],
+    };
     for j in 0..=sides {
         let t = TAU * j as f32 / sides as f32;
         for i in 0..=segments {
@@ -93,7 +101,8 @@ pub fn torus_mesh(segments: u32, sides: u32) -> Mesh {
             let ring = big_r + r * cos_t;
             mesh.positions.push(Vec3::new(ring * cos_s, ring * sin_s, r * sin_t));
             mesh.normals.push(Vec3::new(cos_t * cos_s, cos_t * sin_s, sin_t));
-            mesh.uvs.push(Vec2::new(u_repeats * i as f32 / segments as f32, v_repeats * (1.0 - j as f32 / sides as f32)));
+            mesh.uvs
+                .push(Vec2::new(u_repeats * i as f32 / segments as f32, v_repeats * (1.0 - j as f32 / sides as f32)));
             mesh.tangents.as_mut().expect("set above").push(Vec4::new(-sin_s, cos_s, 0.0, 1.0));
         }
     }
@@ -120,7 +129,8 @@ pub fn default_light() -> Light {
 /// Builds the whole scene, including the brick normal map (central-difference kernel).
 pub fn teaching_scene() -> Scene {
     let height = brick_height_field(BRICK_TILE_M);
-    let textures = vec![brick_color_texture(), height.to_normal_map("bricks (normal map from height, central difference)")];
+    let textures =
+        vec![brick_color_texture(), height.to_normal_map("bricks (normal map from height, central difference)")];
     let bricks = Material {
         name: "bricks".into(),
         base_color_factor: Vec4::ONE,

@@ -1,8 +1,8 @@
 //! Scene data as plain arrays: meshes, materials, textures, instances, light and camera.
 //! Conventions (UV origin, tangent handedness, colour spaces) are in the crate docs.
 
-pub mod builtin;
 pub mod bricks;
+pub mod builtin;
 pub mod camera;
 pub mod texture;
 

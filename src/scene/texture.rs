@@ -49,8 +49,7 @@ impl TextureImage {
                 let rgb = match self.kind {
                     TextureKind::Color => {
                         let mean = texels.iter().fold(Vec3::ZERO, |acc, t| {
-                            acc + Vec3::new(t[0] as f32, t[1] as f32, t[2] as f32)
-                                .map(|c| srgb_to_linear(c / 255.0))
+                            acc + Vec3::new(t[0] as f32, t[1] as f32, t[2] as f32).map(|c| srgb_to_linear(c / 255.0))
                         }) / 4.0;
                         mean.map(linear_to_srgb)
                     }
@@ -84,8 +83,7 @@ mod tests {
 
     #[test]
     fn mip_chain_ends_at_one_texel_and_keeps_normals_unit() {
-        let rgba = [[255, 128, 128, 255], [0, 128, 128, 255], [128, 255, 128, 255], [128, 128, 255, 255]]
-            .concat();
+        let rgba = [[255, 128, 128, 255], [0, 128, 128, 255], [128, 255, 128, 255], [128, 128, 255, 255]].concat();
         let image = TextureImage { name: "n".into(), width: 2, height: 2, kind: TextureKind::NormalMap, rgba };
         let chain = image.mip_chain();
         assert_eq!(chain.len(), 2);

@@ -10,7 +10,8 @@ use bumpview::viewer::ViewerState;
 use glam::{Vec2, Vec3};
 
 pub fn renderer_for(scene: &Scene) -> Renderer {
-    let gpu = Gpu::headless().unwrap_or_else(|e| panic!("GPU tests need an adapter (install mesa-vulkan-drivers): {e}"));
+    let gpu =
+        Gpu::headless().unwrap_or_else(|e| panic!("GPU tests need an adapter (install mesa-vulkan-drivers): {e}"));
     let mut renderer = Renderer::from_gpu(&gpu);
     renderer.set_scene(scene);
     renderer
@@ -27,7 +28,8 @@ pub fn default_params(scene: &Scene) -> FrameParams {
 /// and 0.3 m one pixel covers about 0.56 brick texels, so sampling magnifies and reads mip 0.
 pub fn close_wall_params(scene: &Scene, distance: f32) -> FrameParams {
     let mut params = default_params(scene);
-    params.camera = OrbitCamera { target: Vec3::new(0.0, 1.5, WALL_Z), yaw: 0.0, pitch: 0.0, distance, ..params.camera };
+    params.camera =
+        OrbitCamera { target: Vec3::new(0.0, 1.5, WALL_Z), yaw: 0.0, pitch: 0.0, distance, ..params.camera };
     params.light.position = Vec3::new(0.12, 1.62, WALL_Z + 0.35);
     params
 }
@@ -38,7 +40,8 @@ pub fn scene() -> Scene {
 
 /// Where the ray through pixel `(x, y)`'s centre meets the plane `dot(n, p) = d`, if in front.
 pub fn hit_plane(camera: &OrbitCamera, size: [u32; 2], x: u32, y: u32, n: Vec3, d: f32) -> Option<Vec3> {
-    let (origin, dir) = camera.ray_through_pixel(Vec2::new(x as f32 + 0.5, y as f32 + 0.5), Vec2::new(size[0] as f32, size[1] as f32));
+    let (origin, dir) =
+        camera.ray_through_pixel(Vec2::new(x as f32 + 0.5, y as f32 + 0.5), Vec2::new(size[0] as f32, size[1] as f32));
     let denom = n.dot(dir);
     if denom.abs() < 1e-6 {
         return None;
