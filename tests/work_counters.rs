@@ -50,3 +50,28 @@ fn built_in_scene_generates_tangents_only_where_missing_and_caches_pipelines() {
     assert_eq!(after_second.textures_uploaded, after_first.textures_uploaded);
     assert_eq!(after_second.frames_drawn, 2);
 }
+
+/// A mesh that brings tangents but whose material has no normal map keeps its tangents for
+/// the T/B views (tangent variant) and generates nothing.
+#[test]
+fn supplied_tangents_without_normal_map_use_the_tangent_variant() {
+    let mut scene = scene();
+    for material in &mut scene.materials {
+        material.normal_map = None;
+    }
+    let mut renderer = renderer_for(&scene);
+    let mut params = default_params(&scene);
+    params.shading.view = bumpview::shading::ViewMode::Tangent;
+    render_image(&mut renderer, [64, 48], &params).unwrap();
+    assert_eq!(renderer.counters().tangent_frames_generated, 0);
+    let variants: Vec<_> = renderer
+        .built_pipelines()
+        .into_iter()
+        .filter_map(|k| match k.pass {
+            Pass::Mesh { variant, .. } => Some(variant),
+            Pass::LightMarker => None,
+        })
+        .collect();
+    assert!(variants.contains(&Variant::Tangent) && variants.contains(&Variant::Plain), "{variants:?}");
+    assert!(!variants.contains(&Variant::NormalMapped));
+}

@@ -231,3 +231,28 @@ impl Pipelines {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use wgpu::naga;
+
+    /// Every shader parses and validates with naga, no GPU needed, and has the entry points
+    /// the pipeline variants name.
+    #[test]
+    fn shaders_validate_and_have_every_entry_point() {
+        let cases: [(&str, &[&str]); 2] = [
+            (MESH_WGSL, &["vs_plain", "vs_tangent", "fs_plain", "fs_tangent", "fs_normal_mapped"]),
+            (MARKER_WGSL, &["vs_marker", "fs_marker"]),
+        ];
+        for (source, entry_points) in cases {
+            let module = naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
+            naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::empty())
+                .validate(&module)
+                .unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
+            for name in entry_points {
+                assert!(module.entry_points.iter().any(|e| e.name == *name), "missing entry point {name}");
+            }
+        }
+    }
+}
