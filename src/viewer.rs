@@ -18,6 +18,8 @@ pub enum Command {
     SetBump(bool),
     ToggleBump,
     SetStrength(f32),
+    /// Adds to the strength (the `[` / `]` keys), within [`STRENGTH_RANGE`].
+    StepStrength(f32),
     SetView(ViewMode),
     CycleView,
     SetLightPosition(Vec3),
@@ -85,6 +87,7 @@ impl ViewerState {
                 self.shading.strength = s.clamp(*STRENGTH_RANGE.start(), *STRENGTH_RANGE.end())
             }
             Command::SetStrength(_) => {}
+            Command::StepStrength(delta) => self.apply(Command::SetStrength(self.shading.strength + delta)),
             Command::SetView(view) => self.shading.view = view,
             Command::CycleView => self.shading.view = self.shading.view.next(),
             Command::SetLightPosition(p) if p.is_finite() => self.light.position = p,
@@ -182,5 +185,8 @@ mod tests {
         assert_eq!(state.shading.strength, 4.0);
         state.apply(Command::SetStrength(f32::NAN));
         assert_eq!(state.shading.strength, 4.0);
+        state.apply(Command::StepStrength(-0.5));
+        state.apply(Command::StepStrength(-0.5));
+        assert_eq!(state.shading.strength, 3.0);
     }
 }

@@ -30,7 +30,12 @@ impl Gpu {
 
     /// "name (backend)" of the adapter, for reports and messages.
     pub fn adapter_name(&self) -> String {
-        let info = self.adapter.get_info();
-        format!("{} ({:?})", info.name, info.backend)
+        adapter_name(&self.adapter)
     }
+}
+
+/// "name (backend)" of an adapter.
+pub fn adapter_name(adapter: &wgpu::Adapter) -> String {
+    let info = adapter.get_info();
+    format!("{} ({:?})", info.name, info.backend)
 }

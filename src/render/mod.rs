@@ -90,6 +90,11 @@ impl Renderer {
         Renderer::new(gpu.device.clone(), gpu.queue.clone(), gpu.adapter.clone())
     }
 
+    /// "name (backend)" of the adapter drawing the frames.
+    pub fn adapter_name(&self) -> String {
+        gpu::adapter_name(&self.adapter)
+    }
+
     pub fn device(&self) -> &wgpu::Device {
         &self.device
     }

@@ -246,7 +246,8 @@ mod tests {
             (MARKER_WGSL, &["vs_marker", "fs_marker"]),
         ];
         for (source, entry_points) in cases {
-            let module = naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
+            let module =
+                naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
             naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::empty())
                 .validate(&module)
                 .unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));

@@ -1,0 +1,88 @@
+//! Keyboard shortcuts and mouse gestures on the 3D view, turned into [`Action`]s.
+
+use bumpview::viewer::Command;
+use egui::{Event, Key, PointerButton};
+use glam::Vec2;
+
+use super::Action;
+
+/// Camera rotation per pixel dragged, radians.
+const ORBIT_RADIANS_PER_PIXEL: f32 = 0.01;
+/// Zoom per point scrolled: the distance is multiplied by `exp(-scroll · ZOOM_PER_POINT)`.
+const ZOOM_PER_POINT: f32 = 0.002;
+/// Strength change per `[` or `]` press.
+const STRENGTH_STEP: f32 = 0.1;
+
+/// The shortcuts pressed this frame: B bump, `[`/`]` strength, L light orbit, V view,
+/// R camera reset, F12 screenshot. None while a text field has keyboard focus.
+pub(super) fn keyboard(ctx: &egui::Context) -> Vec<Action> {
+    if ctx.text_edit_focused() {
+        return Vec::new();
+    }
+    let keys: Vec<(Key, bool)> = ctx.input(|i| {
+        i.events
+            .iter()
+            .filter_map(|event| match event {
+                Event::Key { key, pressed: true, repeat, modifiers, .. }
+                    if !(modifiers.ctrl || modifiers.alt || modifiers.command) =>
+                {
+                    Some((*key, *repeat))
+                }
+                _ => None,
+            })
+            .collect()
+    });
+    keys.into_iter().filter_map(|(key, repeat)| key_action(key, repeat)).collect()
+}
+
+/// The action of one key press. Toggles ignore auto-repeat; the strength keys repeat.
+fn key_action(key: Key, repeat: bool) -> Option<Action> {
+    let command = match key {
+        Key::OpenBracket => Command::StepStrength(-STRENGTH_STEP),
+        Key::CloseBracket => Command::StepStrength(STRENGTH_STEP),
+        _ if repeat => return None,
+        Key::B => Command::ToggleBump,
+        Key::L => Command::ToggleLightOrbit,
+        Key::V => Command::CycleView,
+        Key::R => Command::ResetCamera,
+        Key::F12 => return Some(Action::Screenshot),
+        _ => return None,
+    };
+    Some(command.into())
+}
+
+/// Mouse gestures on the 3D view, whose texture is `size` pixels: left-drag orbits the
+/// camera, Ctrl-drag moves the light, Shift-drag or middle-drag pans, the wheel zooms.
+pub(super) fn viewport(response: &egui::Response, ctx: &egui::Context, size: [u32; 2]) -> Vec<Action> {
+    let mut actions = Vec::new();
+    let delta = response.drag_delta() * ctx.pixels_per_point();
+    if delta != egui::Vec2::ZERO {
+        actions.extend(drag_action(response, ctx.input(|i| i.modifiers), Vec2::new(delta.x, delta.y), size[1] as f32));
+    }
+    let scroll = ctx.input(|i| i.smooth_scroll_delta.y);
+    if response.contains_pointer() && scroll != 0.0 {
+        actions.push(Command::Zoom((-scroll * ZOOM_PER_POINT).exp()).into());
+    }
+    actions
+}
+
+/// The command for a drag of `pixels` in a view `viewport_height` pixels tall.
+fn drag_action(
+    response: &egui::Response,
+    modifiers: egui::Modifiers,
+    pixels: Vec2,
+    viewport_height: f32,
+) -> Option<Action> {
+    let primary = response.dragged_by(PointerButton::Primary);
+    let command = if response.dragged_by(PointerButton::Middle) || (primary && modifiers.shift) {
+        Command::PanCamera { pixels, viewport_height }
+    } else if primary && (modifiers.ctrl || modifiers.command) {
+        Command::DragLight { pixels, viewport_height }
+    } else if primary {
+        // The scene follows the pointer: drag right turns it right, drag down tips it forward.
+        Command::OrbitCamera { d_yaw: -pixels.x * ORBIT_RADIANS_PER_PIXEL, d_pitch: pixels.y * ORBIT_RADIANS_PER_PIXEL }
+    } else {
+        return None;
+    };
+    Some(command.into())
+}

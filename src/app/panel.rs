@@ -1,0 +1,149 @@
+//! The control panel: one section per topic, each control labelled with its key.
+//! Widgets edit copies of the state and report changes as [`Action`]s.
+
+use bumpview::WorkCounters;
+use bumpview::shading::ViewMode;
+use bumpview::viewer::{Command, STRENGTH_RANGE, ViewerState};
+
+use super::{Action, ScreenshotForm};
+
+/// Range of the light position sliders, metres.
+const LIGHT_RANGE: std::ops::RangeInclusive<f32> = -5.0..=5.0;
+
+/// What the stats line reports.
+pub(super) struct Stats<'a> {
+    pub adapter: &'a str,
+    pub view_size: Option<[u32; 2]>,
+    pub counters: WorkCounters,
+    pub render_error: Option<&'a str>,
+}
+
+/// Shows the whole panel and returns what the user changed.
+pub(super) fn show(
+    ui: &mut egui::Ui,
+    state: &ViewerState,
+    screenshot: &mut ScreenshotForm,
+    stats: &Stats,
+) -> Vec<Action> {
+    let mut actions = Vec::new();
+    egui::ScrollArea::vertical().show(ui, |ui| {
+        ui.heading("bumpview");
+        bump_section(ui, state, &mut actions);
+        light_section(ui, state, &mut actions);
+        view_section(ui, state, &mut actions);
+        camera_section(ui, &mut actions);
+        screenshot_section(ui, screenshot, &mut actions);
+        ui.separator();
+        stats_section(ui, stats);
+    });
+    actions
+}
+
+fn bump_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
+    ui.separator();
+    ui.strong("Bump mapping");
+    let mut bump = state.shading.bump_enabled;
+    if ui.checkbox(&mut bump, "Bump on (B)").changed() {
+        actions.push(Command::SetBump(bump).into());
+    }
+    let mut strength = state.shading.strength;
+    let slider = egui::Slider::new(&mut strength, STRENGTH_RANGE).text("strength ([ / ])").step_by(0.01);
+    if ui.add(slider).on_hover_text("0 is flat, negative inverts the relief; [ and ] step by 0.1").changed() {
+        actions.push(Command::SetStrength(strength).into());
+    }
+}
+
+fn light_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
+    ui.separator();
+    ui.strong("Light");
+    let mut position = state.light.position;
+    let mut moved = false;
+    for (axis, value) in [("X", &mut position.x), ("Y", &mut position.y), ("Z", &mut position.z)] {
+        moved |= ui.add(egui::Slider::new(value, LIGHT_RANGE).text(axis).suffix(" m")).changed();
+    }
+    if moved {
+        actions.push(Command::SetLightPosition(position).into());
+    }
+    ui.weak("Ctrl-drag in the view moves the light");
+    let mut orbit = state.light_orbit;
+    if ui.checkbox(&mut orbit, "Orbit light (L)").changed() {
+        actions.push(Command::SetLightOrbit(orbit).into());
+    }
+    let mut marker = state.shading.show_light_marker;
+    if ui.checkbox(&mut marker, "Show light marker").changed() {
+        actions.push(Command::SetLightMarker(marker).into());
+    }
+}
+
+fn view_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
+    ui.separator();
+    ui.strong("View (V cycles)");
+    let mut view = state.shading.view;
+    for mode in ViewMode::ALL {
+        if ui.radio_value(&mut view, mode, view_label(mode)).changed() {
+            actions.push(Command::SetView(view).into());
+        }
+    }
+    ui.weak(view_hint(state.shading.view));
+}
+
+/// The panel's name for a view mode.
+fn view_label(mode: ViewMode) -> &'static str {
+    match mode {
+        ViewMode::Lit => "Lit",
+        ViewMode::Tangent => "Tangent",
+        ViewMode::Bitangent => "Bitangent",
+        ViewMode::Normal => "Normal",
+        ViewMode::ShadingNormal => "Shading normal",
+    }
+}
+
+/// One line on what the colours of a view mean.
+fn view_hint(mode: ViewMode) -> &'static str {
+    match mode {
+        ViewMode::Lit => "Blinn-Phong lighting with the (bumped) shading normal",
+        _ => "colour = 0.5·v + 0.5 of the world-space vector v (red +X, green +Y, blue +Z)",
+    }
+}
+
+fn camera_section(ui: &mut egui::Ui, actions: &mut Vec<Action>) {
+    ui.separator();
+    ui.strong("Camera");
+    ui.weak("Left-drag orbits, wheel zooms, Shift- or middle-drag pans");
+    if ui.button("Reset camera (R)").clicked() {
+        actions.push(Command::ResetCamera.into());
+    }
+}
+
+fn screenshot_section(ui: &mut egui::Ui, form: &mut ScreenshotForm, actions: &mut Vec<Action>) {
+    ui.separator();
+    ui.strong("Screenshot (3D view only)");
+    ui.horizontal(|ui| {
+        ui.label("Size");
+        ui.add(egui::TextEdit::singleline(&mut form.size_text).hint_text("view size").desired_width(110.0))
+            .on_hover_text("WxH in pixels, e.g. 1920x1080; empty uses the view's size");
+    });
+    if ui.button("Save PNG (F12)").clicked() {
+        actions.push(Action::Screenshot);
+    }
+    match &form.message {
+        Some(Ok(message)) => {
+            ui.label(message);
+        }
+        Some(Err(message)) => {
+            ui.colored_label(ui.visuals().error_fg_color, message);
+        }
+        None => {}
+    }
+}
+
+fn stats_section(ui: &mut egui::Ui, stats: &Stats) {
+    let size = stats.view_size.map_or_else(|| "no view".to_owned(), |[w, h]| format!("{w}x{h}"));
+    ui.small(format!(
+        "{} · view {size} · {} frames drawn · {} pipelines built",
+        stats.adapter, stats.counters.frames_drawn, stats.counters.pipelines_built
+    ));
+    if let Some(error) = stats.render_error {
+        ui.colored_label(ui.visuals().error_fg_color, error);
+    }
+}
