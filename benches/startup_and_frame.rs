@@ -13,7 +13,7 @@ fn startup(c: &mut Criterion) {
     group.bench_function("teaching_scene (brick height field + normal map)", |b| b.iter(teaching_scene));
     let gpu = Gpu::headless().expect("adapter");
     let scene = teaching_scene();
-    group.bench_function("set_scene (MikkTSpace + upload with mips)", |b| {
+    group.bench_function("Renderer::new + set_scene (MikkTSpace, upload with mips)", |b| {
         b.iter(|| Renderer::from_gpu(&gpu).set_scene(&scene))
     });
     group.finish();
