@@ -2,6 +2,7 @@
 
 mod common;
 
+use bumpview::height::{Border, Kernel};
 use bumpview::render::capture::render_image;
 use bumpview::scene::bricks::brick_height_field;
 use bumpview::scene::builtin::{
@@ -119,7 +120,10 @@ fn normal_vs_shading_normal(bump: bool, strength: f32) -> Vec<(f32, f32)> {
                 decode_debug(normal.get_pixel(x, y)).angle_between(decode_debug(shading.get_pixel(x, y))).to_degrees();
             let uv = wall_uv(hit_plane(&params.camera, size, x, y, Vec3::Z, WALL_Z).unwrap());
             let texel = (uv * field.width as f32).floor();
-            let cpu = field.normal_central(texel.x as i64, texel.y as i64).angle_between(Vec3::Z).to_degrees();
+            let cpu = field
+                .normal(Kernel::CentralDifference, Border::Wrap, texel.x as i64, texel.y as i64)
+                .angle_between(Vec3::Z)
+                .to_degrees();
             angles.push((gpu, cpu));
         }
     }
@@ -173,7 +177,7 @@ fn bevels_lean_the_way_the_height_field_slopes() {
         for x in (0..size[0]).step_by(2) {
             let uv = wall_uv(hit_plane(&params.camera, size, x, y, Vec3::Z, WALL_Z).unwrap());
             let t = (uv * field.width as f32).floor();
-            let cpu = field.normal_central(t.x as i64, t.y as i64);
+            let cpu = field.normal(Kernel::CentralDifference, Border::Wrap, t.x as i64, t.y as i64);
             if cpu.y.abs() > 0.4 && cpu.x.abs() < 0.1 {
                 let gpu = decode_debug(image.get_pixel(x, y));
                 if gpu.y * cpu.y > 0.0 { up += 1 } else { down += 1 }

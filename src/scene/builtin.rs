@@ -8,6 +8,7 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use super::bricks::{brick_color_texture, brick_height_field};
 use super::{Instance, Light, Material, Mesh, NormalMap, OrbitCamera, Scene};
+use crate::height::{Border, Kernel};
 
 /// Metres covered by one repeat of the brick texture on the wall and floor.
 pub const BRICK_TILE_M: f32 = 1.0;
@@ -36,8 +37,9 @@ pub fn floor_uv(p: Vec3) -> Vec2 {
 /// A flat rectangle split into `cells × cells` quads with one normal and UVs from `uv_of`.
 fn grid_plane(name: &str, corner: Vec3, edge_u: Vec3, edge_v: Vec3, normal: Vec3, uv_of: fn(Vec3) -> Vec2) -> Mesh {
     const CELLS: u32 = 8;
-    let mut mesh =
-        Mesh { name: name.into(), positions: vec![], normals: vec![], uvs: vec![], tangents: None, indices: vec![] };
+    let mut mesh = Mesh::empty(name);
+    // u runs along edge_u; the image's up is cross(N, T), so w = +1 (see wall_uv, floor_uv).
+    let analytic = edge_u.normalize().extend(1.0);
     for j in 0..=CELLS {
         for i in 0..=CELLS {
             let p = corner + edge_u * (i as f32 / CELLS as f32) + edge_v * (j as f32 / CELLS as f32);
@@ -46,6 +48,7 @@ fn grid_plane(name: &str, corner: Vec3, edge_u: Vec3, edge_v: Vec3, normal: Vec3
             mesh.uvs.push(uv_of(p));
         }
     }
+    mesh.analytic_tangents = Some(vec![analytic; mesh.positions.len()]);
     let stride = CELLS + 1;
     for j in 0..CELLS {
         for i in 0..CELLS {
@@ -84,14 +87,8 @@ pub fn torus_mesh(segments: u32, sides: u32) -> Mesh {
     let (big_r, r) = (TORUS_MAJOR_RADIUS, TORUS_MINOR_RADIUS);
     let u_repeats = (TAU * big_r / BRICK_TILE_M).round().max(1.0);
     let v_repeats = 1.0;
-    let mut mesh = Mesh {
-        name: "torus".into(),
-        positions: vec![],
-        normals: vec![],
-        uvs: vec![],
-        tangents: Some(vec![]),
-        indices: vec![],
-    };
+    let mut mesh = Mesh::empty("torus");
+    let mut analytic = vec![];
     for j in 0..=sides {
         let t = TAU * j as f32 / sides as f32;
         for i in 0..=segments {
@@ -103,9 +100,10 @@ pub fn torus_mesh(segments: u32, sides: u32) -> Mesh {
             mesh.normals.push(Vec3::new(cos_t * cos_s, cos_t * sin_s, sin_t));
             mesh.uvs
                 .push(Vec2::new(u_repeats * i as f32 / segments as f32, v_repeats * (1.0 - j as f32 / sides as f32)));
-            mesh.tangents.as_mut().expect("set above").push(Vec4::new(-sin_s, cos_s, 0.0, 1.0));
+            analytic.push(Vec4::new(-sin_s, cos_s, 0.0, 1.0));
         }
     }
+    mesh.analytic_tangents = Some(analytic);
     let stride = segments + 1;
     for j in 0..sides {
         for i in 0..segments {
@@ -127,10 +125,13 @@ pub fn default_light() -> Light {
 }
 
 /// Builds the whole scene, including the brick normal map (central-difference kernel).
+/// Every mesh carries its analytic frame; none supplies tangents, so MikkTSpace makes them.
 pub fn teaching_scene() -> Scene {
     let height = brick_height_field(BRICK_TILE_M);
-    let textures =
-        vec![brick_color_texture(), height.to_normal_map("bricks (normal map from height, central difference)")];
+    let textures = vec![
+        brick_color_texture(),
+        height.to_normal_map(Kernel::CentralDifference, Border::Wrap, "bricks (normal map, central difference)"),
+    ];
     let bricks = Material {
         name: "bricks".into(),
         base_color_factor: Vec4::ONE,
@@ -164,7 +165,7 @@ mod tests {
     #[test]
     fn torus_frame_is_right_handed_and_matches_its_parameter_directions() {
         let mesh = torus_mesh(24, 12);
-        let tangents = mesh.tangents.as_ref().unwrap();
+        let tangents = mesh.analytic_tangents.as_ref().unwrap();
         let stride = 25;
         for j in 0..12 {
             for i in 0..24 {

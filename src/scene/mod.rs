@@ -21,8 +21,11 @@ pub struct Mesh {
     pub normals: Vec<Vec3>,
     /// Texture coordinates, origin top-left, v down (crate conventions).
     pub uvs: Vec<Vec2>,
-    /// MikkTSpace-style tangents `(T.xyz, w)`, model space; `None` when the mesh supplies none.
+    /// MikkTSpace-style tangents `(T.xyz, w)` supplied with the mesh (e.g. by the file),
+    /// model space; `None` when it supplies none.
     pub tangents: Option<Vec<Vec4>>,
+    /// The exact frame of a parametric surface (built-in meshes), same form as `tangents`.
+    pub analytic_tangents: Option<Vec<Vec4>>,
     /// Three indices per triangle, counter-clockwise front faces.
     pub indices: Vec<u32>,
 }
@@ -82,6 +85,37 @@ pub struct Scene {
     pub default_light: Light,
     /// The camera a new view starts with and that "reset camera" returns to.
     pub default_camera: OrbitCamera,
+}
+
+impl Mesh {
+    /// A mesh without positions or attributes, to be filled.
+    pub fn empty(name: &str) -> Mesh {
+        Mesh {
+            name: name.to_owned(),
+            positions: vec![],
+            normals: vec![],
+            uvs: vec![],
+            tangents: None,
+            analytic_tangents: None,
+            indices: vec![],
+        }
+    }
+
+    /// The same triangles with one vertex per corner (no vertex shared between triangles),
+    /// so that per-face attributes can be drawn.
+    pub fn unwelded(&self) -> Mesh {
+        let pick = |values: &Vec<Vec4>| self.indices.iter().map(|&i| values[i as usize]).collect();
+        let gather = |values: &[Vec3]| self.indices.iter().map(|&i| values[i as usize]).collect();
+        Mesh {
+            name: self.name.clone(),
+            positions: gather(&self.positions),
+            normals: gather(&self.normals),
+            uvs: self.indices.iter().map(|&i| self.uvs.get(i as usize).copied().unwrap_or_default()).collect(),
+            tangents: self.tangents.as_ref().map(pick),
+            analytic_tangents: self.analytic_tangents.as_ref().map(pick),
+            indices: (0..self.indices.len() as u32).collect(),
+        }
+    }
 }
 
 impl Material {

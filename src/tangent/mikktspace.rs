@@ -1,12 +1,11 @@
-//! Tangent frames for meshes that have a normal map but no tangents of their own.
+//! MikkTSpace tangent frames (bevy_mikktspace), the default method.
 //!
-//! Generated with MikkTSpace (bevy_mikktspace). MikkTSpace assumes `v` runs *up* the image,
-//! while this crate stores glTF-style UVs with `v` running down; it is therefore fed
-//! `(u, 1 − v)`, which makes the bitangent `B = w · cross(N, T)` point up the image — the
+//! MikkTSpace assumes `v` runs *up* the image, while this crate stores glTF-style UVs with
+//! `v` running down; it is therefore fed `(u, 1 − v)`, which makes the bitangent `B = w · cross(N, T)` point up the image — the
 //! direction a tangent-space normal map's green channel (+Y) means.
 
 use bevy_mikktspace::{Geometry, TangentSpace, generate_tangents};
-use glam::{Vec3, Vec4};
+use glam::Vec4;
 
 use crate::math::{any_perpendicular, orthonormalize_tangent};
 use crate::scene::Mesh;
@@ -69,26 +68,21 @@ pub fn generate_mikktspace(mesh: &Mesh) -> Vec<Vec4> {
         .collect()
 }
 
-/// The bitangent `w · cross(N, T)` of a MikkTSpace tangent (crate conventions).
-pub fn bitangent(normal: Vec3, tangent: Vec4) -> Vec3 {
-    crate::math::handedness(tangent) * normal.cross(tangent.truncate())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::Vec2;
+    use crate::tangent::bitangent;
+    use glam::{Vec2, Vec3};
 
     /// A unit quad in the XY plane facing +Z, u along +X and v (glTF, down the image) along −Y.
     fn quad(flip_u: bool) -> Mesh {
         let u = |x: f32| if flip_u { 1.0 - x } else { x };
         Mesh {
-            name: "quad".into(),
             positions: vec![Vec3::new(0., 0., 0.), Vec3::new(1., 0., 0.), Vec3::new(1., 1., 0.), Vec3::new(0., 1., 0.)],
             normals: vec![Vec3::Z; 4],
             uvs: vec![Vec2::new(u(0.), 1.), Vec2::new(u(1.), 1.), Vec2::new(u(1.), 0.), Vec2::new(u(0.), 0.)],
-            tangents: None,
             indices: vec![0, 1, 2, 0, 2, 3],
+            ..Mesh::empty("quad")
         }
     }
 

@@ -1,0 +1,73 @@
+//! Angular error of tangent frames against a reference frame, per vertex and summarised.
+
+use glam::{Vec3, Vec4};
+
+use super::bitangent;
+
+/// Angles in degrees between two frames at each vertex: `tangent[i]` between the `T`s,
+/// `bitangent[i]` between the `B = w · cross(N, T)`s (so a wrong `w` shows as 180°).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrameAngles {
+    pub tangent: Vec<f32>,
+    pub bitangent: Vec<f32>,
+}
+
+/// Compares `frames` with `reference` at each vertex with unit normal `normals[i]`.
+pub fn frame_angles(normals: &[Vec3], frames: &[Vec4], reference: &[Vec4]) -> FrameAngles {
+    let angle =
+        |a: Vec3, b: Vec3| a.normalize_or_zero().dot(b.normalize_or_zero()).clamp(-1.0, 1.0).acos().to_degrees();
+    let mut angles = FrameAngles { tangent: vec![], bitangent: vec![] };
+    for ((&n, &f), &r) in normals.iter().zip(frames).zip(reference) {
+        angles.tangent.push(angle(f.truncate(), r.truncate()));
+        angles.bitangent.push(angle(bitangent(n, f), bitangent(n, r)));
+    }
+    angles
+}
+
+/// Mean, root-mean-square and maximum of a set of angles (degrees).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct AngleStats {
+    pub mean: f32,
+    pub rms: f32,
+    pub max: f32,
+    pub count: usize,
+}
+
+impl AngleStats {
+    /// Statistics of `angles`; all zero for an empty set. Non-finite angles count as 180°.
+    pub fn of(angles: impl IntoIterator<Item = f32>) -> AngleStats {
+        let (mut sum, mut sum_squares, mut max, mut count) = (0.0f64, 0.0f64, 0.0f32, 0usize);
+        for a in angles {
+            let a = if a.is_finite() { a } else { 180.0 };
+            sum += a as f64;
+            sum_squares += (a as f64) * (a as f64);
+            max = max.max(a);
+            count += 1;
+        }
+        if count == 0 {
+            return AngleStats::default();
+        }
+        let n = count as f64;
+        AngleStats { mean: (sum / n) as f32, rms: (sum_squares / n).sqrt() as f32, max, count }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn flipped_handedness_is_a_half_turn_of_the_bitangent() {
+        let n = [Vec3::Z];
+        let angles = frame_angles(&n, &[Vec4::new(1.0, 0.0, 0.0, -1.0)], &[Vec4::new(1.0, 0.0, 0.0, 1.0)]);
+        assert!(angles.tangent[0].abs() < 1e-4 && (angles.bitangent[0] - 180.0).abs() < 1e-3);
+    }
+
+    #[test]
+    fn stats_of_known_angles() {
+        let s = AngleStats::of([3.0, 4.0, f32::NAN]);
+        assert_eq!(s.count, 3);
+        assert!((s.max - 180.0).abs() < 1e-6 && (s.mean - 187.0 / 3.0).abs() < 1e-4);
+        assert_eq!(AngleStats::of([]), AngleStats::default());
+    }
+}

@@ -1,0 +1,102 @@
+//! Tangent frames by several methods, so they can be compared against exact answers.
+//!
+//! Every method returns one MikkTSpace-style `vec4` per vertex: `xyz` unit and orthogonal to
+//! the vertex normal, `w = ±1`, bitangent `B = w · cross(N, T)` pointing up the image (crate
+//! conventions). None returns NaN: degenerate input falls back to a valid orthonormal frame.
+
+mod compare;
+mod mikktspace;
+mod uv_delta;
+
+use glam::{Vec3, Vec4};
+
+use crate::math::orthonormalize_tangent;
+use crate::scene::Mesh;
+pub use compare::{AngleStats, FrameAngles, frame_angles};
+pub use mikktspace::generate_mikktspace;
+pub use uv_delta::{Weighting, averaged_face_frames, face_frame, per_face_frames};
+
+/// How tangent frames are made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum TangentMethod {
+    /// MikkTSpace (bevy_mikktspace): the standard bakers use.
+    #[default]
+    MikkTSpace,
+    /// Each triangle's own frame from its edge and UV deltas; a vertex takes the frame of
+    /// the last triangle that uses it, so this is exact only on an unwelded mesh
+    /// ([`Mesh::unwelded`]), which is how the renderer draws it.
+    PerFace,
+    /// Face frames averaged at each vertex with a weighting, then Gram-Schmidt against the
+    /// normal and `w = sign(dot(cross(N, T), B))`.
+    Averaged(Weighting),
+    /// The tangents the mesh file supplies, re-orthogonalised against the normal, `w` kept.
+    Supplied,
+    /// The exact frame of a built-in parametric surface.
+    Analytic,
+}
+
+impl TangentMethod {
+    pub const ALL: [TangentMethod; 7] = [
+        TangentMethod::MikkTSpace,
+        TangentMethod::PerFace,
+        TangentMethod::Averaged(Weighting::Uniform),
+        TangentMethod::Averaged(Weighting::Area),
+        TangentMethod::Averaged(Weighting::Angle),
+        TangentMethod::Supplied,
+        TangentMethod::Analytic,
+    ];
+
+    /// Name on the command line, in the panel and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            TangentMethod::MikkTSpace => "mikktspace",
+            TangentMethod::PerFace => "per-face",
+            TangentMethod::Averaged(Weighting::Uniform) => "averaged-uniform",
+            TangentMethod::Averaged(Weighting::Area) => "averaged-area",
+            TangentMethod::Averaged(Weighting::Angle) => "averaged-angle",
+            TangentMethod::Supplied => "supplied",
+            TangentMethod::Analytic => "analytic",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<TangentMethod> {
+        TangentMethod::ALL.into_iter().find(|m| m.name() == name)
+    }
+}
+
+/// Per-vertex frames of `mesh` by `method`; `None` when the mesh has no supplied or
+/// analytic frames for those methods (the caller decides the fallback).
+pub fn tangents(mesh: &Mesh, method: TangentMethod) -> Option<Vec<Vec4>> {
+    let reorthogonalised = |frames: &Vec<Vec4>| {
+        frames
+            .iter()
+            .zip(&mesh.normals)
+            .map(|(t, &n)| orthonormalize_tangent(t.truncate(), n).extend(t.w.signum()))
+            .collect()
+    };
+    match method {
+        TangentMethod::MikkTSpace => Some(generate_mikktspace(mesh)),
+        TangentMethod::PerFace => {
+            let mut frames = vec![Vec4::ZERO; mesh.positions.len()];
+            for (triangle, frame) in mesh.indices.chunks_exact(3).zip(per_face_frames(mesh)) {
+                for &v in triangle {
+                    let n = mesh.normals[v as usize];
+                    frames[v as usize] = orthonormalize_tangent(frame.truncate(), n).extend(frame.w);
+                }
+            }
+            Some(frames)
+        }
+        TangentMethod::Averaged(weighting) => Some(averaged_face_frames(mesh, weighting)),
+        TangentMethod::Supplied => {
+            mesh.tangents.as_ref().filter(|t| t.len() == mesh.positions.len()).map(reorthogonalised)
+        }
+        TangentMethod::Analytic => {
+            mesh.analytic_tangents.as_ref().filter(|t| t.len() == mesh.positions.len()).map(reorthogonalised)
+        }
+    }
+}
+
+/// The bitangent `w · cross(N, T)` of a MikkTSpace tangent (crate conventions).
+pub fn bitangent(normal: Vec3, tangent: Vec4) -> Vec3 {
+    crate::math::handedness(tangent) * normal.cross(tangent.truncate())
+}
