@@ -11,6 +11,10 @@ struct Frame {
     bump_enabled: u32,
     view_mode: u32,           // ViewMode::shader_index()
     self_shadow_fade: f32,    // SELF_SHADOW_FADE
+    difference_range_deg: f32, // the Difference view's colour scale runs 0..this, degrees
+    _pad0: f32,
+    _pad1: f32,
+    _pad2: f32,
 };
 
 @group(0) @binding(0) var<uniform> frame: Frame;

@@ -6,6 +6,7 @@
 //   vs_plain  + fs_plain          mesh without tangents, material without normal map
 //   vs_tangent + fs_tangent       mesh with tangents, material without normal map
 //   vs_tangent + fs_normal_mapped mesh with tangents and a normal map
+//   vs_difference + fs_difference the Difference view: a mesh's frames against reference frames
 //
 // Prepended at build time: frame.wgsl (the Frame uniform, group 0).
 
@@ -32,6 +33,7 @@ const VIEW_TANGENT: u32 = 1u;
 const VIEW_BITANGENT: u32 = 2u;
 const VIEW_NORMAL: u32 = 3u;
 const VIEW_SHADING_NORMAL: u32 = 4u;
+const VIEW_DIFFERENCE: u32 = 5u;
 
 struct VertexOutput {
     @builtin(position) clip_position: vec4<f32>,
@@ -91,8 +93,8 @@ fn orthonormalize_tangent(t: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
 
 // ---- surface frame ----
 
-fn geometric_normal(in: VertexOutput, front_facing: bool) -> vec3<f32> {
-    let n = normalize_or(in.world_normal, vec3<f32>(0.0, 0.0, 1.0));
+fn geometric_normal(world_normal: vec3<f32>, front_facing: bool) -> vec3<f32> {
+    let n = normalize_or(world_normal, vec3<f32>(0.0, 0.0, 1.0));
     // Only double-sided materials draw back faces; there N flips, and with it B.
     return select(-n, n, front_facing);
 }
@@ -102,9 +104,9 @@ struct TangentFrame {
     b: vec3<f32>,
 };
 
-fn tangent_frame(in: VertexOutput, n: vec3<f32>) -> TangentFrame {
-    let t = orthonormalize_tangent(in.world_tangent.xyz, n);
-    let w = select(1.0, -1.0, in.world_tangent.w < 0.0);
+fn tangent_frame(world_tangent: vec4<f32>, n: vec3<f32>) -> TangentFrame {
+    let t = orthonormalize_tangent(world_tangent.xyz, n);
+    let w = select(1.0, -1.0, world_tangent.w < 0.0);
     return TangentFrame(t, w * cross(n, t));
 }
 
@@ -150,6 +152,8 @@ fn surface_color(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_s
         case VIEW_BITANGENT: { return stored(0.5 * frame_tb.b + 0.5); }
         case VIEW_NORMAL: { return stored(0.5 * n_geo + 0.5); }
         case VIEW_SHADING_NORMAL: { return stored(0.5 * n_shading + 0.5); }
+        // Drawn with fs_difference when the mesh has frames; without them, neutral grey.
+        case VIEW_DIFFERENCE: { return stored(vec3<f32>(0.5)); }
         default: {
             let albedo = textureSample(base_color_texture, material_sampler, in.uv).rgb * object.base_color.rgb;
             return vec4<f32>(blinn_phong(albedo, n_geo, n_shading, in.world_position), 1.0);
@@ -159,25 +163,75 @@ fn surface_color(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_s
 
 @fragment
 fn fs_plain(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
-    let n = geometric_normal(in, front_facing);
+    let n = geometric_normal(in.world_normal, front_facing);
     // No tangents: the T and B views show the zero vector (mid grey).
     return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0)), n);
 }
 
 @fragment
 fn fs_tangent(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
-    let n = geometric_normal(in, front_facing);
-    return surface_color(in, n, tangent_frame(in, n), n);
+    let n = geometric_normal(in.world_normal, front_facing);
+    return surface_color(in, n, tangent_frame(in.world_tangent, n), n);
 }
 
 @fragment
 fn fs_normal_mapped(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
-    let n = geometric_normal(in, front_facing);
-    let frame_tb = tangent_frame(in, n);
+    let n = geometric_normal(in.world_normal, front_facing);
+    let frame_tb = tangent_frame(in.world_tangent, n);
     let texel = textureSample(normal_texture, material_sampler, in.uv).rgb;
     var n_shading = n;
     if frame.bump_enabled != 0u {
         n_shading = perturbed_normal(n, frame_tb, texel, frame.strength * object.normal_scale);
     }
     return surface_color(in, n, frame_tb, n_shading);
+}
+
+// ---- Difference view (shading::difference_color is the CPU twin of the colour scale) ----
+
+struct DifferenceOutput {
+    @builtin(position) clip_position: vec4<f32>,
+    @location(1) world_normal: vec3<f32>,
+    @location(3) world_tangent: vec4<f32>,
+    @location(4) world_reference: vec4<f32>,
+};
+
+@vertex
+fn vs_difference(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) tangent: vec4<f32>,
+    @location(4) reference: vec4<f32>,
+) -> DifferenceOutput {
+    let frame_out = to_world(position, normal, uv, tangent);
+    let reference_out = to_world(position, normal, uv, reference);
+    return DifferenceOutput(frame_out.clip_position, frame_out.world_normal, frame_out.world_tangent, reference_out.world_tangent);
+}
+
+fn angle_deg(a: vec3<f32>, b: vec3<f32>) -> f32 {
+    return degrees(acos(clamp(dot(a, b), -1.0, 1.0)));
+}
+
+// Viridis-like ramp through five stops, t in 0..1 (display values).
+fn difference_color(t: f32) -> vec3<f32> {
+    let stops = array<vec3<f32>, 5>(
+        vec3<f32>(0.267, 0.005, 0.329),
+        vec3<f32>(0.229, 0.322, 0.546),
+        vec3<f32>(0.128, 0.567, 0.551),
+        vec3<f32>(0.369, 0.789, 0.383),
+        vec3<f32>(0.993, 0.906, 0.144),
+    );
+    let x = clamp(t, 0.0, 1.0) * 4.0;
+    let i = min(u32(floor(x)), 3u);
+    return mix(stops[i], stops[i + 1u], x - f32(i));
+}
+
+// The larger of the angles between the two frames' T and B, on a 0..difference_range scale.
+@fragment
+fn fs_difference(in: DifferenceOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    let n = geometric_normal(in.world_normal, front_facing);
+    let frame_tb = tangent_frame(in.world_tangent, n);
+    let reference_tb = tangent_frame(in.world_reference, n);
+    let angle = max(angle_deg(frame_tb.t, reference_tb.t), angle_deg(frame_tb.b, reference_tb.b));
+    return stored(difference_color(angle / max(frame.difference_range_deg, 1e-6)));
 }

@@ -7,10 +7,12 @@ mod args;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use bumpview::height::Kernel;
 use bumpview::render::capture::{render_image, write_png_atomically};
 use bumpview::render::{Gpu, Renderer};
-use bumpview::scene::builtin::teaching_scene;
+use bumpview::scene::builtin::teaching_scene_with_kernel;
 use bumpview::shading::ViewMode;
+use bumpview::tangent::TangentMethod;
 use bumpview::viewer::ViewerState;
 use clap::{Parser, Subcommand};
 use glam::Vec3;
@@ -26,6 +28,8 @@ struct Cli {
     /// Viewer: with --exit-after, save a screenshot of the whole window (UI included) here first.
     #[arg(long, value_name = "PATH", requires = "exit_after")]
     capture_window: Option<PathBuf>,
+    #[command(flatten)]
+    methods: MethodArgs,
 }
 
 #[derive(Subcommand)]
@@ -61,6 +65,21 @@ struct RenderArgs {
     /// Hide the light marker.
     #[arg(long)]
     no_light_marker: bool,
+    #[command(flatten)]
+    methods: MethodArgs,
+}
+
+/// The numerical methods behind the picture (shared by the viewer and `render`).
+#[derive(clap::Args, Clone, Copy)]
+struct MethodArgs {
+    /// Tangent frames: auto (the mesh's own, else MikkTSpace), mikktspace, per-face,
+    /// averaged-uniform, averaged-area, averaged-angle, supplied or analytic.
+    #[arg(long, default_value = "auto", value_parser = parse_tangents)]
+    tangents: TangentChoice,
+    /// Height→normal kernel for the built-in brick normal map: forward, central, sobel3,
+    /// scharr3, sobel5 or central4.
+    #[arg(long, default_value = "central", value_parser = parse_kernel)]
+    kernel: Kernel,
 }
 
 fn parse_view(text: &str) -> Result<ViewMode, String> {
@@ -70,8 +89,30 @@ fn parse_view(text: &str) -> Result<ViewMode, String> {
     })
 }
 
+/// A tangent method, or `None` for auto (clap reads a bare `Option` as "flag may be absent").
+#[derive(Clone, Copy)]
+struct TangentChoice(Option<TangentMethod>);
+
+/// `auto` or a [`TangentMethod`] name.
+fn parse_tangents(text: &str) -> Result<TangentChoice, String> {
+    if text == "auto" {
+        return Ok(TangentChoice(None));
+    }
+    TangentMethod::from_name(text).map(|m| TangentChoice(Some(m))).ok_or_else(|| {
+        let names: Vec<_> = TangentMethod::ALL.iter().map(|m| m.name()).collect();
+        format!("{text:?}: expected auto or one of {}", names.join(", "))
+    })
+}
+
+fn parse_kernel(text: &str) -> Result<Kernel, String> {
+    Kernel::from_name(text).ok_or_else(|| {
+        let names: Vec<_> = Kernel::ALL.iter().map(|k| k.name()).collect();
+        format!("{text:?}: expected one of {}", names.join(", "))
+    })
+}
+
 fn render(args: RenderArgs) -> Result<(), String> {
-    let scene = teaching_scene();
+    let scene = teaching_scene_with_kernel(args.methods.kernel);
     let mut state = ViewerState::new(&scene);
     state.shading.view = args.view;
     state.shading.bump_enabled = args.bump;
@@ -91,7 +132,7 @@ fn render(args: RenderArgs) -> Result<(), String> {
     }
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let mut renderer = Renderer::from_gpu(&gpu);
-    renderer.set_scene(&scene);
+    renderer.set_scene(&scene, args.methods.tangents.0);
     let image = render_image(&mut renderer, args.size, &state.frame_params()).map_err(|e| e.to_string())?;
     write_png_atomically(&image, &args.out).map_err(|e| e.to_string())?;
     println!("wrote {} ({}x{}, {})", args.out.display(), args.size[0], args.size[1], gpu.adapter_name());
@@ -100,7 +141,12 @@ fn render(args: RenderArgs) -> Result<(), String> {
 
 #[cfg(feature = "ui")]
 fn viewer(cli: &Cli) -> Result<(), String> {
-    app::run(app::Options { exit_after: cli.exit_after, capture_window: cli.capture_window.clone() })
+    app::run(app::Options {
+        exit_after: cli.exit_after,
+        capture_window: cli.capture_window.clone(),
+        tangent_method: cli.methods.tangents.0,
+        kernel: cli.methods.kernel,
+    })
 }
 
 #[cfg(not(feature = "ui"))]

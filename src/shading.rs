@@ -28,11 +28,20 @@ pub enum ViewMode {
     Normal,
     /// The normal after the normal map and bump strength.
     ShadingNormal,
+    /// Angle between the mesh's tangent frame and the reference frame (analytic where the
+    /// mesh has one, else MikkTSpace), on the [`difference_color`] scale.
+    Difference,
 }
 
 impl ViewMode {
-    pub const ALL: [ViewMode; 5] =
-        [ViewMode::Lit, ViewMode::Tangent, ViewMode::Bitangent, ViewMode::Normal, ViewMode::ShadingNormal];
+    pub const ALL: [ViewMode; 6] = [
+        ViewMode::Lit,
+        ViewMode::Tangent,
+        ViewMode::Bitangent,
+        ViewMode::Normal,
+        ViewMode::ShadingNormal,
+        ViewMode::Difference,
+    ];
 
     /// The next mode in [`ViewMode::ALL`], wrapping around.
     pub fn next(self) -> ViewMode {
@@ -53,6 +62,7 @@ impl ViewMode {
             ViewMode::Bitangent => "bitangent",
             ViewMode::Normal => "normal",
             ViewMode::ShadingNormal => "shading-normal",
+            ViewMode::Difference => "difference",
         }
     }
 
@@ -70,11 +80,19 @@ pub struct ShadingSettings {
     pub strength: f32,
     pub view: ViewMode,
     pub show_light_marker: bool,
+    /// The Difference view's colour scale spans 0 to this many degrees.
+    pub difference_range_deg: f32,
 }
 
 impl Default for ShadingSettings {
     fn default() -> Self {
-        ShadingSettings { bump_enabled: true, strength: 1.0, view: ViewMode::Lit, show_light_marker: true }
+        ShadingSettings {
+            bump_enabled: true,
+            strength: 1.0,
+            view: ViewMode::Lit,
+            show_light_marker: true,
+            difference_range_deg: 5.0,
+        }
     }
 }
 
@@ -123,6 +141,19 @@ pub fn blinn_phong(p: &LightingInputs) -> Vec3 {
     let n_dot_h = p.shading_normal.dot(h).max(0.0);
     let specular = if n_dot_l > 0.0 && n_dot_h > 0.0 { n_dot_h.powf(p.shininess) } else { 0.0 };
     p.albedo * p.ambient + self_shadow * p.light.color * (p.albedo * n_dot_l + p.specular * specular)
+}
+
+/// Stops of the Difference view's colour scale (a viridis-like ramp, display values).
+const DIFFERENCE_STOPS: [[f32; 3]; 5] =
+    [[0.267, 0.005, 0.329], [0.229, 0.322, 0.546], [0.128, 0.567, 0.551], [0.369, 0.789, 0.383], [0.993, 0.906, 0.144]];
+
+/// The stored colour of the Difference view for `t` = angle / range (clamped to 0..1); the
+/// twin of `difference_color` in `shaders/mesh.wgsl`, for legends.
+pub fn difference_color(t: f32) -> [f32; 3] {
+    let x = t.clamp(0.0, 1.0) * 4.0;
+    let i = (x.floor() as usize).min(3);
+    let f = x - i as f32;
+    std::array::from_fn(|c| DIFFERENCE_STOPS[i][c] + (DIFFERENCE_STOPS[i + 1][c] - DIFFERENCE_STOPS[i][c]) * f)
 }
 
 /// The stored colour of a debug view for unit vector `v`.

@@ -4,12 +4,16 @@
 
 use glam::{Vec2, Vec3};
 
+use crate::height::Kernel;
 use crate::render::FrameParams;
 use crate::scene::{Light, OrbitCamera, Scene};
 use crate::shading::{ShadingSettings, ViewMode};
+use crate::tangent::TangentMethod;
 
 /// The strength slider's range; typed values outside it are clamped.
 pub const STRENGTH_RANGE: std::ops::RangeInclusive<f32> = -2.0..=4.0;
+/// Allowed colour-scale spans of the Difference view, degrees.
+pub const DIFFERENCE_RANGE: std::ops::Range<f32> = 0.01..180.0;
 /// Orbit animation speed of the light, radians per second about the scene's vertical axis.
 pub const LIGHT_ORBIT_SPEED: f32 = 0.8;
 
@@ -46,6 +50,12 @@ pub enum Command {
     ResetCamera,
     /// Advances animations by `seconds`.
     Tick(f32),
+    /// Tangent frames by this method (`None`: the mesh's own, else MikkTSpace).
+    SetTangentMethod(Option<TangentMethod>),
+    /// Height→normal kernel of the built-in brick normal map.
+    SetKernel(Kernel),
+    /// The Difference view's colour scale spans 0 to this many degrees.
+    SetDifferenceRange(f32),
 }
 
 /// Everything the user can change about the picture.
@@ -56,6 +66,10 @@ pub struct ViewerState {
     pub light: Light,
     pub shading: ShadingSettings,
     pub light_orbit: bool,
+    /// Tangent frames used for drawing; a change means re-making the scene's frames.
+    pub tangent_method: Option<TangentMethod>,
+    /// Kernel of the built-in normal map; a change means re-making the normal map.
+    pub kernel: Kernel,
 }
 
 impl ViewerState {
@@ -66,6 +80,8 @@ impl ViewerState {
             light: scene.default_light,
             shading: ShadingSettings::default(),
             light_orbit: false,
+            tangent_method: None,
+            kernel: Kernel::default(),
         }
     }
 
@@ -113,6 +129,12 @@ impl ViewerState {
                 self.light.position = target + rotation * offset;
             }
             Command::Tick(_) => {}
+            Command::SetTangentMethod(method) => self.tangent_method = method,
+            Command::SetKernel(kernel) => self.kernel = kernel,
+            Command::SetDifferenceRange(degrees) if degrees.is_finite() => {
+                self.shading.difference_range_deg = degrees.clamp(DIFFERENCE_RANGE.start, DIFFERENCE_RANGE.end)
+            }
+            Command::SetDifferenceRange(_) => {}
         }
     }
 }

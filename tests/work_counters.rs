@@ -29,9 +29,9 @@ fn scene_without_normal_maps_generates_no_tangents_and_no_tangent_pipeline() {
 fn built_in_scene_generates_tangents_only_where_missing_and_caches_pipelines() {
     let scene = scene();
     let mut renderer = renderer_for(&scene);
-    // Wall and floor need MikkTSpace; the torus brings its analytic frame.
-    let generated: usize = scene.meshes.iter().filter(|m| m.tangents.is_none()).map(|m| m.positions.len()).sum();
-    assert_eq!(scene.meshes.iter().filter(|m| m.tangents.is_some()).count(), 1);
+    // No built-in mesh supplies tangents: MikkTSpace makes them for all three, once.
+    assert!(scene.meshes.iter().all(|m| m.tangents.is_none()));
+    let generated: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
     assert_eq!(renderer.counters().tangent_frames_generated, generated as u64);
     assert_eq!(renderer.counters().textures_uploaded, 2, "colour and normal map, once each");
 
@@ -59,6 +59,9 @@ fn supplied_tangents_without_normal_map_use_the_tangent_variant() {
     for material in &mut scene.materials {
         material.normal_map = None;
     }
+    // The torus supplies its analytic frame as if a file carried it.
+    let torus = scene.meshes.iter_mut().find(|m| m.name == "torus").unwrap();
+    torus.tangents = torus.analytic_tangents.clone();
     let mut renderer = renderer_for(&scene);
     let mut params = default_params(&scene);
     params.shading.view = bumpview::shading::ViewMode::Tangent;
@@ -69,9 +72,26 @@ fn supplied_tangents_without_normal_map_use_the_tangent_variant() {
         .into_iter()
         .filter_map(|k| match k.pass {
             Pass::Mesh { variant, .. } => Some(variant),
-            Pass::LightMarker => None,
+            Pass::Difference { .. } | Pass::LightMarker => None,
         })
         .collect();
     assert!(variants.contains(&Variant::Tangent) && variants.contains(&Variant::Plain), "{variants:?}");
     assert!(!variants.contains(&Variant::NormalMapped));
+}
+
+/// The Difference view makes reference frames only when it is first shown: analytic ones for
+/// the built-in surfaces, so nothing more is generated.
+#[test]
+fn difference_view_adds_reference_frames_on_first_use_only() {
+    let scene = scene();
+    let mut renderer = renderer_for(&scene);
+    let generated = renderer.counters().tangent_frames_generated;
+    let mut params = default_params(&scene);
+    render_image(&mut renderer, [64, 48], &params).unwrap();
+    assert!(!renderer.built_pipelines().iter().any(|k| matches!(k.pass, Pass::Difference { .. })));
+    params.shading.view = bumpview::shading::ViewMode::Difference;
+    render_image(&mut renderer, [64, 48], &params).unwrap();
+    render_image(&mut renderer, [64, 48], &params).unwrap();
+    assert!(renderer.built_pipelines().iter().any(|k| matches!(k.pass, Pass::Difference { .. })));
+    assert_eq!(renderer.counters().tangent_frames_generated, generated);
 }

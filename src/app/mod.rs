@@ -4,6 +4,7 @@
 //! that egui shows as an image, and only when the picture would change.
 
 mod input;
+mod legend;
 mod panel;
 
 use std::cell::RefCell;
@@ -11,9 +12,13 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::sync::{Arc, mpsc};
 
+use bumpview::height::Kernel;
 use bumpview::render::capture::{render_image, write_png_atomically};
 use bumpview::render::{RenderTarget, Renderer};
-use bumpview::scene::builtin::teaching_scene;
+use bumpview::scene::Scene;
+use bumpview::scene::builtin::teaching_scene_with_kernel;
+use bumpview::shading::ViewMode;
+use bumpview::tangent::{MethodMeasurement, TangentMethod, measure};
 use bumpview::viewer::{Command, RedrawTracker, ViewerState};
 use eframe::egui_wgpu::RenderState;
 
@@ -23,6 +28,10 @@ pub struct Options {
     pub exit_after: Option<u64>,
     /// With `exit_after`: save a screenshot of the whole window here before closing.
     pub capture_window: Option<PathBuf>,
+    /// Tangent frames to start with (`None`: the mesh's own, else MikkTSpace).
+    pub tangent_method: Option<TangentMethod>,
+    /// Height→normal kernel of the built-in brick normal map to start with.
+    pub kernel: Kernel,
 }
 
 /// Something the user asked for: a library [`Command`] or an app-only action.
@@ -91,6 +100,11 @@ struct ScreenshotForm {
 /// The eframe app: viewer state, the renderer on eframe's device, and the view texture.
 struct ViewerApp {
     state: ViewerState,
+    scene: Scene,
+    /// The tangent method and kernel the renderer's scene was made with.
+    uploaded: (Option<TangentMethod>, Kernel),
+    /// Per mesh: the chosen tangent method timed and compared with the reference.
+    measurements: Vec<(String, MethodMeasurement)>,
     renderer: Renderer,
     render_state: RenderState,
     adapter_name: String,
@@ -113,11 +127,17 @@ impl ViewerApp {
             .ok_or("eframe started without a wgpu render state (the viewer needs the wgpu renderer)")?;
         let mut renderer =
             Renderer::new(render_state.device.clone(), render_state.queue.clone(), render_state.adapter.clone());
-        let scene = teaching_scene();
-        renderer.set_scene(&scene);
+        let scene = teaching_scene_with_kernel(options.kernel);
+        renderer.set_scene(&scene, options.tangent_method);
         let adapter_name = renderer.adapter_name();
+        let mut state = ViewerState::new(&scene);
+        state.tangent_method = options.tangent_method;
+        state.kernel = options.kernel;
         Ok(ViewerApp {
-            state: ViewerState::new(&scene),
+            measurements: measure_all(&scene, options.tangent_method),
+            uploaded: (options.tangent_method, options.kernel),
+            scene,
+            state,
             renderer,
             adapter_name,
             render_state,
@@ -149,6 +169,9 @@ impl ViewerApp {
         let id = self.ensure_view(size);
         let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
         ui.painter().image(id, rect, uv, egui::Color32::WHITE);
+        if self.state.shading.view == ViewMode::Difference {
+            legend::difference(ui.painter(), rect, self.state.shading.difference_range_deg);
+        }
         input::viewport(&response, ui.ctx(), size)
     }
 
@@ -205,6 +228,21 @@ impl ViewerApp {
         }
     }
 
+    /// Re-makes the normal map and the tangent frames when their method changed.
+    fn apply_methods(&mut self) {
+        let wanted = (self.state.tangent_method, self.state.kernel);
+        if wanted == self.uploaded {
+            return;
+        }
+        if wanted.1 != self.uploaded.1 {
+            self.scene = teaching_scene_with_kernel(wanted.1);
+        }
+        self.renderer.set_scene(&self.scene, wanted.0);
+        self.measurements = measure_all(&self.scene, wanted.0);
+        self.uploaded = wanted;
+        self.tracker.invalidate();
+    }
+
     /// Draws the 3D view into its texture, only when the picture or its size changed.
     fn draw_view(&mut self) {
         let Some(view) = &self.view else { return };
@@ -245,6 +283,7 @@ impl eframe::App for ViewerApp {
         let keys = input::keyboard(&ctx);
         self.apply(keys);
         let stats = panel::Stats {
+            measurements: &self.measurements,
             adapter: &self.adapter_name,
             view_size: self.view.as_ref().map(|v| v.size),
             counters: self.renderer.counters(),
@@ -256,6 +295,7 @@ impl eframe::App for ViewerApp {
             .inner;
         actions.extend(egui::CentralPanel::no_frame().show(ui, |ui| self.view_area(ui)).inner);
         self.apply(actions);
+        self.apply_methods();
         self.animate(&ctx);
         self.draw_view();
         if let Some(exit) = &mut self.exit {
@@ -267,6 +307,11 @@ impl eframe::App for ViewerApp {
         // Opaque, so a window screenshot has no see-through pixels.
         visuals.panel_fill.to_normalized_gamma_f32()
     }
+}
+
+/// The chosen tangent method timed and compared with the reference on every mesh.
+fn measure_all(scene: &Scene, method: Option<TangentMethod>) -> Vec<(String, MethodMeasurement)> {
+    scene.meshes.iter().map(|mesh| (mesh.name.clone(), measure(mesh, method))).collect()
 }
 
 /// `bumpview-<unix seconds>.png` in the current directory, with `-1`, `-2`… added while

@@ -2,7 +2,9 @@
 //! Widgets edit copies of the state and report changes as [`Action`]s.
 
 use bumpview::WorkCounters;
+use bumpview::height::Kernel;
 use bumpview::shading::ViewMode;
+use bumpview::tangent::{MethodMeasurement, TangentMethod};
 use bumpview::viewer::{Command, STRENGTH_RANGE, ViewerState};
 
 use super::{Action, ScreenshotForm};
@@ -10,8 +12,10 @@ use super::{Action, ScreenshotForm};
 /// Range of the light position sliders, metres.
 const LIGHT_RANGE: std::ops::RangeInclusive<f32> = -5.0..=5.0;
 
-/// What the stats line reports.
+/// What the stats lines report.
 pub(super) struct Stats<'a> {
+    /// Per mesh: the chosen tangent method's time and error against the reference.
+    pub measurements: &'a [(String, MethodMeasurement)],
     pub adapter: &'a str,
     pub view_size: Option<[u32; 2]>,
     pub counters: WorkCounters,
@@ -31,6 +35,7 @@ pub(super) fn show(
         bump_section(ui, state, &mut actions);
         light_section(ui, state, &mut actions);
         view_section(ui, state, &mut actions);
+        methods_section(ui, state, stats.measurements, &mut actions);
         camera_section(ui, &mut actions);
         screenshot_section(ui, screenshot, &mut actions);
         ui.separator();
@@ -85,6 +90,52 @@ fn view_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action
         }
     }
     ui.weak(view_hint(state.shading.view));
+    if state.shading.view == ViewMode::Difference {
+        let mut range = state.shading.difference_range_deg;
+        let slider = egui::Slider::new(&mut range, 0.01..=90.0).logarithmic(true).text("scale").suffix("°");
+        if ui.add(slider).changed() {
+            actions.push(Command::SetDifferenceRange(range).into());
+        }
+    }
+}
+
+fn methods_section(
+    ui: &mut egui::Ui,
+    state: &ViewerState,
+    measurements: &[(String, MethodMeasurement)],
+    actions: &mut Vec<Action>,
+) {
+    ui.separator();
+    ui.strong("Methods");
+    let tangent_name = |m: Option<TangentMethod>| m.map_or("auto (file, else mikktspace)", TangentMethod::name);
+    let mut tangent_method = state.tangent_method;
+    egui::ComboBox::from_label("tangent frames").selected_text(tangent_name(tangent_method)).show_ui(ui, |ui| {
+        for choice in std::iter::once(None).chain(TangentMethod::ALL.map(Some)) {
+            ui.selectable_value(&mut tangent_method, choice, tangent_name(choice));
+        }
+    });
+    if tangent_method != state.tangent_method {
+        actions.push(Command::SetTangentMethod(tangent_method).into());
+    }
+    let mut kernel = state.kernel;
+    egui::ComboBox::from_label("height-to-normal kernel").selected_text(kernel.name()).show_ui(ui, |ui| {
+        for choice in Kernel::ALL {
+            ui.selectable_value(&mut kernel, choice, choice.name());
+        }
+    });
+    if kernel != state.kernel {
+        actions.push(Command::SetKernel(kernel).into());
+    }
+    ui.weak("time of one run; angle to the reference frame (T / B, mean and max)");
+    egui::Grid::new("measurements").striped(true).show(ui, |ui| {
+        for (mesh, m) in measurements {
+            ui.small(mesh).on_hover_text(format!("{} against {}", m.method.name(), m.reference.name()));
+            ui.small(format!("{:.2} ms", m.seconds * 1e3));
+            ui.small(format!("{:.3}° / {:.3}°", m.tangent.mean, m.bitangent.mean));
+            ui.small(format!("max {:.2}°", m.tangent.max.max(m.bitangent.max)));
+            ui.end_row();
+        }
+    });
 }
 
 /// The panel's name for a view mode.
@@ -95,6 +146,7 @@ fn view_label(mode: ViewMode) -> &'static str {
         ViewMode::Bitangent => "Bitangent",
         ViewMode::Normal => "Normal",
         ViewMode::ShadingNormal => "Shading normal",
+        ViewMode::Difference => "Difference (frame vs reference)",
     }
 }
 
@@ -102,6 +154,10 @@ fn view_label(mode: ViewMode) -> &'static str {
 fn view_hint(mode: ViewMode) -> &'static str {
     match mode {
         ViewMode::Lit => "Blinn-Phong lighting with the (bumped) shading normal",
+        ViewMode::Difference => {
+            "larger of the angles between T and between B of the chosen frames and the reference \
+             (analytic on built-in surfaces, else MikkTSpace); grey: no frames"
+        }
         _ => "colour = 0.5·v + 0.5 of the world-space vector v (red +X, green +Y, blue +Z)",
     }
 }

@@ -13,7 +13,8 @@ use glam::Mat4;
 use crate::counters::WorkCounters;
 use crate::error::RenderError;
 use crate::scene::{Light, OrbitCamera, Scene};
-use crate::shading::ShadingSettings;
+use crate::shading::{ShadingSettings, ViewMode};
+use crate::tangent::TangentMethod;
 pub use gpu::Gpu;
 use pipelines::{DEPTH_FORMAT, Pass, PipelineKey, Pipelines};
 use scene_gpu::GpuScene;
@@ -103,10 +104,18 @@ impl Renderer {
         &self.queue
     }
 
-    /// Replaces the scene: generates the tangents it needs and uploads what it uses.
-    pub fn set_scene(&mut self, scene: &Scene) {
-        self.scene =
-            Some(scene_gpu::upload(&self.device, &self.queue, &self.pipelines.layouts, scene, &mut self.counters));
+    /// Replaces the scene: makes the tangent frames it needs (by `tangent_method`; `None`:
+    /// the mesh's own, else MikkTSpace) and uploads what it uses.
+    pub fn set_scene(&mut self, scene: &Scene, tangent_method: Option<TangentMethod>) {
+        let layouts = &self.pipelines.layouts;
+        let gpu = scene_gpu::upload(&self.device, &self.queue, layouts, scene, tangent_method, &mut self.counters);
+        self.scene = Some(gpu);
+    }
+
+    /// Per mesh of the current scene: the tangent method its frames come from, or `None`
+    /// when it is drawn without tangents.
+    pub fn tangent_methods(&self) -> Vec<Option<TangentMethod>> {
+        self.scene.iter().flat_map(|s| s.frames.iter().map(|f| f.as_ref().map(|f| f.method))).collect()
     }
 
     /// The work done so far.
@@ -183,7 +192,12 @@ impl Renderer {
         params: &FrameParams,
     ) -> Result<(), RenderError> {
         self.check_target_size(target.size)?;
-        let scene = self.scene.as_ref().ok_or(RenderError::NoScene)?;
+        let samples = self.sample_count(target.format);
+        let difference = params.shading.view == ViewMode::Difference;
+        let scene = self.scene.as_mut().ok_or(RenderError::NoScene)?;
+        if difference {
+            scene.ensure_reference_frames(&self.device, &mut self.counters);
+        }
         let aspect = target.size[0] as f32 / target.size[1] as f32;
         self.queue.write_buffer(
             &self.frame_uniform,
@@ -193,9 +207,16 @@ impl Renderer {
         let marker_model = Mat4::from_translation(params.light.position);
         self.queue.write_buffer(&scene.marker.model, 0, bytemuck::bytes_of(&marker_model.to_cols_array()));
 
-        let samples = self.sample_count(target.format);
         let key = |pass| PipelineKey { pass, format: target.format, samples };
-        let mut passes: Vec<Pass> = scene.instances.iter().map(|i| i.pass).collect();
+        // The Difference view swaps in its own pass for meshes that have frames.
+        let pass_of = |instance: &scene_gpu::GpuInstance| match instance.pass {
+            Pass::Mesh { variant, cull_back_faces } if difference && scene.frames[instance.mesh].is_some() => {
+                Pass::Difference { variant, cull_back_faces }
+            }
+            pass => pass,
+        };
+        let instance_passes: Vec<Pass> = scene.instances.iter().map(pass_of).collect();
+        let mut passes = instance_passes.clone();
         if params.shading.show_light_marker {
             passes.push(Pass::LightMarker);
         }
@@ -229,15 +250,18 @@ impl Renderer {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &self.frame_bind_group, &[]);
-        for instance in &scene.instances {
+        for (instance, &instance_pass) in scene.instances.iter().zip(&instance_passes) {
             let mesh = &scene.meshes[instance.mesh];
-            pass.set_pipeline(self.pipelines.get(&key(instance.pass)));
+            pass.set_pipeline(self.pipelines.get(&key(instance_pass)));
             pass.set_bind_group(1, &instance.bind_group, &[]);
             pass.set_vertex_buffer(0, mesh.positions.slice(..));
             pass.set_vertex_buffer(1, mesh.normals.slice(..));
             pass.set_vertex_buffer(2, mesh.uvs.slice(..));
             if let Some(tangents) = &mesh.tangents {
                 pass.set_vertex_buffer(3, tangents.slice(..));
+            }
+            if let (Pass::Difference { .. }, Some(reference)) = (instance_pass, &mesh.reference_tangents) {
+                pass.set_vertex_buffer(4, reference.slice(..));
             }
             pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..mesh.index_count, 0, 0..1);

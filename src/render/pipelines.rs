@@ -26,7 +26,16 @@ pub enum Variant {
 /// A pipeline in the cache.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Pass {
-    Mesh { variant: Variant, cull_back_faces: bool },
+    Mesh {
+        variant: Variant,
+        cull_back_faces: bool,
+    },
+    /// The Difference view of a mesh with a tangent stream: it adds the reference stream
+    /// and binds the same group-1 layout as `variant`.
+    Difference {
+        variant: Variant,
+        cull_back_faces: bool,
+    },
     LightMarker,
 }
 
@@ -132,6 +141,11 @@ const TANGENT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
     step_mode: wgpu::VertexStepMode::Vertex,
     attributes: &wgpu::vertex_attr_array![3 => Float32x4],
 };
+const REFERENCE_TANGENT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: 16,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![4 => Float32x4],
+};
 
 impl Pipelines {
     pub fn new(device: &wgpu::Device) -> Self {
@@ -180,6 +194,12 @@ impl Pipelines {
                     };
                     let cull = cull_back_faces.then_some(wgpu::Face::Back);
                     (&self.mesh_module, self.layouts.material(variant), vs, fs, buffers, cull, &encodes_srgb)
+                }
+                Pass::Difference { variant, cull_back_faces } => {
+                    let buffers: &[_] = &[POSITION, NORMAL, UV, TANGENT, REFERENCE_TANGENT];
+                    let cull = cull_back_faces.then_some(wgpu::Face::Back);
+                    let layout = self.layouts.material(variant);
+                    (&self.mesh_module, layout, "vs_difference", "fs_difference", buffers, cull, &encodes_srgb)
                 }
                 Pass::LightMarker => (
                     &self.marker_module,
@@ -242,7 +262,18 @@ mod tests {
     #[test]
     fn shaders_validate_and_have_every_entry_point() {
         let cases: [(&str, &[&str]); 2] = [
-            (MESH_WGSL, &["vs_plain", "vs_tangent", "fs_plain", "fs_tangent", "fs_normal_mapped"]),
+            (
+                MESH_WGSL,
+                &[
+                    "vs_plain",
+                    "vs_tangent",
+                    "fs_plain",
+                    "fs_tangent",
+                    "fs_normal_mapped",
+                    "vs_difference",
+                    "fs_difference",
+                ],
+            ),
             (MARKER_WGSL, &["vs_marker", "fs_marker"]),
         ];
         for (source, entry_points) in cases {

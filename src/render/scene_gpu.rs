@@ -7,16 +7,25 @@ use wgpu::util::DeviceExt;
 use super::pipelines::{Layouts, Pass, Variant};
 use super::uniforms::ObjectUniform;
 use crate::counters::WorkCounters;
-use crate::scene::{Scene, TextureImage, TextureKind};
-use crate::tangent::generate_mikktspace;
+use crate::scene::{Mesh, Scene, TextureImage, TextureKind};
+use crate::tangent::{self, TangentMethod};
 
 pub struct GpuMesh {
     pub positions: wgpu::Buffer,
     pub normals: wgpu::Buffer,
     pub uvs: wgpu::Buffer,
     pub tangents: Option<wgpu::Buffer>,
+    /// Reference frames for the Difference view, made on its first use.
+    pub reference_tangents: Option<wgpu::Buffer>,
     pub indices: wgpu::Buffer,
     pub index_count: u32,
+}
+
+/// The frames a mesh with a tangent stream is drawn with, and the geometry they belong to
+/// (unwelded for per-face frames), kept to make reference frames on demand.
+pub struct DrawnFrames {
+    pub mesh: Mesh,
+    pub method: TangentMethod,
 }
 
 pub struct GpuInstance {
@@ -36,6 +45,8 @@ pub struct GpuMarker {
 
 pub struct GpuScene {
     pub meshes: Vec<GpuMesh>,
+    /// Per mesh: how its tangent stream was made; `None` for meshes drawn without one.
+    pub frames: Vec<Option<DrawnFrames>>,
     pub instances: Vec<GpuInstance>,
     pub marker: GpuMarker,
     pub ambient: Vec3,
@@ -150,39 +161,38 @@ fn octahedron() -> (Vec<Vec3>, Vec<u32>) {
     (positions, indices)
 }
 
+/// Uploads what `scene` uses. Meshes drawn with a tangent stream get frames by
+/// `tangent_method` (`None`: the mesh's own, else MikkTSpace; see [`tangent::resolve`]).
 pub fn upload(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     layouts: &Layouts,
     scene: &Scene,
+    tangent_method: Option<TangentMethod>,
     counters: &mut WorkCounters,
 ) -> GpuScene {
     let variants: Vec<Variant> = scene.instances.iter().map(|i| variant_of(scene, i.mesh, i.material)).collect();
-    let usage = wgpu::BufferUsages::VERTEX;
+    let mut frames = vec![];
     let meshes = scene
         .meshes
         .iter()
         .enumerate()
         .map(|(index, mesh)| {
-            let count = mesh.positions.len();
-            let drawn_with =
-                |v: Variant| scene.instances.iter().zip(&variants).any(|(i, &w)| i.mesh == index && w == v);
-            let tangents = if drawn_with(Variant::NormalMapped) && mesh.tangents.is_none() {
-                counters.tangent_frames_generated += count as u64;
-                Some(generate_mikktspace(mesh))
-            } else if drawn_with(Variant::NormalMapped) || drawn_with(Variant::Tangent) {
-                mesh.tangents.clone()
-            } else {
-                None
-            };
-            GpuMesh {
-                positions: buffer(device, "positions", &mesh.positions, usage),
-                normals: buffer(device, "normals", &stream(&mesh.normals, count), usage),
-                uvs: buffer(device, "uvs", &stream::<Vec2>(&mesh.uvs, count), usage),
-                tangents: tangents.map(|t| buffer(device, "tangents", &stream::<Vec4>(&t, count), usage)),
-                indices: buffer(device, "indices", &mesh.indices, wgpu::BufferUsages::INDEX),
-                index_count: mesh.indices.len() as u32,
+            let drawn_with_tangents =
+                scene.instances.iter().zip(&variants).any(|(i, &v)| i.mesh == index && v != Variant::Plain);
+            if !drawn_with_tangents {
+                frames.push(None);
+                return upload_mesh(device, mesh, None);
             }
+            // Per-face frames need a vertex per corner.
+            let drawn = if tangent_method == Some(TangentMethod::PerFace) { mesh.unwelded() } else { mesh.clone() };
+            let (tangents, method) = tangent::resolve(&drawn, tangent_method);
+            if method.is_generated() {
+                counters.tangent_frames_generated += tangents.len() as u64;
+            }
+            let gpu = upload_mesh(device, &drawn, Some(&tangents));
+            frames.push(Some(DrawnFrames { mesh: drawn, method }));
+            gpu
         })
         .collect();
 
@@ -246,11 +256,43 @@ pub fn upload(
         entries: &[wgpu::BindGroupEntry { binding: 0, resource: model.as_entire_binding() }],
     });
     let marker = GpuMarker {
-        positions: buffer(device, "marker positions", &positions, usage),
+        positions: buffer(device, "marker positions", &positions, wgpu::BufferUsages::VERTEX),
         indices: buffer(device, "marker indices", &indices, wgpu::BufferUsages::INDEX),
         index_count: indices.len() as u32,
         model,
         bind_group,
     };
-    GpuScene { meshes, instances, marker, ambient: scene.ambient }
+    GpuScene { meshes, frames, instances, marker, ambient: scene.ambient }
+}
+
+fn upload_mesh(device: &wgpu::Device, mesh: &Mesh, tangents: Option<&[Vec4]>) -> GpuMesh {
+    let count = mesh.positions.len();
+    let usage = wgpu::BufferUsages::VERTEX;
+    GpuMesh {
+        positions: buffer(device, "positions", &mesh.positions, usage),
+        normals: buffer(device, "normals", &stream(&mesh.normals, count), usage),
+        uvs: buffer(device, "uvs", &stream::<Vec2>(&mesh.uvs, count), usage),
+        tangents: tangents.map(|t| buffer(device, "tangents", &stream::<Vec4>(t, count), usage)),
+        reference_tangents: None,
+        indices: buffer(device, "indices", &mesh.indices, wgpu::BufferUsages::INDEX),
+        index_count: mesh.indices.len() as u32,
+    }
+}
+
+impl GpuScene {
+    /// Makes the Difference view's reference frames (analytic where the mesh has them,
+    /// else MikkTSpace) for every mesh with a tangent stream, once.
+    pub fn ensure_reference_frames(&mut self, device: &wgpu::Device, counters: &mut WorkCounters) {
+        for (gpu, drawn) in self.meshes.iter_mut().zip(&self.frames) {
+            let Some(drawn) = drawn else { continue };
+            if gpu.reference_tangents.is_none() {
+                let (reference, method) = tangent::reference(&drawn.mesh);
+                if method.is_generated() {
+                    counters.tangent_frames_generated += reference.len() as u64;
+                }
+                gpu.reference_tangents =
+                    Some(buffer(device, "reference tangents", &reference, wgpu::BufferUsages::VERTEX));
+            }
+        }
+    }
 }

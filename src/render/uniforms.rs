@@ -20,6 +20,8 @@ pub struct FrameUniform {
     bump_enabled: u32,
     view_mode: u32,
     self_shadow_fade: f32,
+    difference_range_deg: f32,
+    _pad: [f32; 3],
 }
 
 impl FrameUniform {
@@ -34,6 +36,8 @@ impl FrameUniform {
             bump_enabled: params.shading.bump_enabled as u32,
             view_mode: params.shading.view.shader_index(),
             self_shadow_fade: SELF_SHADOW_FADE,
+            difference_range_deg: params.shading.difference_range_deg,
+            _pad: [0.0; 3],
         }
     }
 }

@@ -124,13 +124,18 @@ pub fn default_light() -> Light {
     Light { position: Vec3::new(-0.8, 2.0, 1.2), color: Vec3::ONE }
 }
 
-/// Builds the whole scene, including the brick normal map (central-difference kernel).
+/// Builds the whole scene with the brick normal map made by the central-difference kernel.
 /// Every mesh carries its analytic frame; none supplies tangents, so MikkTSpace makes them.
 pub fn teaching_scene() -> Scene {
+    teaching_scene_with_kernel(Kernel::CentralDifference)
+}
+
+/// [`teaching_scene`] with the brick normal map made from the height field by `kernel`.
+pub fn teaching_scene_with_kernel(kernel: Kernel) -> Scene {
     let height = brick_height_field(BRICK_TILE_M);
     let textures = vec![
         brick_color_texture(),
-        height.to_normal_map(Kernel::CentralDifference, Border::Wrap, "bricks (normal map, central difference)"),
+        height.to_normal_map(kernel, Border::Wrap, &format!("bricks (normal map, {} kernel)", kernel.name())),
     ];
     let bricks = Material {
         name: "bricks".into(),

@@ -71,3 +71,40 @@ mod tests {
         assert_eq!(AngleStats::of([]), AngleStats::default());
     }
 }
+
+/// One tangent method timed on one mesh and compared with the reference frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MethodMeasurement {
+    /// The method that made the frames (a fallback when the chosen one had nothing to offer).
+    pub method: super::TangentMethod,
+    /// Analytic where the mesh has it, else MikkTSpace.
+    pub reference: super::TangentMethod,
+    /// Wall-clock time of one run of the method, seconds (the best of three).
+    pub seconds: f64,
+    pub tangent: AngleStats,
+    pub bitangent: AngleStats,
+}
+
+/// Runs `choice` on `mesh` (see [`super::resolve`]) three times, keeps the fastest time,
+/// and compares its frames with [`super::reference`] on the same geometry.
+pub fn measure(mesh: &crate::scene::Mesh, choice: Option<super::TangentMethod>) -> MethodMeasurement {
+    let geometry = if choice == Some(super::TangentMethod::PerFace) { mesh.unwelded() } else { mesh.clone() };
+    let mut best = f64::INFINITY;
+    let mut result = None;
+    for _ in 0..3 {
+        let start = std::time::Instant::now();
+        let frames = super::resolve(&geometry, choice);
+        best = best.min(start.elapsed().as_secs_f64());
+        result = Some(frames);
+    }
+    let (frames, method) = result.expect("ran three times");
+    let (reference, reference_method) = super::reference(&geometry);
+    let angles = frame_angles(&geometry.normals, &frames, &reference);
+    MethodMeasurement {
+        method,
+        reference: reference_method,
+        seconds: best,
+        tangent: AngleStats::of(angles.tangent),
+        bitangent: AngleStats::of(angles.bitangent),
+    }
+}

@@ -12,7 +12,7 @@ use glam::{Vec3, Vec4};
 
 use crate::math::orthonormalize_tangent;
 use crate::scene::Mesh;
-pub use compare::{AngleStats, FrameAngles, frame_angles};
+pub use compare::{AngleStats, FrameAngles, MethodMeasurement, frame_angles, measure};
 pub use mikktspace::generate_mikktspace;
 pub use uv_delta::{Weighting, averaged_face_frames, face_frame, per_face_frames};
 
@@ -62,6 +62,29 @@ impl TangentMethod {
     pub fn from_name(name: &str) -> Option<TangentMethod> {
         TangentMethod::ALL.into_iter().find(|m| m.name() == name)
     }
+
+    /// Whether the method computes frames (rather than taking them from the mesh).
+    pub fn is_generated(self) -> bool {
+        !matches!(self, TangentMethod::Supplied | TangentMethod::Analytic)
+    }
+}
+
+/// The frames to draw `mesh` with. `choice = None` is the default rule: the mesh's supplied
+/// tangents if it has them, else MikkTSpace. A chosen method with nothing to offer for this
+/// mesh (no supplied or analytic frames) also falls back to MikkTSpace. Returns the frames
+/// and the method actually used.
+pub fn resolve(mesh: &Mesh, choice: Option<TangentMethod>) -> (Vec<Vec4>, TangentMethod) {
+    let wanted = choice.unwrap_or(TangentMethod::Supplied);
+    match tangents(mesh, wanted) {
+        Some(frames) => (frames, wanted),
+        None => (generate_mikktspace(mesh), TangentMethod::MikkTSpace),
+    }
+}
+
+/// The reference frames a method is compared with: the analytic frame where the mesh has
+/// one (built-in surfaces), else MikkTSpace. Returns the frames and which reference it is.
+pub fn reference(mesh: &Mesh) -> (Vec<Vec4>, TangentMethod) {
+    resolve(mesh, Some(TangentMethod::Analytic))
 }
 
 /// Per-vertex frames of `mesh` by `method`; `None` when the mesh has no supplied or
