@@ -14,7 +14,7 @@ fn startup(c: &mut Criterion) {
     let gpu = Gpu::headless().expect("adapter");
     let scene = teaching_scene();
     group.bench_function("Renderer::new + set_scene (MikkTSpace, upload with mips)", |b| {
-        b.iter(|| Renderer::from_gpu(&gpu).set_scene(&scene, None))
+        b.iter(|| Renderer::from_gpu(&gpu).set_scene(&scene, Default::default()))
     });
     group.finish();
 }
@@ -23,7 +23,7 @@ fn frame(c: &mut Criterion) {
     let gpu = Gpu::headless().expect("adapter");
     let scene = teaching_scene();
     let mut renderer = Renderer::from_gpu(&gpu);
-    renderer.set_scene(&scene, None);
+    renderer.set_scene(&scene, Default::default());
     let params = ViewerState::new(&scene).frame_params();
     let size = [1280, 720];
     let format = wgpu::TextureFormat::Rgba8UnormSrgb;

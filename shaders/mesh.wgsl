@@ -6,6 +6,7 @@
 //   vs_plain  + fs_plain          mesh without tangents, material without normal map
 //   vs_tangent + fs_tangent       mesh with tangents, material without normal map
 //   vs_tangent + fs_normal_mapped mesh with tangents and a normal map
+//   vs_plain  + fs_height_bump    bump from the height map in screen space, no tangents
 //   vs_difference + fs_difference the Difference view: a mesh's frames against reference frames
 //
 // Prepended at build time: frame.wgsl (the Frame uniform, group 0).
@@ -17,13 +18,14 @@ struct Object {
     specular: vec4<f32>,        // rgb = k_s, a = shininess
     handedness: f32,            // sign(det(model)), multiplies tangent w
     normal_scale: f32,          // the material's normalTexture.scale
-    _pad: vec2<f32>,
+    height_range_m: f32,        // metres spanned by the height map's full range
+    _pad: f32,
 };
 
 @group(1) @binding(0) var<uniform> object: Object;
 @group(1) @binding(1) var base_color_texture: texture_2d<f32>; // sRGB view: samples are linear
 @group(1) @binding(2) var material_sampler: sampler;
-@group(1) @binding(3) var normal_texture: texture_2d<f32>;     // linear view
+@group(1) @binding(3) var bump_texture: texture_2d<f32>;       // normal map or height map, linear
 
 // True when the target stores sRGB-encoded values (Rgba8UnormSrgb): debug colours are then
 // decoded first so the stored bytes equal 0.5·v + 0.5.
@@ -178,12 +180,36 @@ fn fs_tangent(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @l
 fn fs_normal_mapped(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
     let frame_tb = tangent_frame(in.world_tangent, n);
-    let texel = textureSample(normal_texture, material_sampler, in.uv).rgb;
+    let texel = textureSample(bump_texture, material_sampler, in.uv).rgb;
     var n_shading = n;
     if frame.bump_enabled != 0u {
         n_shading = perturbed_normal(n, frame_tb, texel, frame.strength * object.normal_scale);
     }
     return surface_color(in, n, frame_tb, n_shading);
+}
+
+// Blinn's bump from a height field without tangents: Mikkelsen's surface gradient from
+// screen-space derivatives of the position and of the height (metres). Heights are 16 bits in
+// red (high byte) and green (low byte), TextureKind::Height.
+@fragment
+fn fs_height_bump(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    let n = geometric_normal(in.world_normal, front_facing);
+    let texel = textureSample(bump_texture, material_sampler, in.uv);
+    let height = (texel.r * 65280.0 + texel.g * 255.0) / 65535.0 * object.height_range_m * frame.strength;
+    let dp_dx = dpdx(in.world_position);
+    let dp_dy = dpdy(in.world_position);
+    let dh_dx = dpdx(height);
+    let dh_dy = dpdy(height);
+    var n_shading = n;
+    if frame.bump_enabled != 0u {
+        let r1 = cross(dp_dy, n);
+        let r2 = cross(n, dp_dx);
+        let det = dot(dp_dx, r1);
+        let surface_gradient = sign(det) * (dh_dx * r1 + dh_dy * r2);
+        n_shading = normalize_or(abs(det) * n - surface_gradient, n);
+    }
+    // No tangents: the T and B views show the zero vector (mid grey).
+    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0)), n_shading);
 }
 
 // ---- Difference view (shading::difference_color is the CPU twin of the colour scale) ----

@@ -83,6 +83,19 @@ impl HeightField {
         }
     }
 
+    /// The field as a 16-bit [`TextureKind::Height`] texture (red high byte, green low byte).
+    pub fn to_height_texture(&self, name: &str) -> TextureImage {
+        let rgba = self
+            .samples
+            .iter()
+            .flat_map(|&h| {
+                let [high, low] = crate::scene::encode_height(h);
+                [high, low, 0, 255]
+            })
+            .collect();
+        TextureImage { name: name.to_owned(), width: self.width, height: self.height, kind: TextureKind::Height, rgba }
+    }
+
     /// The field stored with `bits` bits per sample (8 or 16 in image files): every sample
     /// rounded to one of `2^bits` levels.
     pub fn quantized(&self, bits: u32) -> HeightField {

@@ -9,7 +9,7 @@ use std::process::ExitCode;
 
 use bumpview::height::Kernel;
 use bumpview::render::capture::{render_image, write_png_atomically};
-use bumpview::render::{Gpu, Renderer};
+use bumpview::render::{BumpSource, Gpu, Renderer, SceneOptions};
 use bumpview::scene::builtin::teaching_scene_with_kernel;
 use bumpview::shading::ViewMode;
 use bumpview::tangent::TangentMethod;
@@ -80,6 +80,23 @@ struct MethodArgs {
     /// scharr3, sobel5 or central4.
     #[arg(long, default_value = "central", value_parser = parse_kernel)]
     kernel: Kernel,
+    /// Where the bump comes from: normal-map, or height-in-shader (Blinn's bump from the
+    /// height map by screen-space derivatives, no tangents).
+    #[arg(long, default_value = "normal-map", value_parser = parse_bump_source)]
+    bump_source: BumpSource,
+}
+
+impl MethodArgs {
+    fn scene_options(&self) -> SceneOptions {
+        SceneOptions { tangent_method: self.tangents.0, bump_source: self.bump_source }
+    }
+}
+
+fn parse_bump_source(text: &str) -> Result<BumpSource, String> {
+    BumpSource::from_name(text).ok_or_else(|| {
+        let names: Vec<_> = BumpSource::ALL.iter().map(|b| b.name()).collect();
+        format!("{text:?}: expected one of {}", names.join(", "))
+    })
 }
 
 fn parse_view(text: &str) -> Result<ViewMode, String> {
@@ -132,7 +149,7 @@ fn render(args: RenderArgs) -> Result<(), String> {
     }
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let mut renderer = Renderer::from_gpu(&gpu);
-    renderer.set_scene(&scene, args.methods.tangents.0);
+    renderer.set_scene(&scene, args.methods.scene_options());
     let image = render_image(&mut renderer, args.size, &state.frame_params()).map_err(|e| e.to_string())?;
     write_png_atomically(&image, &args.out).map_err(|e| e.to_string())?;
     println!("wrote {} ({}x{}, {})", args.out.display(), args.size[0], args.size[1], gpu.adapter_name());
@@ -144,7 +161,7 @@ fn viewer(cli: &Cli) -> Result<(), String> {
     app::run(app::Options {
         exit_after: cli.exit_after,
         capture_window: cli.capture_window.clone(),
-        tangent_method: cli.methods.tangents.0,
+        scene_options: cli.methods.scene_options(),
         kernel: cli.methods.kernel,
     })
 }

@@ -5,7 +5,7 @@
 use glam::{Vec2, Vec3};
 
 use crate::height::Kernel;
-use crate::render::FrameParams;
+use crate::render::{BumpSource, FrameParams, SceneOptions};
 use crate::scene::{Light, OrbitCamera, Scene};
 use crate::shading::{ShadingSettings, ViewMode};
 use crate::tangent::TangentMethod;
@@ -52,6 +52,7 @@ pub enum Command {
     Tick(f32),
     /// Tangent frames by this method (`None`: the mesh's own, else MikkTSpace).
     SetTangentMethod(Option<TangentMethod>),
+    SetBumpSource(BumpSource),
     /// Height→normal kernel of the built-in brick normal map.
     SetKernel(Kernel),
     /// The Difference view's colour scale spans 0 to this many degrees.
@@ -66,8 +67,8 @@ pub struct ViewerState {
     pub light: Light,
     pub shading: ShadingSettings,
     pub light_orbit: bool,
-    /// Tangent frames used for drawing; a change means re-making the scene's frames.
-    pub tangent_method: Option<TangentMethod>,
+    /// Tangent method and bump source; a change means re-making the scene's GPU data.
+    pub scene_options: SceneOptions,
     /// Kernel of the built-in normal map; a change means re-making the normal map.
     pub kernel: Kernel,
 }
@@ -80,7 +81,7 @@ impl ViewerState {
             light: scene.default_light,
             shading: ShadingSettings::default(),
             light_orbit: false,
-            tangent_method: None,
+            scene_options: SceneOptions::default(),
             kernel: Kernel::default(),
         }
     }
@@ -129,7 +130,8 @@ impl ViewerState {
                 self.light.position = target + rotation * offset;
             }
             Command::Tick(_) => {}
-            Command::SetTangentMethod(method) => self.tangent_method = method,
+            Command::SetTangentMethod(method) => self.scene_options.tangent_method = method,
+            Command::SetBumpSource(source) => self.scene_options.bump_source = source,
             Command::SetKernel(kernel) => self.kernel = kernel,
             Command::SetDifferenceRange(degrees) if degrees.is_finite() => {
                 self.shading.difference_range_deg = degrees.clamp(DIFFERENCE_RANGE.start, DIFFERENCE_RANGE.end)

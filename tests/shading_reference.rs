@@ -23,7 +23,7 @@ fn sample_bilinear(texture: &TextureImage, uv: Vec2) -> Vec3 {
         let rgb = Vec3::new(unit(t[0]), unit(t[1]), unit(t[2]));
         match texture.kind {
             TextureKind::Color => rgb.map(srgb_to_linear),
-            TextureKind::NormalMap => rgb,
+            TextureKind::NormalMap | TextureKind::Height => rgb,
         }
     };
     let top = texel(0, 0).lerp(texel(1, 0), fx);

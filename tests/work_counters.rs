@@ -95,3 +95,23 @@ fn difference_view_adds_reference_frames_on_first_use_only() {
     assert!(renderer.built_pipelines().iter().any(|k| matches!(k.pass, Pass::Difference { .. })));
     assert_eq!(renderer.counters().tangent_frames_generated, generated);
 }
+
+/// Bump from the height map in the shader needs no tangents: none are generated, the height
+/// map is uploaded and the normal map is not.
+#[test]
+fn height_in_shader_needs_no_tangents() {
+    use bumpview::render::{BumpSource, SceneOptions};
+    let scene = scene();
+    let gpu = bumpview::render::Gpu::headless().unwrap();
+    let mut renderer = bumpview::render::Renderer::from_gpu(&gpu);
+    renderer.set_scene(&scene, SceneOptions { bump_source: BumpSource::HeightInShader, ..Default::default() });
+    render_image(&mut renderer, [64, 48], &default_params(&scene)).unwrap();
+    assert_eq!(renderer.counters().tangent_frames_generated, 0);
+    assert_eq!(renderer.counters().textures_uploaded, 2, "colour and height");
+    assert!(
+        renderer
+            .built_pipelines()
+            .iter()
+            .all(|k| matches!(k.pass, Pass::Mesh { variant: Variant::HeightBump, .. } | Pass::LightMarker))
+    );
+}

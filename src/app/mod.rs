@@ -14,7 +14,7 @@ use std::sync::{Arc, mpsc};
 
 use bumpview::height::Kernel;
 use bumpview::render::capture::{render_image, write_png_atomically};
-use bumpview::render::{RenderTarget, Renderer};
+use bumpview::render::{RenderTarget, Renderer, SceneOptions};
 use bumpview::scene::Scene;
 use bumpview::scene::builtin::teaching_scene_with_kernel;
 use bumpview::shading::ViewMode;
@@ -28,8 +28,8 @@ pub struct Options {
     pub exit_after: Option<u64>,
     /// With `exit_after`: save a screenshot of the whole window here before closing.
     pub capture_window: Option<PathBuf>,
-    /// Tangent frames to start with (`None`: the mesh's own, else MikkTSpace).
-    pub tangent_method: Option<TangentMethod>,
+    /// Tangent method and bump source to start with.
+    pub scene_options: SceneOptions,
     /// Height→normal kernel of the built-in brick normal map to start with.
     pub kernel: Kernel,
 }
@@ -101,8 +101,8 @@ struct ScreenshotForm {
 struct ViewerApp {
     state: ViewerState,
     scene: Scene,
-    /// The tangent method and kernel the renderer's scene was made with.
-    uploaded: (Option<TangentMethod>, Kernel),
+    /// The options and kernel the renderer's scene was made with.
+    uploaded: (SceneOptions, Kernel),
     /// Per mesh: the chosen tangent method timed and compared with the reference.
     measurements: Vec<(String, MethodMeasurement)>,
     renderer: Renderer,
@@ -128,14 +128,14 @@ impl ViewerApp {
         let mut renderer =
             Renderer::new(render_state.device.clone(), render_state.queue.clone(), render_state.adapter.clone());
         let scene = teaching_scene_with_kernel(options.kernel);
-        renderer.set_scene(&scene, options.tangent_method);
+        renderer.set_scene(&scene, options.scene_options);
         let adapter_name = renderer.adapter_name();
         let mut state = ViewerState::new(&scene);
-        state.tangent_method = options.tangent_method;
+        state.scene_options = options.scene_options;
         state.kernel = options.kernel;
         Ok(ViewerApp {
-            measurements: measure_all(&scene, options.tangent_method),
-            uploaded: (options.tangent_method, options.kernel),
+            measurements: measure_all(&scene, options.scene_options.tangent_method),
+            uploaded: (options.scene_options, options.kernel),
             scene,
             state,
             renderer,
@@ -230,7 +230,7 @@ impl ViewerApp {
 
     /// Re-makes the normal map and the tangent frames when their method changed.
     fn apply_methods(&mut self) {
-        let wanted = (self.state.tangent_method, self.state.kernel);
+        let wanted = (self.state.scene_options, self.state.kernel);
         if wanted == self.uploaded {
             return;
         }
@@ -238,7 +238,7 @@ impl ViewerApp {
             self.scene = teaching_scene_with_kernel(wanted.1);
         }
         self.renderer.set_scene(&self.scene, wanted.0);
-        self.measurements = measure_all(&self.scene, wanted.0);
+        self.measurements = measure_all(&self.scene, wanted.0.tangent_method);
         self.uploaded = wanted;
         self.tracker.invalidate();
     }

@@ -3,6 +3,7 @@
 
 use bumpview::WorkCounters;
 use bumpview::height::Kernel;
+use bumpview::render::BumpSource;
 use bumpview::shading::ViewMode;
 use bumpview::tangent::{MethodMeasurement, TangentMethod};
 use bumpview::viewer::{Command, STRENGTH_RANGE, ViewerState};
@@ -108,14 +109,23 @@ fn methods_section(
     ui.separator();
     ui.strong("Methods");
     let tangent_name = |m: Option<TangentMethod>| m.map_or("auto (file, else mikktspace)", TangentMethod::name);
-    let mut tangent_method = state.tangent_method;
+    let mut tangent_method = state.scene_options.tangent_method;
     egui::ComboBox::from_label("tangent frames").selected_text(tangent_name(tangent_method)).show_ui(ui, |ui| {
         for choice in std::iter::once(None).chain(TangentMethod::ALL.map(Some)) {
             ui.selectable_value(&mut tangent_method, choice, tangent_name(choice));
         }
     });
-    if tangent_method != state.tangent_method {
+    if tangent_method != state.scene_options.tangent_method {
         actions.push(Command::SetTangentMethod(tangent_method).into());
+    }
+    let mut bump_source = state.scene_options.bump_source;
+    egui::ComboBox::from_label("bump source").selected_text(bump_source.name()).show_ui(ui, |ui| {
+        for choice in BumpSource::ALL {
+            ui.selectable_value(&mut bump_source, choice, choice.name());
+        }
+    });
+    if bump_source != state.scene_options.bump_source {
+        actions.push(Command::SetBumpSource(bump_source).into());
     }
     let mut kernel = state.kernel;
     egui::ComboBox::from_label("height-to-normal kernel").selected_text(kernel.name()).show_ui(ui, |ui| {

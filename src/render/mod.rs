@@ -28,6 +28,41 @@ pub struct FrameParams {
     pub shading: ShadingSettings,
 }
 
+/// Where the bump comes from. It decides pipelines and uploads, so it is a scene option, not
+/// a uniform.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum BumpSource {
+    /// The material's normal map (the built-in one is made from its height field by a kernel).
+    #[default]
+    NormalMap,
+    /// Blinn's bump from the material's height map, differentiated in screen space in the
+    /// shader (Mikkelsen's surface gradient): no tangents needed.
+    HeightInShader,
+}
+
+impl BumpSource {
+    pub const ALL: [BumpSource; 2] = [BumpSource::NormalMap, BumpSource::HeightInShader];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            BumpSource::NormalMap => "normal-map",
+            BumpSource::HeightInShader => "height-in-shader",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<BumpSource> {
+        BumpSource::ALL.into_iter().find(|b| b.name() == name)
+    }
+}
+
+/// How a scene is prepared for drawing: changing these re-makes GPU data.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct SceneOptions {
+    /// Tangent frames by this method; `None`: the mesh's own, else MikkTSpace.
+    pub tangent_method: Option<TangentMethod>,
+    pub bump_source: BumpSource,
+}
+
 /// Where to draw: a view of a 2D texture of `format`, `size` pixels.
 pub struct RenderTarget<'a> {
     pub view: &'a wgpu::TextureView,
@@ -104,11 +139,11 @@ impl Renderer {
         &self.queue
     }
 
-    /// Replaces the scene: makes the tangent frames it needs (by `tangent_method`; `None`:
-    /// the mesh's own, else MikkTSpace) and uploads what it uses.
-    pub fn set_scene(&mut self, scene: &Scene, tangent_method: Option<TangentMethod>) {
+    /// Replaces the scene: makes the tangent frames it needs and uploads what it uses, as
+    /// `options` say.
+    pub fn set_scene(&mut self, scene: &Scene, options: SceneOptions) {
         let layouts = &self.pipelines.layouts;
-        let gpu = scene_gpu::upload(&self.device, &self.queue, layouts, scene, tangent_method, &mut self.counters);
+        let gpu = scene_gpu::upload(&self.device, &self.queue, layouts, scene, options, &mut self.counters);
         self.scene = Some(gpu);
     }
 

@@ -21,6 +21,8 @@ pub enum Variant {
     Tangent,
     /// Adds the tangent stream and the normal map.
     NormalMapped,
+    /// No tangent stream; the height map, differentiated in screen space.
+    HeightBump,
 }
 
 /// A pipeline in the cache.
@@ -108,7 +110,7 @@ impl Layouts {
     pub fn material(&self, variant: Variant) -> &wgpu::BindGroupLayout {
         match variant {
             Variant::Plain | Variant::Tangent => &self.plain_material,
-            Variant::NormalMapped => &self.normal_mapped_material,
+            Variant::NormalMapped | Variant::HeightBump => &self.normal_mapped_material,
         }
     }
 }
@@ -191,6 +193,7 @@ impl Pipelines {
                         Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
                         Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
                         Variant::NormalMapped => ("vs_tangent", "fs_normal_mapped", &[POSITION, NORMAL, UV, TANGENT]),
+                        Variant::HeightBump => ("vs_plain", "fs_height_bump", &[POSITION, NORMAL, UV]),
                     };
                     let cull = cull_back_faces.then_some(wgpu::Face::Back);
                     (&self.mesh_module, self.layouts.material(variant), vs, fs, buffers, cull, &encodes_srgb)

@@ -6,6 +6,7 @@ use wgpu::util::DeviceExt;
 
 use super::pipelines::{Layouts, Pass, Variant};
 use super::uniforms::ObjectUniform;
+use super::{BumpSource, SceneOptions};
 use crate::counters::WorkCounters;
 use crate::scene::{Mesh, Scene, TextureImage, TextureKind};
 use crate::tangent::{self, TangentMethod};
@@ -80,7 +81,7 @@ impl TextureCache<'_> {
     fn upload(&self, image: &TextureImage, counters: &mut WorkCounters) -> wgpu::TextureView {
         let format = match image.kind {
             TextureKind::Color => wgpu::TextureFormat::Rgba8UnormSrgb,
-            TextureKind::NormalMap => wgpu::TextureFormat::Rgba8Unorm,
+            TextureKind::NormalMap | TextureKind::Height => wgpu::TextureFormat::Rgba8Unorm,
         };
         let mips = image.mip_chain();
         let texture = self.device.create_texture(&wgpu::TextureDescriptor {
@@ -137,12 +138,16 @@ impl TextureCache<'_> {
     }
 }
 
-/// The variant an instance is drawn with: normal-mapped when the material has a normal map
-/// and the mesh has UVs; with the tangent stream when the mesh supplies tangents; else plain.
-fn variant_of(scene: &Scene, mesh: usize, material: usize) -> Variant {
+/// The variant an instance is drawn with: bumped in the shader from the height map when
+/// that is the source and the material has one; normal-mapped when the material has a normal
+/// map; with the tangent stream when the mesh supplies tangents; else plain. Bump needs UVs.
+fn variant_of(scene: &Scene, mesh: usize, material: usize, bump_source: BumpSource) -> Variant {
     let mesh = &scene.meshes[mesh];
+    let material = &scene.materials[material];
     let has_uvs = mesh.uvs.len() == mesh.positions.len();
-    if scene.materials[material].needs_tangents() && has_uvs {
+    if bump_source == BumpSource::HeightInShader && material.height_map.is_some() && has_uvs {
+        Variant::HeightBump
+    } else if material.normal_map.is_some() && has_uvs {
         Variant::NormalMapped
     } else if mesh.tangents.as_ref().is_some_and(|t| t.len() == mesh.positions.len()) {
         Variant::Tangent
@@ -161,25 +166,30 @@ fn octahedron() -> (Vec<Vec3>, Vec<u32>) {
     (positions, indices)
 }
 
-/// Uploads what `scene` uses. Meshes drawn with a tangent stream get frames by
-/// `tangent_method` (`None`: the mesh's own, else MikkTSpace; see [`tangent::resolve`]).
+/// Uploads what `scene` uses with `options`. Meshes drawn with a tangent stream get frames by
+/// `options.tangent_method` (`None`: the mesh's own, else MikkTSpace; see [`tangent::resolve`]).
 pub fn upload(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     layouts: &Layouts,
     scene: &Scene,
-    tangent_method: Option<TangentMethod>,
+    options: SceneOptions,
     counters: &mut WorkCounters,
 ) -> GpuScene {
-    let variants: Vec<Variant> = scene.instances.iter().map(|i| variant_of(scene, i.mesh, i.material)).collect();
+    let tangent_method = options.tangent_method;
+    let variants: Vec<Variant> =
+        scene.instances.iter().map(|i| variant_of(scene, i.mesh, i.material, options.bump_source)).collect();
     let mut frames = vec![];
     let meshes = scene
         .meshes
         .iter()
         .enumerate()
         .map(|(index, mesh)| {
-            let drawn_with_tangents =
-                scene.instances.iter().zip(&variants).any(|(i, &v)| i.mesh == index && v != Variant::Plain);
+            let drawn_with_tangents = scene
+                .instances
+                .iter()
+                .zip(&variants)
+                .any(|(i, &v)| i.mesh == index && matches!(v, Variant::Tangent | Variant::NormalMapped));
             if !drawn_with_tangents {
                 frames.push(None);
                 return upload_mesh(device, mesh, None);
@@ -223,11 +233,13 @@ pub fn upload(
                 wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&base_color) },
                 wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&sampler) },
             ];
-            let normal_map = match (variant, &material.normal_map) {
-                (Variant::NormalMapped, Some(map)) => Some(textures.get(scene, map.texture, counters)),
+            // Binding 3: the normal map or the height map, as the variant needs.
+            let bump_texture = match (variant, &material.normal_map, &material.height_map) {
+                (Variant::NormalMapped, Some(map), _) => Some(textures.get(scene, map.texture, counters)),
+                (Variant::HeightBump, _, Some(map)) => Some(textures.get(scene, map.texture, counters)),
                 _ => None,
             };
-            if let Some(view) = &normal_map {
+            if let Some(view) = &bump_texture {
                 entries.push(wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::TextureView(view) });
             }
             let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {

@@ -52,7 +52,8 @@ pub struct ObjectUniform {
     specular: [f32; 4],
     handedness: f32,
     normal_scale: f32,
-    _pad: [f32; 2],
+    height_range_m: f32,
+    _pad: f32,
 }
 
 impl ObjectUniform {
@@ -70,7 +71,8 @@ impl ObjectUniform {
             specular: material.specular.extend(material.shininess.max(1.0)).to_array(),
             handedness: if determinant < 0.0 { -1.0 } else { 1.0 },
             normal_scale: material.normal_map.as_ref().map_or(1.0, |n| n.scale),
-            _pad: [0.0; 2],
+            height_range_m: material.height_map.as_ref().map_or(0.0, |h| h.range_m),
+            _pad: 0.0,
         }
     }
 }

@@ -7,7 +7,7 @@ use std::f32::consts::TAU;
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use super::bricks::{brick_color_texture, brick_height_field};
-use super::{Instance, Light, Material, Mesh, NormalMap, OrbitCamera, Scene};
+use super::{HeightMap, Instance, Light, Material, Mesh, NormalMap, OrbitCamera, Scene};
 use crate::height::{Border, Kernel};
 
 /// Metres covered by one repeat of the brick texture on the wall and floor.
@@ -124,7 +124,8 @@ pub fn default_light() -> Light {
     Light { position: Vec3::new(-0.8, 2.0, 1.2), color: Vec3::ONE }
 }
 
-/// Builds the whole scene with the brick normal map made by the central-difference kernel.
+/// Builds the whole scene with the brick normal map made by the central-difference kernel
+/// and the brick height map (for bump mapping in the shader).
 /// Every mesh carries its analytic frame; none supplies tangents, so MikkTSpace makes them.
 pub fn teaching_scene() -> Scene {
     teaching_scene_with_kernel(Kernel::CentralDifference)
@@ -136,12 +137,14 @@ pub fn teaching_scene_with_kernel(kernel: Kernel) -> Scene {
     let textures = vec![
         brick_color_texture(),
         height.to_normal_map(kernel, Border::Wrap, &format!("bricks (normal map, {} kernel)", kernel.name())),
+        height.to_height_texture("bricks (height)"),
     ];
     let bricks = Material {
         name: "bricks".into(),
         base_color_factor: Vec4::ONE,
         base_color_texture: Some(0),
         normal_map: Some(NormalMap { texture: 1, scale: 1.0 }),
+        height_map: Some(HeightMap { texture: 2, range_m: height.range_m }),
         specular: Vec3::splat(0.25),
         shininess: 32.0,
         double_sided: true,

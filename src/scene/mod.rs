@@ -9,7 +9,7 @@ pub mod texture;
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
 pub use camera::OrbitCamera;
-pub use texture::{TextureImage, TextureKind};
+pub use texture::{TextureImage, TextureKind, decode_height, encode_height};
 
 /// Indexed triangle mesh in its own (model) space.
 #[derive(Debug, Clone, PartialEq)]
@@ -37,6 +37,13 @@ pub struct NormalMap {
     pub scale: f32,
 }
 
+/// A height map slot: a [`TextureKind::Height`] texture and the metres its full range spans.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeightMap {
+    pub texture: usize,
+    pub range_m: f32,
+}
+
 /// Blinn-Phong material. Texture fields index [`Scene::textures`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Material {
@@ -46,6 +53,8 @@ pub struct Material {
     /// sRGB colour texture.
     pub base_color_texture: Option<usize>,
     pub normal_map: Option<NormalMap>,
+    /// Heights for bump mapping in the shader (white = high).
+    pub height_map: Option<HeightMap>,
     /// Linear specular colour k_s.
     pub specular: Vec3,
     /// Blinn-Phong exponent (≥ 1).

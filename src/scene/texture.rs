@@ -11,6 +11,21 @@ pub enum TextureKind {
     Color,
     /// Tangent-space normal map, linear, `n = 2·rgb − 1`.
     NormalMap,
+    /// Height in 0..1 with 16 bits: red holds the high byte, green the low byte, so
+    /// `h = (256·255·r + 255·g) / 65535` for r, g in 0..1 — linear in r and g, so texture
+    /// filtering of the two channels filters the height. See [`encode_height`].
+    Height,
+}
+
+/// The red and green bytes of a height in 0..1 ([`TextureKind::Height`]).
+pub fn encode_height(h: f32) -> [u8; 2] {
+    let level = (h.clamp(0.0, 1.0) * 65535.0).round() as u16;
+    level.to_be_bytes()
+}
+
+/// The height in 0..1 of red and green bytes ([`TextureKind::Height`]).
+pub fn decode_height(high: u8, low: u8) -> f32 {
+    u16::from_be_bytes([high, low]) as f32 / 65535.0
 }
 
 /// An RGBA8 image, rows top to bottom.
@@ -34,7 +49,7 @@ impl TextureImage {
     }
 
     /// The next mip level (half size, at least 1×1), by a 2×2 box filter: colour averaged
-    /// in linear light, normals decoded, averaged and re-normalised.
+    /// in linear light, normals decoded, averaged and re-normalised, heights averaged.
     pub fn downsampled(&self) -> TextureImage {
         let (w, h) = ((self.width / 2).max(1), (self.height / 2).max(1));
         let mut rgba = Vec::with_capacity((w * h * 4) as usize);
@@ -47,20 +62,29 @@ impl TextureImage {
                 });
                 let alpha = texels.iter().map(|t| t[3] as f32).sum::<f32>() / 4.0;
                 let rgb = match self.kind {
-                    TextureKind::Color => {
+                    TextureKind::Height => None,
+                    TextureKind::Color => Some({
                         let mean = texels.iter().fold(Vec3::ZERO, |acc, t| {
                             acc + Vec3::new(t[0] as f32, t[1] as f32, t[2] as f32).map(|c| srgb_to_linear(c / 255.0))
                         }) / 4.0;
                         mean.map(linear_to_srgb)
-                    }
-                    TextureKind::NormalMap => {
+                    }),
+                    TextureKind::NormalMap => Some({
                         let sum = texels.iter().fold(Vec3::ZERO, |acc, t| {
                             acc + Vec3::new(t[0] as f32, t[1] as f32, t[2] as f32) / 127.5 - 1.0
                         });
                         normalize_or(sum, Vec3::Z) * 0.5 + 0.5
+                    }),
+                };
+                let rgb = match rgb {
+                    Some(rgb) => rgb.to_array().map(|c| (c * 255.0).round() as u8),
+                    None => {
+                        let mean = texels.iter().map(|t| decode_height(t[0], t[1])).sum::<f32>() / 4.0;
+                        let [high, low] = encode_height(mean);
+                        [high, low, 0]
                     }
                 };
-                rgba.extend(rgb.to_array().map(|c| (c * 255.0).round() as u8));
+                rgba.extend(rgb);
                 rgba.push(alpha.round() as u8);
             }
         }
@@ -80,6 +104,24 @@ impl TextureImage {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn heights_round_trip_sixteen_bits_and_average_in_mips() {
+        for h in [0.0, 0.123_456, 0.5, 1.0] {
+            let [high, low] = encode_height(h);
+            assert!((decode_height(high, low) - h).abs() <= 0.5 / 65535.0);
+        }
+        let rgba = [0.2f32, 0.4, 0.6, 0.8]
+            .iter()
+            .flat_map(|&h| {
+                let [a, b] = encode_height(h);
+                [a, b, 0, 255]
+            })
+            .collect();
+        let image = TextureImage { name: "h".into(), width: 2, height: 2, kind: TextureKind::Height, rgba };
+        let t = image.downsampled().texel(0, 0);
+        assert!((decode_height(t[0], t[1]) - 0.5).abs() < 1e-4);
+    }
 
     #[test]
     fn mip_chain_ends_at_one_texel_and_keeps_normals_unit() {

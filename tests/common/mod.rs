@@ -13,7 +13,7 @@ pub fn renderer_for(scene: &Scene) -> Renderer {
     let gpu =
         Gpu::headless().unwrap_or_else(|e| panic!("GPU tests need an adapter (install mesa-vulkan-drivers): {e}"));
     let mut renderer = Renderer::from_gpu(&gpu);
-    renderer.set_scene(scene, None);
+    renderer.set_scene(scene, Default::default());
     renderer
 }
 
