@@ -243,19 +243,8 @@ impl Renderer {
         self.queue.write_buffer(&scene.marker.model, 0, bytemuck::bytes_of(&marker_model.to_cols_array()));
 
         let key = |pass| PipelineKey { pass, format: target.format, samples };
-        // The Difference view swaps in its own pass for meshes that have frames.
-        let pass_of = |instance: &scene_gpu::GpuInstance| match instance.pass {
-            Pass::Mesh { variant, cull_back_faces } if difference && scene.frames[instance.mesh].is_some() => {
-                Pass::Difference { variant, cull_back_faces }
-            }
-            pass => pass,
-        };
-        let instance_passes: Vec<Pass> = scene.instances.iter().map(pass_of).collect();
-        let mut passes = instance_passes.clone();
-        if params.shading.show_light_marker {
-            passes.push(Pass::LightMarker);
-        }
-        for pass in passes {
+        let marker = params.shading.show_light_marker.then_some(Pass::LightMarker);
+        for pass in scene.instances.iter().map(|i| drawn_pass(i, scene, difference)).chain(marker) {
             self.pipelines.ensure(&self.device, key(pass), &mut self.counters);
         }
         self.ensure_targets(target.size, target.format);
@@ -285,7 +274,8 @@ impl Renderer {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &self.frame_bind_group, &[]);
-        for (instance, &instance_pass) in scene.instances.iter().zip(&instance_passes) {
+        for instance in &scene.instances {
+            let instance_pass = drawn_pass(instance, scene, difference);
             let mesh = &scene.meshes[instance.mesh];
             pass.set_pipeline(self.pipelines.get(&key(instance_pass)));
             pass.set_bind_group(1, &instance.bind_group, &[]);
@@ -312,5 +302,16 @@ impl Renderer {
         drop(pass);
         self.counters.frames_drawn += 1;
         Ok(())
+    }
+}
+
+/// The pass an instance is drawn with: the Difference view swaps in its own pass for meshes
+/// that have tangent frames.
+fn drawn_pass(instance: &scene_gpu::GpuInstance, scene: &GpuScene, difference: bool) -> Pass {
+    match instance.pass {
+        Pass::Mesh { variant, cull_back_faces } if difference && scene.frames[instance.mesh].is_some() => {
+            Pass::Difference { variant, cull_back_faces }
+        }
+        pass => pass,
     }
 }
