@@ -36,6 +36,7 @@ pub mod error;
 pub mod height;
 pub mod math;
 pub mod render;
+pub mod report;
 pub mod scene;
 pub mod shading;
 pub mod tangent;

@@ -36,6 +36,28 @@ struct Cli {
 enum Command {
     /// Draw the built-in scene offscreen (no window, no display) and write a PNG.
     Render(RenderArgs),
+    /// Measure error against run time of every tangent method and height kernel and write
+    /// report.md, report.csv and PNG charts.
+    Report(ReportArgs),
+}
+
+#[derive(clap::Args)]
+struct ReportArgs {
+    /// Directory for report.md, report.csv and the charts (created if missing).
+    #[arg(long, default_value = "report")]
+    out: PathBuf,
+    /// Fewer resolutions and runs, for tests and CI.
+    #[arg(long)]
+    quick: bool,
+}
+
+fn report(args: ReportArgs) -> Result<(), String> {
+    let started = std::time::Instant::now();
+    let plan = if args.quick { bumpview::report::Plan::quick() } else { bumpview::report::Plan::full() };
+    let files = bumpview::report::run(&args.out, &plan).map_err(|e| e.to_string())?;
+    let names: Vec<_> = files.iter().map(|f| f.display().to_string()).collect();
+    println!("wrote {} in {:.1} s", names.join(", "), started.elapsed().as_secs_f64());
+    Ok(())
 }
 
 #[derive(clap::Args)]
@@ -187,6 +209,7 @@ fn main() -> ExitCode {
     };
     let result = match cli.command.take() {
         Some(Command::Render(args)) => render(args),
+        Some(Command::Report(args)) => report(args),
         None => viewer(&cli),
     };
     match result {

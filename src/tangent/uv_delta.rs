@@ -34,7 +34,7 @@ pub fn face_frame(p: [Vec3; 3], uv: [glam::Vec2; 3]) -> Option<(Vec3, Vec3)> {
     let (du2, dv2) = (uv[2].x - uv[0].x, uv[0].y - uv[2].y);
     let det = du1 * dv2 - du2 * dv1;
     let scale = (du1.abs() + du2.abs()) * (dv1.abs() + dv2.abs());
-    if !(det.abs() > RELATIVE_UV_EPSILON * scale) || !det.is_finite() {
+    if !det.is_finite() || det.abs() <= RELATIVE_UV_EPSILON * scale {
         return None;
     }
     let t = normalize_or((e1 * dv2 - e2 * dv1) / det, Vec3::ZERO);

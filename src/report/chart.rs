@@ -1,0 +1,164 @@
+//! Log-log charts of angular error against run time, as PNG bytes.
+//!
+//! Text is drawn with the Hack font that `epaint_default_fonts` bundles (through plotters'
+//! `ab_glyph` backend), so no system font is needed.
+
+use std::sync::OnceLock;
+
+use image::ImageEncoder;
+use image::codecs::png::PngEncoder;
+use plotters::coord::combinators::IntoLogRange;
+use plotters::prelude::*;
+use plotters::style::{FontStyle, register_font};
+
+use super::measure::{Row, Study, Vector};
+use super::surfaces::Region;
+
+/// Chart size in pixels.
+const SIZE: (u32, u32) = (1100, 760);
+/// Errors below this many degrees (the analytic frame's ≈ 0) are drawn at it.
+pub const ERROR_FLOOR_DEGREES: f64 = 1e-6;
+/// One colour per method, in the order methods first appear.
+const COLOURS: [RGBColor; 7] = [
+    RGBColor(31, 119, 180),
+    RGBColor(255, 127, 14),
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(23, 190, 207),
+];
+
+/// One line of points, resolutions in increasing order.
+struct Series {
+    label: String,
+    colour: RGBColor,
+    /// Triangles for the torus, circles otherwise.
+    triangles: bool,
+    /// `(median seconds, mean error in degrees)`.
+    points: Vec<(f64, f64)>,
+}
+
+fn register_hack_font() -> Result<(), String> {
+    static REGISTERED: OnceLock<Result<(), String>> = OnceLock::new();
+    REGISTERED
+        .get_or_init(|| {
+            register_font("sans-serif", FontStyle::Normal, epaint_default_fonts::HACK_REGULAR)
+                .map_err(|_| "the bundled Hack font did not load".to_owned())
+        })
+        .clone()
+}
+
+/// Series of `study`'s rows over `surfaces` and region `All`: one per (method, surface),
+/// the mean error of `vector` against the median run time.
+fn series(rows: &[Row], study: Study, surfaces: &[&str], vector: Vector) -> Vec<Series> {
+    let mut methods: Vec<&str> = vec![];
+    for row in rows.iter().filter(|r| r.study == study) {
+        if !methods.contains(&row.method) {
+            methods.push(row.method);
+        }
+    }
+    let mut result = vec![];
+    for (index, method) in methods.iter().enumerate() {
+        for surface in surfaces {
+            let mut points: Vec<(u32, f64, f64)> = rows
+                .iter()
+                .filter(|r| r.study == study && r.method == *method && r.surface == *surface && r.region == Region::All)
+                .filter_map(|r| r.error(vector).map(|e| (r.resolution, r.seconds, e.mean as f64)))
+                .collect();
+            points.sort_by_key(|p| p.0);
+            result.push(Series {
+                label: if surfaces.len() > 1 { format!("{method} · {surface}") } else { method.to_string() },
+                colour: COLOURS[index % COLOURS.len()],
+                triangles: *surface == "torus",
+                points: points.into_iter().map(|(_, s, e)| (s.max(1e-9), e.max(ERROR_FLOOR_DEGREES))).collect(),
+            });
+        }
+    }
+    result
+}
+
+/// `(low, high)` of positive `values`, widened to whole decades and a little beyond, so that
+/// the outermost decade labels are drawn.
+fn decades(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (low, high) = values.fold((f64::MAX, f64::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    if low > high {
+        return (1e-6, 1.0);
+    }
+    (10f64.powf(low.log10().floor()) / 1.5, 10f64.powf((high.log10() + 1e-9).ceil()) * 1.5)
+}
+
+fn draw(buffer: &mut [u8], title: &str, y_label: &str, series: &[Series]) -> Result<(), String> {
+    let failed = |e: &dyn std::fmt::Display| format!("drawing the chart {title:?}: {e}");
+    let root = BitMapBackend::with_buffer(buffer, SIZE).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| failed(&e))?;
+    let (x0, x1) = decades(series.iter().flat_map(|s| s.points.iter().map(|p| p.0)));
+    let (y0, y1) = decades(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 22))
+        .margin(16)
+        .x_label_area_size(50)
+        .y_label_area_size(80)
+        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+        .map_err(|e| failed(&e))?;
+    chart
+        .configure_mesh()
+        .x_desc("median run time per surface (s)")
+        .y_desc(y_label)
+        .x_label_formatter(&|v| format!("{v:.0e}"))
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .label_style(("sans-serif", 14))
+        .draw()
+        .map_err(|e| failed(&e))?;
+    for s in series {
+        let colour = s.colour;
+        let line = LineSeries::new(s.points.iter().copied(), colour.stroke_width(2));
+        let legend = chart.draw_series(line).map_err(|e| failed(&e))?.label(&s.label);
+        let stroke = move |at| EmptyElement::at(at) + PathElement::new(vec![(0, 0), (18, 0)], colour.stroke_width(2));
+        // Markers: triangles for the torus, circles otherwise, in the legend too.
+        if s.triangles {
+            legend.legend(move |at| stroke(at) + TriangleMarker::new((9, 0), 6, colour.filled()));
+            let markers = s.points.iter().map(|&p| TriangleMarker::new(p, 6, colour.filled()));
+            chart.draw_series(markers).map_err(|e| failed(&e))?;
+        } else {
+            legend.legend(move |at| stroke(at) + Circle::new((9, 0), 4, colour.filled()));
+            chart.draw_series(s.points.iter().map(|&p| Circle::new(p, 4, colour.filled()))).map_err(|e| failed(&e))?;
+        }
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerRight)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 13))
+        .draw()
+        .map_err(|e| failed(&e))?;
+    root.present().map_err(|e| failed(&e))
+}
+
+fn png(title: &str, y_label: &str, series: &[Series]) -> Result<Vec<u8>, String> {
+    register_hack_font()?;
+    let mut rgb = vec![0u8; (SIZE.0 * SIZE.1 * 3) as usize];
+    draw(&mut rgb, title, y_label, series)?;
+    let mut bytes = vec![];
+    PngEncoder::new(&mut bytes)
+        .write_image(&rgb, SIZE.0, SIZE.1, image::ExtendedColorType::Rgb8)
+        .map_err(|e| format!("encoding the chart {title:?}: {e}"))?;
+    Ok(bytes)
+}
+
+/// Tangent methods on the sphere (circles) and torus (triangles): mean T error over all
+/// vertices against run time, one point per resolution.
+pub fn tangent_chart(rows: &[Row]) -> Result<Vec<u8>, String> {
+    let series = series(rows, Study::Tangents, &["sphere", "torus"], Vector::Tangent);
+    let title = "Tangent methods: mean T error vs run time (one point per resolution)";
+    png(title, "mean angular error of T, all vertices (°)", &series)
+}
+
+/// Height kernels on the sine-bump plane (float heights, wrapped): mean normal error against
+/// run time, one point per texels-per-period.
+pub fn kernel_chart(rows: &[Row]) -> Result<Vec<u8>, String> {
+    let series = series(rows, Study::Kernels, &["plane"], Vector::Normal);
+    let title = "Height kernels: mean normal error vs run time (one point per texels/period)";
+    png(title, "mean angular error of N (°)", &series)
+}

@@ -1,0 +1,238 @@
+//! `report.md`: the references and metrics, the sanity values, the convergence orders, the
+//! full tables and links to the charts.
+
+use std::fmt::Write;
+
+use super::convergence::{NOISE_FLOOR_DEGREES, Order};
+use super::measure::{Row, Study, Vector};
+use super::surfaces::{POLE_DEGREES, Region};
+use super::{MIKKTSPACE_SANITY_SPHERE, Machine, Plan};
+
+/// Everything the page shows.
+pub struct Page<'a> {
+    pub rows: &'a [Row],
+    pub orders: &'a [Order],
+    pub plan: &'a Plan,
+    pub machine: &'a Machine,
+    /// Wall-clock seconds the measurements took.
+    pub seconds: f64,
+    /// File names of the tangent and kernel charts, beside report.md.
+    pub charts: [&'a str; 2],
+    /// MikkTSpace's mean interior (T, B) errors on the sanity sphere as the library's
+    /// f32-`acos` `frame_angles` measures them, when that sphere was measured.
+    pub acos_f32: Option<(f32, f32)>,
+}
+
+/// Degrees with three significant digits (scientific below 10⁻⁴).
+fn degrees(v: f32) -> String {
+    let v = v as f64;
+    if v == 0.0 {
+        "0".into()
+    } else if v < 1e-4 {
+        format!("{v:.1e}")
+    } else {
+        let decimals = (2 - v.log10().floor() as i32).clamp(0, 8) as usize;
+        format!("{v:.decimals$}")
+    }
+}
+
+fn duration(seconds: f64) -> String {
+    match seconds {
+        s if s >= 1.0 => format!("{s:.2} s"),
+        s if s >= 1e-3 => format!("{:.2} ms", s * 1e3),
+        s => format!("{:.1} µs", s * 1e6),
+    }
+}
+
+fn throughput(row: &Row) -> String {
+    let (value, unit) = (row.throughput(), row.study.unit());
+    match value {
+        v if v >= 1e9 => format!("{:.2} G {unit}/s", v / 1e9),
+        v if v >= 1e6 => format!("{:.2} M {unit}/s", v / 1e6),
+        v => format!("{:.1} k {unit}/s", v / 1e3),
+    }
+}
+
+fn find<'a>(rows: &'a [Row], method: &str, surface: &str, resolution: u32, region: Region) -> Option<&'a Row> {
+    rows.iter().find(|r| r.method == method && r.surface == surface && r.resolution == resolution && r.region == region)
+}
+
+fn intro(page: &Page, out: &mut String) {
+    let plan = page.plan;
+    let list = |v: &[(u32, u32)]| v.iter().map(|(a, b)| format!("{a}×{b}")).collect::<Vec<_>>().join(", ");
+    let tpp: Vec<String> = plan.texels_per_period.iter().map(u32::to_string).collect();
+    let _ = write!(
+        out,
+        "# bumpview report: error against run time\n\n\
+         Every numerical method is compared with an exact reference. Angles are in degrees, computed as \
+         `atan2(|a×b|, a·b)` in f64 (exact for tiny angles); mean, RMS and max are over the vertices or texels \
+         of a region. Times are the median wall-clock time of one run over the whole surface \
+         ({} runs at most, {:.1} s budget per case), throughput is triangles or texels per second.\n\n\
+         **References**\n\n\
+         - *UV sphere*, radius 1 m: `P = (sinθ cosφ, cosθ, −sinθ sinφ)`, `u = φ/2π`, `v = θ/π`, exact normals, \
+         analytic frame `T = (−sinφ, 0, −cosφ)`, `w = +1` (B towards the north pole, up the image). Seam column \
+         duplicated, one pole vertex per segment. Resolutions (segments×rings): {}. Regions: *seam* = the \
+         u = 0/1 column, *pole* = the pole rows, the rings next to them and any vertex within {POLE_DEGREES}° of a pole, *interior* = the rest.\n\
+         - *Torus* (the built-in one, R = 0.45 m, r = 0.18 m, texture 3× around the ring) with its analytic frame. \
+         Resolutions (segments×sides): {}. Regions: *seam* = the duplicated first/last column and row, \
+         *saddle* = inner half of the tube (cos t < 0), *interior* = outer half.\n\
+         - *Sine-bump plane* `h = A·sin(2πx/λ)·sin(2πy/λ)`, `A = λ/2π` so the maximum slope |∇h| is 1, \
+         {} periods square, samples (and exact normals) at texel centres `x = (i + ½)Δ`. Texels per period: {}; \
+         8-bit, 16-bit and clamped-border variants at {} texels per period (*border* = within two texels of the edge).\n\n\
+         Every method of `TangentMethod::ALL` is measured except **supplied**, which needs tangents from a mesh \
+         file (the references have none). **per-face** is measured on the unwelded mesh, where it is exact per \
+         triangle; **analytic** is the reference itself (error ≈ 0, its time is the cost of copying and \
+         re-orthogonalising). Convergence orders are least-squares slopes of ln(mean error) against \
+         ln(resolution), over resolutions whose mean error is above {NOISE_FLOOR_DEGREES}° (f32 rounding).\n\n",
+        plan.repeats.runs,
+        plan.repeats.budget.as_secs_f64(),
+        list(&plan.spheres),
+        list(&plan.tori),
+        plan.periods,
+        tpp.join(", "),
+        plan.quantised_at,
+    );
+    let m = page.machine;
+    let _ = writeln!(
+        out,
+        "**Machine**: {} logical CPUs ({}), {}; {} build. The measurements took {:.1} s{}.\n",
+        m.cpus,
+        m.cpu_model,
+        m.os,
+        m.profile,
+        page.seconds,
+        if plan.quick { " (--quick: fewer resolutions and runs)" } else { "" },
+    );
+}
+
+fn sanity(page: &Page, out: &mut String) {
+    out.push_str("## Sanity values\n\n| quantity | expected | measured |\n| --- | --- | --- |\n");
+    let kernels = [("forward", 2.5), ("central", 0.16), ("central4", 0.001)];
+    for (kernel, expected) in kernels {
+        let measured = find(page.rows, kernel, "plane", 32, Region::All)
+            .and_then(|r| r.error(Vector::Normal))
+            .map_or("not measured".into(), |s| format!("{}°", degrees(s.mean)));
+        let _ = writeln!(
+            out,
+            "| {kernel}, plane, 32 texels/period, slope 1, float, wrap: mean N error | ≈ {expected}° | {measured} |"
+        );
+    }
+    let (segments, rings) = MIKKTSPACE_SANITY_SPHERE;
+    let mikk = find(page.rows, "mikktspace", "sphere", segments, Region::Interior);
+    let measured = mikk
+        .and_then(|r| Some((r.error(Vector::Tangent)?, r.error(Vector::Bitangent)?)))
+        .map_or("not measured (only in the full run)".into(), |(t, b)| {
+            format!("{}° (T), {}° (B)", degrees(t.mean), degrees(b.mean))
+        });
+    let _ = writeln!(out, "| mikktspace, {segments}×{rings} UV sphere, interior: mean error | ≈ 0.002° | {measured} |");
+    if let Some((t, b)) = page.acos_f32 {
+        let _ = writeln!(
+            out,
+            "| the same, measured with `tangent::frame_angles` (acos of an f32 dot) | ≈ 0.002° | {}° (T), {}° (B) |",
+            degrees(t),
+            degrees(b)
+        );
+    }
+    out.push_str(
+        "\n**Kernels.** Slope 1 means max |∇h| = A·k = 1, and every kernel's normal at a texel is compared with the \
+         exact normal at the texel's own sample point (its centre, `x = (i + ½)Δ`). The forward difference \
+         `h[x+1] − h[x]` is the exact derivative half a texel away (times sinc(kΔ/2)), so against the texel centre \
+         it is first order; the centred kernels only lose gain (sinc(kΔ) for the 2-tap central difference), \
+         second order; central4 is fourth order. Comparing at a point other than where the samples were taken \
+         (e.g. samples at `x = i + ½` but the reference at `x = i`) would add half a texel of shift to every kernel.\n\n\
+         **MikkTSpace on the UV sphere.** Its interior error is f32 rounding (≈ 1e-5°), not a truncation error: \
+         both triangles of a quad take their u-direction along a chord of a latitude circle (horizontal, at the \
+         segment's middle longitude); an interior vertex has three faces on each side, and the corner angles on \
+         the two sides add up to the same total (the quads are mirror-symmetric trapezoids). So any angle-weighted \
+         average (MikkTSpace, averaged-angle), and the uniform one, lands exactly on the analytic T. Area weights \
+         differ between the two sides (the rings above and below have different widths), hence averaged-area's \
+         second-order error. The expected ≈ 0.002° could not be reproduced as a truncation error; `frame_angles` \
+         computes `acos` of an f32 dot product, which cannot resolve angles below about 0.01° (a vertex reads 0 or \
+         acos(1 − 2⁻²⁴) = 0.0198°), so an f32 measurement of this size is rounding, not method error.\n\n",
+    );
+}
+
+fn orders(page: &Page, out: &mut String) {
+    let cell = |o: Option<&Order>| match o {
+        Some(Order { order: Some(p), points, .. }) => format!("{p:.2} ({points} pts)"),
+        Some(_) => "— (at noise floor)".into(),
+        None => "—".into(),
+    };
+    out.push_str("## Convergence orders (mean error ∝ resolution^−p)\n\n");
+    out.push_str("| method | surface | region | p of T | p of B |\n| --- | --- | --- | --- | --- |\n");
+    let lookup = |o: &Order, v: Vector| {
+        page.orders
+            .iter()
+            .find(|x| x.method == o.method && x.surface == o.surface && x.region == o.region && x.vector == v)
+    };
+    for o in page.orders.iter().filter(|o| o.study == Study::Tangents && o.vector == Vector::Tangent) {
+        let (t, b) = (cell(Some(o)), cell(lookup(o, Vector::Bitangent)));
+        let _ = writeln!(out, "| {} | {} | {} | {t} | {b} |", o.method, o.surface, o.region.name());
+    }
+    out.push_str("\n| kernel | surface | p of N |\n| --- | --- | --- |\n");
+    for o in page.orders.iter().filter(|o| o.study == Study::Kernels) {
+        let _ = writeln!(out, "| {} | {} | {} |", o.method, o.surface, cell(Some(o)));
+    }
+    out.push('\n');
+}
+
+fn tables(page: &Page, out: &mut String) {
+    let stats = |row: &Row, v: Vector| {
+        row.error(v)
+            .map_or("| | |".into(), |s| format!("{} | {} | {}", degrees(s.mean), degrees(s.rms), degrees(s.max)))
+    };
+    out.push_str("## Tangent methods\n\n");
+    out.push_str(
+        "| method | surface | resolution | region | T mean° | T RMS° | T max° | B mean° | B RMS° | B max° | median time | throughput |\n\
+         | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n",
+    );
+    for row in page.rows.iter().filter(|r| r.study == Study::Tangents) {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {} | {} | {} | {} | {} |",
+            row.method,
+            row.surface,
+            row.resolution_label,
+            row.region.name(),
+            stats(row, Vector::Tangent),
+            stats(row, Vector::Bitangent),
+            duration(row.seconds),
+            throughput(row)
+        );
+    }
+    out.push_str("\n## Height kernels\n\n");
+    out.push_str(
+        "| method | surface | resolution | region | mean° | RMS° | max° | median time | throughput |\n\
+         | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n",
+    );
+    for row in page.rows.iter().filter(|r| r.study == Study::Kernels) {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {} | {} | {} | {} |",
+            row.method,
+            row.surface,
+            row.resolution_label,
+            row.region.name(),
+            stats(row, Vector::Normal),
+            duration(row.seconds),
+            throughput(row)
+        );
+    }
+}
+
+/// The whole page.
+pub fn render(page: &Page) -> String {
+    let mut out = String::new();
+    intro(page, &mut out);
+    sanity(page, &mut out);
+    let [tangent_chart, kernel_chart] = page.charts;
+    let _ = write!(
+        out,
+        "## Charts\n\nMean error (all vertices or texels) against median run time, log-log, one point per \
+         resolution; errors below 1e-6° (the analytic frame) are drawn at 1e-6°.\n\n\
+         ![tangent methods]({tangent_chart})\n\n![height kernels]({kernel_chart})\n\n"
+    );
+    orders(page, &mut out);
+    tables(page, &mut out);
+    out
+}

@@ -1,0 +1,209 @@
+//! `bumpview report` (issue #4): angular error against run time for every tangent method and
+//! height kernel, from exact references, written as `report.md`, `report.csv` and two PNG
+//! charts.
+//!
+//! [`surfaces`] makes the references, [`measure`] the rows, `convergence` the fitted orders,
+//! `markdown`, `csv` and `chart` the files; this module plans the run and writes atomically.
+
+mod chart;
+mod convergence;
+mod csv;
+mod markdown;
+pub mod measure;
+pub mod surfaces;
+pub mod timing;
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use crate::height::{Border, Kernel};
+use crate::tangent::TangentMethod;
+use measure::{Row, Sample, kernel_rows, tangent_rows};
+use surfaces::{SineBumps, torus, uv_sphere};
+use timing::Repeats;
+
+/// File names inside the output directory.
+pub const MARKDOWN: &str = "report.md";
+pub const CSV: &str = "report.csv";
+pub const TANGENT_CHART: &str = "tangents.png";
+pub const KERNEL_CHART: &str = "kernels.png";
+
+/// The sphere (segments, rings) of the MikkTSpace sanity value.
+pub const MIKKTSPACE_SANITY_SPHERE: (u32, u32) = (256, 128);
+
+/// Failures of `bumpview report`.
+#[derive(Debug, thiserror::Error)]
+pub enum ReportError {
+    #[error("could not write {path}: {reason}")]
+    Write { path: PathBuf, reason: String },
+    #[error("{0}")]
+    Chart(String),
+}
+
+/// What to measure.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    /// UV spheres as (segments, rings).
+    pub spheres: Vec<(u32, u32)>,
+    /// Tori as (segments, sides).
+    pub tori: Vec<(u32, u32)>,
+    /// Sine-bump planes, float heights, wrapped border: texels per period.
+    pub texels_per_period: Vec<u32>,
+    /// Periods across each plane.
+    pub periods: u32,
+    /// Texels per period of the 8-bit, 16-bit and clamped-border planes.
+    pub quantised_at: u32,
+    pub repeats: Repeats,
+    /// The reduced plan of `--quick`.
+    pub quick: bool,
+}
+
+impl Plan {
+    pub fn full() -> Plan {
+        Plan {
+            spheres: vec![(32, 16), (64, 32), (128, 64), (256, 128)],
+            tori: vec![(48, 16), (96, 32), (192, 64), (384, 128)],
+            texels_per_period: vec![8, 16, 32, 64],
+            periods: 4,
+            quantised_at: 32,
+            repeats: Repeats { runs: 21, budget: Duration::from_secs(2) },
+            quick: false,
+        }
+    }
+
+    /// Fewer resolutions and runs: well under a minute even unoptimised (tests, CI).
+    pub fn quick() -> Plan {
+        Plan {
+            spheres: vec![(16, 8), (32, 16), (64, 32)],
+            tori: vec![(24, 8), (48, 16), (96, 32)],
+            texels_per_period: vec![8, 16, 32],
+            periods: 2,
+            quantised_at: 32,
+            repeats: Repeats { runs: 3, budget: Duration::from_millis(50) },
+            quick: true,
+        }
+    }
+}
+
+/// Where the timings ran.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Machine {
+    pub cpus: usize,
+    pub cpu_model: String,
+    pub os: String,
+    /// `release` or `debug`: timings of a debug build are not representative.
+    pub profile: &'static str,
+}
+
+impl Machine {
+    pub fn this() -> Machine {
+        let cpu_model = std::fs::read_to_string("/proc/cpuinfo")
+            .ok()
+            .and_then(|info| {
+                info.lines()
+                    .find(|l| l.starts_with("model name"))
+                    .and_then(|l| l.split(':').nth(1))
+                    .map(str::trim)
+                    .map(str::to_owned)
+            })
+            .unwrap_or_else(|| "model unknown".into());
+        Machine {
+            cpus: std::thread::available_parallelism().map_or(1, |n| n.get()),
+            cpu_model,
+            os: format!("{} {}", std::env::consts::OS, std::env::consts::ARCH),
+            profile: if cfg!(debug_assertions) { "debug (unoptimised: timings not representative)" } else { "release" },
+        }
+    }
+}
+
+/// Every row of `plan`: tangent methods on spheres then tori, kernels on the planes.
+pub fn measure(plan: &Plan) -> Vec<Row> {
+    let mut rows = vec![];
+    let methods = TangentMethod::ALL.into_iter().filter(|&m| m != TangentMethod::Supplied);
+    let references = plan
+        .spheres
+        .iter()
+        .map(|&(s, r)| ("sphere", s, format!("{s}x{r}"), uv_sphere(s, r)))
+        .chain(plan.tori.iter().map(|&(s, r)| ("torus", s, format!("{s}x{r}"), torus(s, r))))
+        .collect::<Vec<_>>();
+    for method in methods {
+        for (surface, resolution, label, reference) in &references {
+            let sample = Sample { surface, resolution: *resolution, resolution_label: label };
+            rows.extend(tangent_rows(method, reference, sample, plan.repeats));
+        }
+    }
+    for kernel in Kernel::ALL {
+        for &tpp in &plan.texels_per_period {
+            let bumps = SineBumps::new(tpp, plan.periods);
+            let label = format!("{tpp} texels/period");
+            let sample = Sample { surface: "plane", resolution: tpp, resolution_label: &label };
+            rows.extend(kernel_rows(kernel, &bumps, &bumps.field(), Border::Wrap, sample, plan.repeats));
+        }
+        let bumps = SineBumps::new(plan.quantised_at, plan.periods);
+        let label = format!("{} texels/period", plan.quantised_at);
+        let float = bumps.field();
+        let variants = [
+            ("plane 8-bit", float.quantized(8), Border::Wrap),
+            ("plane 16-bit", float.quantized(16), Border::Wrap),
+            ("plane clamp", float, Border::Clamp),
+        ];
+        for (surface, field, border) in variants {
+            let sample = Sample { surface, resolution: plan.quantised_at, resolution_label: &label };
+            rows.extend(kernel_rows(kernel, &bumps, &field, border, sample, plan.repeats));
+        }
+    }
+    rows
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same directory and a rename, so
+/// readers never see a half-written file.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), ReportError> {
+    let failed = |e: std::io::Error| ReportError::Write { path: path.to_owned(), reason: e.to_string() };
+    let name = path.file_name().map_or("report".into(), |n| n.to_string_lossy().into_owned());
+    let temporary = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
+    let result = std::fs::write(&temporary, bytes).and_then(|()| std::fs::rename(&temporary, path)).map_err(failed);
+    if result.is_err() {
+        let _ = std::fs::remove_file(&temporary);
+    }
+    result
+}
+
+/// Measures `plan` and writes the report into `out` (created if missing). Fails before
+/// measuring when `out` cannot be written. Returns the files written.
+pub fn run(out: &Path, plan: &Plan) -> Result<Vec<PathBuf>, ReportError> {
+    let started = Instant::now();
+    std::fs::create_dir_all(out).map_err(|e| ReportError::Write { path: out.to_owned(), reason: e.to_string() })?;
+    write_atomically(&out.join(".write-test"), b"")?;
+    let _ = std::fs::remove_file(out.join(".write-test"));
+    let rows = measure(plan);
+    let orders = convergence::orders(&rows);
+    let tangent_png = chart::tangent_chart(&rows).map_err(ReportError::Chart)?;
+    let kernel_png = chart::kernel_chart(&rows).map_err(ReportError::Chart)?;
+    let machine = Machine::this();
+    let (segments, rings) = MIKKTSPACE_SANITY_SPHERE;
+    let acos_f32 = plan.spheres.contains(&MIKKTSPACE_SANITY_SPHERE).then(|| {
+        measure::acos_f32_means(TangentMethod::MikkTSpace, &uv_sphere(segments, rings), surfaces::Region::Interior)
+    });
+    let page = markdown::Page {
+        rows: &rows,
+        orders: &orders,
+        plan,
+        machine: &machine,
+        seconds: started.elapsed().as_secs_f64(),
+        charts: [TANGENT_CHART, KERNEL_CHART],
+        acos_f32: acos_f32.flatten(),
+    };
+    let files = [
+        (MARKDOWN, markdown::render(&page).into_bytes()),
+        (CSV, csv::render(&rows, &orders).into_bytes()),
+        (TANGENT_CHART, tangent_png),
+        (KERNEL_CHART, kernel_png),
+    ];
+    let mut written = vec![];
+    for (name, bytes) in files {
+        let path = out.join(name);
+        write_atomically(&path, &bytes)?;
+        written.push(path);
+    }
+    Ok(written)
+}
