@@ -19,7 +19,7 @@ pub struct Page<'a> {
     /// File names of the tangent and kernel charts, beside report.md.
     pub charts: [&'a str; 2],
     /// MikkTSpace's mean interior (T, B) errors on the sanity sphere as the library's
-    /// f32-`acos` `frame_angles` measures them, when that sphere was measured.
+    /// a naive f32 `acos` measures them, when that sphere was measured.
     pub acos_f32: Option<(f32, f32)>,
 }
 
@@ -128,7 +128,7 @@ fn sanity(page: &Page, out: &mut String) {
     if let Some((t, b)) = page.acos_f32 {
         let _ = writeln!(
             out,
-            "| the same, measured with `tangent::frame_angles` (acos of an f32 dot) | ≈ 0.002° | {}° (T), {}° (B) |",
+            "| the same, measured naively (acos of an f32 dot product) | ≈ 0.002° | {}° (T), {}° (B) |",
             degrees(t),
             degrees(b)
         );
@@ -146,8 +146,8 @@ fn sanity(page: &Page, out: &mut String) {
          the two sides add up to the same total (the quads are mirror-symmetric trapezoids). So any angle-weighted \
          average (MikkTSpace, averaged-angle), and the uniform one, lands exactly on the analytic T. Area weights \
          differ between the two sides (the rings above and below have different widths), hence averaged-area's \
-         second-order error. The expected ≈ 0.002° could not be reproduced as a truncation error; `frame_angles` \
-         computes `acos` of an f32 dot product, which cannot resolve angles below about 0.01° (a vertex reads 0 or \
+         second-order error. The expected ≈ 0.002° could not be reproduced as a truncation error; a naive measurement \
+         taking `acos` of an f32 dot product cannot resolve angles below about 0.01° (a vertex reads 0 or \
          acos(1 − 2⁻²⁴) = 0.0198°), so an f32 measurement of this size is rounding, not method error.\n\n",
     );
 }

@@ -12,10 +12,17 @@ pub struct FrameAngles {
     pub bitangent: Vec<f32>,
 }
 
+/// The angle between two directions in degrees, as `atan2(|a × b|, a · b)` in f64: exact
+/// down to rounding even for tiny angles, unlike `acos` of an f32 dot product, which cannot
+/// tell angles below about 0.02° from zero. 0 when either vector is zero.
+pub fn angle_degrees(a: Vec3, b: Vec3) -> f32 {
+    let (a, b) = (a.as_dvec3(), b.as_dvec3());
+    a.cross(b).length().atan2(a.dot(b)).to_degrees() as f32
+}
+
 /// Compares `frames` with `reference` at each vertex with unit normal `normals[i]`.
 pub fn frame_angles(normals: &[Vec3], frames: &[Vec4], reference: &[Vec4]) -> FrameAngles {
-    let angle =
-        |a: Vec3, b: Vec3| a.normalize_or_zero().dot(b.normalize_or_zero()).clamp(-1.0, 1.0).acos().to_degrees();
+    let angle = angle_degrees;
     let mut angles = FrameAngles { tangent: vec![], bitangent: vec![] };
     for ((&n, &f), &r) in normals.iter().zip(frames).zip(reference) {
         angles.tangent.push(angle(f.truncate(), r.truncate()));
@@ -61,6 +68,20 @@ mod tests {
         let n = [Vec3::Z];
         let angles = frame_angles(&n, &[Vec4::new(1.0, 0.0, 0.0, -1.0)], &[Vec4::new(1.0, 0.0, 0.0, 1.0)]);
         assert!(angles.tangent[0].abs() < 1e-4 && (angles.bitangent[0] - 180.0).abs() < 1e-3);
+    }
+
+    #[test]
+    fn tiny_angles_are_resolved() {
+        let tiny = 1e-5f32.to_radians();
+        let a = angle_degrees(Vec3::X, Vec3::new(tiny.cos(), tiny.sin(), 0.0));
+        assert!((a - 1e-5).abs() < 1e-8, "{a}");
+    }
+
+    #[test]
+    fn tiny_angles_are_resolved() {
+        let tiny = 1e-5f32.to_radians();
+        let a = angle_degrees(Vec3::X, Vec3::new(tiny.cos(), tiny.sin(), 0.0));
+        assert!((a - 1e-5).abs() < 1e-8, "{a}");
     }
 
     #[test]

@@ -12,7 +12,7 @@ use glam::{Vec3, Vec4};
 
 use crate::math::orthonormalize_tangent;
 use crate::scene::Mesh;
-pub use compare::{AngleStats, FrameAngles, MethodMeasurement, frame_angles, measure};
+pub use compare::{AngleStats, FrameAngles, MethodMeasurement, angle_degrees, frame_angles, measure};
 pub use mikktspace::generate_mikktspace;
 pub use uv_delta::{Weighting, averaged_face_frames, face_frame, per_face_frames};
 
