@@ -16,14 +16,17 @@ pub fn normalize_or(v: Vec3, fallback: Vec3) -> Vec3 {
     }
 }
 
-/// A unit vector perpendicular to the unit vector `n` (a stable choice, no branch on zero).
+/// A unit vector perpendicular to `n` (a stable choice); `n` degenerate or not finite counts
+/// as +Z.
 pub fn any_perpendicular(n: Vec3) -> Vec3 {
-    n.any_orthonormal_vector()
+    normalize_or(n, Vec3::Z).any_orthonormal_vector()
 }
 
-/// Gram-Schmidt: the part of `t` perpendicular to the unit normal `n`, normalised.
-/// Falls back to [`any_perpendicular`] when `t` is parallel to `n` or degenerate.
+/// Gram-Schmidt: the part of `t` perpendicular to the normal `n`, normalised. Falls back to
+/// [`any_perpendicular`] when `t` is parallel to `n` or degenerate; `n` degenerate or not
+/// finite counts as +Z.
 pub fn orthonormalize_tangent(t: Vec3, n: Vec3) -> Vec3 {
+    let n = normalize_or(n, Vec3::Z);
     normalize_or(t - n * n.dot(t), any_perpendicular(n))
 }
 
@@ -69,6 +72,8 @@ mod tests {
         assert!((t - Vec3::X).length() < 1e-6);
         let t = orthonormalize_tangent(Vec3::Z * 2.0, n);
         assert!((t.length() - 1.0).abs() < 1e-6 && t.dot(n).abs() < 1e-6);
+        assert!(orthonormalize_tangent(Vec3::X, Vec3::NAN).is_finite());
+        assert!(orthonormalize_tangent(Vec3::NAN, Vec3::ZERO).is_finite());
     }
 
     #[test]
