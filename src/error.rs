@@ -20,3 +20,18 @@ pub enum RenderError {
     #[error("could not write {path}: {reason}")]
     Write { path: PathBuf, reason: String },
 }
+
+/// A file that could not be loaded. The message always names the file (the one that failed:
+/// the `.gltf`, its `.bin`, an image, an `.mtl`...) and the problem, on one line.
+#[derive(Debug, thiserror::Error)]
+#[error("{}: {problem}", path.display())]
+pub struct LoadError {
+    pub path: PathBuf,
+    pub problem: String,
+}
+
+impl LoadError {
+    pub fn new(path: &std::path::Path, problem: impl Into<String>) -> LoadError {
+        LoadError { path: path.to_owned(), problem: problem.into() }
+    }
+}

@@ -1,8 +1,9 @@
 //! bumpview: the tested core of a viewer and teaching tool for bump and normal mapping.
 //!
-//! The library holds scene data, the built-in teaching scene, the height→normal step,
-//! tangent frames, a CPU reference of the shading and the wgpu renderer. It has no egui or
-//! winit dependency; the `bumpview` binary is a thin eframe layer over it.
+//! The library holds scene data, the built-in teaching scene, loaders for glTF, OBJ and
+//! images ([`load`]), the height→normal step, tangent frames, a CPU reference of the shading
+//! and the wgpu renderer. It has no egui or winit dependency; the `bumpview` binary is a thin
+//! eframe layer over it.
 //!
 //! # Conventions
 //!
@@ -34,6 +35,7 @@
 pub mod counters;
 pub mod error;
 pub mod height;
+pub mod load;
 pub mod math;
 pub mod render;
 pub mod report;
@@ -43,4 +45,4 @@ pub mod tangent;
 pub mod viewer;
 
 pub use counters::WorkCounters;
-pub use error::RenderError;
+pub use error::{LoadError, RenderError};

@@ -3,6 +3,7 @@
 #[cfg(feature = "ui")]
 mod app;
 mod args;
+mod inputs;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -30,11 +31,13 @@ struct Cli {
     capture_window: Option<PathBuf>,
     #[command(flatten)]
     methods: MethodArgs,
+    #[command(flatten)]
+    inputs: inputs::InputArgs,
 }
 
 #[derive(Subcommand)]
 enum Command {
-    /// Draw the built-in scene offscreen (no window, no display) and write a PNG.
+    /// Draw the built-in scene or a mesh file offscreen (no window, no display) and write a PNG.
     Render(RenderArgs),
     /// Measure error against run time of every tangent method and height kernel and write
     /// report.md, report.csv and PNG charts.
@@ -89,6 +92,8 @@ struct RenderArgs {
     no_light_marker: bool,
     #[command(flatten)]
     methods: MethodArgs,
+    #[command(flatten)]
+    inputs: inputs::InputArgs,
 }
 
 /// The numerical methods behind the picture (shared by the viewer and `render`).
@@ -151,7 +156,8 @@ fn parse_kernel(text: &str) -> Result<Kernel, String> {
 }
 
 fn render(args: RenderArgs) -> Result<(), String> {
-    let scene = teaching_scene_with_kernel(args.methods.kernel);
+    let kernel = args.methods.kernel;
+    let scene = args.inputs.scene(kernel)?.unwrap_or_else(|| teaching_scene_with_kernel(kernel));
     let mut state = ViewerState::new(&scene);
     state.shading.view = args.view;
     state.shading.bump_enabled = args.bump;
@@ -185,6 +191,7 @@ fn viewer(cli: &Cli) -> Result<(), String> {
         capture_window: cli.capture_window.clone(),
         scene_options: cli.methods.scene_options(),
         kernel: cli.methods.kernel,
+        scene: cli.inputs.scene(cli.methods.kernel)?,
     })
 }
 

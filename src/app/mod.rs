@@ -32,6 +32,8 @@ pub struct Options {
     pub scene_options: SceneOptions,
     /// Height→normal kernel of the built-in brick normal map to start with.
     pub kernel: Kernel,
+    /// A loaded scene (mesh and/or textures from files); `None`: the built-in scene.
+    pub scene: Option<Scene>,
 }
 
 /// Something the user asked for: a library [`Command`] or an app-only action.
@@ -101,6 +103,8 @@ struct ScreenshotForm {
 struct ViewerApp {
     state: ViewerState,
     scene: Scene,
+    /// The scene is the built-in one, re-made when the kernel changes.
+    builtin: bool,
     /// The options and kernel the renderer's scene was made with.
     uploaded: (SceneOptions, Kernel),
     /// Per mesh: the chosen tangent method timed and compared with the reference.
@@ -127,7 +131,8 @@ impl ViewerApp {
             .ok_or("eframe started without a wgpu render state (the viewer needs the wgpu renderer)")?;
         let mut renderer =
             Renderer::new(render_state.device.clone(), render_state.queue.clone(), render_state.adapter.clone());
-        let scene = teaching_scene_with_kernel(options.kernel);
+        let builtin = options.scene.is_none();
+        let scene = options.scene.unwrap_or_else(|| teaching_scene_with_kernel(options.kernel));
         renderer.set_scene(&scene, options.scene_options);
         let adapter_name = renderer.adapter_name();
         let mut state = ViewerState::new(&scene);
@@ -137,6 +142,7 @@ impl ViewerApp {
             measurements: measure_all(&scene, options.scene_options.tangent_method),
             uploaded: (options.scene_options, options.kernel),
             scene,
+            builtin,
             state,
             renderer,
             adapter_name,
@@ -228,13 +234,14 @@ impl ViewerApp {
         }
     }
 
-    /// Re-makes the normal map and the tangent frames when their method changed.
+    /// Re-makes the normal map (built-in scene only) and the tangent frames when their method
+    /// changed.
     fn apply_methods(&mut self) {
         let wanted = (self.state.scene_options, self.state.kernel);
         if wanted == self.uploaded {
             return;
         }
-        if wanted.1 != self.uploaded.1 {
+        if self.builtin && wanted.1 != self.uploaded.1 {
             self.scene = teaching_scene_with_kernel(wanted.1);
         }
         self.renderer.set_scene(&self.scene, wanted.0);

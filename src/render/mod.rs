@@ -309,8 +309,8 @@ impl Renderer {
 /// that have tangent frames.
 fn drawn_pass(instance: &scene_gpu::GpuInstance, scene: &GpuScene, difference: bool) -> Pass {
     match instance.pass {
-        Pass::Mesh { variant, cull_back_faces } if difference && scene.frames[instance.mesh].is_some() => {
-            Pass::Difference { variant, cull_back_faces }
+        Pass::Mesh { variant, cull_back_faces, mirrored } if difference && scene.frames[instance.mesh].is_some() => {
+            Pass::Difference { variant, cull_back_faces, mirrored }
         }
         pass => pass,
     }

@@ -31,12 +31,16 @@ pub enum Pass {
     Mesh {
         variant: Variant,
         cull_back_faces: bool,
+        /// The model matrix mirrors (negative determinant): front faces, counter-clockwise
+        /// in model space, are clockwise on screen.
+        mirrored: bool,
     },
     /// The Difference view of a mesh with a tangent stream: it adds the reference stream
     /// and binds the same group-1 layout as `variant`.
     Difference {
         variant: Variant,
         cull_back_faces: bool,
+        mirrored: bool,
     },
     LightMarker,
 }
@@ -186,9 +190,13 @@ impl Pipelines {
 
     fn build(&self, device: &wgpu::Device, key: PipelineKey) -> wgpu::RenderPipeline {
         let encodes_srgb = [("TARGET_ENCODES_SRGB", if key.format.is_srgb() { 1.0 } else { 0.0 })];
+        let front_face = match key.pass {
+            Pass::Mesh { mirrored: true, .. } | Pass::Difference { mirrored: true, .. } => wgpu::FrontFace::Cw,
+            _ => wgpu::FrontFace::Ccw,
+        };
         let (module, group1, vs, fs, buffers, cull_mode, constants): (_, _, _, _, &[_], _, &[(&str, f64)]) =
             match key.pass {
-                Pass::Mesh { variant, cull_back_faces } => {
+                Pass::Mesh { variant, cull_back_faces, .. } => {
                     let (vs, fs, buffers): (_, _, &[_]) = match variant {
                         Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
                         Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
@@ -198,7 +206,7 @@ impl Pipelines {
                     let cull = cull_back_faces.then_some(wgpu::Face::Back);
                     (&self.mesh_module, self.layouts.material(variant), vs, fs, buffers, cull, &encodes_srgb)
                 }
-                Pass::Difference { variant, cull_back_faces } => {
+                Pass::Difference { variant, cull_back_faces, .. } => {
                     let buffers: &[_] = &[POSITION, NORMAL, UV, TANGENT, REFERENCE_TANGENT];
                     let cull = cull_back_faces.then_some(wgpu::Face::Back);
                     let layout = self.layouts.material(variant);
@@ -230,7 +238,7 @@ impl Pipelines {
                 buffers: &buffers,
                 compilation_options: options.clone(),
             },
-            primitive: wgpu::PrimitiveState { cull_mode, ..Default::default() },
+            primitive: wgpu::PrimitiveState { cull_mode, front_face, ..Default::default() },
             depth_stencil: Some(wgpu::DepthStencilState {
                 format: DEPTH_FORMAT,
                 depth_write_enabled: Some(true),

@@ -247,9 +247,12 @@ pub fn upload(
                 layout: layouts.material(variant),
                 entries: &entries,
             });
+            // A mirroring transform turns front faces clockwise on screen; the pipeline's front
+            // face follows, so culling and `front_facing` (the double-sided flip) stay right.
+            let mirrored = instance.transform.determinant() < 0.0;
             GpuInstance {
                 mesh: instance.mesh,
-                pass: Pass::Mesh { variant, cull_back_faces: !material.double_sided },
+                pass: Pass::Mesh { variant, cull_back_faces: !material.double_sided, mirrored },
                 bind_group,
             }
         })

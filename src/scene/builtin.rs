@@ -145,6 +145,7 @@ pub fn teaching_scene_with_kernel(kernel: Kernel) -> Scene {
         base_color_texture: Some(0),
         normal_map: Some(NormalMap { texture: 1, scale: 1.0 }),
         height_map: Some(HeightMap { texture: 2, range_m: height.range_m }),
+        gloss_texture: None,
         specular: Vec3::splat(0.25),
         shininess: 32.0,
         double_sided: true,

@@ -55,6 +55,9 @@ pub struct Material {
     pub normal_map: Option<NormalMap>,
     /// Heights for bump mapping in the shader (white = high).
     pub height_map: Option<HeightMap>,
+    /// Linear gloss/specular map (OBJ `map_Ks`/`map_Ns`, `--gloss`): loaded and kept with the
+    /// material; the Blinn-Phong shader does not read it yet.
+    pub gloss_texture: Option<usize>,
     /// Linear specular colour k_s.
     pub specular: Vec3,
     /// Blinn-Phong exponent (≥ 1).

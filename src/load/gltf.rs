@@ -1,0 +1,275 @@
+//! glTF 2.0 (`.gltf` with external or base64 buffers, `.glb`) → [`Scene`].
+//!
+//! The `gltf` crate parses and validates the document; buffers and images are read here, so
+//! that an error names the file that failed. The node tree gives one [`Instance`] per
+//! primitive with its world matrix (mirroring matrices are drawn with clockwise front faces,
+//! see `render::pipelines::Pass`). glTF UVs already follow the crate convention (v down).
+//!
+//! A mesh has one UV stream: the set (and `KHR_texture_transform`) of the normal map when the
+//! material has one, else of the base colour texture; the transform is applied to the UVs at
+//! load, so tangents generated from them follow the texture as drawn.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use base64::Engine;
+use glam::{Mat4, Vec3, Vec4};
+
+use super::gltf_mesh::{UvChoice, primitive_mesh};
+use super::image::decode_texture;
+use crate::error::LoadError;
+use crate::scene::{Instance, Material, NormalMap, Scene, TextureImage, TextureKind};
+
+/// Extensions a file may list in `extensionsRequired`.
+const SUPPORTED_REQUIRED: [&str; 1] = ["KHR_texture_transform"];
+/// Blinn-Phong exponents a glTF roughness maps to.
+const SHININESS: std::ops::RangeInclusive<f32> = 1.0..=1024.0;
+
+/// Loads a `.gltf` or `.glb` file. The camera and light are left to the caller.
+pub fn load(path: &Path) -> Result<Scene, LoadError> {
+    let bytes = super::read_file(path, "glTF")?;
+    let (document, blob) = parse(&bytes, path)?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    let buffers = document
+        .buffers()
+        .map(|buffer| {
+            let (data, source) = match buffer.source() {
+                gltf::buffer::Source::Bin => {
+                    let blob = blob.clone().ok_or_else(|| {
+                        LoadError::new(
+                            path,
+                            format!("buffer {} is the GLB binary chunk, which is missing", buffer.index()),
+                        )
+                    })?;
+                    (blob, path.to_owned())
+                }
+                gltf::buffer::Source::Uri(uri) => read_uri(uri, base, path, "buffer")?,
+            };
+            if data.len() < buffer.length() {
+                let problem =
+                    format!("buffer {} should hold {} bytes but has {}", buffer.index(), buffer.length(), data.len());
+                return Err(LoadError::new(&source, format!("{problem} (truncated?)")));
+            }
+            Ok(data)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut loader = Loader {
+        path,
+        base,
+        document: &document,
+        buffers,
+        scene: super::empty_scene(),
+        textures: HashMap::new(),
+        materials: HashMap::new(),
+        meshes: HashMap::new(),
+    };
+    loader.walk_nodes()?;
+    Ok(loader.scene)
+}
+
+/// Parses and validates the JSON (or GLB container) and checks `extensionsRequired`.
+fn parse(bytes: &[u8], path: &Path) -> Result<(gltf::Document, Option<Vec<u8>>), LoadError> {
+    let describe = |e: gltf::Error| match e {
+        gltf::Error::Deserialize(e) => format!("invalid glTF JSON: {e}"),
+        gltf::Error::Binary(e) => format!("truncated or invalid GLB container: {e}"),
+        gltf::Error::Validation(errors) => {
+            let listed: Vec<_> = errors.iter().take(3).map(|(at, error)| format!("{at}: {error}")).collect();
+            format!("invalid glTF ({} problems): {}", errors.len(), listed.join("; "))
+        }
+        e => format!("invalid glTF: {e}"),
+    };
+    let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| LoadError::new(path, describe(e)))?;
+    if let Some(missing) = gltf.extensions_required().find(|e| !SUPPORTED_REQUIRED.contains(e)) {
+        return Err(LoadError::new(path, format!("requires the glTF extension {missing}, which is not supported")));
+    }
+    let document =
+        gltf::Document::from_json(gltf.document.into_json()).map_err(|e| LoadError::new(path, describe(e)))?;
+    Ok((document, gltf.blob))
+}
+
+/// The bytes a buffer or image URI points to (a base64 `data:` URI or a file relative to the
+/// glTF file, `%20` and other escapes decoded) and the file to name in errors.
+fn read_uri(uri: &str, base: &Path, gltf_path: &Path, what: &str) -> Result<(Vec<u8>, PathBuf), LoadError> {
+    if let Some(data) = uri.strip_prefix("data:") {
+        let payload = data.split_once(";base64,").map(|(_, p)| p);
+        let decoded = payload.and_then(|p| base64::engine::general_purpose::STANDARD.decode(p).ok());
+        let bytes =
+            decoded.ok_or_else(|| LoadError::new(gltf_path, format!("a {what} data URI is not valid base64")))?;
+        return Ok((bytes, gltf_path.to_owned()));
+    }
+    let decoded = percent_encoding::percent_decode_str(uri).decode_utf8_lossy();
+    let file = [base.join(&*decoded), base.join(uri)].into_iter().find(|p| p.is_file()).unwrap_or(base.join(&*decoded));
+    let bytes = std::fs::read(&file).map_err(|e| {
+        let referrer = gltf_path.file_name().unwrap_or_default().to_string_lossy();
+        LoadError::new(&file, format!("could not read the {what} file that {referrer} refers to: {e}"))
+    })?;
+    Ok((bytes, file))
+}
+
+struct Loader<'a> {
+    path: &'a Path,
+    base: &'a Path,
+    document: &'a gltf::Document,
+    buffers: Vec<Vec<u8>>,
+    scene: Scene,
+    /// (glTF image, kind) → index in `scene.textures`.
+    textures: HashMap<(usize, TextureKind), usize>,
+    /// glTF material (`None`: the default material) → index in `scene.materials`.
+    materials: HashMap<Option<usize>, usize>,
+    /// (glTF mesh, primitive) → index in `scene.meshes`; `None` for primitives without
+    /// triangles (points, lines).
+    meshes: HashMap<(usize, usize), Option<usize>>,
+}
+
+impl Loader<'_> {
+    /// Visits the default scene's node tree (or the first scene's, or every root node when
+    /// the file has no scene) depth first, composing transforms.
+    fn walk_nodes(&mut self) -> Result<(), LoadError> {
+        let document = self.document;
+        let roots: Vec<gltf::Node> = match document.default_scene().or_else(|| document.scenes().next()) {
+            Some(scene) => scene.nodes().collect(),
+            None => {
+                let children: Vec<usize> = document.nodes().flat_map(|n| n.children().map(|c| c.index())).collect();
+                document.nodes().filter(|n| !children.contains(&n.index())).collect()
+            }
+        };
+        let mut visited = vec![false; document.nodes().len()];
+        let mut stack: Vec<(gltf::Node, Mat4)> = roots.into_iter().rev().map(|n| (n, Mat4::IDENTITY)).collect();
+        while let Some((node, parent)) = stack.pop() {
+            if std::mem::replace(&mut visited[node.index()], true) {
+                return Err(LoadError::new(self.path, format!("node {} has more than one parent", node.index())));
+            }
+            let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+            if let Some(mesh) = node.mesh() {
+                for primitive in mesh.primitives() {
+                    self.add_instance(&mesh, &primitive, world)?;
+                }
+            }
+            stack.extend(node.children().map(|c| (c, world)).collect::<Vec<_>>().into_iter().rev());
+        }
+        Ok(())
+    }
+
+    fn add_instance(&mut self, mesh: &gltf::Mesh, primitive: &gltf::Primitive, world: Mat4) -> Result<(), LoadError> {
+        let material = self.material(primitive.material())?;
+        let key = (mesh.index(), primitive.index());
+        let index = match self.meshes.get(&key) {
+            Some(&index) => index,
+            None => {
+                let name = format!("{} #{}", mesh.name().unwrap_or("mesh"), primitive.index());
+                let uv = uv_choice(&primitive.material());
+                let buffers = &self.buffers;
+                let loaded = primitive_mesh(primitive, &name, uv, buffers, self.path)?;
+                let index = loaded.map(|m| {
+                    self.scene.meshes.push(m);
+                    self.scene.meshes.len() - 1
+                });
+                self.meshes.insert(key, index);
+                index
+            }
+        };
+        if let Some(mesh) = index {
+            self.scene.instances.push(Instance { mesh, material, transform: world });
+        }
+        Ok(())
+    }
+
+    /// The scene material for a glTF material, made once. Metallic and roughness (their
+    /// factors times the mean of the metallic-roughness texture's blue and green, as the
+    /// Blinn-Phong material has no per-texel gloss yet) map to Blinn-Phong:
+    /// `k_s = mix(0.04, base colour, metallic)` and exponent `2/α² − 2` with `α = roughness²`
+    /// (the usual Beckmann↔Phong match).
+    fn material(&mut self, material: gltf::Material) -> Result<usize, LoadError> {
+        if let Some(&index) = self.materials.get(&material.index()) {
+            return Ok(index);
+        }
+        let pbr = material.pbr_metallic_roughness();
+        let base = Vec4::from(pbr.base_color_factor());
+        let texture_mean = match pbr.metallic_roughness_texture() {
+            Some(info) => mean_rgb(&self.decode(info.texture(), TextureKind::NormalMap)?),
+            None => Vec3::ONE,
+        };
+        let metallic = (pbr.metallic_factor() * texture_mean.z).clamp(0.0, 1.0);
+        let alpha = (pbr.roughness_factor() * texture_mean.y).clamp(0.0, 1.0).powi(2).max(1e-3);
+        let base_color_texture = match pbr.base_color_texture() {
+            Some(info) => Some(self.texture(info.texture(), TextureKind::Color)?),
+            None => None,
+        };
+        let normal_map = match material.normal_texture() {
+            Some(normal) => Some(NormalMap {
+                texture: self.texture(normal.texture(), TextureKind::NormalMap)?,
+                scale: normal.scale(),
+            }),
+            None => None,
+        };
+        self.scene.materials.push(Material {
+            name: material.name().unwrap_or("material").to_owned(),
+            base_color_factor: base,
+            base_color_texture,
+            normal_map,
+            height_map: None,
+            gloss_texture: None,
+            specular: Vec3::splat(0.04).lerp(base.truncate(), metallic),
+            shininess: (2.0 / (alpha * alpha) - 2.0).clamp(*SHININESS.start(), *SHININESS.end()),
+            double_sided: material.double_sided(),
+        });
+        let index = self.scene.materials.len() - 1;
+        self.materials.insert(material.index(), index);
+        Ok(index)
+    }
+
+    /// The scene texture for a glTF texture's image read as `kind`, decoded once.
+    fn texture(&mut self, texture: gltf::Texture, kind: TextureKind) -> Result<usize, LoadError> {
+        let image = texture.source().index();
+        if let Some(&index) = self.textures.get(&(image, kind)) {
+            return Ok(index);
+        }
+        let decoded = self.decode(texture, kind)?;
+        self.scene.textures.push(decoded);
+        let index = self.scene.textures.len() - 1;
+        self.textures.insert((image, kind), index);
+        Ok(index)
+    }
+
+    /// A glTF texture's image, read and decoded as `kind`.
+    fn decode(&self, texture: gltf::Texture, kind: TextureKind) -> Result<TextureImage, LoadError> {
+        let image = texture.source();
+        let (bytes, file) = match image.source() {
+            gltf::image::Source::Uri { uri, .. } => read_uri(uri, self.base, self.path, "image")?,
+            gltf::image::Source::View { view, .. } => {
+                let range = view.offset()..view.offset() + view.length();
+                let bytes = self.buffers.get(view.buffer().index()).and_then(|b| b.get(range));
+                let bytes = bytes.ok_or_else(|| {
+                    LoadError::new(self.path, format!("image {} lies outside its buffer", image.index()))
+                })?;
+                (bytes.to_vec(), PathBuf::from(format!("{} (image {})", self.path.display(), image.index())))
+            }
+        };
+        decode_texture(&bytes, &file, kind)
+    }
+}
+
+/// The mean of a texture's red, green and blue, each in 0..1.
+fn mean_rgb(texture: &TextureImage) -> Vec3 {
+    let sum =
+        texture.rgba.chunks_exact(4).fold(Vec3::ZERO, |s, t| s + Vec3::new(t[0] as f32, t[1] as f32, t[2] as f32));
+    sum / (255.0 * (texture.rgba.len() / 4).max(1) as f32)
+}
+
+/// The UV set and transform of the normal map, else of the base colour texture. (The `gltf`
+/// crate parses the extension on texture infos; on normal textures it stays JSON.)
+fn uv_choice(material: &gltf::Material) -> UvChoice {
+    match (material.normal_texture(), material.pbr_metallic_roughness().base_color_texture()) {
+        (Some(normal), _) => UvChoice::from_json(normal.tex_coord(), normal.extension_value("KHR_texture_transform")),
+        (None, Some(info)) => match info.texture_transform() {
+            Some(t) => UvChoice {
+                set: t.tex_coord().unwrap_or(info.tex_coord()),
+                offset: t.offset().into(),
+                rotation: t.rotation(),
+                scale: t.scale().into(),
+            },
+            None => UvChoice { set: info.tex_coord(), ..Default::default() },
+        },
+        (None, None) => UvChoice::default(),
+    }
+}

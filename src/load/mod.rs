@@ -1,0 +1,56 @@
+//! Loading scenes and textures from files: glTF 2.0 ([`gltf`]), OBJ + MTL ([`obj`]) and
+//! images ([`image`]). Every loader stores data in the crate conventions (UVs with `v` down the
+//! image, CCW front faces, unit normals) and returns a [`LoadError`] naming the file and the
+//! problem; none panics on any input.
+
+mod framing;
+pub mod gltf;
+mod gltf_mesh;
+pub mod image;
+mod mesh_ops;
+mod mtl;
+pub mod obj;
+mod slots;
+
+use std::path::Path;
+
+pub use crate::error::LoadError;
+use glam::Vec3;
+
+use crate::scene::Scene;
+pub use framing::frame_scene;
+pub use slots::{TextureSlots, replace_textures};
+
+/// Loads a mesh file into a [`Scene`] with a camera framing it and a light above and in
+/// front, choosing the loader by the extension (`.gltf`, `.glb`, `.obj`; any case).
+pub fn load_scene(path: &Path) -> Result<Scene, LoadError> {
+    let extension = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let mut scene = match extension.as_deref() {
+        Some("gltf" | "glb") => gltf::load(path)?,
+        Some("obj") => obj::load(path)?,
+        _ => return Err(LoadError::new(path, "unsupported mesh file type (expected .gltf, .glb or .obj)")),
+    };
+    if scene.instances.is_empty() {
+        return Err(LoadError::new(path, "the file holds no triangles to draw"));
+    }
+    frame_scene(&mut scene);
+    Ok(scene)
+}
+
+/// The bytes of `path`; `what` says what the file is for in the error ("image", "buffer"...).
+fn read_file(path: &Path, what: &str) -> Result<Vec<u8>, LoadError> {
+    std::fs::read(path).map_err(|e| LoadError::new(path, format!("could not read the {what} file: {e}")))
+}
+
+/// A scene without content; [`frame_scene`] sets its view.
+fn empty_scene() -> Scene {
+    Scene {
+        meshes: vec![],
+        materials: vec![],
+        textures: vec![],
+        instances: vec![],
+        ambient: Vec3::ZERO,
+        default_light: crate::scene::builtin::default_light(),
+        default_camera: crate::scene::builtin::default_camera(),
+    }
+}

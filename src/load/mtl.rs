@@ -1,0 +1,194 @@
+//! MTL material libraries for OBJ: `Kd`, `Ks`, `Ns`, `map_Kd`, `map_Bump`/`bump` (with
+//! `-bm`), `norm`, `map_Ks`/`map_Ns`. Texture paths are relative to the library.
+//!
+//! `map_Bump` is a height map by the MTL spec, but many exporters put a tangent-space normal
+//! map there; the image decides ([`looks_like_normal_map`]). A height map becomes a normal
+//! map (and the height map slot) as `--height` does ([`super::slots`]).
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use glam::{Vec3, Vec4};
+
+use super::image::load_texture;
+use super::slots::add_height_map;
+use crate::error::LoadError;
+use crate::scene::{Material, NormalMap, Scene, TextureImage, TextureKind};
+
+/// Blinn-Phong exponents `Ns` is clamped to.
+const SHININESS: std::ops::RangeInclusive<f32> = 1.0..=1024.0;
+
+/// A material with the MTL defaults (`Kd 0.8`, no specular), also used for faces without
+/// `usemtl` or naming an unknown material.
+fn default_material(name: &str) -> Material {
+    Material {
+        name: name.to_owned(),
+        base_color_factor: Vec4::new(0.8, 0.8, 0.8, 1.0),
+        base_color_texture: None,
+        normal_map: None,
+        height_map: None,
+        gloss_texture: None,
+        specular: Vec3::ZERO,
+        shininess: 32.0,
+        double_sided: false,
+    }
+}
+
+/// Reads every library, adding its materials and textures to `scene`; returns material
+/// name → index in `scene.materials`.
+pub fn load_libraries(
+    libraries: &[String],
+    base: &Path,
+    obj: &Path,
+    scene: &mut Scene,
+) -> Result<HashMap<String, usize>, LoadError> {
+    let mut names = HashMap::new();
+    for library in libraries {
+        let path = base.join(library.replace('\\', "/"));
+        let text = std::fs::read(&path).map_err(|e| {
+            let obj_name = obj.file_name().unwrap_or_default().to_string_lossy();
+            LoadError::new(&path, format!("could not read the material library that {obj_name} names: {e}"))
+        })?;
+        parse(&String::from_utf8_lossy(&text), &path, scene, &mut names)?;
+    }
+    Ok(names)
+}
+
+/// The material index for a `usemtl` name; unknown or missing names share a default material.
+pub fn material_index(name: Option<&str>, materials: &HashMap<String, usize>, scene: &mut Scene) -> usize {
+    if let Some(&index) = name.and_then(|n| materials.get(n)) {
+        return index;
+    }
+    if let Some(index) = scene.materials.iter().position(|m| m.name == "default") {
+        return index;
+    }
+    scene.materials.push(default_material("default"));
+    scene.materials.len() - 1
+}
+
+fn parse(text: &str, path: &Path, scene: &mut Scene, names: &mut HashMap<String, usize>) -> Result<(), LoadError> {
+    let base = path.parent().unwrap_or(Path::new("."));
+    for (number, line) in text.lines().enumerate() {
+        let at = |problem: String| LoadError::new(path, format!("line {}: {problem}", number + 1));
+        let line = line.split('#').next().unwrap_or("").trim();
+        let (keyword, rest) = line.split_once(char::is_whitespace).unwrap_or((line, ""));
+        let rest = rest.trim();
+        if keyword == "newmtl" {
+            scene.materials.push(default_material(rest));
+            names.insert(rest.to_owned(), scene.materials.len() - 1);
+            continue;
+        }
+        let Some(material_index) = scene.materials.len().checked_sub(1).filter(|_| !names.is_empty()) else {
+            continue;
+        };
+        let numbers = || -> Result<Vec<f32>, LoadError> {
+            rest.split_whitespace().map(|w| w.parse().map_err(|_| at(format!("{w:?} is not a number")))).collect()
+        };
+        let colour = || -> Result<Vec3, LoadError> {
+            match numbers()?[..] {
+                [r, g, b, ..] => Ok(Vec3::new(r, g, b)),
+                [grey] => Ok(Vec3::splat(grey)),
+                _ => Err(at(format!("{keyword} needs a colour"))),
+            }
+        };
+        let map = || TextureRef::parse(rest, base).ok_or_else(|| at(format!("{keyword} names no file")));
+        let lower = keyword.to_ascii_lowercase();
+        match lower.as_str() {
+            "kd" => {
+                let kd = colour()?;
+                scene.materials[material_index].base_color_factor = kd.extend(1.0);
+            }
+            "ks" => scene.materials[material_index].specular = colour()?,
+            "ns" => {
+                let ns = numbers()?.first().copied().ok_or_else(|| at("Ns needs a number".into()))?;
+                scene.materials[material_index].shininess = ns.clamp(*SHININESS.start(), *SHININESS.end());
+            }
+            "map_kd" => {
+                let texture = add(scene, load_texture(&map()?.path, TextureKind::Color)?);
+                scene.materials[material_index].base_color_texture = Some(texture);
+            }
+            "map_ks" | "map_ns" => {
+                let texture = add(scene, load_texture(&map()?.path, TextureKind::NormalMap)?);
+                scene.materials[material_index].gloss_texture = Some(texture);
+            }
+            "norm" | "map_bump" | "bump" => {
+                let reference = map()?;
+                let image = load_texture(&reference.path, TextureKind::NormalMap)?;
+                if lower == "norm" || looks_like_normal_map(&image) {
+                    let texture = add(scene, image);
+                    scene.materials[material_index].normal_map =
+                        Some(NormalMap { texture, scale: reference.bump_multiplier });
+                } else {
+                    let heights = load_texture(&reference.path, TextureKind::Height)?;
+                    add_height_map(scene, &[material_index], heights, reference.bump_multiplier);
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+fn add(scene: &mut Scene, texture: TextureImage) -> usize {
+    scene.textures.push(texture);
+    scene.textures.len() - 1
+}
+
+/// A texture statement's file and the options this loader uses.
+struct TextureRef {
+    path: std::path::PathBuf,
+    /// `-bm`: bump multiplier (normal map scale, or height range factor), 1 by default.
+    bump_multiplier: f32,
+}
+
+impl TextureRef {
+    /// Skips options (`-name` and their numbers, or `-clamp on`-style words) and takes the
+    /// rest of the line as the file name, which may contain spaces.
+    fn parse(rest: &str, base: &Path) -> Option<TextureRef> {
+        let words: Vec<&str> = rest.split_whitespace().collect();
+        let mut bump_multiplier = 1.0;
+        let mut i = 0;
+        while i < words.len() && words[i].starts_with('-') && words[i].len() > 1 {
+            let option = words[i];
+            i += 1;
+            let numbers = words[i..].iter().take_while(|w| w.parse::<f32>().is_ok()).count();
+            match option {
+                "-bm" if numbers > 0 => {
+                    bump_multiplier = words[i].parse().unwrap_or(1.0);
+                    i += 1;
+                }
+                // Options whose value is a word (`on`, a channel, a type name).
+                "-clamp" | "-blendu" | "-blendv" | "-imfchan" | "-type" | "-cc" => i += 1,
+                // `-o`, `-s`, `-t` take up to three numbers, `-mm` two, others one.
+                _ => i += numbers.min(3),
+            }
+        }
+        let file = words[i.min(words.len())..].join(" ");
+        (!file.is_empty()).then(|| TextureRef { path: base.join(file.replace('\\', "/")), bump_multiplier })
+    }
+}
+
+/// Whether a picture read as RGB is a tangent-space normal map rather than a grey height map:
+/// its mean colour is bluish (`b > 0.6`) with red and green near the middle (±0.15), as
+/// `0.5·n + 0.5` with `n` mostly along +Z is.
+fn looks_like_normal_map(image: &TextureImage) -> bool {
+    let texels = (image.rgba.len() / 4).max(1) as f32;
+    let mean =
+        image.rgba.chunks_exact(4).fold(Vec3::ZERO, |sum, t| sum + Vec3::new(t[0] as f32, t[1] as f32, t[2] as f32))
+            / (255.0 * texels);
+    mean.z > 0.6 && (mean.x - 0.5).abs() < 0.15 && (mean.y - 0.5).abs() < 0.15
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn texture_options_are_skipped_and_bump_multiplier_kept() {
+        let base = Path::new("/m");
+        let r = TextureRef::parse("-bm 0.5 -o 0.1 0.2 -clamp on my bump.png", base).unwrap();
+        assert_eq!((r.path.as_path(), r.bump_multiplier), (Path::new("/m/my bump.png"), 0.5));
+        assert_eq!(TextureRef::parse("tex.png", base).unwrap().bump_multiplier, 1.0);
+        assert!(TextureRef::parse("-bm 2", base).is_none());
+    }
+}

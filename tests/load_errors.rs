@@ -1,0 +1,188 @@
+//! Broken files: each returns an error whose one-line message names the file and the
+//! problem, and nothing panics. The files are made here, in a temporary folder.
+
+use std::path::{Path, PathBuf};
+
+use bumpview::load::load_scene;
+
+/// A fresh temporary folder for one test.
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("bumpview-load-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// One triangle: three positions (36 bytes) and the UVs (0, 1), (1, 1), (0, 0) (24 bytes).
+fn triangle_bin() -> Vec<u8> {
+    let values: [f32; 15] = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0];
+    values.iter().flat_map(|v| v.to_le_bytes()).collect()
+}
+
+/// A glTF document drawing [`triangle_bin`] from `buffer_uri` (`None`: the GLB chunk), with
+/// a base colour texture from `image_uri` when given, and extra top-level JSON members.
+fn triangle_gltf(buffer_uri: Option<&str>, image_uri: Option<&str>, extra: &str) -> String {
+    let uri = buffer_uri.map_or(String::new(), |u| format!(r#""uri": "{u}", "#));
+    let (material, textures) = match image_uri {
+        Some(image) => (
+            r#", "material": 0"#.to_owned(),
+            format!(
+                r#""materials": [{{"pbrMetallicRoughness": {{"baseColorTexture": {{"index": 0}}}}}}],
+                "textures": [{{"source": 0}}], "images": [{{"uri": "{image}"}}],"#
+            ),
+        ),
+        None => (String::new(), String::new()),
+    };
+    format!(
+        r#"{{"asset": {{"version": "2.0"}}, {extra} {textures}
+        "buffers": [{{{uri}"byteLength": 60}}],
+        "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": 36}}, {{"buffer": 0, "byteOffset": 36, "byteLength": 24}}],
+        "accessors": [
+            {{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}},
+            {{"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}}],
+        "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "TEXCOORD_0": 1}}{material}}}]}}],
+        "nodes": [{{"mesh": 0}}], "scenes": [{{"nodes": [0]}}], "scene": 0}}"#
+    )
+}
+
+/// A GLB container of `json` and `bin`.
+fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
+    let pad = |mut bytes: Vec<u8>, with: u8| {
+        bytes.resize(bytes.len().div_ceil(4) * 4, with);
+        bytes
+    };
+    let (json, bin) = (pad(json.as_bytes().to_vec(), b' '), pad(bin.to_vec(), 0));
+    let total = 12 + 8 + json.len() + 8 + bin.len();
+    let mut out = b"glTF".to_vec();
+    out.extend(2u32.to_le_bytes());
+    out.extend((total as u32).to_le_bytes());
+    out.extend((json.len() as u32).to_le_bytes());
+    out.extend(b"JSON");
+    out.extend(json);
+    out.extend((bin.len() as u32).to_le_bytes());
+    out.extend(b"BIN\0");
+    out.extend(bin);
+    out
+}
+
+/// Loads `path`, expecting an error whose message names `file` and contains `problem`.
+fn expect_error(path: &Path, file: &str, problem: &str) {
+    let message = match load_scene(path) {
+        Ok(_) => panic!("{} loaded, expected an error about {problem:?}", path.display()),
+        Err(e) => e.to_string(),
+    };
+    println!("{message}");
+    assert!(!message.contains('\n'), "one line: {message}");
+    assert!(message.contains(file), "the message names {file}: {message}");
+    assert!(message.to_lowercase().contains(problem), "the message says {problem:?}: {message}");
+}
+
+#[test]
+fn good_gltf_glb_and_base64_buffers_load() {
+    let dir = temp_dir("good");
+    std::fs::write(dir.join("tri.bin"), triangle_bin()).unwrap();
+    std::fs::write(dir.join("tri.gltf"), triangle_gltf(Some("tri.bin"), None, "")).unwrap();
+    std::fs::write(dir.join("tri.glb"), glb(&triangle_gltf(None, None, ""), &triangle_bin())).unwrap();
+    use base64::Engine;
+    let data =
+        format!("data:application/octet-stream;base64,{}", base64::prelude::BASE64_STANDARD.encode(triangle_bin()));
+    std::fs::write(dir.join("embedded.gltf"), triangle_gltf(Some(&data), None, "")).unwrap();
+    for name in ["tri.gltf", "tri.glb", "embedded.gltf"] {
+        let scene = load_scene(&dir.join(name)).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(scene.instances.len(), 1);
+        let mesh = &scene.meshes[0];
+        // No normals in the file: flat ones, facing the counter-clockwise side (+Z).
+        assert!(mesh.normals.iter().all(|n| (*n - glam::Vec3::Z).length() < 1e-6), "{name}");
+        assert_eq!(mesh.uvs, [glam::Vec2::Y, glam::Vec2::ONE, glam::Vec2::ZERO], "{name}: UVs as stored (v down)");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn broken_files_give_one_line_naming_the_file_and_the_problem() {
+    let dir = temp_dir("broken");
+    let write = |name: &str, bytes: &[u8]| {
+        std::fs::write(dir.join(name), bytes).unwrap();
+        dir.join(name)
+    };
+    let good_glb = glb(&triangle_gltf(None, None, ""), &triangle_bin());
+    expect_error(&write("truncated.glb", &good_glb[..good_glb.len() - 20]), "truncated.glb", "glb");
+    expect_error(&write("bad.gltf", b"{ \"asset\": { \"version\": \"2.0\" }, oops"), "bad.gltf", "json");
+    expect_error(
+        &write("no-bin.gltf", triangle_gltf(Some("gone.bin"), None, "").as_bytes()),
+        "gone.bin",
+        "could not read",
+    );
+    write("tri.bin", &triangle_bin());
+    write("short.bin", &triangle_bin()[..30]);
+    expect_error(&write("short.gltf", triangle_gltf(Some("short.bin"), None, "").as_bytes()), "short.bin", "truncated");
+    let missing_image = triangle_gltf(Some("tri.bin"), Some("missing%20image.png"), "");
+    expect_error(&write("no-image.gltf", missing_image.as_bytes()), "missing image.png", "could not read");
+    write("fake.png", b"this is text, not a picture");
+    expect_error(
+        &write("fake-image.gltf", triangle_gltf(Some("tri.bin"), Some("fake.png"), "").as_bytes()),
+        "fake.png",
+        "not an image",
+    );
+    let draco = triangle_gltf(Some("tri.bin"), None, r#""extensionsRequired": ["KHR_draco_mesh_compression"],"#);
+    expect_error(&write("draco.gltf", draco.as_bytes()), "draco.gltf", "khr_draco_mesh_compression");
+    expect_error(&write("empty.obj", b"# nothing here\n"), "empty.obj", "no faces");
+    expect_error(&write("nan.obj", b"v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n"), "nan.obj", "nan");
+    expect_error(&write("range.obj", b"v 0 0 0\nf 1 2 3\n"), "range.obj", "line 2");
+    expect_error(&write("model.fbx", b"Kaydara"), "model.fbx", "unsupported");
+    expect_error(&dir.join("absent.gltf"), "absent.gltf", "could not read");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn every_prefix_and_byte_corruption_of_a_glb_errors_without_panicking() {
+    let good = glb(&triangle_gltf(None, None, ""), &triangle_bin());
+    let dir = temp_dir("fuzz");
+    let path = dir.join("fuzz.glb");
+    for length in 0..good.len() {
+        std::fs::write(&path, &good[..length]).unwrap();
+        assert!(load_scene(&path).is_err(), "a {length}-byte prefix loaded");
+    }
+    for position in 0..good.len() {
+        let mut bytes = good.clone();
+        bytes[position] ^= 0xA5;
+        std::fs::write(&path, &bytes).unwrap();
+        // Corrupt bytes in the vertex data may still load; it must not panic.
+        let _ = load_scene(&path);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn render_draws_a_mesh_file_or_fails_with_the_loaders_one_line() {
+    let dir = temp_dir("cli");
+    std::fs::write(dir.join("tri.bin"), triangle_bin()).unwrap();
+    std::fs::write(dir.join("tri.gltf"), triangle_gltf(Some("tri.bin"), None, "")).unwrap();
+    image::RgbaImage::from_pixel(4, 4, image::Rgba([200, 40, 40, 255])).save(dir.join("red.png")).unwrap();
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_bumpview")).args(args).output().expect("run bumpview")
+    };
+    let out = dir.join("tri.png");
+    let (out_arg, model, color) = (out.to_str().unwrap(), dir.join("tri.gltf"), dir.join("red.png"));
+    let output = run(&[
+        "render",
+        "--out",
+        out_arg,
+        "--size",
+        "64x48",
+        model.to_str().unwrap(),
+        "--color",
+        color.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert_eq!(image::open(&out).unwrap().width(), 64);
+
+    std::fs::write(dir.join("broken.gltf"), "{").unwrap();
+    let output = run(&["render", "--out", out_arg, dir.join("broken.gltf").to_str().unwrap()]);
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    let lines: Vec<&str> = stderr.lines().filter(|l| l.starts_with("bumpview:")).collect();
+    assert_eq!(lines.len(), 1, "{stderr}");
+    assert!(lines[0].contains("broken.gltf") && lines[0].contains("JSON"), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
