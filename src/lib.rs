@@ -32,6 +32,7 @@
 //! - **No NaN**: directions are normalised through [`math::normalize_or`], which falls back
 //!   to a valid vector; degenerate UV triangles fall back to a valid orthonormal frame.
 
+pub mod check;
 pub mod counters;
 pub mod error;
 pub mod height;

@@ -42,6 +42,13 @@ enum Command {
     /// Measure error against run time of every tangent method and height kernel and write
     /// report.md, report.csv and PNG charts.
     Report(ReportArgs),
+    /// Check mesh files for what breaks bump mapping (degenerate or mirrored UVs, seams, bad
+    /// tangents, normal-map sanity and green convention). Exit 0 clean, 1 warnings, 2 errors.
+    Check {
+        /// glTF (.gltf, .glb) or OBJ files.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+    },
 }
 
 #[derive(clap::Args)]
@@ -52,6 +59,28 @@ struct ReportArgs {
     /// Fewer resolutions and runs, for tests and CI.
     #[arg(long)]
     quick: bool,
+}
+
+/// Prints a check report per file; the exit status is the worst finding (a file that does
+/// not load is an error).
+fn check(files: &[PathBuf]) -> ExitCode {
+    let mut worst = bumpview::check::Severity::Clean;
+    for path in files {
+        println!("{}", path.display());
+        let severity = match bumpview::load::load_scene(path) {
+            Ok(scene) => {
+                let report = bumpview::check::check_scene(&scene);
+                print!("{}", report.to_text());
+                report.severity()
+            }
+            Err(e) => {
+                println!("  error: {e}");
+                bumpview::check::Severity::Error
+            }
+        };
+        worst = worst.max(severity);
+    }
+    ExitCode::from(worst.exit_code())
 }
 
 fn report(args: ReportArgs) -> Result<(), String> {
@@ -217,6 +246,7 @@ fn main() -> ExitCode {
     let result = match cli.command.take() {
         Some(Command::Render(args)) => render(args),
         Some(Command::Report(args)) => report(args),
+        Some(Command::Check { files }) => return check(&files),
         None => viewer(&cli),
     };
     match result {

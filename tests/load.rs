@@ -15,26 +15,8 @@ use bumpview::render::{Gpu, Renderer};
 use bumpview::scene::Scene;
 use bumpview::scene::builtin::teaching_scene;
 use bumpview::shading::ViewMode;
-use common::{decode_debug, default_params};
+use common::{asset, assets, decode_debug, default_params};
 use glam::Vec2;
-
-/// The asset folder, or `None` (with a notice) when `BUMPVIEW_TEST_ASSETS` is unset.
-fn assets() -> Option<PathBuf> {
-    match std::env::var_os("BUMPVIEW_TEST_ASSETS") {
-        Some(dir) => Some(PathBuf::from(dir)),
-        None => {
-            eprintln!("notice: BUMPVIEW_TEST_ASSETS is unset; skipping the tests on third-party assets");
-            None
-        }
-    }
-}
-
-/// A file in the asset folder; it must exist.
-fn asset(base: &Path, relative: &str) -> PathBuf {
-    let path = base.join(relative);
-    assert!(path.is_file(), "BUMPVIEW_TEST_ASSETS is set but {} is missing", path.display());
-    path
-}
 
 fn load(base: &Path, relative: &str) -> Scene {
     load_scene(&asset(base, relative)).unwrap_or_else(|e| panic!("{e}"))

@@ -3,6 +3,8 @@
 //! test; it never skips.
 #![allow(dead_code)] // each test binary uses a different subset
 
+use std::path::{Path, PathBuf};
+
 use bumpview::render::{FrameParams, Gpu, Renderer};
 use bumpview::scene::builtin::{WALL_Z, teaching_scene};
 use bumpview::scene::{OrbitCamera, Scene};
@@ -58,4 +60,22 @@ pub fn unit(byte: u8) -> f32 {
 /// A stored debug colour decoded back to the unit vector it shows.
 pub fn decode_debug(pixel: &image::Rgba<u8>) -> Vec3 {
     (Vec3::new(unit(pixel[0]), unit(pixel[1]), unit(pixel[2])) * 2.0 - 1.0).normalize_or_zero()
+}
+
+/// The third-party asset folder, or `None` (with a notice) when `BUMPVIEW_TEST_ASSETS` is unset.
+pub fn assets() -> Option<PathBuf> {
+    match std::env::var_os("BUMPVIEW_TEST_ASSETS") {
+        Some(dir) => Some(PathBuf::from(dir)),
+        None => {
+            eprintln!("notice: BUMPVIEW_TEST_ASSETS is unset; skipping the tests on third-party assets");
+            None
+        }
+    }
+}
+
+/// A file in the asset folder; it must exist.
+pub fn asset(base: &Path, relative: &str) -> PathBuf {
+    let path = base.join(relative);
+    assert!(path.is_file(), "BUMPVIEW_TEST_ASSETS is set but {} is missing", path.display());
+    path
 }
