@@ -2,6 +2,7 @@
 //! expected behaviour in its doc comment. Common to all: every frame is finite, `T` is unit
 //! and orthogonal to the vertex normal, `w = ±1` — never NaN.
 
+use bumpview::report::stiff::{grid, merged, mirrored_halves, plain_uv};
 use bumpview::report::surfaces::uv_sphere;
 use bumpview::scene::Mesh;
 use bumpview::tangent::{TangentMethod, angle_degrees, bitangent, tangents};
@@ -39,33 +40,6 @@ fn assert_valid(mesh: &Mesh, case: &str) {
             assert!(t.w == 1.0 || t.w == -1.0, "{case}, {method:?}, vertex {i}: w = {}", t.w);
         }
     }
-}
-
-/// A `cells × cells` grid on the unit square in the XY plane facing +Z; `uv` maps a
-/// position to its texture coordinates.
-fn grid(cells: u32, uv: impl Fn(Vec3) -> Vec2) -> Mesh {
-    let mut mesh = Mesh::empty("grid");
-    for j in 0..=cells {
-        for i in 0..=cells {
-            let p = Vec3::new(i as f32 / cells as f32, j as f32 / cells as f32, 0.0);
-            mesh.positions.push(p);
-            mesh.normals.push(Vec3::Z);
-            mesh.uvs.push(uv(p));
-        }
-    }
-    let stride = cells + 1;
-    for j in 0..cells {
-        for i in 0..cells {
-            let a = j * stride + i;
-            mesh.indices.extend([a, a + 1, a + stride + 1, a, a + stride + 1, a + stride]);
-        }
-    }
-    mesh
-}
-
-/// Plain UVs: u along +X, the image's up along +Y.
-fn plain_uv(p: Vec3) -> Vec2 {
-    Vec2::new(p.x, 1.0 - p.y)
 }
 
 /// Every triangle's UVs collapsed to one point: no UV frame exists anywhere, so each method
@@ -112,20 +86,7 @@ fn a_single_degenerate_uv_triangle_does_not_spoil_its_neighbours() {
 /// both sides.
 #[test]
 fn mirrored_uvs_flip_handedness_and_keep_the_bitangent() {
-    let mut left = grid(2, |p| Vec2::new(p.x * 0.5, 1.0 - p.y));
-    for p in &mut left.positions {
-        p.x *= 0.5;
-    }
-    let mut right = grid(2, |p| Vec2::new(0.5 - p.x * 0.5, 1.0 - p.y));
-    for p in &mut right.positions {
-        p.x = 0.5 + p.x * 0.5;
-    }
-    let offset = left.positions.len() as u32;
-    let mut mesh = left.clone();
-    mesh.positions.extend(&right.positions);
-    mesh.normals.extend(&right.normals);
-    mesh.uvs.extend(&right.uvs);
-    mesh.indices.extend(right.indices.iter().map(|i| i + offset));
+    let mesh = mirrored_halves();
     assert_valid(&mesh, "mirrored halves");
     for method in generated_methods() {
         let (normals, frames) = frames(&mesh, method);
@@ -155,12 +116,9 @@ fn uv_sphere_poles_give_valid_frames() {
 #[test]
 fn duplicate_positions_keep_their_own_frames() {
     let a = grid(3, plain_uv);
-    let mut mesh = a.clone();
-    let offset = a.positions.len() as u32;
-    mesh.positions.extend(&a.positions);
-    mesh.normals.extend(&a.normals);
-    mesh.uvs.extend(a.uvs.iter().map(|uv| *uv + Vec2::new(0.25, 0.0)));
-    mesh.indices.extend(a.indices.iter().map(|i| i + offset));
+    let mut b = a.clone();
+    b.uvs.iter_mut().for_each(|uv| *uv += Vec2::new(0.25, 0.0));
+    let mesh = merged(a, &b);
     assert_valid(&mesh, "duplicate positions");
     for method in generated_methods() {
         let (_, frames) = frames(&mesh, method);

@@ -5,6 +5,7 @@ use std::fmt::Write;
 
 use super::convergence::{NOISE_FLOOR_DEGREES, Order};
 use super::measure::{Row, Study, Vector};
+use super::stiff::StabilityRow;
 use super::surfaces::{POLE_DEGREES, Region};
 use super::{MIKKTSPACE_SANITY_SPHERE, Machine, Plan};
 
@@ -18,6 +19,8 @@ pub struct Page<'a> {
     pub seconds: f64,
     /// File names of the tangent and kernel charts, beside report.md.
     pub charts: [&'a str; 2],
+    /// The stiff cases: non-finite and invalid frames and the worst error per method.
+    pub stability: &'a [StabilityRow],
     /// MikkTSpace's mean interior (T, B) errors on the sanity sphere as the library's
     /// a naive f32 `acos` measures them, when that sphere was measured.
     pub acos_f32: Option<(f32, f32)>,
@@ -233,6 +236,25 @@ pub fn render(page: &Page) -> String {
          ![tangent methods]({tangent_chart})\n\n![height kernels]({kernel_chart})\n\n"
     );
     orders(page, &mut out);
+    stability(page, &mut out);
     tables(page, &mut out);
     out
+}
+
+/// The stability table: every generated tangent method on every stiff case.
+fn stability(page: &Page, out: &mut String) {
+    out.push_str(
+        "## Stability (stiff and extreme cases)\n\n\
+         Non-finite: frames with a NaN or infinite component. Invalid: frames not unit or not orthogonal to \
+         their normal (beyond 1e-4). Max error: the largest angle of T or B to the exact frame, where one \
+         exists (— where none does: degenerate UVs have no frame, a valid fallback is all that is asked).\n\n\
+         | case | method | non-finite | invalid | max error |\n| --- | --- | --- | --- | --- |\n",
+    );
+    for row in page.stability {
+        let error = row
+            .max_error_deg
+            .map_or("—".to_owned(), |e| if e.is_finite() { format!("{}°", degrees(e)) } else { "NaN".into() });
+        let _ = writeln!(out, "| {} | {} | {} | {} | {error} |", row.case, row.method, row.non_finite, row.invalid);
+    }
+    out.push('\n');
 }

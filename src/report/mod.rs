@@ -10,6 +10,7 @@ mod convergence;
 mod csv;
 mod markdown;
 pub mod measure;
+pub mod stiff;
 pub mod surfaces;
 pub mod timing;
 
@@ -192,6 +193,7 @@ pub fn run(out: &Path, plan: &Plan) -> Result<Vec<PathBuf>, ReportError> {
         seconds: started.elapsed().as_secs_f64(),
         charts: [TANGENT_CHART, KERNEL_CHART],
         acos_f32: acos_f32.flatten(),
+        stability: &stiff::stability_rows(),
     };
     let files = [
         (MARKDOWN, markdown::render(&page).into_bytes()),

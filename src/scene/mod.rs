@@ -115,16 +115,22 @@ impl Mesh {
 
     /// The same triangles with one vertex per corner (no vertex shared between triangles),
     /// so that per-face attributes can be drawn.
+    /// Attributes shorter than `positions` read as zero there; tangent arrays of the wrong
+    /// length are dropped.
     pub fn unwelded(&self) -> Mesh {
-        let pick = |values: &Vec<Vec4>| self.indices.iter().map(|&i| values[i as usize]).collect();
-        let gather = |values: &[Vec3]| self.indices.iter().map(|&i| values[i as usize]).collect();
+        fn gather<T: Copy + Default>(values: &[T], indices: &[u32]) -> Vec<T> {
+            indices.iter().map(|&i| values.get(i as usize).copied().unwrap_or_default()).collect()
+        }
+        let frames = |values: &Option<Vec<Vec4>>| {
+            values.as_ref().filter(|v| v.len() == self.positions.len()).map(|v| gather(v, &self.indices))
+        };
         Mesh {
             name: self.name.clone(),
-            positions: gather(&self.positions),
-            normals: gather(&self.normals),
-            uvs: self.indices.iter().map(|&i| self.uvs.get(i as usize).copied().unwrap_or_default()).collect(),
-            tangents: self.tangents.as_ref().map(pick),
-            analytic_tangents: self.analytic_tangents.as_ref().map(pick),
+            positions: gather(&self.positions, &self.indices),
+            normals: gather(&self.normals, &self.indices),
+            uvs: gather(&self.uvs, &self.indices),
+            tangents: frames(&self.tangents),
+            analytic_tangents: frames(&self.analytic_tangents),
             indices: (0..self.indices.len() as u32).collect(),
         }
     }
