@@ -12,7 +12,7 @@ struct Frame {
     view_mode: u32,           // ViewMode::shader_index()
     self_shadow_fade: f32,    // SELF_SHADOW_FADE
     difference_range_deg: f32, // the Difference view's colour scale runs 0..this, degrees
-    _pad0: f32,
+    shading_override: u32,    // 0: each material's own model, else 1 + ShadingModel::shader_index()
     _pad1: f32,
     _pad2: f32,
 };

@@ -1,15 +1,17 @@
-// Blinn-Phong with tangent-space normal mapping, and the TBN debug views.
+// Blinn-Phong or metallic-roughness (pbr.wgsl) with tangent- or object-space normal mapping,
+// and the TBN debug views.
 // Conventions: see the crate docs (src/lib.rs). The CPU reference of every function here is
 // src/shading.rs; keep the two in step.
 //
 // Entry points form the pipeline variants (src/render/pipelines.rs):
 //   vs_plain  + fs_plain          mesh without tangents, material without normal map
 //   vs_tangent + fs_tangent       mesh with tangents, material without normal map
-//   vs_tangent + fs_normal_mapped mesh with tangents and a normal map
+//   vs_tangent + fs_normal_mapped mesh with tangents and a tangent-space normal map
+//   vs_plain  + fs_object_space   object-space normal map, no tangents
 //   vs_plain  + fs_height_bump    bump from the height map in screen space, no tangents
 //   vs_difference + fs_difference the Difference view: a mesh's frames against reference frames
 //
-// Prepended at build time: frame.wgsl (the Frame uniform, group 0).
+// Prepended at build time: frame.wgsl (the Frame uniform, group 0) and pbr.wgsl.
 
 struct Object {
     model: mat4x4<f32>,
@@ -19,13 +21,26 @@ struct Object {
     handedness: f32,            // sign(det(model)), multiplies tangent w
     normal_scale: f32,          // the material's normalTexture.scale
     height_range_m: f32,        // metres spanned by the height map's full range
-    _pad: f32,
+    flags: u32,                 // NormalConvention::flags | DEPTH_MAP | HAS_METALLIC_ROUGHNESS
+    metallic: f32,              // metallic-roughness factors
+    roughness: f32,
+    occlusion_strength: f32,
+    shading_model: u32,         // ShadingModel::shader_index()
 };
 
 @group(1) @binding(0) var<uniform> object: Object;
 @group(1) @binding(1) var base_color_texture: texture_2d<f32>; // sRGB view: samples are linear
-@group(1) @binding(2) var material_sampler: sampler;
+@group(1) @binding(2) var base_color_sampler: sampler;
 @group(1) @binding(3) var bump_texture: texture_2d<f32>;       // normal map or height map, linear
+@group(1) @binding(4) var detail_sampler: sampler;             // bump, metallic-roughness, occlusion
+@group(1) @binding(5) var metallic_roughness_texture: texture_2d<f32>; // linear: B metal, G rough
+@group(1) @binding(6) var occlusion_texture: texture_2d<f32>;  // linear: R occlusion
+
+const FLIP_GREEN: u32 = 1u;
+const TWO_CHANNEL: u32 = 2u;
+const DEPTH_MAP: u32 = 8u;
+const HAS_METALLIC_ROUGHNESS: u32 = 16u;
+const SHADING_METALLIC_ROUGHNESS: u32 = 1u;
 
 // True when the target stores sRGB-encoded values (Rgba8UnormSrgb): debug colours are then
 // decoded first so the stored bytes equal 0.5·v + 0.5.
@@ -112,9 +127,23 @@ fn tangent_frame(world_tangent: vec4<f32>, n: vec3<f32>) -> TangentFrame {
     return TangentFrame(t, w * cross(n, t));
 }
 
+// shading::decode_normal
+fn decode_normal(texel: vec3<f32>, flags: u32) -> vec3<f32> {
+    var v = texel * 2.0 - 1.0;
+    if (flags & FLIP_GREEN) != 0u {
+        v.y = -v.y;
+    }
+    if (flags & TWO_CHANNEL) != 0u {
+        let xy2 = v.x * v.x + v.y * v.y;
+        let shrink = select(1.0, inverseSqrt(xy2), xy2 > 1.0);
+        v = vec3<f32>(v.xy * shrink, sqrt(max(1.0 - xy2, 0.0)));
+    }
+    return normalize_or(v, vec3<f32>(0.0, 0.0, 1.0));
+}
+
 // shading::perturbed_normal
 fn perturbed_normal(n: vec3<f32>, frame_tb: TangentFrame, texel: vec3<f32>, strength: f32) -> vec3<f32> {
-    let decoded = normalize_or(texel * 2.0 - 1.0, vec3<f32>(0.0, 0.0, 1.0));
+    let decoded = decode_normal(texel, object.flags);
     let scaled = vec3<f32>(decoded.xy * strength, max(decoded.z, 0.0));
     let nt = normalize_or(scaled, vec3<f32>(0.0, 0.0, 1.0));
     return normalize_or(frame_tb.t * nt.x + frame_tb.b * nt.y + n * nt.z, n);
@@ -148,6 +177,33 @@ fn stored(c: vec3<f32>) -> vec4<f32> {
     return vec4<f32>(c, 1.0);
 }
 
+// The lit colour: the material's shading model unless the frame overrides it.
+fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>) -> vec3<f32> {
+    let albedo = textureSample(base_color_texture, base_color_sampler, in.uv).rgb * object.base_color.rgb;
+    var model = object.shading_model;
+    if frame.shading_override != 0u {
+        model = frame.shading_override - 1u;
+    }
+    if model != SHADING_METALLIC_ROUGHNESS {
+        return blinn_phong(albedo, n_geo, n_shading, in.world_position);
+    }
+    var metal_rough = textureSample(metallic_roughness_texture, detail_sampler, in.uv);
+    if (object.flags & HAS_METALLIC_ROUGHNESS) == 0u {
+        metal_rough = vec4<f32>(1.0); // the binding holds a placeholder: factors alone
+    }
+    let occlusion = 1.0 + object.occlusion_strength * (textureSample(occlusion_texture, detail_sampler, in.uv).r - 1.0);
+    let inputs = PbrInputs(
+        albedo,
+        object.metallic * metal_rough.b,
+        object.roughness * metal_rough.g,
+        occlusion,
+        n_geo,
+        n_shading,
+        in.world_position,
+    );
+    return metallic_roughness(inputs);
+}
+
 fn surface_color(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_shading: vec3<f32>) -> vec4<f32> {
     switch frame.view_mode {
         case VIEW_TANGENT: { return stored(0.5 * frame_tb.t + 0.5); }
@@ -156,10 +212,7 @@ fn surface_color(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_s
         case VIEW_SHADING_NORMAL: { return stored(0.5 * n_shading + 0.5); }
         // Drawn with fs_difference when the mesh has frames; without them, neutral grey.
         case VIEW_DIFFERENCE: { return stored(vec3<f32>(0.5)); }
-        default: {
-            let albedo = textureSample(base_color_texture, material_sampler, in.uv).rgb * object.base_color.rgb;
-            return vec4<f32>(blinn_phong(albedo, n_geo, n_shading, in.world_position), 1.0);
-        }
+        default: { return vec4<f32>(lit_color(in, n_geo, n_shading), 1.0); }
     }
 }
 
@@ -180,12 +233,28 @@ fn fs_tangent(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @l
 fn fs_normal_mapped(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
     let frame_tb = tangent_frame(in.world_tangent, n);
-    let texel = textureSample(bump_texture, material_sampler, in.uv).rgb;
+    let texel = textureSample(bump_texture, detail_sampler, in.uv).rgb;
     var n_shading = n;
     if frame.bump_enabled != 0u {
         n_shading = perturbed_normal(n, frame_tb, texel, frame.strength * object.normal_scale);
     }
     return surface_color(in, n, frame_tb, n_shading);
+}
+
+// shading::object_space_normal: the map holds model-space normals; no tangents.
+@fragment
+fn fs_object_space(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    let n = geometric_normal(in.world_normal, front_facing);
+    let texel = textureSample(bump_texture, detail_sampler, in.uv).rgb;
+    var n_shading = n;
+    if frame.bump_enabled != 0u {
+        let facing = select(-1.0, 1.0, front_facing);
+        let model_normal = decode_normal(texel, object.flags);
+        let n_map = facing * normalize_or((object.normal_matrix * vec4<f32>(model_normal, 0.0)).xyz, n);
+        n_shading = normalize_or(n + frame.strength * object.normal_scale * (n_map - n), n);
+    }
+    // No tangents: the T and B views show the zero vector (mid grey).
+    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0)), n_shading);
 }
 
 // Blinn's bump from a height field without tangents: Mikkelsen's surface gradient from
@@ -194,8 +263,12 @@ fn fs_normal_mapped(in: VertexOutput, @builtin(front_facing) front_facing: bool)
 @fragment
 fn fs_height_bump(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
-    let texel = textureSample(bump_texture, material_sampler, in.uv);
-    let height = (texel.r * 65280.0 + texel.g * 255.0) / 65535.0 * object.height_range_m * frame.strength;
+    let texel = textureSample(bump_texture, detail_sampler, in.uv);
+    var sample = (texel.r * 65280.0 + texel.g * 255.0) / 65535.0;
+    if (object.flags & DEPTH_MAP) != 0u {
+        sample = 1.0 - sample;
+    }
+    let height = sample * object.height_range_m * frame.strength;
     let dp_dx = dpdx(in.world_position);
     let dp_dy = dpdy(in.world_position);
     let dh_dx = dpdx(height);

@@ -17,7 +17,10 @@
 //!   *up* the image (towards −v), which is where a tangent-space normal map's green (+Y)
 //!   points. MikkTSpace is therefore fed `(u, 1 − v)`; see [`tangent`].
 //! - **Normal maps** are tangent-space, OpenGL convention (+Y = green = up the image),
-//!   linear (never sampled through an sRGB view), decoded as `n = normalize(2·rgb − 1)`.
+//!   linear (never sampled through an sRGB view), decoded as `n = normalize(2·rgb − 1)`,
+//!   unless the material's [`scene::NormalConvention`] says DirectX (green negated),
+//!   two-channel (`z = sqrt(max(0, 1 − x² − y²))`) or object space (a model-space normal
+//!   taken to world space by the normal matrix; no tangents). See [`shading::decode_normal`].
 //! - **Bump strength** `s` follows glTF `normalTexture.scale`: `normalize(n · (s, s, 1))`;
 //!   `s = 0` is flat and a negative `s` inverts the relief.
 //! - **Colour**: base-colour textures are sRGB; shading happens in linear RGB; the render

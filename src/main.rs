@@ -12,6 +12,7 @@ use bumpview::height::Kernel;
 use bumpview::render::capture::{render_image, write_png_atomically};
 use bumpview::render::{BumpSource, Gpu, Renderer, SceneOptions};
 use bumpview::scene::builtin::teaching_scene_with_kernel;
+use bumpview::scene::{GreenAxis, MaterialOverrides, ShadingModel};
 use bumpview::shading::ViewMode;
 use bumpview::tangent::TangentMethod;
 use bumpview::viewer::ViewerState;
@@ -140,11 +141,71 @@ struct MethodArgs {
     /// height map by screen-space derivatives, no tangents).
     #[arg(long, default_value = "normal-map", value_parser = parse_bump_source)]
     bump_source: BumpSource,
+    #[command(flatten)]
+    materials: MaterialArgs,
+}
+
+/// Texture conventions for every material and the shading model (viewer and `render`).
+#[derive(clap::Args, Clone, Copy)]
+struct MaterialArgs {
+    /// Normal maps' green channel: opengl (+Y up the image) or directx (−Y); default: as loaded.
+    #[arg(long, value_parser = parse_green)]
+    normal_convention: Option<GreenAxis>,
+    /// Normal maps store only red and green; blue (z) is reconstructed.
+    #[arg(long)]
+    two_channel: bool,
+    /// Normal maps hold object-space (model-space) normals; no tangents are used.
+    #[arg(long)]
+    object_space: bool,
+    /// Height maps store depth (white = deep).
+    #[arg(long)]
+    depth_map: bool,
+    /// Metres spanned by a height map's full range (world units).
+    #[arg(long, value_name = "METRES", value_parser = args::parse_finite)]
+    height_range: Option<f32>,
+    /// Shading model: blinn-phong, pbr (glTF metallic-roughness) or auto (each material's own:
+    /// pbr for glTF, blinn-phong for OBJ and the built-in scene).
+    #[arg(long, default_value = "auto", value_parser = parse_shading)]
+    shading: ShadingChoice,
+}
+
+impl MaterialArgs {
+    fn overrides(&self) -> MaterialOverrides {
+        MaterialOverrides {
+            green: self.normal_convention,
+            two_channel: self.two_channel.then_some(true),
+            object_space: self.object_space.then_some(true),
+            depth_map: self.depth_map.then_some(true),
+            height_range_m: self.height_range,
+        }
+    }
+}
+
+/// A shading model, or `None` for auto.
+#[derive(Clone, Copy)]
+struct ShadingChoice(Option<ShadingModel>);
+
+fn parse_shading(text: &str) -> Result<ShadingChoice, String> {
+    match text {
+        "auto" => Ok(ShadingChoice(None)),
+        "blinn-phong" => Ok(ShadingChoice(Some(ShadingModel::BlinnPhong))),
+        "pbr" => Ok(ShadingChoice(Some(ShadingModel::MetallicRoughness))),
+        _ => Err(format!("{text:?}: expected blinn-phong, pbr or auto")),
+    }
+}
+
+fn parse_green(text: &str) -> Result<GreenAxis, String> {
+    match text {
+        "opengl" => Ok(GreenAxis::OpenGl),
+        "directx" => Ok(GreenAxis::DirectX),
+        _ => Err(format!("{text:?}: expected opengl or directx")),
+    }
 }
 
 impl MethodArgs {
     fn scene_options(&self) -> SceneOptions {
-        SceneOptions { tangent_method: self.tangents.0, bump_source: self.bump_source }
+        let materials = self.materials.overrides();
+        SceneOptions { tangent_method: self.tangents.0, bump_source: self.bump_source, materials }
     }
 }
 
@@ -192,6 +253,7 @@ fn render(args: RenderArgs) -> Result<(), String> {
     state.shading.bump_enabled = args.bump;
     state.shading.strength = args.strength;
     state.shading.show_light_marker = !args.no_light_marker;
+    state.shading.shading_override = args.methods.materials.shading.0;
     if let Some(light) = args.light {
         state.light.position = light;
     }
@@ -219,8 +281,10 @@ fn viewer(cli: &Cli) -> Result<(), String> {
         exit_after: cli.exit_after,
         capture_window: cli.capture_window.clone(),
         scene_options: cli.methods.scene_options(),
+        shading_override: cli.methods.materials.shading.0,
         kernel: cli.methods.kernel,
         scene: cli.inputs.scene(cli.methods.kernel)?,
+        inputs: cli.inputs.clone(),
     })
 }
 

@@ -4,11 +4,12 @@
 //! GPU and compare against these functions. All vectors are world space and unit length
 //! unless stated; colours are linear RGB.
 
-use glam::{Vec3, Vec4};
+pub mod pbr;
 
-use crate::height::decode_normal;
+use glam::{Mat3, Vec3, Vec4};
+
 use crate::math::{handedness, normalize_or, orthonormalize_tangent, smoothstep};
-use crate::scene::Light;
+use crate::scene::{GreenAxis, Light, NormalConvention, ShadingModel};
 
 /// Width of the self-shadow fade in units of `N_geo · L` (a cosine): the light fades in
 /// smoothly from grazing (0) to `N_geo · L = 0.1` (about 84° from the normal).
@@ -82,6 +83,8 @@ pub struct ShadingSettings {
     pub show_light_marker: bool,
     /// The Difference view's colour scale spans 0 to this many degrees.
     pub difference_range_deg: f32,
+    /// Shade every material with this model (`None`: each material's own).
+    pub shading_override: Option<ShadingModel>,
 }
 
 impl Default for ShadingSettings {
@@ -92,21 +95,62 @@ impl Default for ShadingSettings {
             view: ViewMode::Lit,
             show_light_marker: true,
             difference_range_deg: 5.0,
+            shading_override: None,
         }
     }
 }
 
-/// The normal after the normal map: decode the texel, clamp `z ≥ 0` (a tangent-space normal
-/// never points into the surface), scale by `(s, s, 1)`, normalise, take it from tangent to
-/// world space with `T` (Gram-Schmidt against `n_geo`) and `B = w · cross(N, T)`.
-/// `texel_rgb` is the normal map value in 0..1; `n_geo` is unit.
-pub fn perturbed_normal(n_geo: Vec3, tangent: Vec4, texel_rgb: Vec3, strength: f32) -> Vec3 {
-    let decoded = decode_normal(texel_rgb);
+/// A normal map texel (`rgb` in 0..1) as a unit vector in the map's space:
+/// `2·rgb − 1`, green negated for DirectX, `z = sqrt(max(0, 1 − x² − y²))` for two-channel
+/// maps (with `(x, y)` scaled onto the unit circle where `x² + y² > 1`), then normalised.
+pub fn decode_normal(texel_rgb: Vec3, convention: NormalConvention) -> Vec3 {
+    let mut v = texel_rgb * 2.0 - 1.0;
+    if convention.green == GreenAxis::DirectX {
+        v.y = -v.y;
+    }
+    if convention.two_channel {
+        let xy2 = v.x * v.x + v.y * v.y;
+        let shrink = if xy2 > 1.0 { xy2.sqrt().recip() } else { 1.0 };
+        v = Vec3::new(v.x * shrink, v.y * shrink, (1.0 - xy2).max(0.0).sqrt());
+    }
+    normalize_or(v, Vec3::Z)
+}
+
+/// The normal after a tangent-space normal map: decode the texel ([`decode_normal`]), clamp
+/// `z ≥ 0` (a tangent-space normal never points into the surface), scale by `(s, s, 1)`,
+/// normalise, take it from tangent to world space with `T` (Gram-Schmidt against `n_geo`)
+/// and `B = w · cross(N, T)`. `texel_rgb` is the normal map value in 0..1; `n_geo` is unit.
+pub fn perturbed_normal(
+    n_geo: Vec3,
+    tangent: Vec4,
+    texel_rgb: Vec3,
+    strength: f32,
+    convention: NormalConvention,
+) -> Vec3 {
+    let decoded = decode_normal(texel_rgb, convention);
     let scaled = Vec3::new(decoded.x * strength, decoded.y * strength, decoded.z.max(0.0));
     let n_tangent = normalize_or(scaled, Vec3::Z);
     let t = orthonormalize_tangent(tangent.truncate(), n_geo);
     let b = handedness(tangent) * n_geo.cross(t);
     normalize_or(t * n_tangent.x + b * n_tangent.y + n_geo * n_tangent.z, n_geo)
+}
+
+/// The normal after an object-space normal map: the decoded model-space vector goes to world
+/// space by `normal_matrix` (inverse-transpose of the model matrix) and is negated on the
+/// back faces of double-sided materials (`front_facing` false); the strength `s` blends
+/// `normalize(n_geo + s · (n_map − n_geo))` (0 flat, 1 the map, negative mirrors it about
+/// `n_geo`). No tangents are involved.
+pub fn object_space_normal(
+    n_geo: Vec3,
+    normal_matrix: Mat3,
+    front_facing: bool,
+    texel_rgb: Vec3,
+    strength: f32,
+    convention: NormalConvention,
+) -> Vec3 {
+    let facing = if front_facing { 1.0 } else { -1.0 };
+    let n_map = facing * normalize_or(normal_matrix * decode_normal(texel_rgb, convention), n_geo);
+    normalize_or(n_geo + strength * (n_map - n_geo), n_geo)
 }
 
 /// Everything Blinn-Phong needs at one surface point.
@@ -164,6 +208,10 @@ pub fn debug_color(v: Vec3) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::NormalSpace;
+
+    const GL: NormalConvention =
+        NormalConvention { green: GreenAxis::OpenGl, two_channel: false, space: NormalSpace::Tangent };
 
     fn inputs() -> LightingInputs {
         LightingInputs {
@@ -199,10 +247,10 @@ mod tests {
         let n = Vec3::new(0.0, 1.0, 0.0);
         let t = Vec4::new(1.0, 0.0, 0.0, 1.0);
         let bumpy = Vec3::new(0.8, 0.3, 0.7);
-        assert!((perturbed_normal(n, t, Vec3::new(0.5, 0.5, 1.0), 3.0) - n).length() < 1e-6);
-        assert!((perturbed_normal(n, t, bumpy, 0.0) - n).length() < 1e-6);
-        let inverted = perturbed_normal(n, t, bumpy, -1.0);
-        let plain = perturbed_normal(n, t, bumpy, 1.0);
+        assert!((perturbed_normal(n, t, Vec3::new(0.5, 0.5, 1.0), 3.0, GL) - n).length() < 1e-6);
+        assert!((perturbed_normal(n, t, bumpy, 0.0, GL) - n).length() < 1e-6);
+        let inverted = perturbed_normal(n, t, bumpy, -1.0, GL);
+        let plain = perturbed_normal(n, t, bumpy, 1.0, GL);
         assert!((inverted.x + plain.x).abs() < 1e-6 && (inverted.y - plain.y).abs() < 1e-6);
     }
 
@@ -211,8 +259,36 @@ mod tests {
         let n = Vec3::Z;
         let t = Vec4::new(1.0, 0.0, 0.0, -1.0);
         for s in [-1000.0, 1000.0, f32::MAX] {
-            let v = perturbed_normal(n, t, Vec3::new(0.6, 0.45, 0.9), s);
+            let v = perturbed_normal(n, t, Vec3::new(0.6, 0.45, 0.9), s, GL);
             assert!(v.is_finite() && (v.length() - 1.0).abs() < 1e-5, "{s}: {v}");
         }
+    }
+
+    #[test]
+    fn directx_decode_of_a_flipped_texel_equals_opengl_decode() {
+        let texel = Vec3::new(0.7, 0.2, 0.9);
+        let flipped = Vec3::new(0.7, 0.8, 0.9);
+        let dx = NormalConvention { green: GreenAxis::DirectX, ..GL };
+        assert!((decode_normal(flipped, dx) - decode_normal(texel, GL)).length() < 1e-6);
+    }
+
+    #[test]
+    fn two_channel_outside_the_unit_disc_gives_finite_unit_normals() {
+        let two = NormalConvention { two_channel: true, ..GL };
+        for texel in [Vec3::new(1.0, 1.0, 0.0), Vec3::new(0.0, 1.0, 0.0), Vec3::ZERO, Vec3::new(0.5, 0.5, 0.0)] {
+            let v = decode_normal(texel, two);
+            assert!(v.is_finite() && (v.length() - 1.0).abs() < 1e-6 && v.z >= 0.0, "{texel}: {v}");
+        }
+        assert!((decode_normal(Vec3::new(0.5, 0.5, 0.0), two) - Vec3::Z).length() < 1e-6);
+    }
+
+    #[test]
+    fn object_space_map_turns_with_the_model() {
+        let rotation = Mat3::from_rotation_y(std::f32::consts::FRAC_PI_2);
+        let texel = Vec3::new(0.5, 0.5, 1.0); // model +Z
+        let object = NormalConvention { space: NormalSpace::Object, ..GL };
+        let n = object_space_normal(Vec3::X, rotation, true, texel, 1.0, object);
+        assert!((n - Vec3::X).length() < 1e-6, "{n}");
+        assert!((object_space_normal(Vec3::Y, rotation, true, texel, 0.0, object) - Vec3::Y).length() < 1e-6);
     }
 }

@@ -6,7 +6,7 @@ use glam::{Vec2, Vec3};
 
 use crate::height::Kernel;
 use crate::render::{BumpSource, FrameParams, SceneOptions};
-use crate::scene::{Light, OrbitCamera, Scene};
+use crate::scene::{Light, MaterialOverrides, OrbitCamera, Scene, ShadingModel};
 use crate::shading::{ShadingSettings, ViewMode};
 use crate::tangent::TangentMethod;
 
@@ -57,6 +57,10 @@ pub enum Command {
     SetKernel(Kernel),
     /// The Difference view's colour scale spans 0 to this many degrees.
     SetDifferenceRange(f32),
+    /// Normal- and height-map conventions for every material (re-makes GPU data).
+    SetMaterialOverrides(MaterialOverrides),
+    /// Shade every material with this model (`None`: each material's own); a uniform.
+    SetShadingOverride(Option<ShadingModel>),
 }
 
 /// Everything the user can change about the picture.
@@ -67,7 +71,8 @@ pub struct ViewerState {
     pub light: Light,
     pub shading: ShadingSettings,
     pub light_orbit: bool,
-    /// Tangent method and bump source; a change means re-making the scene's GPU data.
+    /// Tangent method, bump source and material overrides; a change means re-making the
+    /// scene's GPU data.
     pub scene_options: SceneOptions,
     /// Kernel of the built-in normal map; a change means re-making the normal map.
     pub kernel: Kernel,
@@ -137,6 +142,8 @@ impl ViewerState {
                 self.shading.difference_range_deg = degrees.clamp(DIFFERENCE_RANGE.start, DIFFERENCE_RANGE.end)
             }
             Command::SetDifferenceRange(_) => {}
+            Command::SetMaterialOverrides(overrides) => self.scene_options.materials = overrides,
+            Command::SetShadingOverride(model) => self.shading.shading_override = model,
         }
     }
 }

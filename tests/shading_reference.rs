@@ -23,7 +23,7 @@ fn sample_bilinear(texture: &TextureImage, uv: Vec2) -> Vec3 {
         let rgb = Vec3::new(unit(t[0]), unit(t[1]), unit(t[2]));
         match texture.kind {
             TextureKind::Color => rgb.map(srgb_to_linear),
-            TextureKind::NormalMap | TextureKind::Height => rgb,
+            TextureKind::NormalMap | TextureKind::Height | TextureKind::Data => rgb,
         }
     };
     let top = texel(0, 0).lerp(texel(1, 0), fx);
@@ -42,7 +42,7 @@ fn reference_pixel(scene: &Scene, params: &bumpview::render::FrameParams, size: 
     let tangent = Vec4::new(1.0, 0.0, 0.0, 1.0); // the wall's MikkTSpace frame (tests/debug_views.rs)
     let shading_normal = if params.shading.bump_enabled {
         let texel = sample_bilinear(&scene.textures[normal_map.texture], uv);
-        perturbed_normal(n_geo, tangent, texel, params.shading.strength * normal_map.scale)
+        perturbed_normal(n_geo, tangent, texel, params.shading.strength * normal_map.scale, normal_map.convention)
     } else {
         n_geo
     };

@@ -1,26 +1,35 @@
-//! The eframe/egui viewer: a thin layer over the library. The panel ([`panel`]) and the
-//! keyboard and mouse ([`input`]) only produce [`Action`]s; [`ViewerApp::apply`] is the one
-//! place they take effect. The 3D view is drawn by [`Renderer`] into an offscreen texture
+//! The eframe/egui viewer: a thin layer over the library. The panel ([`panel`]), the keyboard
+//! and mouse ([`input`]), dropped files, the file dialog ([`dialog`]), file changes on disk
+//! ([`watch`]) and finished loads ([`files`]) only produce [`Action`]s; [`ViewerApp::apply`] is
+//! the one place they take effect. The 3D view is drawn by [`Renderer`] into an offscreen texture
 //! that egui shows as an image, and only when the picture would change.
 
+mod dialog;
+mod files;
+mod files_panel;
 mod input;
 mod legend;
 mod panel;
+mod watch;
 
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::sync::{Arc, mpsc};
+use std::time::Instant;
 
 use bumpview::height::Kernel;
 use bumpview::render::capture::{render_image, write_png_atomically};
 use bumpview::render::{RenderTarget, Renderer, SceneOptions};
-use bumpview::scene::Scene;
 use bumpview::scene::builtin::teaching_scene_with_kernel;
+use bumpview::scene::{Scene, ShadingModel};
 use bumpview::shading::ViewMode;
 use bumpview::tangent::{MethodMeasurement, TangentMethod, measure};
 use bumpview::viewer::{Command, RedrawTracker, ViewerState};
 use eframe::egui_wgpu::RenderState;
+use files::{Files, Finished, Purpose, Slot, Source, Status};
+
+use crate::inputs::InputArgs;
 
 /// How the viewer is started; see `--exit-after` and `--capture-window`.
 pub struct Options {
@@ -30,19 +39,35 @@ pub struct Options {
     pub capture_window: Option<PathBuf>,
     /// Tangent method and bump source to start with.
     pub scene_options: SceneOptions,
+    /// Shading model for every material to start with (`None`: each material's own).
+    pub shading_override: Option<ShadingModel>,
     /// Height→normal kernel of the built-in brick normal map to start with.
     pub kernel: Kernel,
     /// A loaded scene (mesh and/or textures from files); `None`: the built-in scene.
     pub scene: Option<Scene>,
+    /// The files `scene` was made from, watched for changes.
+    pub inputs: InputArgs,
 }
 
-/// Something the user asked for: a library [`Command`] or an app-only action.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// Something the user asked for or that arrived: a library [`Command`] or an app-only action.
+#[derive(Debug, Clone, PartialEq)]
 enum Action {
     /// A change to the viewer state.
     Viewer(Command),
     /// Save a PNG of the 3D view (F12 or the panel button).
     Screenshot,
+    /// Open files (dropped, chosen in the dialog or the recent list): a mesh replaces the
+    /// scene; images go into `slot` (dropped on it or chosen for it) or the one their name
+    /// suggests.
+    Open { paths: Vec<PathBuf>, slot: Option<Slot> },
+    /// Show the file dialog for a mesh or texture (`None`) or for one slot's texture.
+    ShowDialog(Option<Slot>),
+    /// The file dialog closed with a file, or without one (`None`).
+    DialogClosed { slot: Option<Slot>, path: Option<PathBuf> },
+    /// Files of the scene changed on disk and have settled: re-make it, keeping the view.
+    Reload,
+    /// A load finished on the worker thread.
+    Loaded(Box<Finished>),
 }
 
 impl From<Command> for Action {
@@ -103,10 +128,18 @@ struct ScreenshotForm {
 struct ViewerApp {
     state: ViewerState,
     scene: Scene,
-    /// The scene is the built-in one, re-made when the kernel changes.
-    builtin: bool,
-    /// The options and kernel the renderer's scene was made with.
-    uploaded: (SceneOptions, Kernel),
+    /// The scene's files, the loader, the recent list and the last outcome.
+    files: Files,
+    dialog: dialog::Dialog,
+    watcher: watch::Watcher,
+    /// Why hot reload does not work, when it does not.
+    watch_error: Option<String>,
+    /// Where the panel's slot buttons were last drawn, for files dropped on them.
+    slot_targets: Vec<(Slot, egui::Rect)>,
+    /// To wake the UI from worker threads.
+    ctx: egui::Context,
+    /// The options the renderer's scene was made with.
+    uploaded: SceneOptions,
     /// Per mesh: the chosen tangent method timed and compared with the reference.
     measurements: Vec<(String, MethodMeasurement)>,
     renderer: Renderer,
@@ -131,18 +164,30 @@ impl ViewerApp {
             .ok_or("eframe started without a wgpu render state (the viewer needs the wgpu renderer)")?;
         let mut renderer =
             Renderer::new(render_state.device.clone(), render_state.queue.clone(), render_state.adapter.clone());
-        let builtin = options.scene.is_none();
         let scene = options.scene.unwrap_or_else(|| teaching_scene_with_kernel(options.kernel));
         renderer.set_scene(&scene, options.scene_options);
         let adapter_name = renderer.adapter_name();
         let mut state = ViewerState::new(&scene);
         state.scene_options = options.scene_options;
+        state.shading.shading_override = options.shading_override;
         state.kernel = options.kernel;
+        let mut files =
+            Files::new(source(&options.inputs, options.kernel), Arc::new(Source::build), files::recent_file());
+        files.remember_source();
+        let ctx = cc.egui_ctx.clone();
+        let wake = ctx.clone();
+        let (mut watcher, watching) = watch::Watcher::new(move || wake.request_repaint());
+        let watch_error = watching.and_then(|()| watcher.watch(&files.source.files())).err();
         Ok(ViewerApp {
             measurements: measure_all(&scene, options.scene_options.tangent_method),
-            uploaded: (options.scene_options, options.kernel),
+            uploaded: options.scene_options,
             scene,
-            builtin,
+            files,
+            dialog: dialog::Dialog::default(),
+            watcher,
+            watch_error,
+            slot_targets: Vec::new(),
+            ctx,
             state,
             renderer,
             adapter_name,
@@ -159,10 +204,110 @@ impl ViewerApp {
     fn apply(&mut self, actions: Vec<Action>) {
         for action in actions {
             match action {
-                Action::Viewer(command) => self.state.apply(command),
+                Action::Viewer(command) => {
+                    self.state.apply(command);
+                    if let Command::SetKernel(kernel) = command {
+                        self.rebuild_builtin(kernel);
+                    }
+                }
                 Action::Screenshot => self.screenshot.message = Some(self.save_screenshot()),
+                Action::Open { paths, slot } => self.files.open(&paths, slot, self.waker()),
+                Action::ShowDialog(slot) => {
+                    let folder = self.files.source.files().first().and_then(|f| f.parent()).map(Path::to_owned);
+                    if let Err(message) = self.dialog.show(slot, folder, self.waker()) {
+                        self.files.status = Some(Status::Failed(message));
+                    }
+                }
+                Action::DialogClosed { slot, path: Some(path) } => self.files.open(&[path], slot, self.waker()),
+                Action::DialogClosed { path: None, .. } => {
+                    self.files.status = Some(Status::Done(
+                        "no file chosen (if no dialog appeared: this desktop has no file-chooser portal or zenity)"
+                            .into(),
+                    ));
+                }
+                Action::Reload => {
+                    let name = self
+                        .files
+                        .source
+                        .files()
+                        .first()
+                        .map_or_else(|| "built-in scene".into(), |p| files::file_name(p));
+                    let done = format!("reloaded {name}");
+                    self.files.reload(self.files.source.clone(), done, self.waker());
+                }
+                Action::Loaded(finished) => {
+                    if let Some((scene, purpose)) = self.files.finish(*finished) {
+                        self.install_scene(scene, purpose);
+                    }
+                }
             }
         }
+    }
+
+    /// A function for worker threads that makes the UI run a frame (to pick up their result).
+    fn waker(&self) -> impl Fn() + Send + 'static {
+        let ctx = self.ctx.clone();
+        move || ctx.request_repaint()
+    }
+
+    /// Re-makes the built-in scene with a new brick-map kernel (in the background, keeping
+    /// the view and any textures in its slots); loaded meshes do not use the kernel.
+    fn rebuild_builtin(&mut self, kernel: Kernel) {
+        let source = &self.files.source;
+        if source.mesh.is_none() && source.kernel != kernel {
+            let source = Source { kernel, ..source.clone() };
+            self.files.reload(source, format!("brick normal map made with {}", kernel.name()), self.waker());
+        }
+    }
+
+    /// Shows a newly loaded scene. A new mesh is framed by its default camera and light; a
+    /// reload keeps camera, light and settings.
+    fn install_scene(&mut self, scene: Scene, purpose: Purpose) {
+        self.renderer.set_scene(&scene, self.state.scene_options);
+        self.uploaded = self.state.scene_options;
+        self.measurements = measure_all(&scene, self.state.scene_options.tangent_method);
+        self.state.default_camera = scene.default_camera;
+        if purpose == Purpose::Open {
+            self.state.camera = scene.default_camera;
+            self.state.light = scene.default_light;
+        }
+        self.scene = scene;
+        self.tracker.invalidate();
+        self.watch_error = self.watcher.watch(&self.files.source.files()).err();
+    }
+
+    /// What arrived from other threads this frame: dropped files, the dialog's answer, settled
+    /// file changes and finished loads.
+    fn arrivals(&mut self, ctx: &egui::Context) -> Vec<Action> {
+        let mut actions = Vec::new();
+        let (dropped, pointer) = ctx.input(|i| {
+            (i.raw.dropped_files.iter().map(|f| f.path().to_owned()).collect::<Vec<_>>(), i.pointer.latest_pos())
+        });
+        if !dropped.is_empty() {
+            let slot =
+                pointer.and_then(|p| self.slot_targets.iter().find(|(_, rect)| rect.contains(p))).map(|(s, _)| *s);
+            actions.push(Action::Open { paths: dropped, slot });
+        }
+        if let Some((slot, path)) = self.dialog.poll() {
+            actions.push(Action::DialogClosed { slot, path });
+        }
+        let now = Instant::now();
+        if self.watcher.changes().iter().any(|path| self.files.source.is_affected_by(path)) {
+            self.files.debouncer.changed(now);
+        }
+        if let Some(finished) = self.files.loader.poll() {
+            actions.push(Action::Loaded(Box::new(finished)));
+        }
+        // A reload waits for a load in flight (which wakes the UI when done), so that it does
+        // not replace a mesh the user is opening.
+        if self.files.loader.busy().is_none() {
+            if self.files.debouncer.fire(now) {
+                actions.push(Action::Reload);
+            } else if let Some(wait) = self.files.debouncer.remaining(now) {
+                ctx.request_repaint_after(wait);
+            }
+        }
+        actions
     }
 
     /// Shows the 3D view filling `ui` and returns what the mouse did to it.
@@ -234,18 +379,15 @@ impl ViewerApp {
         }
     }
 
-    /// Re-makes the normal map (built-in scene only) and the tangent frames when their method
-    /// changed.
+    /// Re-makes the tangent frames (and GPU data) when their method or the bump source
+    /// changed. (A kernel change re-makes the built-in scene: [`Self::rebuild_builtin`].)
     fn apply_methods(&mut self) {
-        let wanted = (self.state.scene_options, self.state.kernel);
+        let wanted = self.state.scene_options;
         if wanted == self.uploaded {
             return;
         }
-        if self.builtin && wanted.1 != self.uploaded.1 {
-            self.scene = teaching_scene_with_kernel(wanted.1);
-        }
-        self.renderer.set_scene(&self.scene, wanted.0);
-        self.measurements = measure_all(&self.scene, wanted.0.tangent_method);
+        self.renderer.set_scene(&self.scene, wanted);
+        self.measurements = measure_all(&self.scene, wanted.tangent_method);
         self.uploaded = wanted;
         self.tracker.invalidate();
     }
@@ -289,6 +431,8 @@ impl eframe::App for ViewerApp {
         // Keys first, so the panel below already shows their effect.
         let keys = input::keyboard(&ctx);
         self.apply(keys);
+        let arrivals = self.arrivals(&ctx);
+        self.apply(arrivals);
         let stats = panel::Stats {
             measurements: &self.measurements,
             adapter: &self.adapter_name,
@@ -296,11 +440,25 @@ impl eframe::App for ViewerApp {
             counters: self.renderer.counters(),
             render_error: self.render_error.as_deref(),
         };
+        let files = files_panel::FilesView {
+            files: &self.files,
+            dialog_open: self.dialog.is_open(),
+            watch_error: self.watch_error.as_deref(),
+            scene: &self.scene,
+            tangents: &self.renderer.tangent_methods(),
+        };
+        let slot_targets = &mut self.slot_targets;
         let mut actions = egui::Panel::left("controls")
             .default_size(270.0)
-            .show(ui, |ui| panel::show(ui, &self.state, &mut self.screenshot, &stats))
+            .show(ui, |ui| {
+                let files_section = |ui: &mut egui::Ui, actions: &mut Vec<Action>| {
+                    *slot_targets = files_panel::show(ui, &files, actions);
+                };
+                panel::show(ui, &self.state, &mut self.screenshot, &stats, files_section)
+            })
             .inner;
         actions.extend(egui::CentralPanel::no_frame().show(ui, |ui| self.view_area(ui)).inner);
+        files_panel::drop_hint(&ctx);
         self.apply(actions);
         self.apply_methods();
         self.animate(&ctx);
@@ -314,6 +472,18 @@ impl eframe::App for ViewerApp {
         // Opaque, so a window screenshot has no see-through pixels.
         visuals.panel_fill.to_normalized_gamma_f32()
     }
+}
+
+/// The source of the scene given on the command line (paths made absolute).
+fn source(inputs: &InputArgs, kernel: Kernel) -> Source {
+    let absolute = |path: &Option<PathBuf>| path.as_ref().map(|p| std::path::absolute(p).unwrap_or_else(|_| p.clone()));
+    let slots = bumpview::load::TextureSlots {
+        color: absolute(&inputs.color),
+        normal: absolute(&inputs.normal),
+        height: absolute(&inputs.height),
+        gloss: absolute(&inputs.gloss),
+    };
+    Source { mesh: absolute(&inputs.mesh), slots, kernel }
 }
 
 /// The chosen tangent method timed and compared with the reference on every mesh.

@@ -4,6 +4,7 @@
 use bumpview::WorkCounters;
 use bumpview::height::Kernel;
 use bumpview::render::BumpSource;
+use bumpview::scene::{GreenAxis, ShadingModel};
 use bumpview::shading::ViewMode;
 use bumpview::tangent::{MethodMeasurement, TangentMethod};
 use bumpview::viewer::{Command, STRENGTH_RANGE, ViewerState};
@@ -23,20 +24,24 @@ pub(super) struct Stats<'a> {
     pub render_error: Option<&'a str>,
 }
 
-/// Shows the whole panel and returns what the user changed.
+/// Shows the whole panel, with the files section ([`super::files_panel`]) drawn by `files`
+/// under the heading, and returns what the user changed.
 pub(super) fn show(
     ui: &mut egui::Ui,
     state: &ViewerState,
     screenshot: &mut ScreenshotForm,
     stats: &Stats,
+    files: impl FnOnce(&mut egui::Ui, &mut Vec<Action>),
 ) -> Vec<Action> {
     let mut actions = Vec::new();
     egui::ScrollArea::vertical().show(ui, |ui| {
         ui.heading("bumpview");
+        files(ui, &mut actions);
         bump_section(ui, state, &mut actions);
         light_section(ui, state, &mut actions);
         view_section(ui, state, &mut actions);
         methods_section(ui, state, stats.measurements, &mut actions);
+        conventions_section(ui, state, &mut actions);
         camera_section(ui, &mut actions);
         screenshot_section(ui, screenshot, &mut actions);
         ui.separator();
@@ -146,6 +151,63 @@ fn methods_section(
             ui.end_row();
         }
     });
+}
+
+/// Normal-map and height-map conventions for every material, and the shading model.
+fn conventions_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
+    ui.separator();
+    ui.strong("Texture conventions and shading");
+    let old = state.scene_options.materials;
+    let mut new = old;
+    let green_name = |g: Option<GreenAxis>| match g {
+        None => "as loaded (OpenGL +Y unless set)",
+        Some(GreenAxis::OpenGl) => "OpenGL (+Y)",
+        Some(GreenAxis::DirectX) => "DirectX (−Y, green flipped)",
+    };
+    egui::ComboBox::from_label("normal map green").selected_text(green_name(new.green)).show_ui(ui, |ui| {
+        for choice in [None, Some(GreenAxis::OpenGl), Some(GreenAxis::DirectX)] {
+            ui.selectable_value(&mut new.green, choice, green_name(choice));
+        }
+    });
+    for (flag, label) in [
+        (&mut new.two_channel, "two-channel (reconstruct z)"),
+        (&mut new.object_space, "object-space normal map (no tangents)"),
+        (&mut new.depth_map, "height map is a depth map (white = deep)"),
+    ] {
+        let mut on = flag.unwrap_or(false);
+        if ui.checkbox(&mut on, label).changed() {
+            *flag = Some(on);
+        }
+    }
+    let mut range_mm = new.height_range_m.map_or(10.0, |m| m * 1e3);
+    let drag = egui::DragValue::new(&mut range_mm).range(0.0..=1000.0).speed(0.1).suffix(" mm");
+    let changed = ui
+        .horizontal(|ui| {
+            let changed = ui.add(drag).changed();
+            ui.label("height map range (metres per full range, shown in mm)");
+            changed
+        })
+        .inner;
+    if changed {
+        new.height_range_m = Some(range_mm * 1e-3);
+    }
+    if new != old {
+        actions.push(Command::SetMaterialOverrides(new).into());
+    }
+    let shading_name = |m: Option<ShadingModel>| match m {
+        None => "auto (glTF: metallic-roughness, else Blinn-Phong)",
+        Some(ShadingModel::BlinnPhong) => "Blinn-Phong",
+        Some(ShadingModel::MetallicRoughness) => "metallic-roughness (GGX + sky)",
+    };
+    let mut shading = state.shading.shading_override;
+    egui::ComboBox::from_label("shading").selected_text(shading_name(shading)).show_ui(ui, |ui| {
+        for choice in [None, Some(ShadingModel::BlinnPhong), Some(ShadingModel::MetallicRoughness)] {
+            ui.selectable_value(&mut shading, choice, shading_name(choice));
+        }
+    });
+    if shading != state.shading.shading_override {
+        actions.push(Command::SetShadingOverride(shading).into());
+    }
 }
 
 /// The panel's name for a view mode.

@@ -18,7 +18,9 @@ use glam::{Mat4, Vec3, Vec4};
 use super::gltf_mesh::{UvChoice, primitive_mesh};
 use super::image::decode_texture;
 use crate::error::LoadError;
-use crate::scene::{Instance, Material, NormalMap, Scene, TextureImage, TextureKind};
+use crate::scene::{
+    Instance, Material, NormalMap, Occlusion, SamplerWrap, Scene, ShadingModel, TextureImage, TextureKind, Wrap,
+};
 
 /// Extensions a file may list in `extensionsRequired`.
 const SUPPORTED_REQUIRED: [&str; 1] = ["KHR_texture_transform"];
@@ -82,8 +84,15 @@ fn parse(bytes: &[u8], path: &Path) -> Result<(gltf::Document, Option<Vec<u8>>),
     if let Some(missing) = gltf.extensions_required().find(|e| !SUPPORTED_REQUIRED.contains(e)) {
         return Err(LoadError::new(path, format!("requires the glTF extension {missing}, which is not supported")));
     }
-    let document =
-        gltf::Document::from_json(gltf.document.into_json()).map_err(|e| LoadError::new(path, describe(e)))?;
+    let root = gltf.document.into_json();
+    // gltf-json's validation indexes `accessors` with a primitive's POSITION accessor
+    // unchecked (it panics on an index out of range): check attribute indices first.
+    let attributes = root.meshes.iter().flat_map(|m| &m.primitives).flat_map(|p| p.attributes.values());
+    if let Some(bad) = attributes.map(|a| a.value()).find(|&a| a >= root.accessors.len()) {
+        let count = root.accessors.len();
+        return Err(LoadError::new(path, format!("a primitive attribute names accessor {bad}, but there are {count}")));
+    }
+    let document = gltf::Document::from_json(root).map_err(|e| LoadError::new(path, describe(e)))?;
     Ok((document, gltf.blob))
 }
 
@@ -174,21 +183,23 @@ impl Loader<'_> {
         Ok(())
     }
 
-    /// The scene material for a glTF material, made once. Metallic and roughness (their
-    /// factors times the mean of the metallic-roughness texture's blue and green, as the
-    /// Blinn-Phong material has no per-texel gloss yet) map to Blinn-Phong:
-    /// `k_s = mix(0.04, base colour, metallic)` and exponent `2/α² − 2` with `α = roughness²`
-    /// (the usual Beckmann↔Phong match).
+    /// The scene material for a glTF material, made once, shaded by metallic-roughness. For
+    /// the Blinn-Phong lecture model, metallic and roughness (their factors times the mean of
+    /// the metallic-roughness texture's blue and green) map to `k_s = mix(0.04, base colour,
+    /// metallic)` and exponent `2/α² − 2` with `α = roughness²` (the usual Beckmann↔Phong
+    /// match). Samplers: the base colour texture's, and the normal map's (else the
+    /// metallic-roughness texture's) for the other slots.
     fn material(&mut self, material: gltf::Material) -> Result<usize, LoadError> {
         if let Some(&index) = self.materials.get(&material.index()) {
             return Ok(index);
         }
         let pbr = material.pbr_metallic_roughness();
         let base = Vec4::from(pbr.base_color_factor());
-        let texture_mean = match pbr.metallic_roughness_texture() {
-            Some(info) => mean_rgb(&self.decode(info.texture(), TextureKind::NormalMap)?),
-            None => Vec3::ONE,
+        let metallic_roughness_texture = match pbr.metallic_roughness_texture() {
+            Some(info) => Some(self.texture(info.texture(), TextureKind::Data)?),
+            None => None,
         };
+        let texture_mean = metallic_roughness_texture.map_or(Vec3::ONE, |t| mean_rgb(&self.scene.textures[t]));
         let metallic = (pbr.metallic_factor() * texture_mean.z).clamp(0.0, 1.0);
         let alpha = (pbr.roughness_factor() * texture_mean.y).clamp(0.0, 1.0).powi(2).max(1e-3);
         let base_color_texture = match pbr.base_color_texture() {
@@ -196,22 +207,37 @@ impl Loader<'_> {
             None => None,
         };
         let normal_map = match material.normal_texture() {
-            Some(normal) => Some(NormalMap {
-                texture: self.texture(normal.texture(), TextureKind::NormalMap)?,
-                scale: normal.scale(),
-            }),
+            Some(normal) => {
+                Some(NormalMap::new(self.texture(normal.texture(), TextureKind::NormalMap)?, normal.scale()))
+            }
             None => None,
         };
+        let occlusion = match material.occlusion_texture() {
+            Some(info) => {
+                Some(Occlusion { texture: self.texture(info.texture(), TextureKind::Data)?, strength: info.strength() })
+            }
+            None => None,
+        };
+        let detail_sampler = material
+            .normal_texture()
+            .map(|n| n.texture().sampler())
+            .or_else(|| pbr.metallic_roughness_texture().map(|i| i.texture().sampler()));
         self.scene.materials.push(Material {
             name: material.name().unwrap_or("material").to_owned(),
             base_color_factor: base,
             base_color_texture,
             normal_map,
-            height_map: None,
-            gloss_texture: None,
             specular: Vec3::splat(0.04).lerp(base.truncate(), metallic),
             shininess: (2.0 / (alpha * alpha) - 2.0).clamp(*SHININESS.start(), *SHININESS.end()),
             double_sided: material.double_sided(),
+            shading_model: ShadingModel::MetallicRoughness,
+            metallic: pbr.metallic_factor().clamp(0.0, 1.0),
+            roughness: pbr.roughness_factor().clamp(0.0, 1.0),
+            metallic_roughness_texture,
+            occlusion,
+            base_color_wrap: pbr.base_color_texture().map_or_else(Default::default, |i| wrap(&i.texture().sampler())),
+            detail_wrap: detail_sampler.map_or_else(Default::default, |s| wrap(&s)),
+            ..Material::default()
         });
         let index = self.scene.materials.len() - 1;
         self.materials.insert(material.index(), index);
@@ -247,6 +273,16 @@ impl Loader<'_> {
         };
         decode_texture(&bytes, &file, kind)
     }
+}
+
+/// A glTF sampler's wrap modes.
+fn wrap(sampler: &gltf::texture::Sampler) -> SamplerWrap {
+    let mode = |m| match m {
+        gltf::texture::WrappingMode::ClampToEdge => Wrap::ClampToEdge,
+        gltf::texture::WrappingMode::MirroredRepeat => Wrap::MirroredRepeat,
+        gltf::texture::WrappingMode::Repeat => Wrap::Repeat,
+    };
+    SamplerWrap { u: mode(sampler.wrap_s()), v: mode(sampler.wrap_t()) }
 }
 
 /// The mean of a texture's red, green and blue, each in 0..1.

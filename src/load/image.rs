@@ -40,7 +40,7 @@ pub fn decode_texture(bytes: &[u8], path: &Path, kind: TextureKind) -> Result<Te
 /// Converts a decoded image to the texture layout of `kind`.
 pub fn to_texture(image: &DynamicImage, name: String, kind: TextureKind) -> TextureImage {
     let rgba = match kind {
-        TextureKind::Color | TextureKind::NormalMap => image.to_rgba8().into_raw(),
+        TextureKind::Color | TextureKind::NormalMap | TextureKind::Data => image.to_rgba8().into_raw(),
         // Height = luminance at 16 bits (white = high).
         TextureKind::Height => image
             .to_luma16()

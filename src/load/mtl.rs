@@ -24,13 +24,9 @@ fn default_material(name: &str) -> Material {
     Material {
         name: name.to_owned(),
         base_color_factor: Vec4::new(0.8, 0.8, 0.8, 1.0),
-        base_color_texture: None,
-        normal_map: None,
-        height_map: None,
-        gloss_texture: None,
         specular: Vec3::ZERO,
         shininess: 32.0,
-        double_sided: false,
+        ..Material::default()
     }
 }
 
@@ -108,7 +104,7 @@ fn parse(text: &str, path: &Path, scene: &mut Scene, names: &mut HashMap<String,
                 scene.materials[material_index].base_color_texture = Some(texture);
             }
             "map_ks" | "map_ns" => {
-                let texture = add(scene, load_texture(&map()?.path, TextureKind::NormalMap)?);
+                let texture = add(scene, load_texture(&map()?.path, TextureKind::Data)?);
                 scene.materials[material_index].gloss_texture = Some(texture);
             }
             "norm" | "map_bump" | "bump" => {
@@ -117,7 +113,7 @@ fn parse(text: &str, path: &Path, scene: &mut Scene, names: &mut HashMap<String,
                 if lower == "norm" || looks_like_normal_map(&image) {
                     let texture = add(scene, image);
                     scene.materials[material_index].normal_map =
-                        Some(NormalMap { texture, scale: reference.bump_multiplier });
+                        Some(NormalMap::new(texture, reference.bump_multiplier));
                 } else {
                     let heights = load_texture(&reference.path, TextureKind::Height)?;
                     add_height_map(scene, &[material_index], heights, reference.bump_multiplier);

@@ -5,12 +5,9 @@ use std::path::PathBuf;
 
 use super::image::load_texture;
 use crate::error::LoadError;
-use crate::height::{Border, HeightField, Kernel};
-use crate::scene::{HeightMap, NormalMap, Scene, TextureImage, TextureKind, decode_height};
+use crate::scene::material::TEXTURE_SPAN_M;
+use crate::scene::{HeightMap, NormalMap, Scene, TextureImage, TextureKind};
 
-/// Metres one UV unit spans for a texture from a file (files carry no unit; the built-in
-/// bricks use the same, [`crate::scene::builtin::BRICK_TILE_M`]).
-pub const TEXTURE_SPAN_M: f32 = 1.0;
 /// Metres the full range of a height map from a file spans (times an MTL `-bm`).
 pub const HEIGHT_RANGE_M: f32 = 0.01;
 
@@ -48,29 +45,21 @@ pub fn replace_textures(scene: &mut Scene, slots: &TextureSlots) -> Result<(), L
         Ok::<(), LoadError>(())
     };
     each(&slots.color, TextureKind::Color, |m, t| m.base_color_texture = Some(t))?;
-    each(&slots.normal, TextureKind::NormalMap, |m, t| m.normal_map = Some(NormalMap { texture: t, scale: 1.0 }))?;
-    each(&slots.gloss, TextureKind::NormalMap, |m, t| m.gloss_texture = Some(t))?;
+    each(&slots.normal, TextureKind::NormalMap, |m, t| m.normal_map = Some(NormalMap::new(t, 1.0)))?;
+    each(&slots.gloss, TextureKind::Data, |m, t| m.gloss_texture = Some(t))?;
     Ok(())
 }
 
 /// Puts a [`TextureKind::Height`] texture into the height map slot of `materials`, spanning
-/// `multiplier ·` [`HEIGHT_RANGE_M`] metres, and the normal map made from it (central
-/// differences, wrapping) into its normal map slot.
+/// `multiplier ·` [`HEIGHT_RANGE_M`] metres, and the normal map made from it with the slot's
+/// settings ([`HeightMap::new`]: central differences, wrapping) into its normal map slot.
 pub fn add_height_map(scene: &mut Scene, materials: &[usize], heights: TextureImage, multiplier: f32) {
     let range_m = HEIGHT_RANGE_M * if multiplier.is_finite() { multiplier } else { 1.0 };
-    let field = HeightField {
-        width: heights.width,
-        height: heights.height,
-        samples: heights.rgba.chunks_exact(4).map(|t| decode_height(t[0], t[1])).collect(),
-        range_m,
-        texel_size_m: TEXTURE_SPAN_M / heights.width as f32,
-    };
-    let normal_map =
-        field.to_normal_map(Kernel::CentralDifference, Border::Wrap, &format!("{} (normals)", heights.name));
+    let slot = HeightMap::new(scene.textures.len() + 1, range_m);
+    let normal_map = slot.to_normal_map(&heights, TEXTURE_SPAN_M);
     scene.textures.extend([normal_map, heights]);
-    let count = scene.textures.len();
     for &m in materials {
-        scene.materials[m].normal_map = Some(NormalMap { texture: count - 2, scale: 1.0 });
-        scene.materials[m].height_map = Some(HeightMap { texture: count - 1, range_m });
+        scene.materials[m].normal_map = Some(NormalMap::new(slot.texture - 1, 1.0));
+        scene.materials[m].height_map = Some(slot.clone());
     }
 }

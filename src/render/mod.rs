@@ -12,7 +12,7 @@ use glam::Mat4;
 
 use crate::counters::WorkCounters;
 use crate::error::RenderError;
-use crate::scene::{Light, OrbitCamera, Scene};
+use crate::scene::{Light, MaterialOverrides, OrbitCamera, Scene};
 use crate::shading::{ShadingSettings, ViewMode};
 use crate::tangent::TangentMethod;
 pub use gpu::Gpu;
@@ -56,11 +56,13 @@ impl BumpSource {
 }
 
 /// How a scene is prepared for drawing: changing these re-makes GPU data.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SceneOptions {
     /// Tangent frames by this method; `None`: the mesh's own, else MikkTSpace.
     pub tangent_method: Option<TangentMethod>,
     pub bump_source: BumpSource,
+    /// Normal- and height-map conventions that replace every material's own.
+    pub materials: MaterialOverrides,
 }
 
 /// Where to draw: a view of a 2D texture of `format`, `size` pixels.
@@ -139,9 +141,16 @@ impl Renderer {
         &self.queue
     }
 
-    /// Replaces the scene: makes the tangent frames it needs and uploads what it uses, as
-    /// `options` say.
+    /// Replaces the scene: applies the material overrides to a copy, makes the tangent
+    /// frames it needs and uploads what it uses, as `options` say.
     pub fn set_scene(&mut self, scene: &Scene, options: SceneOptions) {
+        let overridden;
+        let scene = if options.materials.is_empty() {
+            scene
+        } else {
+            overridden = options.materials.applied_to(scene);
+            &overridden
+        };
         let layouts = &self.pipelines.layouts;
         let gpu = scene_gpu::upload(&self.device, &self.queue, layouts, scene, options, &mut self.counters);
         self.scene = Some(gpu);

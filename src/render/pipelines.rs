@@ -5,8 +5,13 @@ use std::collections::HashMap;
 
 use crate::counters::WorkCounters;
 
-/// Shader sources, embedded at build time; frame.wgsl is the shared Frame uniform.
-pub const MESH_WGSL: &str = concat!(include_str!("../../shaders/frame.wgsl"), include_str!("../../shaders/mesh.wgsl"));
+/// Shader sources, embedded at build time; frame.wgsl is the shared Frame uniform, pbr.wgsl
+/// the metallic-roughness shading the mesh shader calls.
+pub const MESH_WGSL: &str = concat!(
+    include_str!("../../shaders/frame.wgsl"),
+    include_str!("../../shaders/pbr.wgsl"),
+    include_str!("../../shaders/mesh.wgsl")
+);
 pub const MARKER_WGSL: &str =
     concat!(include_str!("../../shaders/frame.wgsl"), include_str!("../../shaders/marker.wgsl"));
 
@@ -19,8 +24,10 @@ pub enum Variant {
     Plain,
     /// Adds the tangent stream (tangents supplied by the mesh, shown in the T/B views).
     Tangent,
-    /// Adds the tangent stream and the normal map.
+    /// Adds the tangent stream and the (tangent-space) normal map.
     NormalMapped,
+    /// No tangent stream; an object-space normal map.
+    ObjectSpace,
     /// No tangent stream; the height map, differentiated in screen space.
     HeightBump,
 }
@@ -52,7 +59,9 @@ pub struct PipelineKey {
     pub samples: u32,
 }
 
-/// Bind group layouts: group 0 is the frame, group 1 the object and its material.
+/// Bind group layouts: group 0 is the frame, group 1 the object and its material: 0 object
+/// uniform, 1 base colour texture, 2 its sampler, 3 normal or height map (bump layouts
+/// only), 4 the sampler of 3, 5 and 6, 5 metallic-roughness texture, 6 occlusion texture.
 pub struct Layouts {
     pub frame: wgpu::BindGroupLayout,
     pub plain_material: wgpu::BindGroupLayout,
@@ -100,8 +109,23 @@ impl Layouts {
         let layout = |label: &str, entries: &[wgpu::BindGroupLayoutEntry]| {
             device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries })
         };
-        let plain = [uniform_entry(0), texture_entry(1), sampler_entry(2)];
-        let normal_mapped = [uniform_entry(0), texture_entry(1), sampler_entry(2), texture_entry(3)];
+        let plain = [
+            uniform_entry(0),
+            texture_entry(1),
+            sampler_entry(2),
+            sampler_entry(4),
+            texture_entry(5),
+            texture_entry(6),
+        ];
+        let normal_mapped = [
+            uniform_entry(0),
+            texture_entry(1),
+            sampler_entry(2),
+            texture_entry(3),
+            sampler_entry(4),
+            texture_entry(5),
+            texture_entry(6),
+        ];
         Layouts {
             frame: layout("frame", &[uniform_entry(0)]),
             plain_material: layout("plain material", &plain),
@@ -114,7 +138,7 @@ impl Layouts {
     pub fn material(&self, variant: Variant) -> &wgpu::BindGroupLayout {
         match variant {
             Variant::Plain | Variant::Tangent => &self.plain_material,
-            Variant::NormalMapped | Variant::HeightBump => &self.normal_mapped_material,
+            Variant::NormalMapped | Variant::ObjectSpace | Variant::HeightBump => &self.normal_mapped_material,
         }
     }
 }
@@ -201,6 +225,7 @@ impl Pipelines {
                         Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
                         Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
                         Variant::NormalMapped => ("vs_tangent", "fs_normal_mapped", &[POSITION, NORMAL, UV, TANGENT]),
+                        Variant::ObjectSpace => ("vs_plain", "fs_object_space", &[POSITION, NORMAL, UV]),
                         Variant::HeightBump => ("vs_plain", "fs_height_bump", &[POSITION, NORMAL, UV]),
                     };
                     let cull = cull_back_faces.then_some(wgpu::Face::Back);
@@ -281,6 +306,8 @@ mod tests {
                     "fs_plain",
                     "fs_tangent",
                     "fs_normal_mapped",
+                    "fs_object_space",
+                    "fs_height_bump",
                     "vs_difference",
                     "fs_difference",
                 ],

@@ -8,7 +8,7 @@ use super::pipelines::{Layouts, Pass, Variant};
 use super::uniforms::ObjectUniform;
 use super::{BumpSource, SceneOptions};
 use crate::counters::WorkCounters;
-use crate::scene::{Mesh, Scene, TextureImage, TextureKind};
+use crate::scene::{Mesh, NormalSpace, SamplerWrap, Scene, TextureImage, TextureKind, Wrap};
 use crate::tangent::{self, TangentMethod};
 
 pub struct GpuMesh {
@@ -81,7 +81,7 @@ impl TextureCache<'_> {
     fn upload(&self, image: &TextureImage, counters: &mut WorkCounters) -> wgpu::TextureView {
         let format = match image.kind {
             TextureKind::Color => wgpu::TextureFormat::Rgba8UnormSrgb,
-            TextureKind::NormalMap | TextureKind::Height => wgpu::TextureFormat::Rgba8Unorm,
+            TextureKind::NormalMap | TextureKind::Height | TextureKind::Data => wgpu::TextureFormat::Rgba8Unorm,
         };
         let mips = image.mip_chain();
         let texture = self.device.create_texture(&wgpu::TextureDescriptor {
@@ -139,20 +139,54 @@ impl TextureCache<'_> {
 }
 
 /// The variant an instance is drawn with: bumped in the shader from the height map when
-/// that is the source and the material has one; normal-mapped when the material has a normal
-/// map; with the tangent stream when the mesh supplies tangents; else plain. Bump needs UVs.
+/// that is the source and the material has one; with an object-space or tangent-space normal
+/// map when the material has one; with the tangent stream when the mesh supplies tangents;
+/// else plain. Bump needs UVs.
 fn variant_of(scene: &Scene, mesh: usize, material: usize, bump_source: BumpSource) -> Variant {
     let mesh = &scene.meshes[mesh];
     let material = &scene.materials[material];
     let has_uvs = mesh.uvs.len() == mesh.positions.len();
     if bump_source == BumpSource::HeightInShader && material.height_map.is_some() && has_uvs {
         Variant::HeightBump
-    } else if material.normal_map.is_some() && has_uvs {
-        Variant::NormalMapped
+    } else if let Some(map) = material.normal_map.as_ref().filter(|_| has_uvs) {
+        match map.convention.space {
+            NormalSpace::Tangent => Variant::NormalMapped,
+            NormalSpace::Object => Variant::ObjectSpace,
+        }
     } else if mesh.tangents.as_ref().is_some_and(|t| t.len() == mesh.positions.len()) {
         Variant::Tangent
     } else {
         Variant::Plain
+    }
+}
+
+/// Samplers by wrap mode, made on first use (linear filtering, trilinear mips).
+#[derive(Default)]
+struct SamplerCache {
+    made: Vec<(SamplerWrap, wgpu::Sampler)>,
+}
+
+impl SamplerCache {
+    fn get(&mut self, device: &wgpu::Device, wrap: SamplerWrap) -> wgpu::Sampler {
+        if let Some((_, sampler)) = self.made.iter().find(|(w, _)| *w == wrap) {
+            return sampler.clone();
+        }
+        let mode = |w| match w {
+            Wrap::Repeat => wgpu::AddressMode::Repeat,
+            Wrap::ClampToEdge => wgpu::AddressMode::ClampToEdge,
+            Wrap::MirroredRepeat => wgpu::AddressMode::MirrorRepeat,
+        };
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("material"),
+            address_mode_u: mode(wrap.u),
+            address_mode_v: mode(wrap.v),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            ..Default::default()
+        });
+        self.made.push((wrap, sampler.clone()));
+        sampler
     }
 }
 
@@ -206,15 +240,7 @@ pub fn upload(
         })
         .collect();
 
-    let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-        label: Some("material"),
-        address_mode_u: wgpu::AddressMode::Repeat,
-        address_mode_v: wgpu::AddressMode::Repeat,
-        mag_filter: wgpu::FilterMode::Linear,
-        min_filter: wgpu::FilterMode::Linear,
-        mipmap_filter: wgpu::MipmapFilterMode::Linear,
-        ..Default::default()
-    });
+    let mut samplers = SamplerCache::default();
     let mut textures = TextureCache { device, queue, views: vec![None; scene.textures.len()], white: None };
     let instances = scene
         .instances
@@ -228,14 +254,29 @@ pub fn upload(
                 Some(t) => textures.get(scene, t, counters),
                 None => textures.white(counters),
             };
+            // Without a metallic-roughness or occlusion texture the base colour view stands in
+            // (no upload); the shader then ignores it (flag, occlusion strength 0).
+            let mut optional = |slot: Option<usize>| match slot {
+                Some(t) => textures.get(scene, t, counters),
+                None => base_color.clone(),
+            };
+            let metallic_roughness = optional(material.metallic_roughness_texture);
+            let occlusion = optional(material.occlusion.as_ref().map(|o| o.texture));
+            let base_sampler = samplers.get(device, material.base_color_wrap);
+            let detail_sampler = samplers.get(device, material.detail_wrap);
             let mut entries = vec![
                 wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&base_color) },
-                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&sampler) },
+                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&base_sampler) },
+                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::Sampler(&detail_sampler) },
+                wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(&metallic_roughness) },
+                wgpu::BindGroupEntry { binding: 6, resource: wgpu::BindingResource::TextureView(&occlusion) },
             ];
             // Binding 3: the normal map or the height map, as the variant needs.
             let bump_texture = match (variant, &material.normal_map, &material.height_map) {
-                (Variant::NormalMapped, Some(map), _) => Some(textures.get(scene, map.texture, counters)),
+                (Variant::NormalMapped | Variant::ObjectSpace, Some(map), _) => {
+                    Some(textures.get(scene, map.texture, counters))
+                }
                 (Variant::HeightBump, _, Some(map)) => Some(textures.get(scene, map.texture, counters)),
                 _ => None,
             };

@@ -21,7 +21,8 @@ pub struct FrameUniform {
     view_mode: u32,
     self_shadow_fade: f32,
     difference_range_deg: f32,
-    _pad: [f32; 3],
+    shading_override: u32,
+    _pad: [f32; 2],
 }
 
 impl FrameUniform {
@@ -37,7 +38,8 @@ impl FrameUniform {
             view_mode: params.shading.view.shader_index(),
             self_shadow_fade: SELF_SHADOW_FADE,
             difference_range_deg: params.shading.difference_range_deg,
-            _pad: [0.0; 3],
+            shading_override: params.shading.shading_override.map_or(0, |m| 1 + m.shader_index()),
+            _pad: [0.0; 2],
         }
     }
 }
@@ -53,8 +55,19 @@ pub struct ObjectUniform {
     handedness: f32,
     normal_scale: f32,
     height_range_m: f32,
-    _pad: f32,
+    flags: u32,
+    metallic: f32,
+    roughness: f32,
+    occlusion_strength: f32,
+    shading_model: u32,
 }
+
+/// Bit of `flags` beside [`crate::scene::NormalConvention::flags`]: the height map stores
+/// depth (white = deep).
+const DEPTH_MAP: u32 = 8;
+/// Bit of `flags`: binding 5 holds the material's metallic-roughness texture (else a
+/// placeholder the shader ignores).
+const HAS_METALLIC_ROUGHNESS: u32 = 16;
 
 impl ObjectUniform {
     /// Normals go through the inverse-transpose of the model matrix; tangent `w` is
@@ -72,7 +85,13 @@ impl ObjectUniform {
             handedness: if determinant < 0.0 { -1.0 } else { 1.0 },
             normal_scale: material.normal_map.as_ref().map_or(1.0, |n| n.scale),
             height_range_m: material.height_map.as_ref().map_or(0.0, |h| h.range_m),
-            _pad: 0.0,
+            flags: material.normal_map.as_ref().map_or(0, |n| n.convention.flags())
+                | if material.height_map.as_ref().is_some_and(|h| h.depth) { DEPTH_MAP } else { 0 }
+                | if material.metallic_roughness_texture.is_some() { HAS_METALLIC_ROUGHNESS } else { 0 },
+            metallic: material.metallic,
+            roughness: material.roughness,
+            occlusion_strength: material.occlusion.as_ref().map_or(0.0, |o| o.strength),
+            shading_model: material.shading_model.shader_index(),
         }
     }
 }

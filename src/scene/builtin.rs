@@ -143,12 +143,12 @@ pub fn teaching_scene_with_kernel(kernel: Kernel) -> Scene {
         name: "bricks".into(),
         base_color_factor: Vec4::ONE,
         base_color_texture: Some(0),
-        normal_map: Some(NormalMap { texture: 1, scale: 1.0 }),
-        height_map: Some(HeightMap { texture: 2, range_m: height.range_m }),
-        gloss_texture: None,
+        normal_map: Some(NormalMap::new(1, 1.0)),
+        height_map: Some(HeightMap { kernel, ..HeightMap::new(2, height.range_m) }),
         specular: Vec3::splat(0.25),
         shininess: 32.0,
         double_sided: true,
+        ..Material::default()
     };
     let torus_material = Material { double_sided: false, ..bricks.clone() };
     Scene {

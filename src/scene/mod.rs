@@ -4,11 +4,18 @@
 pub mod bricks;
 pub mod builtin;
 pub mod camera;
+pub mod material;
+pub mod overrides;
 pub mod texture;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
 pub use camera::OrbitCamera;
+pub use material::{
+    GreenAxis, HeightMap, Material, NormalConvention, NormalMap, NormalSpace, Occlusion, SamplerWrap, ShadingModel,
+    Wrap,
+};
+pub use overrides::MaterialOverrides;
 pub use texture::{TextureImage, TextureKind, decode_height, encode_height};
 
 /// Indexed triangle mesh in its own (model) space.
@@ -28,42 +35,6 @@ pub struct Mesh {
     pub analytic_tangents: Option<Vec<Vec4>>,
     /// Three indices per triangle, counter-clockwise front faces.
     pub indices: Vec<u32>,
-}
-
-/// A tangent-space normal map slot with its glTF `scale` (bump strength multiplier).
-#[derive(Debug, Clone, PartialEq)]
-pub struct NormalMap {
-    pub texture: usize,
-    pub scale: f32,
-}
-
-/// A height map slot: a [`TextureKind::Height`] texture and the metres its full range spans.
-#[derive(Debug, Clone, PartialEq)]
-pub struct HeightMap {
-    pub texture: usize,
-    pub range_m: f32,
-}
-
-/// Blinn-Phong material. Texture fields index [`Scene::textures`].
-#[derive(Debug, Clone, PartialEq)]
-pub struct Material {
-    pub name: String,
-    /// Linear RGBA multiplier of the base colour texture.
-    pub base_color_factor: Vec4,
-    /// sRGB colour texture.
-    pub base_color_texture: Option<usize>,
-    pub normal_map: Option<NormalMap>,
-    /// Heights for bump mapping in the shader (white = high).
-    pub height_map: Option<HeightMap>,
-    /// Linear gloss/specular map (OBJ `map_Ks`/`map_Ns`, `--gloss`): loaded and kept with the
-    /// material; the Blinn-Phong shader does not read it yet.
-    pub gloss_texture: Option<usize>,
-    /// Linear specular colour k_s.
-    pub specular: Vec3,
-    /// Blinn-Phong exponent (≥ 1).
-    pub shininess: f32,
-    /// Draw back faces too, with the frame flipped.
-    pub double_sided: bool,
 }
 
 /// One placed mesh: indices into [`Scene::meshes`] and [`Scene::materials`], and its
@@ -91,7 +62,8 @@ pub struct Scene {
     pub materials: Vec<Material>,
     pub textures: Vec<TextureImage>,
     pub instances: Vec<Instance>,
-    /// Linear RGB ambient light, multiplied by the albedo.
+    /// Linear RGB ambient light, multiplied by the albedo (Blinn-Phong; metallic-roughness
+    /// materials take their ambient light from the procedural sky instead).
     pub ambient: Vec3,
     /// The light a new view starts with.
     pub default_light: Light,
@@ -133,12 +105,5 @@ impl Mesh {
             analytic_tangents: frames(&self.analytic_tangents),
             indices: (0..self.indices.len() as u32).collect(),
         }
-    }
-}
-
-impl Material {
-    /// Whether drawing this material needs per-vertex tangents.
-    pub fn needs_tangents(&self) -> bool {
-        self.normal_map.is_some()
     }
 }

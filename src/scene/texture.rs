@@ -15,6 +15,8 @@ pub enum TextureKind {
     /// `h = (256·255·r + 255·g) / 65535` for r, g in 0..1 — linear in r and g, so texture
     /// filtering of the two channels filters the height. See [`encode_height`].
     Height,
+    /// Linear data, each channel on its own (metallic-roughness, occlusion, gloss).
+    Data,
 }
 
 /// The red and green bytes of a height in 0..1 ([`TextureKind::Height`]).
@@ -69,6 +71,10 @@ impl TextureImage {
                         }) / 4.0;
                         mean.map(linear_to_srgb)
                     }),
+                    TextureKind::Data => Some(
+                        texels.iter().fold(Vec3::ZERO, |acc, t| acc + Vec3::new(t[0] as f32, t[1] as f32, t[2] as f32))
+                            / (4.0 * 255.0),
+                    ),
                     TextureKind::NormalMap => Some({
                         let sum = texels.iter().fold(Vec3::ZERO, |acc, t| {
                             acc + Vec3::new(t[0] as f32, t[1] as f32, t[2] as f32) / 127.5 - 1.0

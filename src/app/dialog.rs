@@ -1,0 +1,99 @@
+//! The native file dialog (the `rfd` crate), run on its own thread so the window keeps
+//! drawing while it is open.
+
+use std::path::PathBuf;
+use std::sync::mpsc;
+
+use super::files::Slot;
+
+/// Mesh files the dialog offers.
+const MESH_FILTER: [&str; 3] = ["gltf", "glb", "obj"];
+/// Texture files the dialog offers.
+const IMAGE_FILTER: [&str; 5] = ["png", "jpg", "jpeg", "tga", "bmp"];
+
+/// At most one open dialog and where its answer arrives.
+#[derive(Default)]
+pub struct Dialog {
+    /// The slot the open dialog is for (`None`: any mesh or texture), and its answer.
+    open: Option<(Option<Slot>, mpsc::Receiver<Option<PathBuf>>)>,
+}
+
+impl Dialog {
+    /// Whether a dialog is showing.
+    pub fn is_open(&self) -> bool {
+        self.open.is_some()
+    }
+
+    /// Shows a dialog for a mesh or texture (`slot = None`) or for a texture for `slot`,
+    /// starting in `folder`; `wake` is called from the dialog's thread when it closes. The
+    /// error says why no dialog can be shown.
+    pub fn show(
+        &mut self,
+        slot: Option<Slot>,
+        folder: Option<PathBuf>,
+        wake: impl Fn() + Send + 'static,
+    ) -> Result<(), String> {
+        if self.is_open() {
+            return Err("a file dialog is already open".into());
+        }
+        available()?;
+        let mut dialog = match slot {
+            None => rfd::FileDialog::new()
+                .set_title("Open a mesh or a texture")
+                .add_filter("Meshes and textures", &[MESH_FILTER.as_slice(), &IMAGE_FILTER].concat())
+                .add_filter("Meshes (glTF, OBJ)", &MESH_FILTER)
+                .add_filter("Textures", &IMAGE_FILTER),
+            Some(slot) => rfd::FileDialog::new()
+                .set_title(format!("Open a texture for the {} slot", slot.label()))
+                .add_filter("Textures", &IMAGE_FILTER),
+        };
+        if let Some(folder) = folder {
+            dialog = dialog.set_directory(folder);
+        }
+        let (sender, answer) = mpsc::channel();
+        std::thread::Builder::new()
+            .name("bumpview-dialog".into())
+            .spawn(move || {
+                let _ = sender.send(dialog.pick_file());
+                wake();
+            })
+            .map_err(|e| format!("could not start the file dialog: {e}"))?;
+        self.open = Some((slot, answer));
+        Ok(())
+    }
+
+    /// The dialog's answer once it has closed: its slot and the chosen file (`None`:
+    /// cancelled, or no dialog could be shown).
+    pub fn poll(&mut self) -> Option<(Option<Slot>, Option<PathBuf>)> {
+        let (slot, answer) = self.open.as_ref()?;
+        let chosen = match answer.try_recv() {
+            Ok(chosen) => chosen,
+            Err(mpsc::TryRecvError::Empty) => return None,
+            Err(mpsc::TryRecvError::Disconnected) => None,
+        };
+        let slot = *slot;
+        self.open = None;
+        Some((slot, chosen))
+    }
+}
+
+/// On Linux and the BSDs rfd asks the XDG desktop portal over the D-Bus session bus, then
+/// falls back to `zenity`; with neither there is no dialog, and rfd would only log it.
+#[cfg(all(unix, not(target_os = "macos")))]
+fn available() -> Result<(), String> {
+    let zenity = std::env::var_os("PATH")
+        .is_some_and(|path| std::env::split_paths(&path).any(|dir| dir.join("zenity").is_file()));
+    if zenity || std::env::var_os("DBUS_SESSION_BUS_ADDRESS").is_some() {
+        Ok(())
+    } else {
+        Err("no file dialog here (no D-Bus session for the desktop portal and no zenity): drop the \
+             file on the window or give it on the command line"
+            .into())
+    }
+}
+
+/// Windows and macOS always have their native dialogs.
+#[cfg(not(all(unix, not(target_os = "macos"))))]
+fn available() -> Result<(), String> {
+    Ok(())
+}

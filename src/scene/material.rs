@@ -1,0 +1,240 @@
+//! Materials and their texture slots, with the conventions a slot's texture follows
+//! (normal-map convention, height-map settings, sampler wrap modes) and the shading model.
+
+use glam::{Vec3, Vec4};
+
+use super::{TextureImage, decode_height};
+use crate::height::{Border, HeightField, Kernel};
+
+/// Metres one UV unit spans for a texture from a file (files carry no unit; the built-in
+/// bricks use the same, [`super::builtin::BRICK_TILE_M`]).
+pub const TEXTURE_SPAN_M: f32 = 1.0;
+
+/// Which way a tangent-space normal map's green channel points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum GreenAxis {
+    /// +Y = green = up the image (OpenGL, Blender, glTF): the crate convention.
+    #[default]
+    OpenGl,
+    /// +Y = green = down the image (DirectX, Unreal, 3ds Max): green is flipped on decode.
+    DirectX,
+}
+
+/// The space a normal map's vectors are in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum NormalSpace {
+    /// Tangent space: `x` along T, `y` along B, `z` along the geometric normal.
+    #[default]
+    Tangent,
+    /// Object (model) space: the decoded vector is a model-space normal, taken to world space
+    /// by the normal matrix (inverse-transpose of the model matrix). No tangents are needed.
+    Object,
+}
+
+/// How a normal map's texels decode to a unit vector (crate conventions: linear,
+/// `n = 2·rgb − 1`). The shader receives it as [`NormalConvention::flags`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct NormalConvention {
+    pub green: GreenAxis,
+    /// Only red and green are stored (BC5-style): `z = sqrt(max(0, 1 − x² − y²))`, with
+    /// `(x, y)` scaled back onto the unit circle where `x² + y² > 1`.
+    pub two_channel: bool,
+    pub space: NormalSpace,
+}
+
+impl NormalConvention {
+    /// Bit of [`NormalConvention::flags`]: green is flipped (DirectX).
+    pub const FLIP_GREEN: u32 = 1;
+    /// Bit of [`NormalConvention::flags`]: z is reconstructed from x and y.
+    pub const TWO_CHANNEL: u32 = 2;
+    /// Bit of [`NormalConvention::flags`]: object-space map.
+    pub const OBJECT_SPACE: u32 = 4;
+
+    /// The low bits of the shader's `object.flags`.
+    pub fn flags(self) -> u32 {
+        let mut flags = 0;
+        if self.green == GreenAxis::DirectX {
+            flags |= Self::FLIP_GREEN;
+        }
+        if self.two_channel {
+            flags |= Self::TWO_CHANNEL;
+        }
+        if self.space == NormalSpace::Object {
+            flags |= Self::OBJECT_SPACE;
+        }
+        flags
+    }
+
+    /// A short description for the panel, e.g. "OpenGL (+Y), tangent space".
+    pub fn describe(self) -> String {
+        let green = match self.green {
+            GreenAxis::OpenGl => "OpenGL (+Y)",
+            GreenAxis::DirectX => "DirectX (−Y)",
+        };
+        let space = match self.space {
+            NormalSpace::Tangent => "tangent space",
+            NormalSpace::Object => "object space",
+        };
+        let channels = if self.two_channel { ", two-channel" } else { "" };
+        format!("{green}{channels}, {space}")
+    }
+}
+
+/// A normal map slot with its glTF `scale` (bump strength multiplier) and its convention.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NormalMap {
+    pub texture: usize,
+    pub scale: f32,
+    pub convention: NormalConvention,
+}
+
+impl NormalMap {
+    /// A tangent-space OpenGL-convention normal map with `scale`.
+    pub fn new(texture: usize, scale: f32) -> NormalMap {
+        NormalMap { texture, scale, convention: NormalConvention::default() }
+    }
+}
+
+/// A height map slot: a [`super::TextureKind::Height`] texture and how it becomes normals.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeightMap {
+    pub texture: usize,
+    /// Metres the full sample range (0 → 1) spans, world units.
+    pub range_m: f32,
+    /// Finite-difference kernel used when the height map is turned into a normal map.
+    pub kernel: Kernel,
+    /// Wrap (tiling) or clamp at the image border when differentiating.
+    pub border: Border,
+    /// The map stores depth (white = deep): height `h = 1 − sample`.
+    pub depth: bool,
+}
+
+impl HeightMap {
+    /// A wrapping height map (white = high) spanning `range_m` metres, central differences.
+    pub fn new(texture: usize, range_m: f32) -> HeightMap {
+        HeightMap { texture, range_m, kernel: Kernel::CentralDifference, border: Border::Wrap, depth: false }
+    }
+
+    /// The tangent-space normal map (OpenGL convention) of `heights` (this slot's texture)
+    /// with these settings; one UV unit spans `uv_span_m` metres on the surface.
+    pub fn to_normal_map(&self, heights: &TextureImage, uv_span_m: f32) -> TextureImage {
+        let samples = heights.rgba.chunks_exact(4).map(|t| decode_height(t[0], t[1]));
+        let field = HeightField {
+            width: heights.width,
+            height: heights.height,
+            samples: samples.map(|h| if self.depth { 1.0 - h } else { h }).collect(),
+            range_m: self.range_m,
+            texel_size_m: uv_span_m / heights.width.max(1) as f32,
+        };
+        field.to_normal_map(self.kernel, self.border, &format!("{} (normals)", heights.name))
+    }
+}
+
+/// How a material is lit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum ShadingModel {
+    /// The lecture model: ambient + Lambert + Blinn-Phong specular ([`crate::shading::blinn_phong`]).
+    #[default]
+    BlinnPhong,
+    /// glTF 2.0 metallic-roughness: GGX, Smith height-correlated visibility, Schlick Fresnel,
+    /// with the point light and the procedural sky ([`crate::shading::metallic_roughness`]).
+    MetallicRoughness,
+}
+
+impl ShadingModel {
+    /// The index the shader switches on (`object.shading_model`, `frame.shading_override − 1`).
+    pub fn shader_index(self) -> u32 {
+        self as u32
+    }
+}
+
+/// How a texture coordinate outside 0..1 is read (glTF sampler `wrapS` / `wrapT`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Wrap {
+    #[default]
+    Repeat,
+    ClampToEdge,
+    MirroredRepeat,
+}
+
+/// Wrap modes along `u` and `v`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct SamplerWrap {
+    pub u: Wrap,
+    pub v: Wrap,
+}
+
+/// An occlusion texture slot (red channel, linear) and its glTF `strength`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Occlusion {
+    pub texture: usize,
+    pub strength: f32,
+}
+
+/// A material. Texture fields index [`super::Scene::textures`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    pub name: String,
+    /// Linear RGBA multiplier of the base colour texture.
+    pub base_color_factor: Vec4,
+    /// sRGB colour texture.
+    pub base_color_texture: Option<usize>,
+    pub normal_map: Option<NormalMap>,
+    /// Heights for bump mapping in the shader and for making the normal map.
+    pub height_map: Option<HeightMap>,
+    /// Linear gloss/specular map (OBJ `map_Ks`/`map_Ns`, `--gloss`): loaded and kept with the
+    /// material; the Blinn-Phong shader does not read it yet.
+    pub gloss_texture: Option<usize>,
+    /// Blinn-Phong: linear specular colour k_s.
+    pub specular: Vec3,
+    /// Blinn-Phong exponent (≥ 1).
+    pub shininess: f32,
+    /// Draw back faces too, with the frame flipped.
+    pub double_sided: bool,
+    pub shading_model: ShadingModel,
+    /// Metallic-roughness: metalness factor in 0..1 (times the texture's blue).
+    pub metallic: f32,
+    /// Metallic-roughness: perceptual roughness factor in 0..1 (times the texture's green);
+    /// GGX `α = roughness²`.
+    pub roughness: f32,
+    /// Linear texture: blue = metalness, green = roughness (glTF).
+    pub metallic_roughness_texture: Option<usize>,
+    /// Ambient (sky) occlusion; metallic-roughness only.
+    pub occlusion: Option<Occlusion>,
+    /// Sampler of the base colour texture.
+    pub base_color_wrap: SamplerWrap,
+    /// Sampler of the normal or height map, the metallic-roughness and occlusion textures.
+    pub detail_wrap: SamplerWrap,
+}
+
+impl Default for Material {
+    /// White, untextured, Blinn-Phong with a weak specular; dielectric, fully rough for
+    /// metallic-roughness; repeat samplers.
+    fn default() -> Self {
+        Material {
+            name: "material".into(),
+            base_color_factor: Vec4::ONE,
+            base_color_texture: None,
+            normal_map: None,
+            height_map: None,
+            gloss_texture: None,
+            specular: Vec3::splat(0.04),
+            shininess: 32.0,
+            double_sided: false,
+            shading_model: ShadingModel::BlinnPhong,
+            metallic: 0.0,
+            roughness: 1.0,
+            metallic_roughness_texture: None,
+            occlusion: None,
+            base_color_wrap: SamplerWrap::default(),
+            detail_wrap: SamplerWrap::default(),
+        }
+    }
+}
+
+impl Material {
+    /// Whether drawing this material needs per-vertex tangents: a tangent-space normal map.
+    pub fn needs_tangents(&self) -> bool {
+        self.normal_map.as_ref().is_some_and(|n| n.convention.space == NormalSpace::Tangent)
+    }
+}
