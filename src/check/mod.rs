@@ -157,13 +157,13 @@ impl CheckReport {
             if mesh.degenerate_uv > 0 {
                 warnings.push(format!("mesh {:?}: {} triangles with degenerate UVs", mesh.name, mesh.degenerate_uv));
             }
-            if let Some(t) = mesh.tangents {
-                if t.non_unit + t.non_orthogonal + t.mixed_w_triangles > 0 {
-                    warnings.push(format!(
-                        "mesh {:?}: supplied tangents: {} non-unit, {} not orthogonal to the normal, {} triangles with mixed w",
-                        mesh.name, t.non_unit, t.non_orthogonal, t.mixed_w_triangles
-                    ));
-                }
+            if let Some(t) = mesh.tangents
+                && t.non_unit + t.non_orthogonal + t.mixed_w_triangles > 0
+            {
+                warnings.push(format!(
+                    "mesh {:?}: supplied tangents: {} non-unit, {} not orthogonal to the normal, {} triangles with mixed w",
+                    mesh.name, t.non_unit, t.non_orthogonal, t.mixed_w_triangles
+                ));
             }
         }
         for map in &self.normal_maps {
@@ -182,10 +182,10 @@ impl CheckReport {
             if f.looks_srgb {
                 warnings.push(format!("{name}: looks sRGB-encoded (flat texels near 188 instead of 128)"));
             }
-            if let Some((GreenConvention::DirectX, confidence)) = f.convention {
-                if confidence > 0.5 {
-                    warnings.push(format!("{name}: green looks DirectX (−Y), confidence {confidence:.2}"));
-                }
+            if let Some((GreenConvention::DirectX, confidence)) = f.convention
+                && confidence > 0.5
+            {
+                warnings.push(format!("{name}: green looks DirectX (−Y), confidence {confidence:.2}"));
             }
         }
         warnings
