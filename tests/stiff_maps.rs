@@ -96,4 +96,18 @@ fn normal_mapped_material_on_a_mesh_without_uvs_draws_without_bump() {
     assert_finite_everywhere(&scene, &params, "no UVs");
     let renderer = renderer_for(&scene);
     assert_eq!(renderer.counters().tangent_frames_generated, 0);
+    assert!(renderer.notices().iter().any(|n| n.contains("no texture coordinates")), "{:?}", renderer.notices());
+}
+
+/// A texture wider than the adapter allows is downscaled to fit, with a notice, instead of
+/// failing the upload; the scene renders and stays finite.
+#[test]
+fn a_texture_larger_than_the_adapter_allows_is_downscaled() {
+    let probe = renderer_for(&scene());
+    let limit = probe.max_target_size();
+    let scene = with_normal_map(limit + 1, 2, [128, 128, 255]);
+    let renderer = renderer_for(&scene);
+    let notice = renderer.notices().iter().find(|n| n.contains("downscaled")).cloned();
+    assert!(notice.as_ref().is_some_and(|n| n.contains(&format!("{}x2", limit + 1))), "{:?}", renderer.notices());
+    assert_finite_everywhere(&scene, &default_params(&scene), "oversized texture");
 }

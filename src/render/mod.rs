@@ -162,6 +162,12 @@ impl Renderer {
         self.scene.iter().flat_map(|s| s.frames.iter().map(|f| f.as_ref().map(|f| f.method))).collect()
     }
 
+    /// What the current scene asked for but could not get (a texture downscaled to fit the
+    /// adapter, a bump map on a mesh without texture coordinates), one line each.
+    pub fn notices(&self) -> &[String] {
+        self.scene.as_ref().map_or(&[], |s| &s.notices)
+    }
+
     /// The work done so far.
     pub fn counters(&self) -> WorkCounters {
         self.counters

@@ -45,6 +45,8 @@ pub struct GpuMarker {
 }
 
 pub struct GpuScene {
+    /// What the scene asked for but could not get, one line each, for the user.
+    pub notices: Vec<String>,
     pub meshes: Vec<GpuMesh>,
     /// Per mesh: how its tangent stream was made; `None` for meshes drawn without one.
     pub frames: Vec<Option<DrawnFrames>>,
@@ -75,18 +77,33 @@ struct TextureCache<'a> {
     queue: &'a wgpu::Queue,
     views: Vec<Option<wgpu::TextureView>>,
     white: Option<wgpu::TextureView>,
+    /// What could not be uploaded as given (textures larger than the adapter allows).
+    notices: Vec<String>,
 }
 
 impl TextureCache<'_> {
-    fn upload(&self, image: &TextureImage, counters: &mut WorkCounters) -> wgpu::TextureView {
+    /// Uploads `image` with its mip chain. A texture larger than the adapter allows starts at
+    /// the first mip level that fits (a notice says so) instead of failing.
+    fn upload(&mut self, image: &TextureImage, counters: &mut WorkCounters) -> wgpu::TextureView {
         let format = match image.kind {
             TextureKind::Color => wgpu::TextureFormat::Rgba8UnormSrgb,
             TextureKind::NormalMap | TextureKind::Height | TextureKind::Data => wgpu::TextureFormat::Rgba8Unorm,
         };
-        let mips = image.mip_chain();
+        let limit = self.device.limits().max_texture_dimension_2d;
+        let mut mips = image.mip_chain();
+        let fits = mips.iter().position(|m| m.width <= limit && m.height <= limit).unwrap_or(mips.len() - 1);
+        if fits > 0 {
+            let (w, h) = (mips[fits].width, mips[fits].height);
+            self.notices.push(format!(
+                "texture {:?} is {}x{}, more than the adapter's {limit} per side: downscaled to {w}x{h}",
+                image.name, image.width, image.height
+            ));
+            mips.drain(..fits);
+        }
+        let base = &mips[0];
         let texture = self.device.create_texture(&wgpu::TextureDescriptor {
             label: Some(&image.name),
-            size: wgpu::Extent3d { width: image.width, height: image.height, depth_or_array_layers: 1 },
+            size: wgpu::Extent3d { width: base.width, height: base.height, depth_or_array_layers: 1 },
             mip_level_count: mips.len() as u32,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
@@ -158,6 +175,21 @@ fn variant_of(scene: &Scene, mesh: usize, material: usize, bump_source: BumpSour
     } else {
         Variant::Plain
     }
+}
+
+/// A notice per mesh whose material has a normal or height map but which has no texture
+/// coordinates: it is drawn without bump.
+fn missing_uv_notices(scene: &Scene) -> Vec<String> {
+    let mut notices = vec![];
+    for instance in &scene.instances {
+        let (mesh, material) = (&scene.meshes[instance.mesh], &scene.materials[instance.material]);
+        let bumped = material.normal_map.is_some() || material.height_map.is_some();
+        let notice = format!("mesh {:?} has no texture coordinates: drawn without its bump map", mesh.name);
+        if bumped && mesh.uvs.len() != mesh.positions.len() && !notices.contains(&notice) {
+            notices.push(notice);
+        }
+    }
+    notices
 }
 
 /// Samplers by wrap mode, made on first use (linear filtering, trilinear mips).
@@ -241,7 +273,8 @@ pub fn upload(
         .collect();
 
     let mut samplers = SamplerCache::default();
-    let mut textures = TextureCache { device, queue, views: vec![None; scene.textures.len()], white: None };
+    let mut textures =
+        TextureCache { device, queue, views: vec![None; scene.textures.len()], white: None, notices: vec![] };
     let instances = scene
         .instances
         .iter()
@@ -318,7 +351,9 @@ pub fn upload(
         model,
         bind_group,
     };
-    GpuScene { meshes, frames, instances, marker, ambient: scene.ambient }
+    let mut notices = missing_uv_notices(scene);
+    notices.append(&mut textures.notices);
+    GpuScene { meshes, frames, instances, marker, ambient: scene.ambient, notices }
 }
 
 fn upload_mesh(device: &wgpu::Device, mesh: &Mesh, tangents: Option<&[Vec4]>) -> GpuMesh {
