@@ -51,6 +51,7 @@ const VIEW_BITANGENT: u32 = 2u;
 const VIEW_NORMAL: u32 = 3u;
 const VIEW_SHADING_NORMAL: u32 = 4u;
 const VIEW_DIFFERENCE: u32 = 5u;
+const VIEW_UV_CHECK: u32 = 6u;
 
 struct VertexOutput {
     @builtin(position) clip_position: vec4<f32>,
@@ -204,6 +205,29 @@ fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>) -> vec3<f
     return metallic_roughness(inputs);
 }
 
+// The UV check view, from screen-space derivatives of the UVs and the position: red where the
+// UV triangle has (relatively) no area, blue where its UV winding is mirrored against the
+// geometric normal (w = −1 there), grey elsewhere. The CPU twin is check::check_mesh.
+fn uv_check_color(in: VertexOutput, n_geo: vec3<f32>) -> vec3<f32> {
+    let du = vec2<f32>(dpdx(in.uv.x), dpdy(in.uv.x));
+    let dv = vec2<f32>(dpdx(in.uv.y), dpdy(in.uv.y));
+    let dp_dx = dpdx(in.world_position);
+    let dp_dy = dpdy(in.world_position);
+    let det = du.x * dv.y - du.y * dv.x;
+    let shade = 0.35 + 0.5 * abs(dot(n_geo, normalize_or(frame.camera_pos.xyz - in.world_position, n_geo)));
+    if abs(det) <= 1e-3 * length(du) * length(dv) || length(du) * length(dv) == 0.0 {
+        return vec3<f32>(0.9, 0.1, 0.1) * shade;
+    }
+    // ∂P/∂u and ∂P/∂v (v down the image), each times det; mirrored when (∂P/∂u, ∂P/∂v_up)
+    // winds against the vertex normal.
+    let dp_du = dp_dx * dv.y - dp_dy * dv.x;
+    let dp_dv = dp_dy * du.x - dp_dx * du.y;
+    if dot(cross(dp_du, dp_dv), in.world_normal) > 0.0 {
+        return vec3<f32>(0.15, 0.35, 1.0) * shade;
+    }
+    return vec3<f32>(0.75) * shade;
+}
+
 fn surface_color(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_shading: vec3<f32>) -> vec4<f32> {
     switch frame.view_mode {
         case VIEW_TANGENT: { return stored(0.5 * frame_tb.t + 0.5); }
@@ -212,6 +236,7 @@ fn surface_color(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_s
         case VIEW_SHADING_NORMAL: { return stored(0.5 * n_shading + 0.5); }
         // Drawn with fs_difference when the mesh has frames; without them, neutral grey.
         case VIEW_DIFFERENCE: { return stored(vec3<f32>(0.5)); }
+        case VIEW_UV_CHECK: { return stored(uv_check_color(in, n_geo)); }
         default: { return vec4<f32>(lit_color(in, n_geo, n_shading), 1.0); }
     }
 }

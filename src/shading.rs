@@ -32,16 +32,20 @@ pub enum ViewMode {
     /// Angle between the mesh's tangent frame and the reference frame (analytic where the
     /// mesh has one, else MikkTSpace), on the [`difference_color`] scale.
     Difference,
+    /// Triangles whose UVs have no area (red) or are mirrored (blue), as `bumpview check`
+    /// counts them, from screen-space derivatives.
+    UvCheck,
 }
 
 impl ViewMode {
-    pub const ALL: [ViewMode; 6] = [
+    pub const ALL: [ViewMode; 7] = [
         ViewMode::Lit,
         ViewMode::Tangent,
         ViewMode::Bitangent,
         ViewMode::Normal,
         ViewMode::ShadingNormal,
         ViewMode::Difference,
+        ViewMode::UvCheck,
     ];
 
     /// The next mode in [`ViewMode::ALL`], wrapping around.
@@ -64,6 +68,7 @@ impl ViewMode {
             ViewMode::Normal => "normal",
             ViewMode::ShadingNormal => "shading-normal",
             ViewMode::Difference => "difference",
+            ViewMode::UvCheck => "uv-check",
         }
     }
 

@@ -142,3 +142,38 @@ fn grazing_light_is_faded_and_never_lights_from_below() {
     assert!(grazing > 0 && grazing * 4 < full, "grazing {grazing} vs frontal {full}");
     assert_finite(&mut renderer, &above, "grazing from above");
 }
+
+/// The UV check view marks what `bumpview check` counts: a square whose right half has
+/// mirrored u shows blue there and grey on the left; a square whose UVs have no area is red.
+#[test]
+fn uv_check_view_marks_mirrored_and_degenerate_triangles() {
+    use bumpview::report::stiff::{grid, mirrored_halves};
+    let mut scene = teaching_scene();
+    let material = bumpview::scene::Material { normal_map: None, ..scene.materials[0].clone() };
+    let mut degenerate = grid(2, |_| Vec2::splat(0.5));
+    degenerate.positions.iter_mut().for_each(|p| p.y -= 1.2);
+    scene.meshes = vec![mirrored_halves(), degenerate];
+    scene.materials = vec![material];
+    scene.instances = vec![
+        Instance { mesh: 0, material: 0, transform: Mat4::IDENTITY },
+        Instance { mesh: 1, material: 0, transform: Mat4::IDENTITY },
+    ];
+    let mut renderer = renderer_for(&scene);
+    let mut params = default_params(&scene);
+    params.camera =
+        OrbitCamera { target: Vec3::new(0.5, -0.1, 0.0), yaw: 0.0, pitch: 0.0, distance: 4.0, ..params.camera };
+    params.shading.view = ViewMode::UvCheck;
+    let size = [200, 200];
+    let image = render_image(&mut renderer, size, &params).unwrap();
+    let pixel_at = |p: Vec3| {
+        let clip = params.camera.view_projection(1.0).project_point3(p);
+        let (x, y) = (((clip.x + 1.0) * 0.5 * size[0] as f32) as u32, ((1.0 - clip.y) * 0.5 * size[1] as f32) as u32);
+        *image.get_pixel(x, y)
+    };
+    let (left, right, red) =
+        (pixel_at(Vec3::new(0.2, 0.5, 0.0)), pixel_at(Vec3::new(0.8, 0.5, 0.0)), pixel_at(Vec3::new(0.5, -0.7, 0.0)));
+    assert!(left[0].abs_diff(left[2]) < 10 && left[0] > 60, "left half grey: {left:?}");
+    assert!(right[2] as i32 > right[0] as i32 + 60, "right half blue: {right:?}");
+    assert!(red[0] as i32 > red[2] as i32 + 60, "degenerate square red: {red:?}");
+    assert_finite(&mut renderer, &params, "uv check");
+}

@@ -219,6 +219,7 @@ fn view_label(mode: ViewMode) -> &'static str {
         ViewMode::Normal => "Normal",
         ViewMode::ShadingNormal => "Shading normal",
         ViewMode::Difference => "Difference (frame vs reference)",
+        ViewMode::UvCheck => "UV check (degenerate / mirrored)",
     }
 }
 
@@ -226,6 +227,7 @@ fn view_label(mode: ViewMode) -> &'static str {
 fn view_hint(mode: ViewMode) -> &'static str {
     match mode {
         ViewMode::Lit => "Blinn-Phong lighting with the (bumped) shading normal",
+        ViewMode::UvCheck => "red: triangles whose UVs have no area (no tangent frame); blue: mirrored UVs (w = −1)",
         ViewMode::Difference => {
             "larger of the angles between T and between B of the chosen frames and the reference \
              (analytic on built-in surfaces, else MikkTSpace); grey: no frames"
