@@ -260,6 +260,17 @@ impl Loader<'_> {
     /// A glTF texture's image, read and decoded as `kind`.
     fn decode(&self, texture: gltf::Texture, kind: TextureKind) -> Result<TextureImage, LoadError> {
         let image = texture.source();
+        // gltf's `Image::source` unwraps the uri, or the mimeType of a bufferView image, and
+        // validation does not always catch their absence (found by tests/fuzz.rs).
+        let json = &self.document.as_json().images[image.index()];
+        let valid = match &json.buffer_view {
+            Some(view) => json.mime_type.is_some() && view.value() < self.document.views().len(),
+            None => json.uri.is_some(),
+        };
+        if !valid {
+            let problem = format!("image {} needs a uri, or a bufferView with a mimeType", image.index());
+            return Err(LoadError::new(self.path, problem));
+        }
         let (bytes, file) = match image.source() {
             gltf::image::Source::Uri { uri, .. } => read_uri(uri, self.base, self.path, "image")?,
             gltf::image::Source::View { view, .. } => {
