@@ -246,6 +246,7 @@ pub fn upload(
     let variants: Vec<Variant> =
         scene.instances.iter().map(|i| variant_of(scene, i.mesh, i.material, options.bump_source)).collect();
     let mut frames = vec![];
+    let mut notices = missing_uv_notices(scene);
     let meshes = scene
         .meshes
         .iter()
@@ -258,7 +259,7 @@ pub fn upload(
                 .any(|(i, &v)| i.mesh == index && matches!(v, Variant::Tangent | Variant::NormalMapped));
             if !drawn_with_tangents {
                 frames.push(None);
-                return upload_mesh(device, mesh, None);
+                return upload_mesh(device, mesh, None, &mut notices);
             }
             // Per-face frames need a vertex per corner.
             let drawn = if tangent_method == Some(TangentMethod::PerFace) { mesh.unwelded() } else { mesh.clone() };
@@ -266,7 +267,7 @@ pub fn upload(
             if method.is_generated() {
                 counters.tangent_frames_generated += tangents.len() as u64;
             }
-            let gpu = upload_mesh(device, &drawn, Some(&tangents));
+            let gpu = upload_mesh(device, &drawn, Some(&tangents), &mut notices);
             frames.push(Some(DrawnFrames { mesh: drawn, method }));
             gpu
         })
@@ -351,22 +352,39 @@ pub fn upload(
         model,
         bind_group,
     };
-    let mut notices = missing_uv_notices(scene);
     notices.append(&mut textures.notices);
     GpuScene { meshes, frames, instances, marker, ambient: scene.ambient, notices }
 }
 
-fn upload_mesh(device: &wgpu::Device, mesh: &Mesh, tangents: Option<&[Vec4]>) -> GpuMesh {
+/// Uploads a mesh, repairing what would put NaN on screen (loaders reject such data; a scene
+/// built in code may still hold it): triangles touching a non-finite or out-of-range position
+/// are dropped, non-finite normals become +Z and non-finite UVs 0. A notice says so.
+fn upload_mesh(device: &wgpu::Device, mesh: &Mesh, tangents: Option<&[Vec4]>, notices: &mut Vec<String>) -> GpuMesh {
     let count = mesh.positions.len();
     let usage = wgpu::BufferUsages::VERTEX;
+    let usable = |i: &u32| mesh.positions.get(*i as usize).is_some_and(|p| p.is_finite());
+    let indices: Vec<u32> = mesh.indices.chunks_exact(3).filter(|t| t.iter().all(usable)).flatten().copied().collect();
+    let normals: Vec<Vec3> =
+        stream(&mesh.normals, count).into_iter().map(|n| if n.is_finite() { n } else { Vec3::Z }).collect();
+    let uvs: Vec<Vec2> =
+        stream::<Vec2>(&mesh.uvs, count).into_iter().map(|uv| if uv.is_finite() { uv } else { Vec2::ZERO }).collect();
+    let dropped = (mesh.indices.len() - indices.len()) / 3;
+    let repaired =
+        mesh.normals.iter().filter(|n| !n.is_finite()).count() + mesh.uvs.iter().filter(|uv| !uv.is_finite()).count();
+    if dropped + repaired > 0 {
+        notices.push(format!(
+            "mesh {:?}: NaN or infinite data: {dropped} triangles dropped, {repaired} normals or UVs replaced",
+            mesh.name
+        ));
+    }
     GpuMesh {
         positions: buffer(device, "positions", &mesh.positions, usage),
-        normals: buffer(device, "normals", &stream(&mesh.normals, count), usage),
-        uvs: buffer(device, "uvs", &stream::<Vec2>(&mesh.uvs, count), usage),
+        normals: buffer(device, "normals", &normals, usage),
+        uvs: buffer(device, "uvs", &uvs, usage),
         tangents: tangents.map(|t| buffer(device, "tangents", &stream::<Vec4>(t, count), usage)),
         reference_tangents: None,
-        indices: buffer(device, "indices", &mesh.indices, wgpu::BufferUsages::INDEX),
-        index_count: mesh.indices.len() as u32,
+        index_count: indices.len() as u32,
+        indices: buffer(device, "indices", &indices, wgpu::BufferUsages::INDEX),
     }
 }
 
