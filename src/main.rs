@@ -8,7 +8,7 @@ mod inputs;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use bumpview::height::Kernel;
+use bumpview::height::{Border, Kernel};
 use bumpview::render::capture::{render_image, write_png_atomically};
 use bumpview::render::{BumpSource, Gpu, Renderer, SceneOptions};
 use bumpview::scene::builtin::teaching_scene_with_kernel;
@@ -163,6 +163,13 @@ struct MaterialArgs {
     /// Metres spanned by a height map's full range (world units).
     #[arg(long, value_name = "METRES", value_parser = args::parse_finite)]
     height_range: Option<f32>,
+    /// Height→normal kernel for every height map (re-makes its normal map): forward, central,
+    /// sobel3, scharr3, sobel5 or central4. `--kernel` only makes the built-in brick map.
+    #[arg(long, value_parser = parse_kernel)]
+    height_kernel: Option<Kernel>,
+    /// Height maps' border when differentiating: wrap (tiling) or clamp (re-makes the normal map).
+    #[arg(long, value_parser = parse_border)]
+    height_border: Option<Border>,
     /// Shading model: blinn-phong, pbr (glTF metallic-roughness) or auto (each material's own:
     /// pbr for glTF, blinn-phong for OBJ and the built-in scene).
     #[arg(long, default_value = "auto", value_parser = parse_shading)]
@@ -177,6 +184,8 @@ impl MaterialArgs {
             object_space: self.object_space.then_some(true),
             depth_map: self.depth_map.then_some(true),
             height_range_m: self.height_range,
+            kernel: self.height_kernel,
+            border: self.height_border,
         }
     }
 }
@@ -205,7 +214,7 @@ fn parse_green(text: &str) -> Result<GreenAxis, String> {
 impl MethodArgs {
     fn scene_options(&self) -> SceneOptions {
         let materials = self.materials.overrides();
-        SceneOptions { tangent_method: self.tangents.0, bump_source: self.bump_source, materials }
+        SceneOptions { tangent_method: self.tangents.0, bump_source: self.bump_source, materials, ..Default::default() }
     }
 }
 
@@ -243,6 +252,14 @@ fn parse_kernel(text: &str) -> Result<Kernel, String> {
         let names: Vec<_> = Kernel::ALL.iter().map(|k| k.name()).collect();
         format!("{text:?}: expected one of {}", names.join(", "))
     })
+}
+
+fn parse_border(text: &str) -> Result<Border, String> {
+    match text {
+        "wrap" => Ok(Border::Wrap),
+        "clamp" => Ok(Border::Clamp),
+        _ => Err(format!("{text:?}: expected wrap or clamp")),
+    }
 }
 
 fn render(args: RenderArgs) -> Result<(), String> {

@@ -57,8 +57,13 @@ pub enum Command {
     SetKernel(Kernel),
     /// The Difference view's colour scale spans 0 to this many degrees.
     SetDifferenceRange(f32),
-    /// Normal- and height-map conventions for every material (re-makes GPU data).
-    SetMaterialOverrides(MaterialOverrides),
+    /// Normal- and height-map conventions for one material (index into the scene's
+    /// materials; they win over the viewer-wide ones field by field) or, with `material`
+    /// `None`, for every material (re-makes GPU data).
+    SetMaterialOverrides {
+        material: Option<usize>,
+        overrides: MaterialOverrides,
+    },
     /// Shade every material with this model (`None`: each material's own); a uniform.
     SetShadingOverride(Option<ShadingModel>),
 }
@@ -142,7 +147,9 @@ impl ViewerState {
                 self.shading.difference_range_deg = degrees.clamp(DIFFERENCE_RANGE.start, DIFFERENCE_RANGE.end)
             }
             Command::SetDifferenceRange(_) => {}
-            Command::SetMaterialOverrides(overrides) => self.scene_options.materials = overrides,
+            Command::SetMaterialOverrides { material, overrides } => {
+                self.scene_options.set_overrides(material, overrides)
+            }
             Command::SetShadingOverride(model) => self.shading.shading_override = model,
         }
     }

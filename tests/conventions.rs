@@ -225,3 +225,65 @@ fn new_variants_never_produce_nan() {
         }
     }
 }
+
+/// Per-material overrides: in the built-in scene wall and floor use material 0 and the torus
+/// material 1. Flipping green on material 1 only changes the torus's pixels in the
+/// shading-normal view (exactly: the wall and floor draw with the same data), and changes
+/// most of them; a per-material OpenGL setting wins over a viewer-wide DirectX one, so the
+/// torus's inside (its pixels whose 3×3 neighbourhood is all torus, free of edge pixels that
+/// blend in the wall) stays exactly as it was.
+#[test]
+fn per_material_green_flip_changes_only_that_material() {
+    let full = scene();
+    let mut without_torus = full.clone();
+    without_torus.instances.retain(|i| i.material == 0);
+    let mut params = default_params(&full);
+    params.shading.view = ViewMode::ShadingNormal;
+    let size = [240, 180];
+    let reference = render_with(&full, SceneOptions::default(), &params, size);
+    // The torus's pixels: where the picture changes when it is taken away.
+    let torus = render_with(&without_torus, SceneOptions::default(), &params, size);
+    let is_torus = |x: i64, y: i64| {
+        let (x, y) = (x.clamp(0, size[0] as i64 - 1) as u32, y.clamp(0, size[1] as i64 - 1) as u32);
+        let (p, q) = (reference.get_pixel(x, y), torus.get_pixel(x, y));
+        (0..3).any(|c| p[c] != q[c])
+    };
+    // Per pixel: 0 off the torus, 1 on its edge, 2 inside.
+    let region: Vec<usize> = (0..size[1] as i64)
+        .flat_map(|y| (0..size[0] as i64).map(move |x| (x, y)))
+        .map(|(x, y)| match is_torus(x, y) {
+            false => 0,
+            true if (-1..=1).all(|dy| (-1..=1).all(|dx| is_torus(x + dx, y + dy))) => 2,
+            true => 1,
+        })
+        .collect();
+    let count = |r: usize| region.iter().filter(|&&p| p == r).count();
+    let (edge_pixels, inside_pixels) = (count(1), count(2));
+    let directx = MaterialOverrides { green: Some(GreenAxis::DirectX), ..Default::default() };
+    let opengl = MaterialOverrides { green: Some(GreenAxis::OpenGl), ..Default::default() };
+    // Pixels changed by more than 2 steps against the reference: [off the torus, edge, inside].
+    let changes = |options: SceneOptions| {
+        let image = render_with(&full, options, &params, size);
+        let mut changed = [0; 3];
+        for ((p, q), &r) in reference.pixels().zip(image.pixels()).zip(&region) {
+            if (0..3).any(|c| p[c].abs_diff(q[c]) > 2) {
+                changed[r] += 1;
+            }
+        }
+        changed
+    };
+    let torus_only = changes(SceneOptions { per_material: [(1, directx)].into(), ..Default::default() });
+    let everywhere = changes(SceneOptions { materials: directx, ..Default::default() });
+    let torus_kept =
+        changes(SceneOptions { materials: directx, per_material: [(1, opengl)].into(), ..Default::default() });
+    println!(
+        "torus: {inside_pixels} inside, {edge_pixels} edge pixels; changed [off, edge, inside]: material 1 flipped \
+         {torus_only:?}, all flipped {everywhere:?}, all flipped but material 1 {torus_kept:?}"
+    );
+    assert!(inside_pixels > 1000, "{inside_pixels}");
+    assert_eq!(torus_only[0], 0, "pixels off the torus changed");
+    assert!(torus_only[2] * 2 > inside_pixels, "{torus_only:?}");
+    assert!(everywhere[0] > 4 * inside_pixels, "{everywhere:?}");
+    assert_eq!(torus_kept[2], 0, "the torus's own OpenGL setting lost");
+    assert_eq!(torus_kept[0], everywhere[0]);
+}

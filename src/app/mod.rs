@@ -165,10 +165,10 @@ impl ViewerApp {
         let mut renderer =
             Renderer::new(render_state.device.clone(), render_state.queue.clone(), render_state.adapter.clone());
         let scene = options.scene.unwrap_or_else(|| teaching_scene_with_kernel(options.kernel));
-        renderer.set_scene(&scene, options.scene_options);
+        renderer.set_scene(&scene, options.scene_options.clone());
         let adapter_name = renderer.adapter_name();
         let mut state = ViewerState::new(&scene);
-        state.scene_options = options.scene_options;
+        state.scene_options = options.scene_options.clone();
         state.shading.shading_override = options.shading_override;
         state.kernel = options.kernel;
         let mut files =
@@ -263,8 +263,12 @@ impl ViewerApp {
     /// Shows a newly loaded scene. A new mesh is framed by its default camera and light; a
     /// reload keeps camera, light and settings.
     fn install_scene(&mut self, scene: Scene, purpose: Purpose) {
-        self.renderer.set_scene(&scene, self.state.scene_options);
-        self.uploaded = self.state.scene_options;
+        if purpose == Purpose::Open {
+            // Per-material overrides name materials by index: they belong to the old mesh.
+            self.state.scene_options.per_material.clear();
+        }
+        self.renderer.set_scene(&scene, self.state.scene_options.clone());
+        self.uploaded = self.state.scene_options.clone();
         self.measurements = measure_all(&scene, self.state.scene_options.tangent_method);
         self.state.default_camera = scene.default_camera;
         if purpose == Purpose::Open {
@@ -382,11 +386,11 @@ impl ViewerApp {
     /// Re-makes the tangent frames (and GPU data) when their method or the bump source
     /// changed. (A kernel change re-makes the built-in scene: [`Self::rebuild_builtin`].)
     fn apply_methods(&mut self) {
-        let wanted = self.state.scene_options;
+        let wanted = self.state.scene_options.clone();
         if wanted == self.uploaded {
             return;
         }
-        self.renderer.set_scene(&self.scene, wanted);
+        self.renderer.set_scene(&self.scene, wanted.clone());
         self.measurements = measure_all(&self.scene, wanted.tangent_method);
         self.uploaded = wanted;
         self.tracker.invalidate();
@@ -439,6 +443,7 @@ impl eframe::App for ViewerApp {
             view_size: self.view.as_ref().map(|v| v.size),
             counters: self.renderer.counters(),
             render_error: self.render_error.as_deref(),
+            materials: &self.scene.materials,
         };
         let files = files_panel::FilesView {
             files: &self.files,

@@ -2,9 +2,9 @@
 //! Widgets edit copies of the state and report changes as [`Action`]s.
 
 use bumpview::WorkCounters;
-use bumpview::height::Kernel;
+use bumpview::height::{Border, Kernel};
 use bumpview::render::BumpSource;
-use bumpview::scene::{GreenAxis, ShadingModel};
+use bumpview::scene::{GreenAxis, Material, MaterialOverrides, ShadingModel};
 use bumpview::shading::ViewMode;
 use bumpview::tangent::{MethodMeasurement, TangentMethod};
 use bumpview::viewer::{Command, STRENGTH_RANGE, ViewerState};
@@ -22,6 +22,8 @@ pub(super) struct Stats<'a> {
     pub view_size: Option<[u32; 2]>,
     pub counters: WorkCounters,
     pub render_error: Option<&'a str>,
+    /// The scene's materials, as loaded (before overrides).
+    pub materials: &'a [Material],
 }
 
 /// Shows the whole panel, with the files section ([`super::files_panel`]) drawn by `files`
@@ -41,7 +43,7 @@ pub(super) fn show(
         light_section(ui, state, &mut actions);
         view_section(ui, state, &mut actions);
         methods_section(ui, state, stats.measurements, &mut actions);
-        conventions_section(ui, state, &mut actions);
+        conventions_section(ui, state, stats.materials, &mut actions);
         camera_section(ui, &mut actions);
         screenshot_section(ui, screenshot, &mut actions);
         ui.separator();
@@ -153,14 +155,28 @@ fn methods_section(
     });
 }
 
-/// Normal-map and height-map conventions for every material, and the shading model.
-fn conventions_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
+/// Normal-map and height-map conventions for every material or one of them, what each
+/// material is drawn with, and the shading model.
+fn conventions_section(ui: &mut egui::Ui, state: &ViewerState, materials: &[Material], actions: &mut Vec<Action>) {
     ui.separator();
     ui.strong("Texture conventions and shading");
-    let old = state.scene_options.materials;
+    let options = &state.scene_options;
+    let target_id = egui::Id::unique("conventions target");
+    let mut target = ui.data(|d| d.get_temp::<Option<usize>>(target_id)).flatten().filter(|&i| i < materials.len());
+    let target_name = |t: Option<usize>| t.map_or_else(|| "all materials".to_owned(), |i| material_label(materials, i));
+    egui::ComboBox::from_label("apply to").selected_text(target_name(target)).show_ui(ui, |ui| {
+        for choice in std::iter::once(None).chain((0..materials.len()).map(Some)) {
+            ui.selectable_value(&mut target, choice, target_name(choice));
+        }
+    });
+    ui.data_mut(|d| d.insert_temp(target_id, target));
+    // A material's own setting where set, else the viewer-wide one is shown (and inherited).
+    let inherited = if target.is_some() { options.materials } else { MaterialOverrides::default() };
+    let old = options.overrides(target);
     let mut new = old;
+    let unset = if target.is_some() { "as all materials" } else { "as loaded" };
     let green_name = |g: Option<GreenAxis>| match g {
-        None => "as loaded (OpenGL +Y unless set)",
+        None => unset,
         Some(GreenAxis::OpenGl) => "OpenGL (+Y)",
         Some(GreenAxis::DirectX) => "DirectX (−Y, green flipped)",
     };
@@ -169,17 +185,29 @@ fn conventions_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec
             ui.selectable_value(&mut new.green, choice, green_name(choice));
         }
     });
-    for (flag, label) in [
-        (&mut new.two_channel, "two-channel (reconstruct z)"),
-        (&mut new.object_space, "object-space normal map (no tangents)"),
-        (&mut new.depth_map, "height map is a depth map (white = deep)"),
+    for (flag, base, label) in [
+        (&mut new.two_channel, inherited.two_channel, "two-channel (reconstruct z)"),
+        (&mut new.object_space, inherited.object_space, "object-space normal map (no tangents)"),
+        (&mut new.depth_map, inherited.depth_map, "height map is a depth map (white = deep)"),
     ] {
-        let mut on = flag.unwrap_or(false);
+        let mut on = flag.or(base).unwrap_or(false);
         if ui.checkbox(&mut on, label).changed() {
             *flag = Some(on);
         }
     }
-    let mut range_mm = new.height_range_m.map_or(10.0, |m| m * 1e3);
+    let kernel_name = |k: Option<Kernel>| k.map_or(unset, Kernel::name);
+    egui::ComboBox::from_label("height map kernel").selected_text(kernel_name(new.kernel)).show_ui(ui, |ui| {
+        for choice in std::iter::once(None).chain(Kernel::ALL.map(Some)) {
+            ui.selectable_value(&mut new.kernel, choice, kernel_name(choice));
+        }
+    });
+    let border_name = |b: Option<Border>| b.map_or(unset, border_label);
+    egui::ComboBox::from_label("height map border").selected_text(border_name(new.border)).show_ui(ui, |ui| {
+        for choice in [None, Some(Border::Wrap), Some(Border::Clamp)] {
+            ui.selectable_value(&mut new.border, choice, border_name(choice));
+        }
+    });
+    let mut range_mm = new.height_range_m.or(inherited.height_range_m).map_or(10.0, |m| m * 1e3);
     let drag = egui::DragValue::new(&mut range_mm).range(0.0..=1000.0).speed(0.1).suffix(" mm");
     let changed = ui
         .horizontal(|ui| {
@@ -191,9 +219,23 @@ fn conventions_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec
     if changed {
         new.height_range_m = Some(range_mm * 1e-3);
     }
-    if new != old {
-        actions.push(Command::SetMaterialOverrides(new).into());
+    let reset = if target.is_some() { "Use the settings for all materials" } else { "Use the files' settings" };
+    if ui.add_enabled(!old.is_empty(), egui::Button::new(reset)).clicked() {
+        new = MaterialOverrides::default();
     }
+    if new != old {
+        actions.push(Command::SetMaterialOverrides { material: target, overrides: new }.into());
+    }
+    ui.weak("in use (after overrides); * marks a material with its own settings");
+    egui::Grid::new("conventions in use").striped(true).num_columns(2).show(ui, |ui| {
+        for (index, material) in materials.iter().enumerate() {
+            let own = if options.per_material.contains_key(&index) { " *" } else { "" };
+            ui.small(format!("{}{own}", material_label(materials, index)));
+            let (drawn, remade) = options.overrides_in_use(index).in_use(material);
+            ui.small(convention_in_use(&drawn, remade));
+            ui.end_row();
+        }
+    });
     let shading_name = |m: Option<ShadingModel>| match m {
         None => "auto (glTF: metallic-roughness, else Blinn-Phong)",
         Some(ShadingModel::BlinnPhong) => "Blinn-Phong",
@@ -208,6 +250,32 @@ fn conventions_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec
     if shading != state.shading.shading_override {
         actions.push(Command::SetShadingOverride(shading).into());
     }
+}
+
+/// "index: name" of material `index`.
+fn material_label(materials: &[Material], index: usize) -> String {
+    format!("{index}: {}", materials[index].name)
+}
+
+fn border_label(border: Border) -> &'static str {
+    match border {
+        Border::Wrap => "wrap (tiles)",
+        Border::Clamp => "clamp (edge repeats)",
+    }
+}
+
+/// One material's normal-map convention and height-map settings as drawn.
+fn convention_in_use(material: &Material, remade: bool) -> String {
+    let normal = match &material.normal_map {
+        Some(map) if remade => format!("normals made from height: {}", map.convention.describe()),
+        Some(map) => map.convention.describe(),
+        None => "no normal map".to_owned(),
+    };
+    let Some(height) = &material.height_map else { return normal };
+    let kind = if height.depth { "depth" } else { "height" };
+    let border = border_label(height.border);
+    let kernel = height.kernel.name();
+    format!("{normal}\n{kind} map: {kernel} kernel, {border}, {:.2} mm range", height.range_m * 1e3)
 }
 
 /// The panel's name for a view mode.

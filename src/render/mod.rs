@@ -12,7 +12,7 @@ use glam::Mat4;
 
 use crate::counters::WorkCounters;
 use crate::error::RenderError;
-use crate::scene::{Light, MaterialOverrides, OrbitCamera, Scene};
+use crate::scene::{Light, MaterialOverrides, OrbitCamera, PerMaterialOverrides, Scene};
 use crate::shading::{ShadingSettings, ViewMode};
 use crate::tangent::TangentMethod;
 pub use gpu::Gpu;
@@ -56,13 +56,45 @@ impl BumpSource {
 }
 
 /// How a scene is prepared for drawing: changing these re-makes GPU data.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct SceneOptions {
     /// Tangent frames by this method; `None`: the mesh's own, else MikkTSpace.
     pub tangent_method: Option<TangentMethod>,
     pub bump_source: BumpSource,
     /// Normal- and height-map conventions that replace every material's own.
     pub materials: MaterialOverrides,
+    /// Per material (index into the scene's materials): conventions that win over
+    /// `materials` field by field.
+    pub per_material: PerMaterialOverrides,
+}
+
+impl SceneOptions {
+    /// The overrides edited for `material` (`None`: the viewer-wide ones), not merged.
+    pub fn overrides(&self, material: Option<usize>) -> MaterialOverrides {
+        match material {
+            None => self.materials,
+            Some(index) => self.per_material.get(&index).copied().unwrap_or_default(),
+        }
+    }
+
+    /// Replaces the overrides of `material` (`None`: the viewer-wide ones); an empty
+    /// per-material record is dropped.
+    pub fn set_overrides(&mut self, material: Option<usize>, overrides: MaterialOverrides) {
+        match material {
+            None => self.materials = overrides,
+            Some(index) if overrides.is_empty() => {
+                self.per_material.remove(&index);
+            }
+            Some(index) => {
+                self.per_material.insert(index, overrides);
+            }
+        }
+    }
+
+    /// What material `index` is drawn with: its own overrides over the viewer-wide ones.
+    pub fn overrides_in_use(&self, index: usize) -> MaterialOverrides {
+        self.materials.for_material(&self.per_material, index)
+    }
 }
 
 /// Where to draw: a view of a 2D texture of `format`, `size` pixels.
@@ -145,10 +177,10 @@ impl Renderer {
     /// frames it needs and uploads what it uses, as `options` say.
     pub fn set_scene(&mut self, scene: &Scene, options: SceneOptions) {
         let overridden;
-        let scene = if options.materials.is_empty() {
+        let scene = if options.materials.is_empty() && options.per_material.values().all(|o| o.is_empty()) {
             scene
         } else {
-            overridden = options.materials.applied_to(scene);
+            overridden = options.materials.applied_with(&options.per_material, scene);
             &overridden
         };
         let layouts = &self.pipelines.layouts;

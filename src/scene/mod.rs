@@ -15,7 +15,7 @@ pub use material::{
     GreenAxis, HeightMap, Material, NormalConvention, NormalMap, NormalSpace, Occlusion, SamplerWrap, ShadingModel,
     Wrap,
 };
-pub use overrides::MaterialOverrides;
+pub use overrides::{MaterialOverrides, PerMaterialOverrides};
 pub use texture::{TextureImage, TextureKind, decode_height, encode_height};
 
 /// Indexed triangle mesh in its own (model) space.
