@@ -18,6 +18,7 @@ use std::rc::Rc;
 use std::sync::{Arc, mpsc};
 use std::time::Instant;
 
+use bumpview::check::{CheckReport, check_scene};
 use bumpview::height::Kernel;
 use bumpview::render::capture::{render_image, write_png_atomically};
 use bumpview::render::{RenderTarget, Renderer, SceneOptions};
@@ -142,6 +143,8 @@ struct ViewerApp {
     uploaded: SceneOptions,
     /// Per mesh: the chosen tangent method timed and compared with the reference.
     measurements: Vec<(String, MethodMeasurement)>,
+    /// What `bumpview check` finds in the current scene.
+    check: CheckReport,
     renderer: Renderer,
     render_state: RenderState,
     adapter_name: String,
@@ -180,6 +183,7 @@ impl ViewerApp {
         let watch_error = watching.and_then(|()| watcher.watch(&files.source.files())).err();
         Ok(ViewerApp {
             measurements: measure_all(&scene, options.scene_options.tangent_method),
+            check: check_scene(&scene),
             uploaded: options.scene_options,
             scene,
             files,
@@ -270,6 +274,7 @@ impl ViewerApp {
         self.renderer.set_scene(&scene, self.state.scene_options.clone());
         self.uploaded = self.state.scene_options.clone();
         self.measurements = measure_all(&scene, self.state.scene_options.tangent_method);
+        self.check = check_scene(&scene);
         self.state.default_camera = scene.default_camera;
         if purpose == Purpose::Open {
             self.state.camera = scene.default_camera;
@@ -444,6 +449,8 @@ impl eframe::App for ViewerApp {
             counters: self.renderer.counters(),
             render_error: self.render_error.as_deref(),
             materials: &self.scene.materials,
+            check: &self.check,
+            notices: self.renderer.notices(),
         };
         let files = files_panel::FilesView {
             files: &self.files,

@@ -2,6 +2,7 @@
 //! Widgets edit copies of the state and report changes as [`Action`]s.
 
 use bumpview::WorkCounters;
+use bumpview::check::{CheckReport, GreenConvention};
 use bumpview::height::{Border, Kernel};
 use bumpview::render::BumpSource;
 use bumpview::scene::{GreenAxis, Material, MaterialOverrides, ShadingModel};
@@ -24,6 +25,10 @@ pub(super) struct Stats<'a> {
     pub render_error: Option<&'a str>,
     /// The scene's materials, as loaded (before overrides).
     pub materials: &'a [Material],
+    /// What `bumpview check` finds in the scene.
+    pub check: &'a CheckReport,
+    /// What the renderer could not do as asked (downscaled textures, dropped bump maps…).
+    pub notices: &'a [String],
 }
 
 /// Shows the whole panel, with the files section ([`super::files_panel`]) drawn by `files`
@@ -44,6 +49,7 @@ pub(super) fn show(
         view_section(ui, state, &mut actions);
         methods_section(ui, state, stats.measurements, &mut actions);
         conventions_section(ui, state, stats.materials, &mut actions);
+        check_section(ui, stats, &mut actions);
         camera_section(ui, &mut actions);
         screenshot_section(ui, screenshot, &mut actions);
         ui.separator();
@@ -332,6 +338,34 @@ fn screenshot_section(ui: &mut egui::Ui, form: &mut ScreenshotForm, actions: &mu
             ui.colored_label(ui.visuals().error_fg_color, message);
         }
         None => {}
+    }
+}
+
+/// The findings of `bumpview check` for the scene, the renderer's notices, and a button for
+/// the view that highlights degenerate and mirrored triangles.
+fn check_section(ui: &mut egui::Ui, stats: &Stats, actions: &mut Vec<Action>) {
+    ui.separator();
+    ui.strong("Check");
+    for mesh in &stats.check.meshes {
+        ui.small(format!(
+            "{}: {} triangles, {} degenerate-UV, {} mirrored, {} UV-seam positions",
+            mesh.name, mesh.triangles, mesh.degenerate_uv, mesh.mirrored, mesh.seam_positions
+        ));
+    }
+    for map in &stats.check.normal_maps {
+        let convention = match map.findings.convention {
+            Some((GreenConvention::OpenGl, c)) => format!("green looks OpenGL ({c:.2})"),
+            Some((GreenConvention::DirectX, c)) => format!("green looks DirectX ({c:.2})"),
+            None => "green undetermined (flat)".to_owned(),
+        };
+        ui.small(format!("{}: {convention}", map.material));
+    }
+    let warn = ui.visuals().warn_fg_color;
+    for line in stats.check.warnings().iter().chain(stats.notices) {
+        ui.colored_label(warn, egui::RichText::new(line).small());
+    }
+    if ui.button("Highlight degenerate / mirrored UVs").clicked() {
+        actions.push(Command::SetView(ViewMode::UvCheck).into());
     }
 }
 
