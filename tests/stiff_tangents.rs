@@ -2,7 +2,7 @@
 //! expected behaviour in its doc comment. Common to all: every frame is finite, `T` is unit
 //! and orthogonal to the vertex normal, `w = ±1` — never NaN.
 
-use bumpview::report::stiff::{grid, merged, mirrored_halves, plain_uv};
+use bumpview::report::stiff::{cases, grid, merged, mirrored_halves, plain_uv};
 use bumpview::report::surfaces::uv_sphere;
 use bumpview::scene::Mesh;
 use bumpview::tangent::{TangentMethod, angle_degrees, bitangent, tangents};
@@ -130,15 +130,8 @@ fn duplicate_positions_keep_their_own_frames() {
 /// own face frame is meaningless, the result is still a valid frame.
 #[test]
 fn zero_area_in_space_but_not_in_uv_gives_a_valid_frame() {
-    let mut mesh = grid(2, plain_uv);
-    let n = mesh.positions.len() as u32;
-    for uv in [Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0), Vec2::new(0.0, 1.0)] {
-        mesh.positions.push(Vec3::new(0.5, 0.5, 0.0));
-        mesh.normals.push(Vec3::Z);
-        mesh.uvs.push(uv);
-    }
-    mesh.indices.extend([n, n + 1, n + 2]);
-    assert_valid(&mesh, "zero-area triangle");
+    let case = cases().into_iter().find(|c| c.name == "zero area in space, not in UV").unwrap();
+    assert_valid(&case.mesh, case.name);
 }
 
 /// The same curved mesh scaled by 1e-6 and by 1e6 (positions only; normals and UVs are
