@@ -13,8 +13,8 @@ struct Frame {
     self_shadow_fade: f32,    // SELF_SHADOW_FADE
     difference_range_deg: f32, // the Difference view's colour scale runs 0..this, degrees
     shading_override: u32,    // 0: each material's own model, else 1 + ShadingModel::shader_index()
-    _pad1: f32,
-    _pad2: f32,
+    shading_mode: u32,        // ShadingMode::shader_index(): bump × colour, bump only, colour only
+    over_tilt_cos: f32,       // shading::over_tilt_cos(): the Over-tilt view marks N·N_geo below this
 };
 
 @group(0) @binding(0) var<uniform> frame: Frame;

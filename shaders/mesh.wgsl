@@ -10,6 +10,7 @@
 //   vs_plain  + fs_object_space   object-space normal map, no tangents
 //   vs_plain  + fs_height_bump    bump from the height map in screen space, no tangents
 //   vs_difference + fs_difference the Difference view: a mesh's frames against reference frames
+//   vs_wireframe + fs_wireframe   the wireframe overlay (a second pass, PolygonMode::Line)
 //
 // Prepended at build time: frame.wgsl (the Frame uniform, group 0) and pbr.wgsl.
 
@@ -52,6 +53,11 @@ const VIEW_NORMAL: u32 = 3u;
 const VIEW_SHADING_NORMAL: u32 = 4u;
 const VIEW_DIFFERENCE: u32 = 5u;
 const VIEW_UV_CHECK: u32 = 6u;
+const VIEW_HANDEDNESS: u32 = 7u;
+const VIEW_OVER_TILT: u32 = 8u;
+
+const MODE_BUMP_ONLY: u32 = 1u;
+const MODE_COLOUR_ONLY: u32 = 2u;
 
 struct VertexOutput {
     @builtin(position) clip_position: vec4<f32>,
@@ -120,12 +126,13 @@ fn geometric_normal(world_normal: vec3<f32>, front_facing: bool) -> vec3<f32> {
 struct TangentFrame {
     t: vec3<f32>,
     b: vec3<f32>,
+    w: f32, // handedness ±1; 0 where the mesh is drawn without tangents
 };
 
 fn tangent_frame(world_tangent: vec4<f32>, n: vec3<f32>) -> TangentFrame {
     let t = orthonormalize_tangent(world_tangent.xyz, n);
     let w = select(1.0, -1.0, world_tangent.w < 0.0);
-    return TangentFrame(t, w * cross(n, t));
+    return TangentFrame(t, w * cross(n, t), w);
 }
 
 // shading::decode_normal
@@ -180,7 +187,14 @@ fn stored(c: vec3<f32>) -> vec4<f32> {
 
 // The lit colour: the material's shading model unless the frame overrides it.
 fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>) -> vec3<f32> {
-    let albedo = textureSample(base_color_texture, base_color_sampler, in.uv).rgb * object.base_color.rgb;
+    var albedo = textureSample(base_color_texture, base_color_sampler, in.uv).rgb * object.base_color.rgb;
+    // shading::shade_in_mode
+    if frame.shading_mode == MODE_COLOUR_ONLY {
+        return albedo;
+    }
+    if frame.shading_mode == MODE_BUMP_ONLY {
+        albedo = vec3<f32>(1.0);
+    }
     var model = object.shading_model;
     if frame.shading_override != 0u {
         model = frame.shading_override - 1u;
@@ -228,6 +242,18 @@ fn uv_check_color(in: VertexOutput, n_geo: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(0.75) * shade;
 }
 
+// shading::handedness_color: green for w = +1, magenta for w = −1, grey without tangents.
+fn handedness_color(in: VertexOutput, n_geo: vec3<f32>, w: f32) -> vec3<f32> {
+    var base = vec3<f32>(0.5);
+    if w < 0.0 {
+        base = vec3<f32>(0.9, 0.2, 0.8);
+    } else if w > 0.0 {
+        base = vec3<f32>(0.25, 0.85, 0.3);
+    }
+    let to_eye = normalize_or(frame.camera_pos.xyz - in.world_position, n_geo);
+    return base * (0.35 + 0.65 * abs(dot(n_geo, to_eye)));
+}
+
 fn surface_color(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_shading: vec3<f32>) -> vec4<f32> {
     switch frame.view_mode {
         case VIEW_TANGENT: { return stored(0.5 * frame_tb.t + 0.5); }
@@ -237,6 +263,14 @@ fn surface_color(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_s
         // Drawn with fs_difference when the mesh has frames; without them, neutral grey.
         case VIEW_DIFFERENCE: { return stored(vec3<f32>(0.5)); }
         case VIEW_UV_CHECK: { return stored(uv_check_color(in, n_geo)); }
+        case VIEW_HANDEDNESS: { return stored(handedness_color(in, n_geo, frame_tb.w)); }
+        // shading::over_tilted: saturated red where N·N_geo < cos(OVER_TILT_LIMIT_DEG).
+        case VIEW_OVER_TILT: {
+            if dot(n_shading, n_geo) < frame.over_tilt_cos {
+                return stored(vec3<f32>(1.0, 0.0, 0.0));
+            }
+            return vec4<f32>(lit_color(in, n_geo, n_shading), 1.0);
+        }
         default: { return vec4<f32>(lit_color(in, n_geo, n_shading), 1.0); }
     }
 }
@@ -245,7 +279,7 @@ fn surface_color(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_s
 fn fs_plain(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
     // No tangents: the T and B views show the zero vector (mid grey).
-    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0)), n);
+    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0), 0.0), n);
 }
 
 @fragment
@@ -279,7 +313,7 @@ fn fs_object_space(in: VertexOutput, @builtin(front_facing) front_facing: bool) 
         n_shading = normalize_or(n + frame.strength * object.normal_scale * (n_map - n), n);
     }
     // No tangents: the T and B views show the zero vector (mid grey).
-    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0)), n_shading);
+    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0), 0.0), n_shading);
 }
 
 // Blinn's bump from a height field without tangents: Mikkelsen's surface gradient from
@@ -307,7 +341,7 @@ fn fs_height_bump(in: VertexOutput, @builtin(front_facing) front_facing: bool) -
         n_shading = normalize_or(abs(det) * n - surface_gradient, n);
     }
     // No tangents: the T and B views show the zero vector (mid grey).
-    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0)), n_shading);
+    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0), 0.0), n_shading);
 }
 
 // ---- Difference view (shading::difference_color is the CPU twin of the colour scale) ----
@@ -358,4 +392,16 @@ fn fs_difference(in: DifferenceOutput, @builtin(front_facing) front_facing: bool
     let reference_tb = tangent_frame(in.world_reference, n);
     let angle = max(angle_deg(frame_tb.t, reference_tb.t), angle_deg(frame_tb.b, reference_tb.b));
     return stored(difference_color(angle / max(frame.difference_range_deg, 1e-6)));
+}
+
+// ---- Wireframe overlay: the triangle edges in a dim colour, drawn after the meshes ----
+
+@vertex
+fn vs_wireframe(@location(0) position: vec3<f32>) -> @builtin(position) vec4<f32> {
+    return frame.view_proj * (object.model * vec4<f32>(position, 1.0));
+}
+
+@fragment
+fn fs_wireframe() -> @location(0) vec4<f32> {
+    return stored(vec3<f32>(0.08, 0.08, 0.1));
 }

@@ -13,6 +13,16 @@ pub enum RenderError {
     EmptyViewport { width: u32, height: u32 },
     #[error("viewport size {width}x{height} exceeds the adapter's limit of {limit} pixels per side")]
     ViewportTooLarge { width: u32, height: u32, limit: u32 },
+    #[error("supersampling factor {factor} is out of range: 1 to {max}")]
+    SupersampleFactor { factor: u32, max: u32 },
+    #[error(
+        "{width}x{height} supersampled {factor}× is {}x{} pixels, over the adapter's limit of {limit} pixels per side: use a smaller size or factor",
+        width.saturating_mul(*factor),
+        height.saturating_mul(*factor)
+    )]
+    SupersampleTooLarge { width: u32, height: u32, factor: u32, limit: u32 },
+    #[error("the GPU could not draw {width}x{height} pixels (try a smaller size or factor): {reason}")]
+    Gpu { width: u32, height: u32, reason: String },
     #[error("reading the rendered image back from the GPU failed: {0}")]
     Readback(String),
     #[error("no scene has been given to the renderer")]

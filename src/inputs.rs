@@ -3,10 +3,7 @@
 
 use std::path::PathBuf;
 
-use bumpview::height::Kernel;
-use bumpview::load::{TextureSlots, load_scene, replace_textures};
-use bumpview::scene::Scene;
-use bumpview::scene::builtin::teaching_scene_with_kernel;
+use bumpview::preset::PresetFiles;
 
 #[derive(clap::Args, Clone, Debug, Default)]
 pub struct InputArgs {
@@ -29,22 +26,36 @@ pub struct InputArgs {
 }
 
 impl InputArgs {
-    /// The loaded scene with the given textures in its slots (a texture without a mesh goes
-    /// on the built-in scene made with `kernel`), or `None` when no file was given. The
-    /// error is the loader's one-line message.
-    pub fn scene(&self, kernel: Kernel) -> Result<Option<Scene>, String> {
-        let slots = TextureSlots {
-            color: self.color.clone(),
-            normal: self.normal.clone(),
-            height: self.height.clone(),
-            gloss: self.gloss.clone(),
-        };
-        let mut scene = match &self.mesh {
-            Some(path) => load_scene(path).map_err(|e| e.to_string())?,
-            None if slots.is_empty() => return Ok(None),
-            None => teaching_scene_with_kernel(kernel),
-        };
-        replace_textures(&mut scene, &slots).map_err(|e| e.to_string())?;
-        Ok(Some(scene))
+    /// Whether no file was given.
+    pub fn is_empty(&self) -> bool {
+        self.mesh.is_none()
+            && self.color.is_none()
+            && self.normal.is_none()
+            && self.height.is_none()
+            && self.gloss.is_none()
+    }
+
+    /// The files given here over `files` (a preset's), slot by slot.
+    pub fn over(&self, files: PresetFiles) -> PresetFiles {
+        let pick = |given: &Option<PathBuf>, preset: Option<PathBuf>| given.clone().or(preset);
+        PresetFiles {
+            mesh: pick(&self.mesh, files.mesh),
+            color: pick(&self.color, files.color),
+            normal: pick(&self.normal, files.normal),
+            height: pick(&self.height, files.height),
+            gloss: pick(&self.gloss, files.gloss),
+        }
+    }
+
+    /// The same files as command-line arguments.
+    #[cfg(feature = "ui")]
+    pub fn from_files(files: &PresetFiles) -> InputArgs {
+        InputArgs {
+            mesh: files.mesh.clone(),
+            color: files.color.clone(),
+            normal: files.normal.clone(),
+            height: files.height.clone(),
+            gloss: files.gloss.clone(),
+        }
     }
 }

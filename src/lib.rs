@@ -35,12 +35,14 @@
 //! - **No NaN**: directions are normalised through [`math::normalize_or`], which falls back
 //!   to a valid vector; degenerate UV triangles fall back to a valid orthonormal frame.
 
+pub mod atomic;
 pub mod check;
 pub mod counters;
 pub mod error;
 pub mod height;
 pub mod load;
 pub mod math;
+pub mod preset;
 pub mod render;
 pub mod report;
 pub mod scene;

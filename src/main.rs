@@ -9,15 +9,16 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use bumpview::height::{Border, Kernel};
-use bumpview::render::capture::{render_image, write_png_atomically};
-use bumpview::render::{BumpSource, Gpu, Renderer, SceneOptions};
-use bumpview::scene::builtin::teaching_scene_with_kernel;
-use bumpview::scene::{GreenAxis, MaterialOverrides, ShadingModel};
+use bumpview::preset::{self, CapturePreset, Preset, PresetFiles};
+use bumpview::render::capture::{CaptureOptions, MAX_SUPERSAMPLE, render_capture, write_png_atomically};
+use bumpview::render::{Background, BumpSource, Gpu, Renderer};
+use bumpview::scene::{GreenAxis, MaterialOverrides, Scene, ShadingModel};
 use bumpview::shading::ViewMode;
 use bumpview::tangent::TangentMethod;
 use bumpview::viewer::ViewerState;
 use clap::{Parser, Subcommand};
 use glam::Vec3;
+use inputs::InputArgs;
 
 #[derive(Parser)]
 #[command(name = "bumpview", version, about = "A viewer and teaching tool for bump and normal mapping")]
@@ -30,16 +31,20 @@ struct Cli {
     /// Viewer: with --exit-after, save a screenshot of the whole window (UI included) here first.
     #[arg(long, value_name = "PATH", requires = "exit_after")]
     capture_window: Option<PathBuf>,
+    /// Viewer: start from this preset (files and flags given as well override it). Without
+    /// it, files or flags, the viewer restores the state it had when it last closed.
+    #[arg(long, value_name = "FILE")]
+    preset: Option<PathBuf>,
     #[command(flatten)]
     methods: MethodArgs,
     #[command(flatten)]
-    inputs: inputs::InputArgs,
+    inputs: InputArgs,
 }
 
 #[derive(Subcommand)]
 enum Command {
     /// Draw the built-in scene or a mesh file offscreen (no window, no display) and write a PNG.
-    Render(RenderArgs),
+    Render(Box<RenderArgs>),
     /// Measure error against run time of every tangent method and height kernel and write
     /// report.md, report.csv and PNG charts.
     Report(ReportArgs),
@@ -95,21 +100,34 @@ fn report(args: ReportArgs) -> Result<(), String> {
 
 #[derive(clap::Args)]
 struct RenderArgs {
-    /// Where to write the PNG.
+    /// Where to write the PNG [default with --preset: the preset's path with `.png`].
+    #[arg(long, required_unless_present = "preset")]
+    out: Option<PathBuf>,
+    /// Start from this preset (TOML, as the viewer's "Save preset" writes); flags given as well
+    /// override it.
+    #[arg(long, value_name = "FILE")]
+    preset: Option<PathBuf>,
+    /// Also write the state of this picture as a preset here.
+    #[arg(long, value_name = "FILE")]
+    save_preset: Option<PathBuf>,
+    /// Image size in pixels [default: the preset's, else 1280x720].
+    #[arg(long, value_parser = args::parse_size)]
+    size: Option<[u32; 2]>,
+    /// Transparent background: alpha 0 where there is no geometry (the PNG keeps alpha).
     #[arg(long)]
-    out: PathBuf,
-    /// Image size in pixels.
-    #[arg(long, default_value = "1280x720", value_parser = args::parse_size)]
-    size: [u32; 2],
-    /// What to show: lit, tangent, bitangent, normal or shading-normal.
-    #[arg(long, default_value = "lit", value_parser = parse_view)]
-    view: ViewMode,
-    /// Bump mapping on or off.
-    #[arg(long, default_value = "on", value_parser = args::parse_on_off, action = clap::ArgAction::Set)]
-    bump: bool,
-    /// Bump strength (0 is flat, negative inverts the relief).
-    #[arg(long, default_value = "1", value_parser = args::parse_finite, allow_hyphen_values = true)]
-    strength: f32,
+    transparent: bool,
+    /// Render at K times the size (1 to 4) and downsample with a box filter in linear light.
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_SUPERSAMPLE)))]
+    supersample: Option<u32>,
+    /// What to show: lit, tangent, bitangent, normal or shading-normal [default: lit].
+    #[arg(long, value_parser = parse_view)]
+    view: Option<ViewMode>,
+    /// Bump mapping on or off [default: on].
+    #[arg(long, value_parser = args::parse_on_off, action = clap::ArgAction::Set)]
+    bump: Option<bool>,
+    /// Bump strength (0 is flat, negative inverts the relief) [default: 1].
+    #[arg(long, value_parser = args::parse_finite, allow_hyphen_values = true)]
+    strength: Option<f32>,
     /// Light position X,Y,Z in metres (world space, +Y up).
     #[arg(long, value_parser = args::parse_vec3, allow_hyphen_values = true)]
     light: Option<Vec3>,
@@ -123,24 +141,24 @@ struct RenderArgs {
     #[command(flatten)]
     methods: MethodArgs,
     #[command(flatten)]
-    inputs: inputs::InputArgs,
+    inputs: InputArgs,
 }
 
 /// The numerical methods behind the picture (shared by the viewer and `render`).
 #[derive(clap::Args, Clone, Copy)]
 struct MethodArgs {
     /// Tangent frames: auto (the mesh's own, else MikkTSpace), mikktspace, per-face,
-    /// averaged-uniform, averaged-area, averaged-angle, supplied or analytic.
-    #[arg(long, default_value = "auto", value_parser = parse_tangents)]
-    tangents: TangentChoice,
+    /// averaged-uniform, averaged-area, averaged-angle, supplied or analytic [default: auto].
+    #[arg(long, value_parser = parse_tangents)]
+    tangents: Option<TangentChoice>,
     /// Height→normal kernel for the built-in brick normal map: forward, central, sobel3,
-    /// scharr3, sobel5 or central4.
-    #[arg(long, default_value = "central", value_parser = parse_kernel)]
-    kernel: Kernel,
+    /// scharr3, sobel5 or central4 [default: central].
+    #[arg(long, value_parser = parse_kernel)]
+    kernel: Option<Kernel>,
     /// Where the bump comes from: normal-map, or height-in-shader (Blinn's bump from the
-    /// height map by screen-space derivatives, no tangents).
-    #[arg(long, default_value = "normal-map", value_parser = parse_bump_source)]
-    bump_source: BumpSource,
+    /// height map by screen-space derivatives, no tangents) [default: normal-map].
+    #[arg(long, value_parser = parse_bump_source)]
+    bump_source: Option<BumpSource>,
     #[command(flatten)]
     materials: MaterialArgs,
 }
@@ -171,9 +189,9 @@ struct MaterialArgs {
     #[arg(long, value_parser = parse_border)]
     height_border: Option<Border>,
     /// Shading model: blinn-phong, pbr (glTF metallic-roughness) or auto (each material's own:
-    /// pbr for glTF, blinn-phong for OBJ and the built-in scene).
-    #[arg(long, default_value = "auto", value_parser = parse_shading)]
-    shading: ShadingChoice,
+    /// pbr for glTF, blinn-phong for OBJ and the built-in scene) [default: auto].
+    #[arg(long, value_parser = parse_shading)]
+    shading: Option<ShadingChoice>,
 }
 
 impl MaterialArgs {
@@ -195,26 +213,42 @@ impl MaterialArgs {
 struct ShadingChoice(Option<ShadingModel>);
 
 fn parse_shading(text: &str) -> Result<ShadingChoice, String> {
-    match text {
-        "auto" => Ok(ShadingChoice(None)),
-        "blinn-phong" => Ok(ShadingChoice(Some(ShadingModel::BlinnPhong))),
-        "pbr" => Ok(ShadingChoice(Some(ShadingModel::MetallicRoughness))),
-        _ => Err(format!("{text:?}: expected blinn-phong, pbr or auto")),
-    }
+    preset::shading_model_from_name(text)
+        .map(ShadingChoice)
+        .ok_or_else(|| format!("{text:?}: expected blinn-phong, pbr or auto"))
 }
 
 fn parse_green(text: &str) -> Result<GreenAxis, String> {
-    match text {
-        "opengl" => Ok(GreenAxis::OpenGl),
-        "directx" => Ok(GreenAxis::DirectX),
-        _ => Err(format!("{text:?}: expected opengl or directx")),
-    }
+    preset::green_from_name(text).ok_or_else(|| format!("{text:?}: expected opengl or directx"))
 }
 
 impl MethodArgs {
-    fn scene_options(&self) -> SceneOptions {
-        let materials = self.materials.overrides();
-        SceneOptions { tangent_method: self.tangents.0, bump_source: self.bump_source, materials, ..Default::default() }
+    /// Whether no method or convention flag was given.
+    fn is_empty(&self) -> bool {
+        let m = &self.materials;
+        self.tangents.is_none()
+            && self.kernel.is_none()
+            && self.bump_source.is_none()
+            && m.overrides().is_empty()
+            && m.shading.is_none()
+    }
+
+    /// These flags over the state a preset gave.
+    fn apply(&self, state: &mut ViewerState) {
+        let options = &mut state.scene_options;
+        if let Some(TangentChoice(method)) = self.tangents {
+            options.tangent_method = method;
+        }
+        if let Some(source) = self.bump_source {
+            options.bump_source = source;
+        }
+        options.materials = self.materials.overrides().over(options.materials);
+        if let Some(kernel) = self.kernel {
+            state.kernel = kernel;
+        }
+        if let Some(ShadingChoice(model)) = self.materials.shading {
+            state.shading.shading_override = model;
+        }
     }
 }
 
@@ -255,22 +289,49 @@ fn parse_kernel(text: &str) -> Result<Kernel, String> {
 }
 
 fn parse_border(text: &str) -> Result<Border, String> {
-    match text {
-        "wrap" => Ok(Border::Wrap),
-        "clamp" => Ok(Border::Clamp),
-        _ => Err(format!("{text:?}: expected wrap or clamp")),
+    preset::border_from_name(text).ok_or_else(|| format!("{text:?}: expected wrap or clamp"))
+}
+
+/// The preset, the scene it names and its state, with the command line's files and method
+/// flags over them. Errors name the file and the problem.
+fn start_state(preset: Preset, inputs: &InputArgs, methods: &MethodArgs) -> Result<Started, String> {
+    let mut preset = preset;
+    preset.files = inputs.over(preset.files);
+    if let Some(kernel) = methods.kernel {
+        kernel.name().clone_into(&mut preset.scene.kernel);
     }
+    let scene = preset.build_scene()?;
+    let mut state = preset.to_state(&scene).map_err(|e| e.to_string())?;
+    methods.apply(&mut state);
+    Ok(Started { files: preset.files, capture: preset.capture, scene, state })
+}
+
+/// What the viewer or `render` starts with.
+struct Started {
+    files: PresetFiles,
+    capture: CapturePreset,
+    scene: Scene,
+    state: ViewerState,
 }
 
 fn render(args: RenderArgs) -> Result<(), String> {
-    let kernel = args.methods.kernel;
-    let scene = args.inputs.scene(kernel)?.unwrap_or_else(|| teaching_scene_with_kernel(kernel));
-    let mut state = ViewerState::new(&scene);
-    state.shading.view = args.view;
-    state.shading.bump_enabled = args.bump;
-    state.shading.strength = args.strength;
-    state.shading.show_light_marker = !args.no_light_marker;
-    state.shading.shading_override = args.methods.materials.shading.0;
+    let preset = match &args.preset {
+        Some(path) => Preset::load(path).map_err(|e| e.to_string())?,
+        None => Preset::default(),
+    };
+    let Started { files, capture, scene, mut state } = start_state(preset, &args.inputs, &args.methods)?;
+    if let Some(view) = args.view {
+        state.shading.view = view;
+    }
+    if let Some(bump) = args.bump {
+        state.shading.bump_enabled = bump;
+    }
+    if let Some(strength) = args.strength {
+        state.shading.strength = strength;
+    }
+    if args.no_light_marker {
+        state.shading.show_light_marker = false;
+    }
     if let Some(light) = args.light {
         state.light.position = light;
     }
@@ -283,25 +344,70 @@ fn render(args: RenderArgs) -> Result<(), String> {
         state.camera.orbit(0.0, pitch.to_radians());
         state.camera.distance = distance;
     }
+    let capture = CapturePreset {
+        size: Some(args.size.or(capture.size).unwrap_or(DEFAULT_RENDER_SIZE)),
+        transparent: args.transparent || capture.transparent,
+        supersample: args.supersample.unwrap_or(capture.supersample),
+    };
+    let out = match (&args.out, &args.preset) {
+        (Some(out), _) => out.clone(),
+        (None, Some(preset)) => preset.with_extension("png"),
+        (None, None) => unreachable!("clap requires --out without --preset"),
+    };
+    if let Some(path) = &args.save_preset {
+        let preset = Preset { capture, ..Preset::from_state(&state, files) };
+        preset.save(path).map_err(|e| e.to_string())?;
+    }
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let mut renderer = Renderer::from_gpu(&gpu);
-    renderer.set_scene(&scene, args.methods.scene_options());
-    let image = render_image(&mut renderer, args.size, &state.frame_params()).map_err(|e| e.to_string())?;
-    write_png_atomically(&image, &args.out).map_err(|e| e.to_string())?;
-    println!("wrote {} ({}x{}, {})", args.out.display(), args.size[0], args.size[1], gpu.adapter_name());
+    renderer.set_scene(&scene, state.scene_options.clone());
+    let options = capture_options(&capture, DEFAULT_RENDER_SIZE);
+    let image = render_capture(&mut renderer, &options, &state.frame_params()).map_err(|e| e.to_string())?;
+    write_png_atomically(&image, &out).map_err(|e| e.to_string())?;
+    let [width, height] = options.size;
+    println!("wrote {} ({width}x{height}, {})", out.display(), gpu.adapter_name());
     Ok(())
+}
+
+/// `render`'s size when neither `--size` nor the preset gives one.
+const DEFAULT_RENDER_SIZE: [u32; 2] = [1280, 720];
+
+/// The capture a preset's settings describe, at `size` when they give none.
+fn capture_options(capture: &CapturePreset, size: [u32; 2]) -> CaptureOptions {
+    let background = if capture.transparent { Background::Transparent } else { Background::Opaque };
+    CaptureOptions { size: capture.size.unwrap_or(size), background, supersample: capture.supersample }
 }
 
 #[cfg(feature = "ui")]
 fn viewer(cli: &Cli) -> Result<(), String> {
+    // `--exit-after` runs (scripts, tests) neither restore nor save the last state.
+    let last_state = app::last_state_file().filter(|_| cli.exit_after.is_none());
+    let command_line = cli.preset.is_some() || !cli.inputs.is_empty() || !cli.methods.is_empty();
+    let mut notice = None;
+    let restored = match (&cli.preset, &last_state) {
+        (Some(path), _) => Some(Preset::load(path).map_err(|e| e.to_string())?),
+        (None, Some(path)) if !command_line && path.exists() => {
+            Preset::load(path).map_err(|e| notice = Some(format!("last state not restored: {e}"))).ok()
+        }
+        _ => None,
+    };
+    let from_last = restored.is_some() && cli.preset.is_none();
+    let started = match start_state(restored.unwrap_or_default(), &cli.inputs, &cli.methods) {
+        Err(e) if from_last => {
+            notice = Some(format!("last state not restored: {e}"));
+            start_state(Preset::default(), &cli.inputs, &cli.methods)?
+        }
+        started => started?,
+    };
     app::run(app::Options {
         exit_after: cli.exit_after,
         capture_window: cli.capture_window.clone(),
-        scene_options: cli.methods.scene_options(),
-        shading_override: cli.methods.materials.shading.0,
-        kernel: cli.methods.kernel,
-        scene: cli.inputs.scene(cli.methods.kernel)?,
-        inputs: cli.inputs.clone(),
+        inputs: InputArgs::from_files(&started.files),
+        capture: started.capture,
+        scene: started.scene,
+        state: started.state,
+        last_state,
+        notice,
     })
 }
 
@@ -325,7 +431,7 @@ fn main() -> ExitCode {
         }
     };
     let result = match cli.command.take() {
-        Some(Command::Render(args)) => render(args),
+        Some(Command::Render(args)) => render(*args),
         Some(Command::Report(args)) => report(args),
         Some(Command::Check { files }) => return check(&files),
         None => viewer(&cli),

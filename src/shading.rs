@@ -35,10 +35,16 @@ pub enum ViewMode {
     /// Triangles whose UVs have no area (red) or are mirrored (blue), as `bumpview check`
     /// counts them, from screen-space derivatives.
     UvCheck,
+    /// Tangent handedness `w`: green where +1, magenta where −1 (mirrored UV islands), grey
+    /// where the mesh is drawn without tangents ([`handedness_color`]).
+    Handedness,
+    /// The lit picture with pixels in [`OVER_TILT_COLOR`] where the shading normal tilts
+    /// past [`OVER_TILT_LIMIT_DEG`] from the geometric normal ([`over_tilted`]).
+    OverTilt,
 }
 
 impl ViewMode {
-    pub const ALL: [ViewMode; 7] = [
+    pub const ALL: [ViewMode; 9] = [
         ViewMode::Lit,
         ViewMode::Tangent,
         ViewMode::Bitangent,
@@ -46,6 +52,8 @@ impl ViewMode {
         ViewMode::ShadingNormal,
         ViewMode::Difference,
         ViewMode::UvCheck,
+        ViewMode::Handedness,
+        ViewMode::OverTilt,
     ];
 
     /// The next mode in [`ViewMode::ALL`], wrapping around.
@@ -69,11 +77,47 @@ impl ViewMode {
             ViewMode::ShadingNormal => "shading-normal",
             ViewMode::Difference => "difference",
             ViewMode::UvCheck => "uv-check",
+            ViewMode::Handedness => "handedness",
+            ViewMode::OverTilt => "over-tilt",
         }
     }
 
     pub fn from_name(name: &str) -> Option<ViewMode> {
         ViewMode::ALL.into_iter().find(|m| m.name() == name)
+    }
+}
+
+/// What the lit picture is made of, as in the classic demos (keys 1/2/3). A uniform.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum ShadingMode {
+    /// Lighting with the (bumped) shading normal times the colour texture.
+    #[default]
+    BumpTimesColour,
+    /// Lighting with the shading normal and a white albedo: the relief alone.
+    BumpOnly,
+    /// The albedo as stored (colour texture × factor): no bump, no lighting.
+    ColourOnly,
+}
+
+impl ShadingMode {
+    pub const ALL: [ShadingMode; 3] = [ShadingMode::BumpTimesColour, ShadingMode::BumpOnly, ShadingMode::ColourOnly];
+
+    /// The index the shader switches on (`frame.shading_mode`).
+    pub fn shader_index(self) -> u32 {
+        self as u32
+    }
+
+    /// Name as used on the command line and in presets.
+    pub fn name(self) -> &'static str {
+        match self {
+            ShadingMode::BumpTimesColour => "bump-colour",
+            ShadingMode::BumpOnly => "bump-only",
+            ShadingMode::ColourOnly => "colour-only",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<ShadingMode> {
+        ShadingMode::ALL.into_iter().find(|m| m.name() == name)
     }
 }
 
@@ -90,6 +134,11 @@ pub struct ShadingSettings {
     pub difference_range_deg: f32,
     /// Shade every material with this model (`None`: each material's own).
     pub shading_override: Option<ShadingModel>,
+    /// Bump × colour, bump only or colour only (a uniform).
+    pub mode: ShadingMode,
+    /// Draw the triangle edges over the picture (a second pass; needs
+    /// `wgpu::Features::POLYGON_MODE_LINE`, else it is skipped with a notice).
+    pub wireframe: bool,
 }
 
 impl Default for ShadingSettings {
@@ -101,6 +150,8 @@ impl Default for ShadingSettings {
             show_light_marker: true,
             difference_range_deg: 5.0,
             shading_override: None,
+            mode: ShadingMode::BumpTimesColour,
+            wireframe: false,
         }
     }
 }
@@ -190,6 +241,54 @@ pub fn blinn_phong(p: &LightingInputs) -> Vec3 {
     let n_dot_h = p.shading_normal.dot(h).max(0.0);
     let specular = if n_dot_l > 0.0 && n_dot_h > 0.0 { n_dot_h.powf(p.shininess) } else { 0.0 };
     p.albedo * p.ambient + self_shadow * p.light.color * (p.albedo * n_dot_l + p.specular * specular)
+}
+
+/// The lit colour in `mode`: Blinn-Phong ([`blinn_phong`]) for bump × colour, the same with
+/// a white albedo for bump only, and the albedo itself for colour only. The twin of the
+/// mode switch in `lit_color` of `shaders/mesh.wgsl` (Blinn-Phong materials).
+pub fn shade_in_mode(mode: ShadingMode, p: &LightingInputs) -> Vec3 {
+    match mode {
+        ShadingMode::BumpTimesColour => blinn_phong(p),
+        ShadingMode::BumpOnly => blinn_phong(&LightingInputs { albedo: Vec3::ONE, ..*p }),
+        ShadingMode::ColourOnly => p.albedo,
+    }
+}
+
+/// Over-tilt threshold, degrees between the shading and the geometric normal. A
+/// tangent-space normal map can never point exactly below the surface here
+/// ([`perturbed_normal`] clamps `z ≥ 0`, so `N·N_geo ≥ 0`); what breaks the illusion is a
+/// normal that lies nearly in the surface plane (facets seen edge-on). The built-in bricks
+/// reach 50° at strength 1 and 78° at strength 4. Object-space maps with a large strength can
+/// go truly below (`N·N_geo < 0`), which is marked too.
+pub const OVER_TILT_LIMIT_DEG: f32 = 75.0;
+/// Stored colour of an over-tilted pixel (saturated red).
+pub const OVER_TILT_COLOR: Vec3 = Vec3::new(1.0, 0.0, 0.0);
+
+/// `cos(OVER_TILT_LIMIT_DEG)`, the `frame.over_tilt_cos` uniform.
+pub fn over_tilt_cos() -> f32 {
+    OVER_TILT_LIMIT_DEG.to_radians().cos()
+}
+
+/// True where the Over-tilt view marks the pixel: `N·N_geo < cos(OVER_TILT_LIMIT_DEG)`.
+pub fn over_tilted(n_geo: Vec3, n_shading: Vec3) -> bool {
+    n_geo.dot(n_shading) < over_tilt_cos()
+}
+
+/// Stored colours of the Handedness view before shading: `w = +1`, `w = −1`, no tangents.
+pub const HANDEDNESS_POSITIVE: Vec3 = Vec3::new(0.25, 0.85, 0.3);
+pub const HANDEDNESS_NEGATIVE: Vec3 = Vec3::new(0.9, 0.2, 0.8);
+pub const HANDEDNESS_NONE: Vec3 = Vec3::new(0.5, 0.5, 0.5);
+
+/// The stored colour of the Handedness view: by the sign of tangent `w` (`None`: drawn
+/// without tangents), shaded by `0.35 + 0.65·|N_geo·V|` so the shape stays readable. The
+/// twin of `handedness_color` in `shaders/mesh.wgsl`.
+pub fn handedness_color(w: Option<f32>, n_geo: Vec3, to_eye: Vec3) -> Vec3 {
+    let base = match w {
+        None => HANDEDNESS_NONE,
+        Some(w) if w < 0.0 => HANDEDNESS_NEGATIVE,
+        Some(_) => HANDEDNESS_POSITIVE,
+    };
+    base * (0.35 + 0.65 * n_geo.dot(normalize_or(to_eye, n_geo)).abs())
 }
 
 /// Stops of the Difference view's colour scale (a viridis-like ramp, display values).

@@ -7,7 +7,7 @@ use glam::{Vec2, Vec3};
 use crate::height::Kernel;
 use crate::render::{BumpSource, FrameParams, SceneOptions};
 use crate::scene::{Light, MaterialOverrides, OrbitCamera, Scene, ShadingModel};
-use crate::shading::{ShadingSettings, ViewMode};
+use crate::shading::{ShadingMode, ShadingSettings, ViewMode};
 use crate::tangent::TangentMethod;
 
 /// The strength slider's range; typed values outside it are clamped.
@@ -66,6 +66,11 @@ pub enum Command {
     },
     /// Shade every material with this model (`None`: each material's own); a uniform.
     SetShadingOverride(Option<ShadingModel>),
+    /// Bump × colour, bump only or colour only (keys 1/2/3); a uniform.
+    SetShadingMode(ShadingMode),
+    /// The wireframe overlay (a second pass).
+    SetWireframe(bool),
+    ToggleWireframe,
 }
 
 /// Everything the user can change about the picture.
@@ -151,6 +156,9 @@ impl ViewerState {
                 self.scene_options.set_overrides(material, overrides)
             }
             Command::SetShadingOverride(model) => self.shading.shading_override = model,
+            Command::SetShadingMode(mode) => self.shading.mode = mode,
+            Command::SetWireframe(on) => self.shading.wireframe = on,
+            Command::ToggleWireframe => self.shading.wireframe = !self.shading.wireframe,
         }
     }
 }
@@ -213,6 +221,24 @@ mod tests {
         };
         assert!((radius(before) - radius(after)).abs() < 1e-5);
         assert!((before.y - after.y).abs() < 1e-6);
+    }
+
+    #[test]
+    fn modes_and_wireframe_are_uniform_changes_the_tracker_sees() {
+        let scene = teaching_scene();
+        let mut state = ViewerState::new(&scene);
+        let mut tracker = RedrawTracker::default();
+        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64]));
+        state.apply(Command::SetShadingMode(ShadingMode::BumpOnly));
+        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64]));
+        state.apply(Command::SetShadingMode(ShadingMode::BumpOnly));
+        assert!(!tracker.needs_redraw(&state.frame_params(), [64, 64]));
+        state.apply(Command::ToggleWireframe);
+        assert!(state.shading.wireframe);
+        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64]));
+        state.apply(Command::SetWireframe(false));
+        assert!(!state.shading.wireframe);
+        assert_eq!(state.scene_options, SceneOptions::default(), "no GPU data to re-make");
     }
 
     #[test]

@@ -3,60 +3,16 @@
 
 mod common;
 
-use bumpview::math::{linear_to_srgb, srgb_to_linear};
+use bumpview::math::linear_to_srgb;
 use bumpview::render::capture::render_image;
-use bumpview::scene::builtin::{WALL_Z, wall_uv};
-use bumpview::scene::{Scene, TextureImage, TextureKind};
-use bumpview::shading::{LightingInputs, blinn_phong, perturbed_normal};
+use bumpview::scene::Scene;
+use bumpview::shading::blinn_phong;
 use common::*;
-use glam::{Vec2, Vec3, Vec4};
-
-/// Bilinear sample of mip level 0 with repeat addressing, as the GPU's linear magnification
-/// filter does; sRGB texels are decoded before filtering, as for an sRGB texture view.
-fn sample_bilinear(texture: &TextureImage, uv: Vec2) -> Vec3 {
-    let x = uv.x * texture.width as f32 - 0.5;
-    let y = uv.y * texture.height as f32 - 0.5;
-    let (x0, y0) = (x.floor(), y.floor());
-    let (fx, fy) = (x - x0, y - y0);
-    let texel = |dx: i64, dy: i64| {
-        let t = texture.texel(x0 as i64 + dx, y0 as i64 + dy);
-        let rgb = Vec3::new(unit(t[0]), unit(t[1]), unit(t[2]));
-        match texture.kind {
-            TextureKind::Color => rgb.map(srgb_to_linear),
-            TextureKind::NormalMap | TextureKind::Height | TextureKind::Data => rgb,
-        }
-    };
-    let top = texel(0, 0).lerp(texel(1, 0), fx);
-    let bottom = texel(0, 1).lerp(texel(1, 1), fx);
-    top.lerp(bottom, fy)
-}
+use glam::Vec3;
 
 /// The CPU picture of the wall (8-bit sRGB) at one pixel.
 fn reference_pixel(scene: &Scene, params: &bumpview::render::FrameParams, size: [u32; 2], x: u32, y: u32) -> Vec3 {
-    let p = hit_plane(&params.camera, size, x, y, Vec3::Z, WALL_Z).expect("the wall fills the view");
-    let uv = wall_uv(p);
-    let material = &scene.materials[0];
-    let albedo = sample_bilinear(&scene.textures[material.base_color_texture.unwrap()], uv);
-    let normal_map = material.normal_map.as_ref().unwrap();
-    let n_geo = Vec3::Z;
-    let tangent = Vec4::new(1.0, 0.0, 0.0, 1.0); // the wall's MikkTSpace frame (tests/debug_views.rs)
-    let shading_normal = if params.shading.bump_enabled {
-        let texel = sample_bilinear(&scene.textures[normal_map.texture], uv);
-        perturbed_normal(n_geo, tangent, texel, params.shading.strength * normal_map.scale, normal_map.convention)
-    } else {
-        n_geo
-    };
-    let linear = blinn_phong(&LightingInputs {
-        albedo,
-        geometric_normal: n_geo,
-        shading_normal,
-        position: p,
-        eye: params.camera.eye(),
-        light: params.light,
-        ambient: scene.ambient,
-        specular: material.specular,
-        shininess: material.shininess,
-    });
+    let linear = blinn_phong(&wall_lighting_inputs(scene, params, size, x, y));
     linear.map(|c| linear_to_srgb(c) * 255.0)
 }
 
@@ -82,10 +38,6 @@ fn differences(bump: bool, cpu_strength_factor: f32) -> Vec<f32> {
     }
     diffs.sort_by(f32::total_cmp);
     diffs
-}
-
-fn percentile(sorted: &[f32], p: f32) -> f32 {
-    sorted[((sorted.len() - 1) as f32 * p).round() as usize]
 }
 
 /// Without bump the only inputs are interpolated positions and the colour texture:

@@ -6,19 +6,29 @@ use bumpview::RenderError;
 use bumpview::render::FrameParams;
 use bumpview::render::capture::{render_float, render_image};
 use bumpview::scene::builtin::WALL_Z;
-use bumpview::shading::ViewMode;
+use bumpview::shading::{ShadingMode, ViewMode};
 use common::*;
 use glam::Vec3;
 
-/// Renders every view of `params` to a float target and asserts all pixels are finite.
+/// Renders every view of `params` to a float target and asserts all pixels are finite; the
+/// Lit and Over-tilt views in every shading mode, the last view with the wireframe overlay.
 fn assert_finite_in_every_view(renderer: &mut bumpview::render::Renderer, params: FrameParams, case: &str) {
     for view in ViewMode::ALL {
-        let mut params = params;
-        params.shading.view = view;
-        params.shading.show_light_marker = true;
-        let image = render_float(renderer, [160, 120], &params).unwrap();
-        let bad = image.pixels.iter().filter(|p| p.iter().any(|c| !c.is_finite())).count();
-        assert_eq!(bad, 0, "{case}, {view:?}: {bad} non-finite pixels");
+        let modes: &[ShadingMode] = if matches!(view, ViewMode::Lit | ViewMode::OverTilt) {
+            &ShadingMode::ALL
+        } else {
+            &[ShadingMode::BumpTimesColour]
+        };
+        for &mode in modes {
+            let mut params = params;
+            params.shading.view = view;
+            params.shading.mode = mode;
+            params.shading.show_light_marker = true;
+            params.shading.wireframe = view == ViewMode::OverTilt;
+            let image = render_float(renderer, [160, 120], &params).unwrap();
+            let bad = image.pixels.iter().filter(|p| p.iter().any(|c| !c.is_finite())).count();
+            assert_eq!(bad, 0, "{case}, {view:?}, {mode:?}: {bad} non-finite pixels");
+        }
     }
 }
 

@@ -72,7 +72,7 @@ fn supplied_tangents_without_normal_map_use_the_tangent_variant() {
         .into_iter()
         .filter_map(|k| match k.pass {
             Pass::Mesh { variant, .. } => Some(variant),
-            Pass::Difference { .. } | Pass::LightMarker => None,
+            Pass::Difference { .. } | Pass::LightMarker | Pass::Wireframe { .. } => None,
         })
         .collect();
     assert!(variants.contains(&Variant::Tangent) && variants.contains(&Variant::Plain), "{variants:?}");

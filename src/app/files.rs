@@ -8,7 +8,6 @@
 //! the texture files in its slots — so a texture drop and a hot reload take the same path as
 //! opening a mesh, and a failure leaves the previous scene and source untouched.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, mpsc};
 use std::time::{Duration, Instant};
@@ -353,26 +352,13 @@ impl RecentFiles {
         std::fs::read_to_string(file).map(|t| RecentFiles::parse(&t)).unwrap_or_default()
     }
 
-    /// Writes the list to `file` atomically: a temporary file in the same folder (created if
-    /// missing), synced, then renamed over `file`, so a crash leaves the old list or the new.
+    /// Writes the list to `file` atomically ([`bumpview::atomic::write_atomically`]; the folder
+    /// is created if missing), so a crash leaves the old list or the new.
     pub fn save(&self, file: &Path) -> std::io::Result<()> {
         if let Some(dir) = file.parent().filter(|d| !d.as_os_str().is_empty()) {
             std::fs::create_dir_all(dir)?;
         }
-        let mut temp = file.as_os_str().to_owned();
-        temp.push(format!(".tmp-{}", std::process::id()));
-        let temp = PathBuf::from(temp);
-        let written = std::fs::File::create(&temp).and_then(|mut f| {
-            f.write_all(self.to_text().as_bytes())?;
-            f.sync_all()
-        });
-        match written.and_then(|()| std::fs::rename(&temp, file)) {
-            Ok(()) => Ok(()),
-            Err(e) => {
-                let _ = std::fs::remove_file(&temp);
-                Err(e)
-            }
-        }
+        bumpview::atomic::write_bytes_atomically(file, self.to_text().as_bytes())
     }
 }
 

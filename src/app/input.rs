@@ -1,5 +1,6 @@
 //! Keyboard shortcuts and mouse gestures on the 3D view, turned into [`Action`]s.
 
+use bumpview::shading::ShadingMode;
 use bumpview::viewer::Command;
 use egui::{Event, Key, PointerButton};
 use glam::Vec2;
@@ -13,8 +14,8 @@ const ZOOM_PER_POINT: f32 = 0.002;
 /// Strength change per `[` or `]` press.
 const STRENGTH_STEP: f32 = 0.1;
 
-/// The shortcuts pressed this frame: B bump, `[`/`]` strength, L light orbit, V view,
-/// R camera reset, F12 screenshot. None while a text field has keyboard focus.
+/// The shortcuts pressed this frame: B bump, `[`/`]` strength, 1/2/3 bump × colour, bump
+/// only, colour only, W wireframe, L light orbit, V view, R camera reset, F12 screenshot. None while a text field has keyboard focus.
 pub(super) fn keyboard(ctx: &egui::Context) -> Vec<Action> {
     if ctx.text_edit_focused() {
         return Vec::new();
@@ -45,6 +46,10 @@ fn key_action(key: Key, repeat: bool) -> Option<Action> {
         Key::L => Command::ToggleLightOrbit,
         Key::V => Command::CycleView,
         Key::R => Command::ResetCamera,
+        Key::Num1 => Command::SetShadingMode(ShadingMode::BumpTimesColour),
+        Key::Num2 => Command::SetShadingMode(ShadingMode::BumpOnly),
+        Key::Num3 => Command::SetShadingMode(ShadingMode::ColourOnly),
+        Key::W => Command::ToggleWireframe,
         Key::F12 => return Some(Action::Screenshot),
         _ => return None,
     };

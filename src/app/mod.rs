@@ -20,10 +20,10 @@ use std::time::Instant;
 
 use bumpview::check::{CheckReport, check_scene};
 use bumpview::height::Kernel;
-use bumpview::render::capture::{render_image, write_png_atomically};
+use bumpview::preset::{CapturePreset, Preset, PresetFiles};
+use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, write_png_atomically};
 use bumpview::render::{RenderTarget, Renderer, SceneOptions};
-use bumpview::scene::builtin::teaching_scene_with_kernel;
-use bumpview::scene::{Scene, ShadingModel};
+use bumpview::scene::Scene;
 use bumpview::shading::ViewMode;
 use bumpview::tangent::{MethodMeasurement, TangentMethod, measure};
 use bumpview::viewer::{Command, RedrawTracker, ViewerState};
@@ -38,16 +38,18 @@ pub struct Options {
     pub exit_after: Option<u64>,
     /// With `exit_after`: save a screenshot of the whole window here before closing.
     pub capture_window: Option<PathBuf>,
-    /// Tangent method and bump source to start with.
-    pub scene_options: SceneOptions,
-    /// Shading model for every material to start with (`None`: each material's own).
-    pub shading_override: Option<ShadingModel>,
-    /// Height→normal kernel of the built-in brick normal map to start with.
-    pub kernel: Kernel,
-    /// A loaded scene (mesh and/or textures from files); `None`: the built-in scene.
-    pub scene: Option<Scene>,
+    /// The scene to start with (the built-in one, or made from `inputs`).
+    pub scene: Scene,
     /// The files `scene` was made from, watched for changes.
     pub inputs: InputArgs,
+    /// Camera, light, settings and scene options to start with.
+    pub state: ViewerState,
+    /// Screenshot size, background and supersampling to start with.
+    pub capture: CapturePreset,
+    /// Where the state is saved on exit ([`last_state_file`]); `None`: not saved.
+    pub last_state: Option<PathBuf>,
+    /// Shown in the panel at start (e.g. why the last state was not restored).
+    pub notice: Option<String>,
 }
 
 /// Something the user asked for or that arrived: a library [`Command`] or an app-only action.
@@ -57,6 +59,10 @@ enum Action {
     Viewer(Command),
     /// Save a PNG of the 3D view (F12 or the panel button).
     Screenshot,
+    /// Write the whole state as a preset file.
+    SavePreset(PathBuf),
+    /// Read a preset file and show its files and state.
+    LoadPreset(PathBuf),
     /// Open files (dropped, chosen in the dialog or the recent list): a mesh replaces the
     /// scene; images go into `slot` (dropped on it or chosen for it) or the one their name
     /// suggests.
@@ -116,12 +122,41 @@ struct ViewTexture {
     size: [u32; 2],
 }
 
-/// The screenshot size field and the outcome of the last screenshot.
-#[derive(Default)]
+/// The screenshot size field, its options and the outcome of the last screenshot.
 struct ScreenshotForm {
     /// "WxH", or empty for the view's current pixel size.
     size_text: String,
+    /// Alpha 0 where there is no geometry.
+    transparent: bool,
+    /// Render at this many times the size and downsample (1..=[`MAX_SUPERSAMPLE`]).
+    supersample: u32,
     /// Where the last PNG went, or why it failed.
+    message: Option<Result<String, String>>,
+}
+
+impl ScreenshotForm {
+    fn new(capture: &CapturePreset) -> ScreenshotForm {
+        ScreenshotForm {
+            size_text: capture.size.map_or_else(String::new, |[w, h]| format!("{w}x{h}")),
+            transparent: capture.transparent,
+            supersample: capture.supersample,
+            message: None,
+        }
+    }
+
+    /// The settings as a preset stores them (a size field that does not parse is left out).
+    fn capture(&self) -> CapturePreset {
+        let size = crate::args::parse_size(&self.size_text).ok();
+        CapturePreset { size, transparent: self.transparent, supersample: self.supersample }
+    }
+}
+
+/// The preset path field and the outcome of the last save or load.
+#[derive(Default)]
+struct PresetForm {
+    /// The file "Save preset" and "Load preset" use.
+    path_text: String,
+    /// What the last save or load did, or why it failed.
     message: Option<Result<String, String>>,
 }
 
@@ -151,6 +186,9 @@ struct ViewerApp {
     view: Option<ViewTexture>,
     tracker: RedrawTracker,
     screenshot: ScreenshotForm,
+    preset: PresetForm,
+    /// Where the state is saved on exit; `None`: not saved.
+    last_state: Option<PathBuf>,
     render_error: Option<String>,
     exit: Option<ExitAfter>,
 }
@@ -167,24 +205,24 @@ impl ViewerApp {
             .ok_or("eframe started without a wgpu render state (the viewer needs the wgpu renderer)")?;
         let mut renderer =
             Renderer::new(render_state.device.clone(), render_state.queue.clone(), render_state.adapter.clone());
-        let scene = options.scene.unwrap_or_else(|| teaching_scene_with_kernel(options.kernel));
-        renderer.set_scene(&scene, options.scene_options.clone());
+        let scene = options.scene;
+        let state = options.state;
+        renderer.set_scene(&scene, state.scene_options.clone());
         let adapter_name = renderer.adapter_name();
-        let mut state = ViewerState::new(&scene);
-        state.scene_options = options.scene_options.clone();
-        state.shading.shading_override = options.shading_override;
-        state.kernel = options.kernel;
         let mut files =
-            Files::new(source(&options.inputs, options.kernel), Arc::new(Source::build), files::recent_file());
+            Files::new(source(&options.inputs, state.kernel), Arc::new(Source::build), files::recent_file());
         files.remember_source();
+        if let Some(notice) = options.notice {
+            files.status = Some(Status::Failed(notice));
+        }
         let ctx = cc.egui_ctx.clone();
         let wake = ctx.clone();
         let (mut watcher, watching) = watch::Watcher::new(move || wake.request_repaint());
         let watch_error = watching.and_then(|()| watcher.watch(&files.source.files())).err();
         Ok(ViewerApp {
-            measurements: measure_all(&scene, options.scene_options.tangent_method),
+            measurements: measure_all(&scene, state.scene_options.tangent_method),
             check: check_scene(&scene),
-            uploaded: options.scene_options,
+            uploaded: state.scene_options.clone(),
             scene,
             files,
             dialog: dialog::Dialog::default(),
@@ -198,7 +236,9 @@ impl ViewerApp {
             render_state,
             view: None,
             tracker: RedrawTracker::default(),
-            screenshot: ScreenshotForm::default(),
+            screenshot: ScreenshotForm::new(&options.capture),
+            preset: PresetForm::default(),
+            last_state: options.last_state,
             render_error: None,
             exit: options.exit_after.map(|frames| ExitAfter::new(frames, options.capture_window, failure)),
         })
@@ -215,6 +255,11 @@ impl ViewerApp {
                     }
                 }
                 Action::Screenshot => self.screenshot.message = Some(self.save_screenshot()),
+                Action::SavePreset(path) => {
+                    let saved = self.current_preset().save(&path).map_err(|e| e.to_string());
+                    self.preset.message = Some(saved.map(|()| format!("saved {}", path.display())));
+                }
+                Action::LoadPreset(path) => self.preset.message = Some(self.load_preset(&path)),
                 Action::Open { paths, slot } => self.files.open(&paths, slot, self.waker()),
                 Action::ShowDialog(slot) => {
                     let folder = self.files.source.files().first().and_then(|f| f.parent()).map(Path::to_owned);
@@ -419,18 +464,54 @@ impl ViewerApp {
         };
     }
 
-    /// Renders the 3D view offscreen at the requested size and writes a fresh PNG in the
-    /// current directory. Returns where it went, or why it failed.
+    /// Renders the 3D view offscreen at the requested size (with the form's background and
+    /// supersampling) and writes a fresh PNG in the current directory. Returns where it went,
+    /// or why it failed.
     fn save_screenshot(&mut self) -> Result<String, String> {
-        let size = match self.screenshot.size_text.trim() {
+        let view_size = match self.screenshot.size_text.trim() {
             "" => self.view.as_ref().map(|v| v.size).ok_or("the view has no size yet")?,
             text => crate::args::parse_size(text)?,
         };
-        let image = render_image(&mut self.renderer, size, &self.state.frame_params()).map_err(|e| e.to_string())?;
+        let capture = CapturePreset { size: Some(view_size), ..self.screenshot.capture() };
+        let options = crate::capture_options(&capture, view_size);
+        let image =
+            render_capture(&mut self.renderer, &options, &self.state.frame_params()).map_err(|e| e.to_string())?;
         let path = unused_screenshot_path();
         write_png_atomically(&image, &path).map_err(|e| e.to_string())?;
         let shown = std::path::absolute(&path).unwrap_or(path);
-        Ok(format!("wrote {} ({}x{})", shown.display(), size[0], size[1]))
+        Ok(format!("wrote {} ({}x{})", shown.display(), view_size[0], view_size[1]))
+    }
+
+    /// The whole state, the scene's files and the screenshot settings as a preset.
+    fn current_preset(&self) -> Preset {
+        let source = &self.files.source;
+        let slots = &source.slots;
+        let files = PresetFiles {
+            mesh: source.mesh.clone(),
+            color: slots.color.clone(),
+            normal: slots.normal.clone(),
+            height: slots.height.clone(),
+            gloss: slots.gloss.clone(),
+        };
+        Preset { capture: self.screenshot.capture(), ..Preset::from_state(&self.state, files) }
+    }
+
+    /// Shows a preset's state at once and loads its files in the background when they differ
+    /// from the scene's (a reload: the preset's camera and light stay).
+    fn load_preset(&mut self, path: &Path) -> Result<String, String> {
+        let preset = Preset::load(path).map_err(|e| e.to_string())?;
+        let mut state = preset.to_state(&self.scene).map_err(|e| e.to_string())?;
+        state.default_camera = self.state.default_camera;
+        let inputs = crate::inputs::InputArgs::from_files(&preset.files);
+        let wanted = source(&inputs, state.kernel);
+        self.state = state;
+        self.screenshot = ScreenshotForm::new(&preset.capture);
+        self.tracker.invalidate();
+        if wanted != self.files.source {
+            let done = format!("opened the files of {}", path.display());
+            self.files.reload(wanted, done, self.waker());
+        }
+        Ok(format!("loaded {}", path.display()))
     }
 }
 
@@ -466,7 +547,8 @@ impl eframe::App for ViewerApp {
                 let files_section = |ui: &mut egui::Ui, actions: &mut Vec<Action>| {
                     *slot_targets = files_panel::show(ui, &files, actions);
                 };
-                panel::show(ui, &self.state, &mut self.screenshot, &stats, files_section)
+                let forms = panel::Forms { screenshot: &mut self.screenshot, preset: &mut self.preset };
+                panel::show(ui, &self.state, forms, &stats, files_section)
             })
             .inner;
         actions.extend(egui::CentralPanel::no_frame().show(ui, |ui| self.view_area(ui)).inner);
@@ -477,6 +559,16 @@ impl eframe::App for ViewerApp {
         self.draw_view();
         if let Some(exit) = &mut self.exit {
             exit.on_frame(&ctx, &self.render_state.device);
+        }
+    }
+
+    /// Saves the state for the next start (see [`last_state_file`]).
+    fn on_exit(&mut self) {
+        if let Some(path) = &self.last_state {
+            let saved = path.parent().map_or(Ok(()), std::fs::create_dir_all).map_err(|e| e.to_string());
+            if let Err(e) = saved.and_then(|()| self.current_preset().save(path).map_err(|e| e.to_string())) {
+                eprintln!("bumpview: last state not saved: {e}");
+            }
         }
     }
 
@@ -496,6 +588,12 @@ fn source(inputs: &InputArgs, kernel: Kernel) -> Source {
         gloss: absolute(&inputs.gloss),
     };
     Source { mesh: absolute(&inputs.mesh), slots, kernel }
+}
+
+/// Where the viewer keeps its state between runs: `last.toml`, a preset, next to the recent
+/// list ([`files::recent_file`]).
+pub fn last_state_file() -> Option<PathBuf> {
+    files::recent_file().map(|recent| recent.with_file_name("last.toml"))
 }
 
 /// The chosen tangent method timed and compared with the reference on every mesh.

@@ -6,11 +6,11 @@ use bumpview::check::{CheckReport, GreenConvention};
 use bumpview::height::{Border, Kernel};
 use bumpview::render::BumpSource;
 use bumpview::scene::{GreenAxis, Material, MaterialOverrides, ShadingModel};
-use bumpview::shading::ViewMode;
+use bumpview::shading::{OVER_TILT_LIMIT_DEG, ShadingMode, ViewMode};
 use bumpview::tangent::{MethodMeasurement, TangentMethod};
 use bumpview::viewer::{Command, STRENGTH_RANGE, ViewerState};
 
-use super::{Action, ScreenshotForm};
+use super::{Action, MAX_SUPERSAMPLE, PresetForm, ScreenshotForm};
 
 /// Range of the light position sliders, metres.
 const LIGHT_RANGE: std::ops::RangeInclusive<f32> = -5.0..=5.0;
@@ -31,12 +31,18 @@ pub(super) struct Stats<'a> {
     pub notices: &'a [String],
 }
 
+/// The panel's text fields and their outcomes, kept between frames.
+pub(super) struct Forms<'a> {
+    pub screenshot: &'a mut ScreenshotForm,
+    pub preset: &'a mut PresetForm,
+}
+
 /// Shows the whole panel, with the files section ([`super::files_panel`]) drawn by `files`
 /// under the heading, and returns what the user changed.
 pub(super) fn show(
     ui: &mut egui::Ui,
     state: &ViewerState,
-    screenshot: &mut ScreenshotForm,
+    forms: Forms,
     stats: &Stats,
     files: impl FnOnce(&mut egui::Ui, &mut Vec<Action>),
 ) -> Vec<Action> {
@@ -51,7 +57,8 @@ pub(super) fn show(
         conventions_section(ui, state, stats.materials, &mut actions);
         check_section(ui, stats, &mut actions);
         camera_section(ui, &mut actions);
-        screenshot_section(ui, screenshot, &mut actions);
+        screenshot_section(ui, forms.screenshot, &mut actions);
+        preset_section(ui, forms.preset, &mut actions);
         ui.separator();
         stats_section(ui, stats);
     });
@@ -110,6 +117,32 @@ fn view_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action
         if ui.add(slider).changed() {
             actions.push(Command::SetDifferenceRange(range).into());
         }
+    }
+    modes_and_overlay(ui, state, actions);
+}
+
+/// The classic demo modes (keys 1/2/3) and the wireframe overlay (W).
+fn modes_and_overlay(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
+    ui.label("Lit picture");
+    let mut mode = state.shading.mode;
+    ui.horizontal(|ui| {
+        for (choice, label, hint) in [
+            (ShadingMode::BumpTimesColour, "bump × colour (1)", "lighting with the bumped normal times the colour"),
+            (ShadingMode::BumpOnly, "bump only (2)", "lighting with a white albedo: the relief alone"),
+            (ShadingMode::ColourOnly, "colour only (3)", "the colour texture as stored: no bump, no lighting"),
+        ] {
+            ui.radio_value(&mut mode, choice, label).on_hover_text(hint);
+        }
+    });
+    if mode != state.shading.mode {
+        actions.push(Command::SetShadingMode(mode).into());
+    }
+    let mut wireframe = state.shading.wireframe;
+    let checkbox = ui.checkbox(&mut wireframe, "Wireframe overlay (W)").on_hover_text(
+        "triangle edges drawn again as lines; needs line polygon mode on the GPU, else the Check section says so",
+    );
+    if checkbox.changed() {
+        actions.push(Command::SetWireframe(wireframe).into());
     }
 }
 
@@ -294,6 +327,8 @@ fn view_label(mode: ViewMode) -> &'static str {
         ViewMode::ShadingNormal => "Shading normal",
         ViewMode::Difference => "Difference (frame vs reference)",
         ViewMode::UvCheck => "UV check (degenerate / mirrored)",
+        ViewMode::Handedness => "Handedness (tangent w)",
+        ViewMode::OverTilt => "Over-tilt (normal near or below the surface)",
     }
 }
 
@@ -306,8 +341,17 @@ fn view_hint(mode: ViewMode) -> &'static str {
             "larger of the angles between T and between B of the chosen frames and the reference \
              (analytic on built-in surfaces, else MikkTSpace); grey: no frames"
         }
+        ViewMode::Handedness => "green: w = +1, magenta: w = −1 (mirrored UV island), grey: no tangents",
+        ViewMode::OverTilt => over_tilt_hint(),
         _ => "colour = 0.5·v + 0.5 of the world-space vector v (red +X, green +Y, blue +Z)",
     }
+}
+
+/// The Over-tilt view's hint, with its threshold.
+fn over_tilt_hint() -> &'static str {
+    const _: () = assert!(OVER_TILT_LIMIT_DEG == 75.0, "update the hint below");
+    "lit, red where the bumped normal tilts more than 75° from the surface normal (or below it): \
+     the strength is too high there"
 }
 
 fn camera_section(ui: &mut egui::Ui, actions: &mut Vec<Action>) {
@@ -325,12 +369,40 @@ fn screenshot_section(ui: &mut egui::Ui, form: &mut ScreenshotForm, actions: &mu
     ui.horizontal(|ui| {
         ui.label("Size");
         ui.add(egui::TextEdit::singleline(&mut form.size_text).hint_text("view size").desired_width(110.0))
-            .on_hover_text("WxH in pixels, e.g. 1920x1080; empty uses the view's size");
+            .on_hover_text("WxH in pixels, e.g. 3840x2160, up to the adapter's limit; empty uses the view's size");
     });
+    ui.checkbox(&mut form.transparent, "Transparent background")
+        .on_hover_text("alpha 0 where there is no geometry; the PNG keeps alpha");
+    ui.add(egui::Slider::new(&mut form.supersample, 1..=MAX_SUPERSAMPLE).text("supersampling ×"))
+        .on_hover_text("render at k times the size and average k×k pixels in linear light");
     if ui.button("Save PNG (F12)").clicked() {
         actions.push(Action::Screenshot);
     }
-    match &form.message {
+    outcome(ui, &form.message);
+}
+
+/// Save and load the whole state (files, camera, light, settings, screenshot options).
+fn preset_section(ui: &mut egui::Ui, form: &mut PresetForm, actions: &mut Vec<Action>) {
+    ui.separator();
+    ui.strong("Preset (whole state as TOML)");
+    ui.add(egui::TextEdit::singleline(&mut form.path_text).hint_text("file, e.g. slide.toml"))
+        .on_hover_text("the preset file; bumpview render --preset FILE draws the same picture");
+    let path = std::path::PathBuf::from(form.path_text.trim());
+    let named = !form.path_text.trim().is_empty();
+    ui.horizontal(|ui| {
+        if ui.add_enabled(named, egui::Button::new("Save preset")).clicked() {
+            actions.push(Action::SavePreset(path.clone()));
+        }
+        if ui.add_enabled(named, egui::Button::new("Load preset")).clicked() {
+            actions.push(Action::LoadPreset(path));
+        }
+    });
+    outcome(ui, &form.message);
+}
+
+/// A form's last outcome: plain on success, in the error colour on failure.
+fn outcome(ui: &mut egui::Ui, message: &Option<Result<String, String>>) {
+    match message {
         Some(Ok(message)) => {
             ui.label(message);
         }

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use super::{FrameParams, RenderTarget, Renderer};
+use super::{Background, FrameParams, RenderTarget, Renderer};
 use crate::error::RenderError;
 
 /// Format of pictures: 8-bit RGBA holding sRGB-encoded values.
@@ -24,11 +24,16 @@ fn render_offscreen(
     size: [u32; 2],
     format: wgpu::TextureFormat,
     params: &FrameParams,
+    background: Background,
 ) -> Result<Vec<u8>, RenderError> {
     renderer.check_target_size(size)?;
     let [width, height] = size;
     let extent = wgpu::Extent3d { width, height, depth_or_array_layers: 1 };
     let device = renderer.device().clone();
+    // A large picture may not fit in GPU memory: catch that (and what follows from it) as an
+    // error instead of wgpu's default handler, which panics. Scopes pop in reverse order.
+    let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let out_of_memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
     let texture = device.create_texture(&wgpu::TextureDescriptor {
         label: Some("offscreen"),
         size: extent,
@@ -41,7 +46,7 @@ fn render_offscreen(
     });
     let view = texture.create_view(&Default::default());
     let mut encoder = device.create_command_encoder(&Default::default());
-    renderer.render(&mut encoder, &RenderTarget { view: &view, format, size }, params)?;
+    renderer.render_with_background(&mut encoder, &RenderTarget { view: &view, format, size }, params, background)?;
 
     let bytes_per_pixel = format.block_copy_size(None).expect("colour format");
     let row_bytes = width * bytes_per_pixel;
@@ -64,7 +69,12 @@ fn render_offscreen(
         },
         extent,
     );
-    renderer.queue().submit([encoder.finish()]);
+    let commands = encoder.finish();
+    let memory_error = pollster::block_on(out_of_memory.pop());
+    if let Some(error) = memory_error.or(pollster::block_on(validation.pop())) {
+        return Err(RenderError::Gpu { width, height, reason: error.to_string() });
+    }
+    renderer.queue().submit([commands]);
 
     let slice = buffer.slice(..);
     let (sender, receiver) = std::sync::mpsc::channel();
@@ -90,13 +100,13 @@ pub fn render_image(
     size: [u32; 2],
     params: &FrameParams,
 ) -> Result<image::RgbaImage, RenderError> {
-    let bytes = render_offscreen(renderer, size, IMAGE_FORMAT, params)?;
+    let bytes = render_offscreen(renderer, size, IMAGE_FORMAT, params, Background::Opaque)?;
     Ok(image::RgbaImage::from_raw(size[0], size[1], bytes).expect("4 bytes per pixel"))
 }
 
 /// Renders one frame offscreen to a float target: raw shader output, NaN and infinity kept.
 pub fn render_float(renderer: &mut Renderer, size: [u32; 2], params: &FrameParams) -> Result<FloatImage, RenderError> {
-    let bytes = render_offscreen(renderer, size, FLOAT_FORMAT, params)?;
+    let bytes = render_offscreen(renderer, size, FLOAT_FORMAT, params, Background::Opaque)?;
     let pixels = bytes
         .chunks_exact(16)
         .map(|p| std::array::from_fn(|i| f32::from_le_bytes(p[i * 4..i * 4 + 4].try_into().expect("4 bytes"))))
@@ -104,18 +114,109 @@ pub fn render_float(renderer: &mut Renderer, size: [u32; 2], params: &FrameParam
     Ok(FloatImage { width: size[0], height: size[1], pixels })
 }
 
-/// Writes `image` as a PNG at `path` through a temporary file in the same folder and a
-/// rename, so an interrupted write never leaves a broken file at `path`.
-pub fn write_png_atomically(image: &image::RgbaImage, path: &Path) -> Result<(), RenderError> {
-    let failed = |reason: String| RenderError::Write { path: path.to_owned(), reason };
-    let file_name = path.file_name().ok_or_else(|| failed("not a file path".into()))?;
-    let temporary = path.with_file_name(format!(".{}.{}.tmp", file_name.to_string_lossy(), std::process::id()));
-    let result = image
-        .save_with_format(&temporary, image::ImageFormat::Png)
-        .map_err(|e| failed(e.to_string()))
-        .and_then(|()| std::fs::rename(&temporary, path).map_err(|e| failed(e.to_string())));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&temporary);
+/// Largest supersampling factor of a capture.
+pub const MAX_SUPERSAMPLE: u32 = 4;
+
+/// How a screenshot is made: the 3D view only, at any size the adapter allows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CaptureOptions {
+    /// Width and height of the PNG, pixels.
+    pub size: [u32; 2],
+    /// With [`Background::Transparent`] the PNG has alpha 0 where there is no geometry.
+    pub background: Background,
+    /// Render at this many times `size` (1..=[`MAX_SUPERSAMPLE`]) and box-filter down in
+    /// linear light.
+    pub supersample: u32,
+}
+
+impl CaptureOptions {
+    /// A plain capture: opaque background, no supersampling.
+    pub fn plain(size: [u32; 2]) -> CaptureOptions {
+        CaptureOptions { size, background: Background::Opaque, supersample: 1 }
     }
-    result
+}
+
+/// Renders a screenshot as `options` say: an sRGB RGBA8 image of `options.size`. A
+/// transparent background gives straight (not premultiplied) alpha, as PNG expects.
+pub fn render_capture(
+    renderer: &mut Renderer,
+    options: &CaptureOptions,
+    params: &FrameParams,
+) -> Result<image::RgbaImage, RenderError> {
+    let factor = options.supersample;
+    if !(1..=MAX_SUPERSAMPLE).contains(&factor) {
+        return Err(RenderError::SupersampleFactor { factor, max: MAX_SUPERSAMPLE });
+    }
+    renderer.check_target_size(options.size)?;
+    let [width, height] = options.size;
+    let limit = renderer.max_target_size();
+    let rendered = [width.saturating_mul(factor), height.saturating_mul(factor)];
+    if rendered.iter().any(|&side| side > limit) {
+        return Err(RenderError::SupersampleTooLarge { width, height, factor, limit });
+    }
+    let bytes = render_offscreen(renderer, rendered, IMAGE_FORMAT, params, options.background)?;
+    let image = image::RgbaImage::from_raw(rendered[0], rendered[1], bytes).expect("4 bytes per pixel");
+    let transparent = options.background == Background::Transparent;
+    Ok(if factor == 1 && !transparent { image } else { downsample(&image, factor, transparent) })
+}
+
+/// Averages `factor`×`factor` blocks of `image` (sRGB colour, linear alpha) in linear light;
+/// with `unpremultiply`, divides colour by alpha (the target held premultiplied colour over
+/// transparent black).
+fn downsample(image: &image::RgbaImage, factor: u32, unpremultiply: bool) -> image::RgbaImage {
+    let to_linear: [f32; 256] = std::array::from_fn(|i| srgb_to_linear(i as f32 / 255.0));
+    let count = (factor * factor) as f32;
+    image::RgbaImage::from_fn(image.width() / factor, image.height() / factor, |x, y| {
+        let mut sum = [0.0f32; 4];
+        for dy in 0..factor {
+            for dx in 0..factor {
+                let p = image.get_pixel(x * factor + dx, y * factor + dy).0;
+                for c in 0..3 {
+                    sum[c] += to_linear[p[c] as usize];
+                }
+                sum[3] += p[3] as f32 / 255.0;
+            }
+        }
+        let alpha = sum[3] / count;
+        let scale = if unpremultiply && alpha > 0.0 { 1.0 / (alpha * count) } else { 1.0 / count };
+        let channel = |c: usize| (linear_to_srgb((sum[c] * scale).min(1.0)) * 255.0).round() as u8;
+        image::Rgba([channel(0), channel(1), channel(2), (alpha * 255.0).round() as u8])
+    })
+}
+
+/// The sRGB transfer function's inverse (encoded 0..1 → linear 0..1).
+fn srgb_to_linear(v: f32) -> f32 {
+    if v <= 0.04045 { v / 12.92 } else { ((v + 0.055) / 1.055).powf(2.4) }
+}
+
+/// The sRGB transfer function (linear 0..1 → encoded 0..1).
+fn linear_to_srgb(v: f32) -> f32 {
+    if v <= 0.0031308 { v * 12.92 } else { 1.055 * v.powf(1.0 / 2.4) - 0.055 }
+}
+
+/// Writes `image` as a PNG at `path` atomically ([`crate::atomic::write_atomically`]), so an
+/// interrupted write never leaves a broken file at `path`.
+pub fn write_png_atomically(image: &image::RgbaImage, path: &Path) -> Result<(), RenderError> {
+    crate::atomic::write_atomically(path, |writer| {
+        image.write_to(writer, image::ImageFormat::Png).map_err(std::io::Error::other)
+    })
+    .map_err(|e| RenderError::Write { path: path.to_owned(), reason: e.to_string() })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn downsampling_averages_in_linear_light_and_unpremultiplies() {
+        // Black and white average to linear 0.5 (sRGB 188), not to 128.
+        let image =
+            image::RgbaImage::from_fn(2, 2, |x, _| if x == 0 { image::Rgba([0; 4]) } else { image::Rgba([255; 4]) });
+        assert_eq!(downsample(&image, 2, false).get_pixel(0, 0).0, [188, 188, 188, 128]);
+        // Half-covered white over transparent black is white at half alpha.
+        assert_eq!(downsample(&image, 2, true).get_pixel(0, 0).0, [255, 255, 255, 128]);
+        // Every 8-bit value survives the linear round trip.
+        let ramp = image::RgbaImage::from_fn(256, 1, |x, _| image::Rgba([x as u8, x as u8, x as u8, 255]));
+        assert_eq!(downsample(&ramp, 1, true), ramp);
+    }
 }

@@ -21,8 +21,14 @@ impl Gpu {
             backend: std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "unset".into()),
             reason: e.to_string(),
         })?;
-        let descriptor =
-            wgpu::DeviceDescriptor { label: Some("bumpview"), required_limits: adapter.limits(), ..Default::default() };
+        // The wireframe overlay needs line polygon mode; without it the overlay is skipped.
+        let required_features = adapter.features() & wgpu::Features::POLYGON_MODE_LINE;
+        let descriptor = wgpu::DeviceDescriptor {
+            label: Some("bumpview"),
+            required_features,
+            required_limits: adapter.limits(),
+            ..Default::default()
+        };
         let (device, queue) =
             pollster::block_on(adapter.request_device(&descriptor)).map_err(|e| RenderError::Device(e.to_string()))?;
         Ok(Gpu { adapter, device, queue })

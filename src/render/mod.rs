@@ -108,6 +108,26 @@ pub struct RenderTarget<'a> {
 /// bricks are confused with.
 const CLEAR_COLOR: wgpu::Color = wgpu::Color { r: 0.02, g: 0.025, b: 0.035, a: 1.0 };
 
+/// What a frame is drawn over where there is no geometry.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Background {
+    /// The opaque background colour.
+    #[default]
+    Opaque,
+    /// Transparent black (alpha 0): the target then holds premultiplied colour, antialiased
+    /// edges partly transparent.
+    Transparent,
+}
+
+impl Background {
+    fn clear_color(self) -> wgpu::Color {
+        match self {
+            Background::Opaque => CLEAR_COLOR,
+            Background::Transparent => wgpu::Color::TRANSPARENT,
+        }
+    }
+}
+
 /// Multisampled colour and depth attachments for one target size and format.
 struct FrameTargets {
     size: [u32; 2],
@@ -127,7 +147,13 @@ pub struct Renderer {
     scene: Option<GpuScene>,
     targets: Option<FrameTargets>,
     counters: WorkCounters,
+    /// The scene's notices, plus one while the wireframe is asked for but unsupported.
+    notices: Vec<String>,
 }
+
+/// The notice shown while the wireframe overlay is on but the device cannot draw lines.
+pub const WIREFRAME_UNSUPPORTED: &str =
+    "wireframe overlay (W) needs wgpu::Features::POLYGON_MODE_LINE, which this device does not have";
 
 impl Renderer {
     pub fn new(device: wgpu::Device, queue: wgpu::Queue, adapter: wgpu::Adapter) -> Self {
@@ -153,6 +179,7 @@ impl Renderer {
             scene: None,
             targets: None,
             counters: WorkCounters::default(),
+            notices: Vec::new(),
         }
     }
 
@@ -185,7 +212,13 @@ impl Renderer {
         };
         let layouts = &self.pipelines.layouts;
         let gpu = scene_gpu::upload(&self.device, &self.queue, layouts, scene, options, &mut self.counters);
+        self.notices = gpu.notices.clone();
         self.scene = Some(gpu);
+    }
+
+    /// Whether the device can draw the wireframe overlay (`POLYGON_MODE_LINE`).
+    pub fn supports_wireframe(&self) -> bool {
+        self.device.features().contains(wgpu::Features::POLYGON_MODE_LINE)
     }
 
     /// Per mesh of the current scene: the tangent method its frames come from, or `None`
@@ -197,7 +230,7 @@ impl Renderer {
     /// What the current scene asked for but could not get (a texture downscaled to fit the
     /// adapter, a bump map on a mesh without texture coordinates), one line each.
     pub fn notices(&self) -> &[String] {
-        self.scene.as_ref().map_or(&[], |s| &s.notices)
+        &self.notices
     }
 
     /// The work done so far.
@@ -273,6 +306,17 @@ impl Renderer {
         target: &RenderTarget,
         params: &FrameParams,
     ) -> Result<(), RenderError> {
+        self.render_with_background(encoder, target, params, Background::Opaque)
+    }
+
+    /// [`Self::render`] over the given background.
+    pub fn render_with_background(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &RenderTarget,
+        params: &FrameParams,
+        background: Background,
+    ) -> Result<(), RenderError> {
         self.check_target_size(target.size)?;
         let samples = self.sample_count(target.format);
         let difference = params.shading.view == ViewMode::Difference;
@@ -291,7 +335,19 @@ impl Renderer {
 
         let key = |pass| PipelineKey { pass, format: target.format, samples };
         let marker = params.shading.show_light_marker.then_some(Pass::LightMarker);
-        for pass in scene.instances.iter().map(|i| drawn_pass(i, scene, difference)).chain(marker) {
+        let wireframe = params.shading.wireframe && self.device.features().contains(wgpu::Features::POLYGON_MODE_LINE);
+        let unsupported_notice = self.notices.iter().position(|n| n == WIREFRAME_UNSUPPORTED);
+        match (params.shading.wireframe && !wireframe, unsupported_notice) {
+            (true, None) => self.notices.push(WIREFRAME_UNSUPPORTED.to_owned()),
+            (false, Some(index)) => {
+                self.notices.remove(index);
+            }
+            _ => {}
+        }
+        let wireframe_passes = scene.instances.iter().filter(|_| wireframe).map(wireframe_pass);
+        for pass in
+            scene.instances.iter().map(|i| drawn_pass(i, scene, difference)).chain(marker).chain(wireframe_passes)
+        {
             self.pipelines.ensure(&self.device, key(pass), &mut self.counters);
         }
         self.ensure_targets(target.size, target.format);
@@ -309,7 +365,10 @@ impl Renderer {
                 view,
                 depth_slice: None,
                 resolve_target,
-                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(CLEAR_COLOR), store: wgpu::StoreOp::Store },
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(background.clear_color()),
+                    store: wgpu::StoreOp::Store,
+                },
             })],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &targets.depth,
@@ -338,6 +397,16 @@ impl Renderer {
             pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..mesh.index_count, 0, 0..1);
         }
+        if wireframe {
+            for instance in &scene.instances {
+                let mesh = &scene.meshes[instance.mesh];
+                pass.set_pipeline(self.pipelines.get(&key(wireframe_pass(instance))));
+                pass.set_bind_group(1, &instance.bind_group, &[]);
+                pass.set_vertex_buffer(0, mesh.positions.slice(..));
+                pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+            }
+        }
         if params.shading.show_light_marker {
             let marker = &scene.marker;
             pass.set_pipeline(self.pipelines.get(&key(Pass::LightMarker)));
@@ -349,6 +418,16 @@ impl Renderer {
         drop(pass);
         self.counters.frames_drawn += 1;
         Ok(())
+    }
+}
+
+/// The wireframe pass of an instance: the group-1 layout of its own variant.
+fn wireframe_pass(instance: &scene_gpu::GpuInstance) -> Pass {
+    match instance.pass {
+        Pass::Mesh { variant, .. } | Pass::Difference { variant, .. } | Pass::Wireframe { variant } => {
+            Pass::Wireframe { variant }
+        }
+        Pass::LightMarker => Pass::Wireframe { variant: pipelines::Variant::Plain },
     }
 }
 

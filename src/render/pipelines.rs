@@ -17,6 +17,10 @@ pub const MARKER_WGSL: &str =
 
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
+/// Pulls the wireframe's edges towards the eye so they win the depth test against the faces
+/// they border (negative: nearer), by a constant and by the faces' depth slope.
+const WIREFRAME_DEPTH_BIAS: wgpu::DepthBiasState = wgpu::DepthBiasState { constant: -8, slope_scale: -1.0, clamp: 0.0 };
+
 /// What a drawn mesh needs from its pipeline.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Variant {
@@ -50,6 +54,12 @@ pub enum Pass {
         mirrored: bool,
     },
     LightMarker,
+    /// The wireframe overlay of a mesh drawn with `variant` (whose group-1 layout it binds):
+    /// positions only, `PolygonMode::Line`, depth-tested with a bias towards the eye, no depth
+    /// writes. Needs `wgpu::Features::POLYGON_MODE_LINE`.
+    Wireframe {
+        variant: Variant,
+    },
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -237,6 +247,15 @@ impl Pipelines {
                     let layout = self.layouts.material(variant);
                     (&self.mesh_module, layout, "vs_difference", "fs_difference", buffers, cull, &encodes_srgb)
                 }
+                Pass::Wireframe { variant } => (
+                    &self.mesh_module,
+                    self.layouts.material(variant),
+                    "vs_wireframe",
+                    "fs_wireframe",
+                    &[POSITION],
+                    None,
+                    &encodes_srgb,
+                ),
                 Pass::LightMarker => (
                     &self.marker_module,
                     &self.layouts.marker,
@@ -247,6 +266,8 @@ impl Pipelines {
                     &[],
                 ),
             };
+        let wireframe = matches!(key.pass, Pass::Wireframe { .. });
+        let polygon_mode = if wireframe { wgpu::PolygonMode::Line } else { wgpu::PolygonMode::Fill };
         let buffers: Vec<_> = buffers.iter().cloned().map(Some).collect();
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("bumpview"),
@@ -263,13 +284,17 @@ impl Pipelines {
                 buffers: &buffers,
                 compilation_options: options.clone(),
             },
-            primitive: wgpu::PrimitiveState { cull_mode, front_face, ..Default::default() },
+            primitive: wgpu::PrimitiveState { cull_mode, front_face, polygon_mode, ..Default::default() },
             depth_stencil: Some(wgpu::DepthStencilState {
                 format: DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
+                depth_write_enabled: Some(!wireframe),
+                depth_compare: Some(if wireframe {
+                    wgpu::CompareFunction::LessEqual
+                } else {
+                    wgpu::CompareFunction::Less
+                }),
                 stencil: Default::default(),
-                bias: Default::default(),
+                bias: if wireframe { WIREFRAME_DEPTH_BIAS } else { Default::default() },
             }),
             multisample: wgpu::MultisampleState { count: key.samples, ..Default::default() },
             fragment: Some(wgpu::FragmentState {
@@ -310,6 +335,8 @@ mod tests {
                     "fs_height_bump",
                     "vs_difference",
                     "fs_difference",
+                    "vs_wireframe",
+                    "fs_wireframe",
                 ],
             ),
             (MARKER_WGSL, &["vs_marker", "fs_marker"]),

@@ -22,7 +22,8 @@ pub struct FrameUniform {
     self_shadow_fade: f32,
     difference_range_deg: f32,
     shading_override: u32,
-    _pad: [f32; 2],
+    shading_mode: u32,
+    over_tilt_cos: f32,
 }
 
 impl FrameUniform {
@@ -39,7 +40,8 @@ impl FrameUniform {
             self_shadow_fade: SELF_SHADOW_FADE,
             difference_range_deg: params.shading.difference_range_deg,
             shading_override: params.shading.shading_override.map_or(0, |m| 1 + m.shader_index()),
-            _pad: [0.0; 2],
+            shading_mode: params.shading.mode.shader_index(),
+            over_tilt_cos: crate::shading::over_tilt_cos(),
         }
     }
 }

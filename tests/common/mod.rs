@@ -5,11 +5,13 @@
 
 use std::path::{Path, PathBuf};
 
+use bumpview::math::srgb_to_linear;
 use bumpview::render::{FrameParams, Gpu, Renderer};
-use bumpview::scene::builtin::{WALL_Z, teaching_scene};
-use bumpview::scene::{OrbitCamera, Scene};
+use bumpview::scene::builtin::{WALL_Z, teaching_scene, wall_uv};
+use bumpview::scene::{OrbitCamera, Scene, TextureImage, TextureKind};
+use bumpview::shading::{LightingInputs, perturbed_normal};
 use bumpview::viewer::ViewerState;
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 
 pub fn renderer_for(scene: &Scene) -> Renderer {
     let gpu =
@@ -78,4 +80,59 @@ pub fn asset(base: &Path, relative: &str) -> PathBuf {
     let path = base.join(relative);
     assert!(path.is_file(), "BUMPVIEW_TEST_ASSETS is set but {} is missing", path.display());
     path
+}
+
+/// Bilinear sample of mip level 0 with repeat addressing, as the GPU's linear magnification
+/// filter does; sRGB texels are decoded before filtering, as for an sRGB texture view.
+pub fn sample_bilinear(texture: &TextureImage, uv: Vec2) -> Vec3 {
+    let x = uv.x * texture.width as f32 - 0.5;
+    let y = uv.y * texture.height as f32 - 0.5;
+    let (x0, y0) = (x.floor(), y.floor());
+    let (fx, fy) = (x - x0, y - y0);
+    let texel = |dx: i64, dy: i64| {
+        let t = texture.texel(x0 as i64 + dx, y0 as i64 + dy);
+        let rgb = Vec3::new(unit(t[0]), unit(t[1]), unit(t[2]));
+        match texture.kind {
+            TextureKind::Color => rgb.map(srgb_to_linear),
+            TextureKind::NormalMap | TextureKind::Height | TextureKind::Data => rgb,
+        }
+    };
+    let top = texel(0, 0).lerp(texel(1, 0), fx);
+    let bottom = texel(0, 1).lerp(texel(1, 1), fx);
+    top.lerp(bottom, fy)
+}
+
+/// The value at fraction `p` (0..1) of sorted values.
+pub fn percentile(sorted: &[f32], p: f32) -> f32 {
+    sorted[((sorted.len() - 1) as f32 * p).round() as usize]
+}
+
+/// The CPU inputs of the wall's shading at pixel `(x, y)` of a `size` picture: the bricks'
+/// bilinear colour and (with bump on) normal-map texel, the wall's frame T = +X, w = +1
+/// (its MikkTSpace frame, tests/debug_views.rs), `params`' strength.
+pub fn wall_lighting_inputs(scene: &Scene, params: &FrameParams, size: [u32; 2], x: u32, y: u32) -> LightingInputs {
+    let p = hit_plane(&params.camera, size, x, y, Vec3::Z, WALL_Z).expect("the wall fills the view");
+    let uv = wall_uv(p);
+    let material = &scene.materials[0];
+    let albedo = sample_bilinear(&scene.textures[material.base_color_texture.unwrap()], uv);
+    let normal_map = material.normal_map.as_ref().unwrap();
+    let n_geo = Vec3::Z;
+    let tangent = Vec4::new(1.0, 0.0, 0.0, 1.0);
+    let shading_normal = if params.shading.bump_enabled {
+        let texel = sample_bilinear(&scene.textures[normal_map.texture], uv);
+        perturbed_normal(n_geo, tangent, texel, params.shading.strength * normal_map.scale, normal_map.convention)
+    } else {
+        n_geo
+    };
+    LightingInputs {
+        albedo,
+        geometric_normal: n_geo,
+        shading_normal,
+        position: p,
+        eye: params.camera.eye(),
+        light: params.light,
+        ambient: scene.ambient,
+        specular: material.specular,
+        shininess: material.shininess,
+    }
 }

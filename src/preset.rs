@@ -1,0 +1,578 @@
+//! Presets: the whole viewer state (files, camera, light, shading, scene options, kernel) and
+//! the capture settings as a small TOML file, for `bumpview render --preset` and the viewer.
+//!
+//! Enums are stored by the names the command line uses (`view = "shading-normal"`), angles in
+//! degrees. Reading is strict about what is there and lenient about what is not:
+//!
+//! - an **unknown** key or section, a value of the wrong type or an unknown name is an error
+//!   naming the key (and, for parse errors, the line);
+//! - a **missing** key takes its default: the scene's own camera and light, the viewer's
+//!   start settings ([`ShadingSettings::default`], [`SceneOptions::default`], the default
+//!   kernel), no files (the built-in scene), and a capture at the caller's size.
+//!
+//! Numbers survive a round trip exactly: `f32` values are written as the shortest decimal that
+//! reads back to the same bits, and angles go through `f64` degrees, so a saved state renders
+//! the same pixels again.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+use serde::{Deserialize, Serialize};
+
+use crate::height::{Border, Kernel};
+use crate::load::{TextureSlots, load_scene, replace_textures};
+use crate::render::capture::MAX_SUPERSAMPLE;
+use crate::render::{BumpSource, SceneOptions};
+use crate::scene::builtin::teaching_scene_with_kernel;
+use crate::scene::{GreenAxis, MaterialOverrides, Scene, ShadingModel};
+use crate::shading::{ShadingMode, ShadingSettings, ViewMode};
+use crate::tangent::TangentMethod;
+use crate::viewer::ViewerState;
+
+/// The preset format this code writes and reads.
+pub const FORMAT_VERSION: u32 = 1;
+
+/// A preset could not be read, parsed, understood or written; the message says which key or
+/// file and why, on one line.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{0}")]
+pub struct PresetError(pub String);
+
+/// The whole preset file.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Preset {
+    /// [`FORMAT_VERSION`]; missing means the current one.
+    pub version: Option<u32>,
+    pub files: PresetFiles,
+    pub camera: CameraPreset,
+    pub light: LightPreset,
+    pub shading: ShadingPreset,
+    pub scene: ScenePreset,
+    pub capture: CapturePreset,
+}
+
+/// The mesh and the textures put in every material's slots; `None`: none (the built-in scene
+/// without a mesh). Relative paths are relative to the preset file's folder.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PresetFiles {
+    pub mesh: Option<PathBuf>,
+    pub color: Option<PathBuf>,
+    pub normal: Option<PathBuf>,
+    pub height: Option<PathBuf>,
+    pub gloss: Option<PathBuf>,
+}
+
+impl PresetFiles {
+    /// The texture slots of these files.
+    pub fn slots(&self) -> TextureSlots {
+        TextureSlots {
+            color: self.color.clone(),
+            normal: self.normal.clone(),
+            height: self.height.clone(),
+            gloss: self.gloss.clone(),
+        }
+    }
+
+    /// These files with relative paths joined to `folder`.
+    pub fn resolved(&self, folder: &Path) -> PresetFiles {
+        let resolve = |p: &Option<PathBuf>| p.as_ref().map(|p| folder.join(p));
+        PresetFiles {
+            mesh: resolve(&self.mesh),
+            color: resolve(&self.color),
+            normal: resolve(&self.normal),
+            height: resolve(&self.height),
+            gloss: resolve(&self.gloss),
+        }
+    }
+}
+
+/// The orbit camera; each missing value is the scene's default camera's.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct CameraPreset {
+    /// The point looked at, metres.
+    pub target: Option<[f32; 3]>,
+    /// Degrees about +Y (0 looks along −Z).
+    pub yaw_deg: Option<f64>,
+    /// Degrees above the target.
+    pub pitch_deg: Option<f64>,
+    /// Metres from the target.
+    pub distance: Option<f32>,
+    /// Vertical field of view, degrees.
+    pub fov_y_deg: Option<f64>,
+}
+
+/// The point light; missing position and colour are the scene's default light's.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct LightPreset {
+    /// Metres, world space.
+    pub position: Option<[f32; 3]>,
+    /// Linear RGB.
+    pub color: Option<[f32; 3]>,
+    /// The light orbits the target.
+    pub orbit: bool,
+    /// The light marker is drawn.
+    pub marker: bool,
+}
+
+impl Default for LightPreset {
+    fn default() -> Self {
+        let shading = ShadingSettings::default();
+        LightPreset { position: None, color: None, orbit: false, marker: shading.show_light_marker }
+    }
+}
+
+/// The shader uniforms: bump, strength, view and shading model.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ShadingPreset {
+    pub bump: bool,
+    pub strength: f32,
+    /// A [`ViewMode`] name.
+    pub view: String,
+    pub difference_range_deg: f32,
+    /// `auto`, `blinn-phong` or `pbr`.
+    pub model: String,
+    /// A [`ShadingMode`] name: `bump-colour`, `bump-only` or `colour-only`.
+    pub mode: String,
+    /// The wireframe overlay.
+    pub wireframe: bool,
+}
+
+/// How the scene is prepared: tangents, bump source, kernel and material conventions.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ScenePreset {
+    /// `auto` or a [`TangentMethod`] name.
+    pub tangents: String,
+    /// A [`BumpSource`] name.
+    pub bump_source: String,
+    /// The built-in brick map's [`Kernel`] name.
+    pub kernel: String,
+    /// Conventions for every material.
+    pub materials: OverridesPreset,
+    /// Conventions per material, by index into the scene's materials (`"0"`, `"1"`…).
+    pub per_material: BTreeMap<String, OverridesPreset>,
+}
+
+/// [`MaterialOverrides`] by name; a missing key keeps the material's own setting.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct OverridesPreset {
+    /// `opengl` or `directx`.
+    pub normal_convention: Option<String>,
+    pub two_channel: Option<bool>,
+    pub object_space: Option<bool>,
+    pub depth_map: Option<bool>,
+    pub height_range_m: Option<f32>,
+    /// A [`Kernel`] name.
+    pub height_kernel: Option<String>,
+    /// `wrap` or `clamp`.
+    pub height_border: Option<String>,
+}
+
+/// Screenshot settings: size, transparent background, supersampling.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct CapturePreset {
+    /// `[width, height]` in pixels; `None`: the caller's size (the view's, or `render`'s default).
+    pub size: Option<[u32; 2]>,
+    /// Clear to alpha 0 where there is no geometry.
+    pub transparent: bool,
+    /// Render at this many times the size and box-filter down, 1..=[`MAX_SUPERSAMPLE`].
+    pub supersample: u32,
+}
+
+impl Default for ShadingPreset {
+    fn default() -> Self {
+        ShadingPreset::from(&ShadingSettings::default())
+    }
+}
+
+impl From<&ShadingSettings> for ShadingPreset {
+    fn from(s: &ShadingSettings) -> Self {
+        ShadingPreset {
+            bump: s.bump_enabled,
+            strength: s.strength,
+            view: s.view.name().to_owned(),
+            difference_range_deg: s.difference_range_deg,
+            model: shading_model_name(s.shading_override).to_owned(),
+            mode: s.mode.name().to_owned(),
+            wireframe: s.wireframe,
+        }
+    }
+}
+
+impl Default for ScenePreset {
+    fn default() -> Self {
+        ScenePreset::new(&SceneOptions::default(), Kernel::default())
+    }
+}
+
+impl ScenePreset {
+    fn new(options: &SceneOptions, kernel: Kernel) -> ScenePreset {
+        ScenePreset {
+            tangents: options.tangent_method.map_or("auto", TangentMethod::name).to_owned(),
+            bump_source: options.bump_source.name().to_owned(),
+            kernel: kernel.name().to_owned(),
+            materials: OverridesPreset::from(&options.materials),
+            per_material: options.per_material.iter().map(|(i, o)| (i.to_string(), o.into())).collect(),
+        }
+    }
+}
+
+impl Default for CapturePreset {
+    fn default() -> Self {
+        CapturePreset { size: None, transparent: false, supersample: 1 }
+    }
+}
+
+impl From<&MaterialOverrides> for OverridesPreset {
+    fn from(o: &MaterialOverrides) -> Self {
+        OverridesPreset {
+            normal_convention: o.green.map(|g| green_name(g).to_owned()),
+            two_channel: o.two_channel,
+            object_space: o.object_space,
+            depth_map: o.depth_map,
+            height_range_m: o.height_range_m,
+            height_kernel: o.kernel.map(|k| k.name().to_owned()),
+            height_border: o.border.map(|b| border_name(b).to_owned()),
+        }
+    }
+}
+
+impl OverridesPreset {
+    /// The overrides; `section` names the table in errors.
+    fn to_overrides(&self, section: &str) -> Result<MaterialOverrides, PresetError> {
+        let key = |k: &str| format!("{section}.{k}");
+        let height_range_m = match self.height_range_m {
+            Some(r) if !(r.is_finite() && r >= 0.0) => {
+                return Err(bad(&key("height_range_m"), &r.to_string(), "a finite number of metres, at least 0"));
+            }
+            r => r,
+        };
+        Ok(MaterialOverrides {
+            green: self
+                .normal_convention
+                .as_deref()
+                .map(|n| green_from_name(n).ok_or_else(|| bad(&key("normal_convention"), n, "opengl or directx")))
+                .transpose()?,
+            two_channel: self.two_channel,
+            object_space: self.object_space,
+            depth_map: self.depth_map,
+            height_range_m,
+            kernel: self.height_kernel.as_deref().map(|n| kernel(&key("height_kernel"), n)).transpose()?,
+            border: self
+                .height_border
+                .as_deref()
+                .map(|n| border_from_name(n).ok_or_else(|| bad(&key("height_border"), n, "wrap or clamp")))
+                .transpose()?,
+        })
+    }
+}
+
+/// What a preset sets besides files, camera and light, checked and typed.
+struct Settings {
+    shading: ShadingSettings,
+    light_orbit: bool,
+    scene_options: SceneOptions,
+    kernel: Kernel,
+}
+
+impl Preset {
+    /// The preset of `state` showing `files`; no capture settings.
+    pub fn from_state(state: &ViewerState, files: PresetFiles) -> Preset {
+        let camera = state.camera;
+        Preset {
+            version: Some(FORMAT_VERSION),
+            files,
+            camera: CameraPreset {
+                target: Some(camera.target.to_array()),
+                yaw_deg: Some(degrees(camera.yaw)),
+                pitch_deg: Some(degrees(camera.pitch)),
+                distance: Some(camera.distance),
+                fov_y_deg: Some(degrees(camera.fov_y)),
+            },
+            light: LightPreset {
+                position: Some(state.light.position.to_array()),
+                color: Some(state.light.color.to_array()),
+                orbit: state.light_orbit,
+                marker: state.shading.show_light_marker,
+            },
+            shading: ShadingPreset::from(&state.shading),
+            scene: ScenePreset::new(&state.scene_options, state.kernel),
+            capture: CapturePreset::default(),
+        }
+    }
+
+    /// The viewer state on `scene` (which gives the defaults of camera and light).
+    pub fn to_state(&self, scene: &Scene) -> Result<ViewerState, PresetError> {
+        let settings = self.settings()?;
+        let mut state = ViewerState::new(scene);
+        let c = &self.camera;
+        let radians = |deg: Option<f64>, default: f32| deg.map_or(default, |d| d.to_radians() as f32);
+        state.camera.target = c.target.map_or(state.camera.target, Vec3::from_array);
+        state.camera.yaw = radians(c.yaw_deg, state.camera.yaw);
+        state.camera.pitch = radians(c.pitch_deg, state.camera.pitch);
+        state.camera.distance = c.distance.unwrap_or(state.camera.distance);
+        state.camera.fov_y = radians(c.fov_y_deg, state.camera.fov_y);
+        state.light.position = self.light.position.map_or(state.light.position, Vec3::from_array);
+        state.light.color = self.light.color.map_or(state.light.color, Vec3::from_array);
+        state.shading = settings.shading;
+        state.light_orbit = settings.light_orbit;
+        state.scene_options = settings.scene_options;
+        state.kernel = settings.kernel;
+        Ok(state)
+    }
+
+    /// The brick-map kernel the scene is made with.
+    pub fn kernel(&self) -> Result<Kernel, PresetError> {
+        kernel("scene.kernel", &self.scene.kernel)
+    }
+
+    /// Loads the preset's files (the built-in scene made with its kernel when there is no
+    /// mesh); the error is the loader's one-line message.
+    pub fn build_scene(&self) -> Result<Scene, String> {
+        let kernel = self.kernel().map_err(|e| e.to_string())?;
+        let mut scene = match &self.files.mesh {
+            Some(path) => load_scene(path).map_err(|e| e.to_string())?,
+            None => teaching_scene_with_kernel(kernel),
+        };
+        replace_textures(&mut scene, &self.files.slots()).map_err(|e| e.to_string())?;
+        Ok(scene)
+    }
+
+    /// The preset as TOML, with a comment line on top.
+    pub fn to_toml(&self) -> String {
+        let body = toml::to_string(self).expect("a preset is always representable in TOML");
+        format!("# bumpview preset (bumpview render --preset FILE)\n{body}")
+    }
+
+    /// Parses and checks a preset (every name and range; see the module doc for missing keys).
+    pub fn from_toml(text: &str) -> Result<Preset, PresetError> {
+        let preset: Preset = toml::from_str(text).map_err(|e| PresetError(one_line(&e.to_string())))?;
+        preset.settings()?;
+        Ok(preset)
+    }
+
+    /// Reads a preset file; relative file paths in it become relative to its folder.
+    pub fn load(path: &Path) -> Result<Preset, PresetError> {
+        let in_file = |message: String| PresetError(format!("{}: {message}", path.display()));
+        let text = std::fs::read_to_string(path).map_err(|e| in_file(e.to_string()))?;
+        let mut preset = Preset::from_toml(&text).map_err(|e| in_file(e.0))?;
+        let folder = path.parent().unwrap_or(Path::new(""));
+        preset.files = preset.files.resolved(folder);
+        Ok(preset)
+    }
+
+    /// Writes the preset atomically ([`crate::atomic::write_atomically`]).
+    pub fn save(&self, path: &Path) -> Result<(), PresetError> {
+        crate::atomic::write_bytes_atomically(path, self.to_toml().as_bytes())
+            .map_err(|e| PresetError(format!("could not write {}: {e}", path.display())))
+    }
+
+    /// Checks and types everything but files, camera and light.
+    fn settings(&self) -> Result<Settings, PresetError> {
+        if let Some(version) = self.version.filter(|&v| v != FORMAT_VERSION) {
+            return Err(bad("version", &version.to_string(), &format!("{FORMAT_VERSION} (this bumpview's format)")));
+        }
+        let c = &self.camera;
+        if let Some(d) = c.distance.filter(|d| !(d.is_finite() && *d > 0.0)) {
+            return Err(bad("camera.distance", &d.to_string(), "a positive number of metres"));
+        }
+        if let Some(f) = c.fov_y_deg.filter(|f| !(f.is_finite() && *f > 0.0 && *f < 180.0)) {
+            return Err(bad("camera.fov_y_deg", &f.to_string(), "degrees between 0 and 180"));
+        }
+        let finite = [c.yaw_deg, c.pitch_deg].into_iter().flatten().all(f64::is_finite)
+            && [c.target, self.light.position, self.light.color].into_iter().flatten().flatten().all(f32::is_finite);
+        if !finite {
+            return Err(PresetError("camera and light values must be finite numbers".into()));
+        }
+        let s = &self.shading;
+        if !s.strength.is_finite() {
+            return Err(bad("shading.strength", &s.strength.to_string(), "a finite number"));
+        }
+        let view = ViewMode::from_name(&s.view).ok_or_else(|| {
+            let names: Vec<_> = ViewMode::ALL.iter().map(|m| m.name()).collect();
+            bad("shading.view", &s.view, &format!("one of {}", names.join(", ")))
+        })?;
+        let model = shading_model_from_name(&s.model)
+            .ok_or_else(|| bad("shading.model", &s.model, "auto, blinn-phong or pbr"))?;
+        let scene = &self.scene;
+        let tangent_method = match scene.tangents.as_str() {
+            "auto" => None,
+            name => Some(TangentMethod::from_name(name).ok_or_else(|| {
+                let names: Vec<_> = TangentMethod::ALL.iter().map(|m| m.name()).collect();
+                bad("scene.tangents", name, &format!("auto or one of {}", names.join(", ")))
+            })?),
+        };
+        let bump_source = BumpSource::from_name(&scene.bump_source).ok_or_else(|| {
+            let names: Vec<_> = BumpSource::ALL.iter().map(|b| b.name()).collect();
+            bad("scene.bump_source", &scene.bump_source, &format!("one of {}", names.join(", ")))
+        })?;
+        let mut per_material = BTreeMap::new();
+        for (index, overrides) in &scene.per_material {
+            let section = format!("scene.per_material.{index}");
+            let i = index.parse::<usize>().map_err(|_| bad(&section, index, "a material index (0, 1, …)"))?;
+            per_material.insert(i, overrides.to_overrides(&section)?);
+        }
+        let capture = &self.capture;
+        if !(1..=MAX_SUPERSAMPLE).contains(&capture.supersample) {
+            let range = format!("1 to {MAX_SUPERSAMPLE}");
+            return Err(bad("capture.supersample", &capture.supersample.to_string(), &range));
+        }
+        if let Some([w, h]) = capture.size.filter(|[w, h]| *w == 0 || *h == 0) {
+            return Err(bad("capture.size", &format!("[{w}, {h}]"), "[width, height], each at least 1"));
+        }
+        let mode = ShadingMode::from_name(&s.mode).ok_or_else(|| {
+            let names: Vec<_> = ShadingMode::ALL.iter().map(|m| m.name()).collect();
+            bad("shading.mode", &s.mode, &format!("one of {}", names.join(", ")))
+        })?;
+        Ok(Settings {
+            // Every field: a new setting must get a place in the preset format too.
+            shading: ShadingSettings {
+                bump_enabled: s.bump,
+                strength: s.strength,
+                view,
+                show_light_marker: self.light.marker,
+                difference_range_deg: s.difference_range_deg,
+                shading_override: model,
+                mode,
+                wireframe: s.wireframe,
+            },
+            light_orbit: self.light.orbit,
+            scene_options: SceneOptions {
+                tangent_method,
+                bump_source,
+                materials: scene.materials.to_overrides("scene.materials")?,
+                per_material,
+            },
+            kernel: self.kernel()?,
+        })
+    }
+}
+
+/// Name of a shading model override, as on the command line (`None`: `auto`).
+pub fn shading_model_name(model: Option<ShadingModel>) -> &'static str {
+    match model {
+        None => "auto",
+        Some(ShadingModel::BlinnPhong) => "blinn-phong",
+        Some(ShadingModel::MetallicRoughness) => "pbr",
+    }
+}
+
+/// The override named `name` (`Some(None)` for `auto`); `None` for an unknown name.
+pub fn shading_model_from_name(name: &str) -> Option<Option<ShadingModel>> {
+    [None, Some(ShadingModel::BlinnPhong), Some(ShadingModel::MetallicRoughness)]
+        .into_iter()
+        .find(|&m| shading_model_name(m) == name)
+}
+
+/// `opengl` or `directx`.
+pub fn green_name(green: GreenAxis) -> &'static str {
+    match green {
+        GreenAxis::OpenGl => "opengl",
+        GreenAxis::DirectX => "directx",
+    }
+}
+
+pub fn green_from_name(name: &str) -> Option<GreenAxis> {
+    [GreenAxis::OpenGl, GreenAxis::DirectX].into_iter().find(|&g| green_name(g) == name)
+}
+
+/// `wrap` or `clamp`.
+pub fn border_name(border: Border) -> &'static str {
+    match border {
+        Border::Wrap => "wrap",
+        Border::Clamp => "clamp",
+    }
+}
+
+pub fn border_from_name(name: &str) -> Option<Border> {
+    [Border::Wrap, Border::Clamp].into_iter().find(|&b| border_name(b) == name)
+}
+
+fn kernel(key: &str, name: &str) -> Result<Kernel, PresetError> {
+    Kernel::from_name(name).ok_or_else(|| {
+        let names: Vec<_> = Kernel::ALL.iter().map(|k| k.name()).collect();
+        bad(key, name, &format!("one of {}", names.join(", ")))
+    })
+}
+
+/// "`key` = "value": expected …".
+fn bad(key: &str, value: &str, expected: &str) -> PresetError {
+    PresetError(format!("{key} = {value:?}: expected {expected}"))
+}
+
+/// toml's multi-line message (location, source line, caret, reason) as "location: reason".
+fn one_line(message: &str) -> String {
+    let quoted_source =
+        |line: &str| line.starts_with('|') || line.split_once(" |").is_some_and(|(n, _)| n.parse::<u32>().is_ok());
+    let lines: Vec<&str> = message.lines().map(str::trim).filter(|l| !l.is_empty() && !quoted_source(l)).collect();
+    lines.join(": ")
+}
+
+/// Degrees of an angle of `radians`: the shortest decimal that converts back to exactly the
+/// same `f32` radians (`20` rather than `19.99999941818584` where that is exact).
+fn degrees(radians: f32) -> f64 {
+    let exact = f64::from(radians).to_degrees();
+    let short = f64::from(radians.to_degrees());
+    if short.to_radians() as f32 == radians { short } else { exact }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::builtin::teaching_scene;
+    use crate::viewer::Command;
+
+    #[test]
+    fn a_changed_state_round_trips_exactly() {
+        let scene = teaching_scene();
+        let mut state = ViewerState::new(&scene);
+        state.apply(Command::OrbitCamera { d_yaw: 0.3712, d_pitch: -0.1234 });
+        state.apply(Command::Zoom(1.137));
+        state.apply(Command::SetLightPosition(Vec3::new(-1.1, 2.3, 0.7)));
+        state.apply(Command::SetStrength(2.37));
+        state.apply(Command::SetView(ViewMode::ShadingNormal));
+        state.apply(Command::SetLightMarker(false));
+        state.apply(Command::SetTangentMethod(Some(TangentMethod::PerFace)));
+        state.apply(Command::SetKernel(Kernel::Sobel5));
+        let overrides =
+            MaterialOverrides { green: Some(GreenAxis::DirectX), height_range_m: Some(0.0123), ..Default::default() };
+        state.apply(Command::SetMaterialOverrides { material: None, overrides });
+        let own = MaterialOverrides { border: Some(Border::Clamp), ..Default::default() };
+        state.apply(Command::SetMaterialOverrides { material: Some(1), overrides: own });
+        state.apply(Command::SetShadingOverride(Some(ShadingModel::MetallicRoughness)));
+        state.apply(Command::SetShadingMode(ShadingMode::BumpOnly));
+        state.apply(Command::ToggleWireframe);
+        let files = PresetFiles { height: Some("/x/h.png".into()), ..Default::default() };
+        let text = Preset::from_state(&state, files.clone()).to_toml();
+        let back = Preset::from_toml(&text).unwrap();
+        assert_eq!(back.files, files);
+        assert_eq!(back.to_state(&scene).unwrap(), state, "{text}");
+    }
+
+    #[test]
+    fn missing_keys_take_defaults_and_unknown_ones_are_errors() {
+        let scene = teaching_scene();
+        let empty = Preset::from_toml("").unwrap();
+        assert_eq!(empty.to_state(&scene).unwrap(), ViewerState::new(&scene));
+        let partial = Preset::from_toml("[shading]\nstrength = 2.5\n[camera]\ndistance = 3.0\n").unwrap();
+        let state = partial.to_state(&scene).unwrap();
+        assert_eq!((state.shading.strength, state.camera.distance), (2.5, 3.0));
+        assert_eq!(state.camera.yaw, scene.default_camera.yaw);
+        let unknown = Preset::from_toml("[shading]\nstrenght = 2.5\n").unwrap_err().0;
+        assert!(unknown.contains("strenght") && unknown.contains("line 2"), "{unknown}");
+        let name = Preset::from_toml("[shading]\nview = \"shiny\"\n").unwrap_err().0;
+        assert!(name.starts_with("shading.view = \"shiny\": expected one of lit,"), "{name}");
+        let kind = Preset::from_toml("[light]\norbit = 1\n").unwrap_err().0;
+        assert!(kind.contains("orbit") || kind.contains("line 2"), "{kind}");
+        assert!(Preset::from_toml("[capture]\nsupersample = 5\n").is_err());
+        assert!(Preset::from_toml("version = 2\n").unwrap_err().0.starts_with("version"));
+    }
+}
