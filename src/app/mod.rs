@@ -104,12 +104,28 @@ pub fn run(options: Options) -> Result<(), String> {
     };
     // lavapipe and most drivers support FIFO; the default `AutoVsync` may pick otherwise.
     native.wgpu_options.surface.present_mode = wgpu::PresentMode::Fifo;
+    request_device_extras(&mut native.wgpu_options.wgpu_setup);
 
     let failure = Rc::new(RefCell::new(None));
     let app_failure = Rc::clone(&failure);
     eframe::run_native("bumpview", native, Box::new(move |cc| Ok(Box::new(ViewerApp::new(cc, options, app_failure)?))))
         .map_err(|e| format!("viewer: {e}"))?;
     failure.take().map_or(Ok(()), Err)
+}
+
+/// Asks eframe's device for what the renderer can use beyond egui's defaults: line polygon
+/// mode (the wireframe overlay) where the adapter has it, and the adapter's full texture size
+/// (screenshots up to its limit; egui asks for 8192 only).
+fn request_device_extras(setup: &mut eframe::egui_wgpu::WgpuSetup) {
+    if let eframe::egui_wgpu::WgpuSetup::CreateNew(create) = setup {
+        let base = Arc::clone(&create.device_descriptor);
+        create.device_descriptor = Arc::new(move |adapter| {
+            let mut descriptor = base(adapter);
+            descriptor.required_features |= adapter.features() & wgpu::Features::POLYGON_MODE_LINE;
+            descriptor.required_limits.max_texture_dimension_2d = adapter.limits().max_texture_dimension_2d;
+            descriptor
+        });
+    }
 }
 
 /// The offscreen texture the 3D view is drawn into, registered with egui.
