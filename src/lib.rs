@@ -43,6 +43,7 @@ pub mod height;
 pub mod load;
 pub mod math;
 pub mod preset;
+pub mod probe;
 pub mod render;
 pub mod report;
 pub mod scene;

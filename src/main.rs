@@ -10,12 +10,15 @@ use std::process::ExitCode;
 
 use bumpview::height::{Border, Kernel};
 use bumpview::preset::{self, CapturePreset, Preset, PresetFiles};
-use bumpview::render::capture::{CaptureOptions, MAX_SUPERSAMPLE, render_capture, write_png_atomically};
+use bumpview::render::capture::{
+    CaptureOptions, MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically,
+};
+use bumpview::render::export::{caption, default_row, render_row};
 use bumpview::render::{Background, BumpSource, Gpu, Renderer};
 use bumpview::scene::{GreenAxis, MaterialOverrides, Scene, ShadingModel};
 use bumpview::shading::ViewMode;
 use bumpview::tangent::TangentMethod;
-use bumpview::viewer::ViewerState;
+use bumpview::viewer::{SplitDifference, ViewerState};
 use clap::{Parser, Subcommand};
 use glam::Vec3;
 use inputs::InputArgs;
@@ -138,10 +141,28 @@ struct RenderArgs {
     /// Hide the light marker.
     #[arg(long)]
     no_light_marker: bool,
+    /// Split view: bump (off │ on), view (lit │ shading-normal), strength (1 │ 3) or mode
+    /// (colour-only │ bump-colour), left │ right, as one image [default: the preset's].
+    #[arg(long, value_name = "KIND", value_parser = parse_split, conflicts_with = "row")]
+    split: Option<SplitDifference>,
+    /// With --split: the divider as a fraction of the width [default: 0.5].
+    #[arg(long, value_name = "FRACTION", value_parser = args::parse_finite, requires = "split")]
+    split_at: Option<f32>,
+    /// A row of tiles of --size side by side: flat │ bumped │ Tangent view.
+    #[arg(long)]
+    row: bool,
+    /// With --row: a caption strip under each tile (view and mode, strength, normal-map
+    /// convention, tangent source).
+    #[arg(long, requires = "row")]
+    captions: bool,
     #[command(flatten)]
     methods: MethodArgs,
     #[command(flatten)]
     inputs: InputArgs,
+}
+
+fn parse_split(text: &str) -> Result<SplitDifference, String> {
+    SplitDifference::from_name(text).ok_or_else(|| format!("{text:?}: expected bump, view, strength or mode"))
 }
 
 /// The numerical methods behind the picture (shared by the viewer and `render`).
@@ -348,7 +369,18 @@ fn render(args: RenderArgs) -> Result<(), String> {
         size: Some(args.size.or(capture.size).unwrap_or(DEFAULT_RENDER_SIZE)),
         transparent: args.transparent || capture.transparent,
         supersample: args.supersample.unwrap_or(capture.supersample),
+        captions: args.captions || capture.captions,
     };
+    if let Some(difference) = args.split {
+        state.split.enabled = true;
+        state.split.difference = difference;
+    }
+    if let Some(at) = args.split_at {
+        if !(0.0..=1.0).contains(&at) {
+            return Err(format!("--split-at {at}: expected a fraction of the width, 0 to 1"));
+        }
+        state.split.divider = at;
+    }
     let out = match (&args.out, &args.preset) {
         (Some(out), _) => out.clone(),
         (None, Some(preset)) => preset.with_extension("png"),
@@ -362,9 +394,21 @@ fn render(args: RenderArgs) -> Result<(), String> {
     let mut renderer = Renderer::from_gpu(&gpu);
     renderer.set_scene(&scene, state.scene_options.clone());
     let options = capture_options(&capture, DEFAULT_RENDER_SIZE);
-    let image = render_capture(&mut renderer, &options, &state.frame_params()).map_err(|e| e.to_string())?;
+    let params = state.frame_params();
+    let image = if args.row {
+        let tiles = default_row(&state.shading);
+        let captions: Option<Vec<_>> = capture
+            .captions
+            .then(|| tiles.iter().map(|s| caption(&renderer, &scene, &state.scene_options, s)).collect());
+        render_row(&mut renderer, &options, &params, &tiles, captions.as_deref())
+    } else if let Some(split) = state.split_frame() {
+        render_capture_split(&mut renderer, &options, &params, &split)
+    } else {
+        render_capture(&mut renderer, &options, &params)
+    }
+    .map_err(|e| e.to_string())?;
     write_png_atomically(&image, &out).map_err(|e| e.to_string())?;
-    let [width, height] = options.size;
+    let (width, height) = image.dimensions();
     println!("wrote {} ({width}x{height}, {})", out.display(), gpu.adapter_name());
     Ok(())
 }

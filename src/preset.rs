@@ -28,7 +28,7 @@ use crate::scene::builtin::teaching_scene_with_kernel;
 use crate::scene::{GreenAxis, MaterialOverrides, Scene, ShadingModel};
 use crate::shading::{ShadingMode, ShadingSettings, ViewMode};
 use crate::tangent::TangentMethod;
-use crate::viewer::ViewerState;
+use crate::viewer::{SplitDifference, SplitView, ViewerState};
 
 /// The preset format this code writes and reads.
 pub const FORMAT_VERSION: u32 = 1;
@@ -51,6 +51,76 @@ pub struct Preset {
     pub shading: ShadingPreset,
     pub scene: ScenePreset,
     pub capture: CapturePreset,
+    pub split: SplitPreset,
+}
+
+/// The split view: on or off, what differs, the divider and the pairs of values.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SplitPreset {
+    pub enabled: bool,
+    /// A [`SplitDifference`] name: `bump`, `view`, `strength` or `mode`.
+    pub difference: String,
+    /// The divider, a fraction of the width (0..1).
+    pub divider: f32,
+    /// [`ViewMode`] names, left and right.
+    pub views: [String; 2],
+    pub strengths: [f32; 2],
+    /// [`ShadingMode`] names, left and right.
+    pub modes: [String; 2],
+}
+
+impl Default for SplitPreset {
+    fn default() -> Self {
+        SplitPreset::from(&SplitView::default())
+    }
+}
+
+impl From<&SplitView> for SplitPreset {
+    fn from(s: &SplitView) -> Self {
+        SplitPreset {
+            enabled: s.enabled,
+            difference: s.difference.name().to_owned(),
+            divider: s.divider,
+            views: s.views.map(|v| v.name().to_owned()),
+            strengths: s.strengths,
+            modes: s.modes.map(|m| m.name().to_owned()),
+        }
+    }
+}
+
+impl SplitPreset {
+    fn to_split(&self) -> Result<SplitView, PresetError> {
+        let difference = SplitDifference::from_name(&self.difference)
+            .ok_or_else(|| bad("split.difference", &self.difference, "bump, view, strength or mode"))?;
+        if !(self.divider.is_finite() && (0.0..=1.0).contains(&self.divider)) {
+            return Err(bad("split.divider", &self.divider.to_string(), "a fraction of the width, 0 to 1"));
+        }
+        if let Some(s) = self.strengths.iter().find(|s| !s.is_finite()) {
+            return Err(bad("split.strengths", &s.to_string(), "finite numbers"));
+        }
+        let view = |name: &String| {
+            ViewMode::from_name(name).ok_or_else(|| {
+                let names: Vec<_> = ViewMode::ALL.iter().map(|m| m.name()).collect();
+                bad("split.views", name, &format!("one of {}", names.join(", ")))
+            })
+        };
+        let mode = |name: &String| {
+            ShadingMode::from_name(name).ok_or_else(|| {
+                let names: Vec<_> = ShadingMode::ALL.iter().map(|m| m.name()).collect();
+                bad("split.modes", name, &format!("one of {}", names.join(", ")))
+            })
+        };
+        Ok(SplitView {
+            // Every field: a new split setting must get a place in the preset format too.
+            enabled: self.enabled,
+            difference,
+            divider: self.divider,
+            views: [view(&self.views[0])?, view(&self.views[1])?],
+            strengths: self.strengths,
+            modes: [mode(&self.modes[0])?, mode(&self.modes[1])?],
+        })
+    }
 }
 
 /// The mesh and the textures put in every material's slots; `None`: none (the built-in scene
@@ -185,6 +255,8 @@ pub struct CapturePreset {
     pub transparent: bool,
     /// Render at this many times the size and box-filter down, 1..=[`MAX_SUPERSAMPLE`].
     pub supersample: u32,
+    /// Row exports get a caption strip under each tile.
+    pub captions: bool,
 }
 
 impl Default for ShadingPreset {
@@ -227,7 +299,7 @@ impl ScenePreset {
 
 impl Default for CapturePreset {
     fn default() -> Self {
-        CapturePreset { size: None, transparent: false, supersample: 1 }
+        CapturePreset { size: None, transparent: false, supersample: 1, captions: false }
     }
 }
 
@@ -281,6 +353,7 @@ struct Settings {
     light_orbit: bool,
     scene_options: SceneOptions,
     kernel: Kernel,
+    split: SplitView,
 }
 
 impl Preset {
@@ -306,6 +379,7 @@ impl Preset {
             shading: ShadingPreset::from(&state.shading),
             scene: ScenePreset::new(&state.scene_options, state.kernel),
             capture: CapturePreset::default(),
+            split: SplitPreset::from(&state.split),
         }
     }
 
@@ -326,6 +400,7 @@ impl Preset {
         state.light_orbit = settings.light_orbit;
         state.scene_options = settings.scene_options;
         state.kernel = settings.kernel;
+        state.split = settings.split;
         Ok(state)
     }
 
@@ -452,6 +527,7 @@ impl Preset {
                 per_material,
             },
             kernel: self.kernel()?,
+            split: self.split.to_split()?,
         })
     }
 }
@@ -550,6 +626,12 @@ mod tests {
         state.apply(Command::SetShadingOverride(Some(ShadingModel::MetallicRoughness)));
         state.apply(Command::SetShadingMode(ShadingMode::BumpOnly));
         state.apply(Command::ToggleWireframe);
+        state.apply(Command::SetSplit(true));
+        state.apply(Command::SetSplitDifference(crate::viewer::SplitDifference::Strength));
+        state.apply(Command::SetSplitDivider(0.3137));
+        state.apply(Command::SetSplitStrengths([0.37, 2.91]));
+        state.apply(Command::SetSplitViews([ViewMode::Tangent, ViewMode::Handedness]));
+        state.apply(Command::SetSplitModes([ShadingMode::BumpOnly, ShadingMode::ColourOnly]));
         let files = PresetFiles { height: Some("/x/h.png".into()), ..Default::default() };
         let text = Preset::from_state(&state, files.clone()).to_toml();
         let back = Preset::from_toml(&text).unwrap();

@@ -5,7 +5,7 @@
 use glam::{Vec2, Vec3};
 
 use crate::height::Kernel;
-use crate::render::{BumpSource, FrameParams, SceneOptions};
+use crate::render::{BumpSource, FrameParams, SceneOptions, SplitFrame};
 use crate::scene::{Light, MaterialOverrides, OrbitCamera, Scene, ShadingModel};
 use crate::shading::{ShadingMode, ShadingSettings, ViewMode};
 use crate::tangent::TangentMethod;
@@ -71,6 +71,130 @@ pub enum Command {
     /// The wireframe overlay (a second pass).
     SetWireframe(bool),
     ToggleWireframe,
+    /// The split view on or off (key S).
+    SetSplit(bool),
+    ToggleSplit,
+    /// What the split view's halves differ in.
+    SetSplitDifference(SplitDifference),
+    /// The divider's position, a fraction of the view's width (clamped to 0..1).
+    SetSplitDivider(f32),
+    /// The two views of [`SplitDifference::View`], left and right.
+    SetSplitViews([ViewMode; 2]),
+    /// The two strengths of [`SplitDifference::Strength`] (within [`STRENGTH_RANGE`]).
+    SetSplitStrengths([f32; 2]),
+    /// The two modes of [`SplitDifference::Mode`].
+    SetSplitModes([ShadingMode; 2]),
+}
+
+/// What the split view's two halves differ in: only uniforms, so both halves share one scene
+/// upload. (Two tangent methods or two normal-map conventions need different GPU data and are
+/// not offered.)
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum SplitDifference {
+    /// Bump off │ bump on.
+    #[default]
+    Bump,
+    /// Two views, e.g. Lit │ Shading normal.
+    View,
+    /// Two bump strengths.
+    Strength,
+    /// Two lit-picture modes (bump × colour, bump only, colour only).
+    Mode,
+}
+
+impl SplitDifference {
+    pub const ALL: [SplitDifference; 4] =
+        [SplitDifference::Bump, SplitDifference::View, SplitDifference::Strength, SplitDifference::Mode];
+
+    /// Name as used on the command line and in presets.
+    pub fn name(self) -> &'static str {
+        match self {
+            SplitDifference::Bump => "bump",
+            SplitDifference::View => "view",
+            SplitDifference::Strength => "strength",
+            SplitDifference::Mode => "mode",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<SplitDifference> {
+        SplitDifference::ALL.into_iter().find(|d| d.name() == name)
+    }
+}
+
+/// The split view's settings: the two halves are the current shading with one thing changed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SplitView {
+    pub enabled: bool,
+    pub difference: SplitDifference,
+    /// The divider, a fraction of the width.
+    pub divider: f32,
+    pub views: [ViewMode; 2],
+    pub strengths: [f32; 2],
+    pub modes: [ShadingMode; 2],
+}
+
+impl Default for SplitView {
+    fn default() -> Self {
+        SplitView {
+            enabled: false,
+            difference: SplitDifference::Bump,
+            divider: 0.5,
+            views: [ViewMode::Lit, ViewMode::ShadingNormal],
+            strengths: [1.0, 3.0],
+            modes: [ShadingMode::ColourOnly, ShadingMode::BumpTimesColour],
+        }
+    }
+}
+
+impl SplitView {
+    /// The left and right shading: `current` with the chosen difference applied.
+    pub fn shading(&self, current: &ShadingSettings) -> [ShadingSettings; 2] {
+        let side = |i: usize| {
+            let mut s = *current;
+            match self.difference {
+                SplitDifference::Bump => s.bump_enabled = i == 1,
+                SplitDifference::View => s.view = self.views[i],
+                SplitDifference::Strength => s.strength = self.strengths[i],
+                SplitDifference::Mode => s.mode = self.modes[i],
+            }
+            s
+        };
+        [side(0), side(1)]
+    }
+
+    /// The on-screen labels of the left and right halves.
+    pub fn labels(&self) -> [String; 2] {
+        std::array::from_fn(|i| match self.difference {
+            SplitDifference::Bump => ["bump off", "bump on"][i].to_owned(),
+            SplitDifference::View => view_label(self.views[i]).to_owned(),
+            SplitDifference::Strength => format!("strength {:.2}", self.strengths[i]),
+            SplitDifference::Mode => mode_label(self.modes[i]).to_owned(),
+        })
+    }
+}
+
+/// A view's name for people (labels and captions).
+pub fn view_label(view: ViewMode) -> &'static str {
+    match view {
+        ViewMode::Lit => "Lit",
+        ViewMode::Tangent => "Tangent",
+        ViewMode::Bitangent => "Bitangent",
+        ViewMode::Normal => "Normal",
+        ViewMode::ShadingNormal => "Shading normal",
+        ViewMode::Difference => "Difference",
+        ViewMode::UvCheck => "UV check",
+        ViewMode::Handedness => "Handedness",
+        ViewMode::OverTilt => "Over-tilt",
+    }
+}
+
+/// A lit-picture mode's name for people (labels and captions).
+pub fn mode_label(mode: ShadingMode) -> &'static str {
+    match mode {
+        ShadingMode::BumpTimesColour => "bump × colour",
+        ShadingMode::BumpOnly => "bump only",
+        ShadingMode::ColourOnly => "colour only",
+    }
 }
 
 /// Everything the user can change about the picture.
@@ -86,6 +210,8 @@ pub struct ViewerState {
     pub scene_options: SceneOptions,
     /// Kernel of the built-in normal map; a change means re-making the normal map.
     pub kernel: Kernel,
+    /// The split view (two settings side by side).
+    pub split: SplitView,
 }
 
 impl ViewerState {
@@ -98,7 +224,16 @@ impl ViewerState {
             light_orbit: false,
             scene_options: SceneOptions::default(),
             kernel: Kernel::default(),
+            split: SplitView::default(),
         }
+    }
+
+    /// The split view's two pictures, when it is on.
+    pub fn split_frame(&self) -> Option<SplitFrame> {
+        self.split.enabled.then(|| {
+            let [left, right] = self.split.shading(&self.shading);
+            SplitFrame { left, right, divider: self.split.divider }
+        })
     }
 
     /// What the renderer needs to draw the current picture.
@@ -159,6 +294,17 @@ impl ViewerState {
             Command::SetShadingMode(mode) => self.shading.mode = mode,
             Command::SetWireframe(on) => self.shading.wireframe = on,
             Command::ToggleWireframe => self.shading.wireframe = !self.shading.wireframe,
+            Command::SetSplit(on) => self.split.enabled = on,
+            Command::ToggleSplit => self.split.enabled = !self.split.enabled,
+            Command::SetSplitDifference(difference) => self.split.difference = difference,
+            Command::SetSplitDivider(x) if x.is_finite() => self.split.divider = x.clamp(0.0, 1.0),
+            Command::SetSplitDivider(_) => {}
+            Command::SetSplitViews(views) => self.split.views = views,
+            Command::SetSplitStrengths(strengths) if strengths.iter().all(|s| s.is_finite()) => {
+                self.split.strengths = strengths.map(|s| s.clamp(*STRENGTH_RANGE.start(), *STRENGTH_RANGE.end()))
+            }
+            Command::SetSplitStrengths(_) => {}
+            Command::SetSplitModes(modes) => self.split.modes = modes,
         }
     }
 }

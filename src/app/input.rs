@@ -15,7 +15,7 @@ const ZOOM_PER_POINT: f32 = 0.002;
 const STRENGTH_STEP: f32 = 0.1;
 
 /// The shortcuts pressed this frame: B bump, `[`/`]` strength, 1/2/3 bump × colour, bump
-/// only, colour only, W wireframe, L light orbit, V view, R camera reset, F12 screenshot. None while a text field has keyboard focus.
+/// only, colour only, W wireframe, S split view, L light orbit, V view, R camera reset, F12 screenshot. None while a text field has keyboard focus.
 pub(super) fn keyboard(ctx: &egui::Context) -> Vec<Action> {
     if ctx.text_edit_focused() {
         return Vec::new();
@@ -50,6 +50,7 @@ fn key_action(key: Key, repeat: bool) -> Option<Action> {
         Key::Num2 => Command::SetShadingMode(ShadingMode::BumpOnly),
         Key::Num3 => Command::SetShadingMode(ShadingMode::ColourOnly),
         Key::W => Command::ToggleWireframe,
+        Key::S => Command::ToggleSplit,
         Key::F12 => return Some(Action::Screenshot),
         _ => return None,
     };

@@ -10,6 +10,7 @@ mod files_panel;
 mod input;
 mod legend;
 mod panel;
+mod probe;
 mod watch;
 
 use std::cell::RefCell;
@@ -21,8 +22,8 @@ use std::time::Instant;
 use bumpview::check::{CheckReport, check_scene};
 use bumpview::height::Kernel;
 use bumpview::preset::{CapturePreset, Preset, PresetFiles};
-use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, write_png_atomically};
-use bumpview::render::{RenderTarget, Renderer, SceneOptions};
+use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
+use bumpview::render::{Background, RenderTarget, Renderer, SceneOptions, SplitFrame};
 use bumpview::scene::Scene;
 use bumpview::shading::ViewMode;
 use bumpview::tangent::{MethodMeasurement, TangentMethod, measure};
@@ -59,6 +60,8 @@ enum Action {
     Viewer(Command),
     /// Save a PNG of the 3D view (F12 or the panel button).
     Screenshot,
+    /// Save a PNG of the row export: flat │ bumped │ Tangent view, captions as the form says.
+    ExportRow,
     /// Write the whole state as a preset file.
     SavePreset(PathBuf),
     /// Read a preset file and show its files and state.
@@ -75,6 +78,10 @@ enum Action {
     Reload,
     /// A load finished on the worker thread.
     Loaded(Box<Finished>),
+    /// Pin the pixel probe at `pixel` of a view `size` pixels (P + click).
+    PinProbe { pixel: [u32; 2], size: [u32; 2] },
+    /// Remove the pixel probe.
+    ClearProbe,
 }
 
 impl From<Command> for Action {
@@ -89,6 +96,8 @@ const VIEW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 const VIEW_RENDER_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 /// Longest frame step fed to animations, so a stall does not make the light jump.
 const MAX_TICK_SECONDS: f32 = 0.1;
+/// How close to the split view's divider (points) a drag must begin to move it.
+const DIVIDER_GRAB_POINTS: f32 = 8.0;
 /// Frames to wait for a requested window screenshot before giving up.
 const CAPTURE_TIMEOUT_FRAMES: u32 = 600;
 
@@ -146,6 +155,8 @@ struct ScreenshotForm {
     transparent: bool,
     /// Render at this many times the size and downsample (1..=[`MAX_SUPERSAMPLE`]).
     supersample: u32,
+    /// Row exports get a caption strip under each tile.
+    captions: bool,
     /// Where the last PNG went, or why it failed.
     message: Option<Result<String, String>>,
 }
@@ -156,6 +167,7 @@ impl ScreenshotForm {
             size_text: capture.size.map_or_else(String::new, |[w, h]| format!("{w}x{h}")),
             transparent: capture.transparent,
             supersample: capture.supersample,
+            captions: capture.captions,
             message: None,
         }
     }
@@ -163,7 +175,7 @@ impl ScreenshotForm {
     /// The settings as a preset stores them (a size field that does not parse is left out).
     fn capture(&self) -> CapturePreset {
         let size = crate::args::parse_size(&self.size_text).ok();
-        CapturePreset { size, transparent: self.transparent, supersample: self.supersample }
+        CapturePreset { size, transparent: self.transparent, supersample: self.supersample, captions: self.captions }
     }
 }
 
@@ -201,12 +213,18 @@ struct ViewerApp {
     adapter_name: String,
     view: Option<ViewTexture>,
     tracker: RedrawTracker,
+    /// The split view the view texture was last drawn with (`None`: not split).
+    drawn_split: Option<SplitFrame>,
+    /// The divider is being dragged (the drag began near it).
+    dragging_divider: bool,
     screenshot: ScreenshotForm,
     preset: PresetForm,
     /// Where the state is saved on exit; `None`: not saved.
     last_state: Option<PathBuf>,
     render_error: Option<String>,
     exit: Option<ExitAfter>,
+    /// The pinned pixel probe and its readout.
+    probe: probe::Probe,
 }
 
 impl ViewerApp {
@@ -252,11 +270,14 @@ impl ViewerApp {
             render_state,
             view: None,
             tracker: RedrawTracker::default(),
+            drawn_split: None,
+            dragging_divider: false,
             screenshot: ScreenshotForm::new(&options.capture),
             preset: PresetForm::default(),
             last_state: options.last_state,
             render_error: None,
             exit: options.exit_after.map(|frames| ExitAfter::new(frames, options.capture_window, failure)),
+            probe: probe::Probe::default(),
         })
     }
 
@@ -271,6 +292,7 @@ impl ViewerApp {
                     }
                 }
                 Action::Screenshot => self.screenshot.message = Some(self.save_screenshot()),
+                Action::ExportRow => self.screenshot.message = Some(self.export_row()),
                 Action::SavePreset(path) => {
                     let saved = self.current_preset().save(&path).map_err(|e| e.to_string());
                     self.preset.message = Some(saved.map(|()| format!("saved {}", path.display())));
@@ -300,6 +322,11 @@ impl ViewerApp {
                     let done = format!("reloaded {name}");
                     self.files.reload(self.files.source.clone(), done, self.waker());
                 }
+                Action::PinProbe { pixel, size } => {
+                    self.probe.pin(pixel, size);
+                    self.ctx.request_repaint();
+                }
+                Action::ClearProbe => self.probe.clear(),
                 Action::Loaded(finished) => {
                     if let Some((scene, purpose)) = self.files.finish(*finished) {
                         self.install_scene(scene, purpose);
@@ -342,6 +369,7 @@ impl ViewerApp {
             self.state.light = scene.default_light;
         }
         self.scene = scene;
+        self.probe.scene_changed();
         self.tracker.invalidate();
         self.watch_error = self.watcher.watch(&self.files.source.files()).err();
     }
@@ -393,7 +421,56 @@ impl ViewerApp {
         if self.state.shading.view == ViewMode::Difference {
             legend::difference(ui.painter(), rect, self.state.shading.difference_range_deg);
         }
-        input::viewport(&response, ui.ctx(), size)
+        if self.state.split.enabled {
+            if let Some(actions) = self.split_divider(ui, &response, rect) {
+                return actions;
+            }
+        } else {
+            self.dragging_divider = false;
+        }
+        self.probe.paint(ui.painter(), rect, size, &self.state.frame_params());
+        let mut actions = input::viewport(&response, ui.ctx(), size);
+        actions.extend(probe::clicked(ui.ctx(), rect, size));
+        actions
+    }
+
+    /// Draws the split view's divider and labels over the view at `rect`; a drag that began
+    /// within [`DIVIDER_GRAB_POINTS`] of the divider moves it (returned as the frame's actions,
+    /// instead of orbiting), elsewhere the view's gestures work as usual (`None`).
+    fn split_divider(&mut self, ui: &egui::Ui, response: &egui::Response, rect: egui::Rect) -> Option<Vec<Action>> {
+        let split = self.state.split;
+        let x = rect.left() + rect.width() * split.divider;
+        let painter = ui.painter();
+        painter.vline(x, rect.y_range(), egui::Stroke::new(2.0, egui::Color32::WHITE));
+        let [left, right] = split.labels();
+        let font = egui::FontId::proportional(15.0);
+        let label_y = rect.top() + 8.0;
+        for (text, anchor, pos) in [
+            (left, egui::Align2::RIGHT_TOP, egui::pos2(x - 10.0, label_y)),
+            (right, egui::Align2::LEFT_TOP, egui::pos2(x + 10.0, label_y)),
+        ] {
+            let galley = painter.layout_no_wrap(text, font.clone(), egui::Color32::WHITE);
+            let text_rect = anchor.anchor_size(pos, galley.size());
+            painter.rect_filled(text_rect.expand(4.0), 4.0, egui::Color32::from_black_alpha(170));
+            painter.galley(text_rect.min, galley, egui::Color32::WHITE);
+        }
+        let near = |p: egui::Pos2| (p.x - x).abs() <= DIVIDER_GRAB_POINTS && rect.y_range().contains(p.y);
+        if response.hover_pos().is_some_and(near) || self.dragging_divider {
+            ui.ctx().set_cursor_icon(egui::CursorIcon::ResizeHorizontal);
+        }
+        if response.drag_started() {
+            self.dragging_divider = ui.ctx().input(|i| i.pointer.press_origin()).is_some_and(near);
+        }
+        if !response.dragged() {
+            self.dragging_divider = false;
+            return None;
+        }
+        if !self.dragging_divider {
+            return None;
+        }
+        let pointer = response.interact_pointer_pos()?;
+        let fraction = ((pointer.x - rect.left()) / rect.width()).clamp(0.0, 1.0);
+        Some(vec![Command::SetSplitDivider(fraction).into()])
     }
 
     /// Whole pixels for a view of `pixels`, within the adapter's limit; `None` when empty.
@@ -466,12 +543,21 @@ impl ViewerApp {
     fn draw_view(&mut self) {
         let Some(view) = &self.view else { return };
         let params = self.state.frame_params();
+        let split = self.state.split_frame();
+        if split != self.drawn_split {
+            self.drawn_split = split;
+            self.tracker.invalidate();
+        }
         if !self.tracker.needs_redraw(&params, view.size) {
             return;
         }
         let target = RenderTarget { view: &view.render_view, format: VIEW_RENDER_FORMAT, size: view.size };
         let mut encoder = self.render_state.device.create_command_encoder(&Default::default());
-        self.render_error = match self.renderer.render(&mut encoder, &target, &params) {
+        let drawn = match &split {
+            Some(split) => self.renderer.render_split(&mut encoder, &target, &params, split, Background::Opaque),
+            None => self.renderer.render(&mut encoder, &target, &params),
+        };
+        self.render_error = match drawn {
             Ok(()) => {
                 self.render_state.queue.submit([encoder.finish()]);
                 None
@@ -490,12 +576,40 @@ impl ViewerApp {
         };
         let capture = CapturePreset { size: Some(view_size), ..self.screenshot.capture() };
         let options = crate::capture_options(&capture, view_size);
-        let image =
-            render_capture(&mut self.renderer, &options, &self.state.frame_params()).map_err(|e| e.to_string())?;
+        let params = self.state.frame_params();
+        let image = match self.state.split_frame() {
+            Some(split) => render_capture_split(&mut self.renderer, &options, &params, &split),
+            None => render_capture(&mut self.renderer, &options, &params),
+        }
+        .map_err(|e| e.to_string())?;
         let path = unused_screenshot_path();
         write_png_atomically(&image, &path).map_err(|e| e.to_string())?;
         let shown = std::path::absolute(&path).unwrap_or(path);
         Ok(format!("wrote {} ({}x{})", shown.display(), view_size[0], view_size[1]))
+    }
+
+    /// Renders the row export (flat │ bumped │ Tangent view) with tiles of the screenshot size
+    /// (else the view's) and writes a fresh PNG; captions as the form says.
+    fn export_row(&mut self) -> Result<String, String> {
+        let tile = match self.screenshot.size_text.trim() {
+            "" => self.view.as_ref().map(|v| v.size).ok_or("the view has no size yet")?,
+            text => crate::args::parse_size(text)?,
+        };
+        let capture = CapturePreset { size: Some(tile), ..self.screenshot.capture() };
+        let options = crate::capture_options(&capture, tile);
+        let tiles = bumpview::render::export::default_row(&self.state.shading);
+        let captions: Option<Vec<_>> = capture.captions.then(|| {
+            let caption = |s| bumpview::render::export::caption(&self.renderer, &self.scene, &self.uploaded, s);
+            tiles.iter().map(caption).collect()
+        });
+        let params = self.state.frame_params();
+        let image =
+            bumpview::render::export::render_row(&mut self.renderer, &options, &params, &tiles, captions.as_deref())
+                .map_err(|e| e.to_string())?;
+        let path = unused_screenshot_path();
+        write_png_atomically(&image, &path).map_err(|e| e.to_string())?;
+        let shown = std::path::absolute(&path).unwrap_or(path);
+        Ok(format!("wrote {} ({}x{}, {} tiles)", shown.display(), image.width(), image.height(), tiles.len()))
     }
 
     /// The whole state, the scene's files and the screenshot settings as a preset.
@@ -539,6 +653,7 @@ impl eframe::App for ViewerApp {
         self.apply(keys);
         let arrivals = self.arrivals(&ctx);
         self.apply(arrivals);
+        self.probe.update(&self.scene, &self.uploaded, &self.state.frame_params());
         let stats = panel::Stats {
             measurements: &self.measurements,
             adapter: &self.adapter_name,
@@ -548,6 +663,7 @@ impl eframe::App for ViewerApp {
             materials: &self.scene.materials,
             check: &self.check,
             notices: self.renderer.notices(),
+            probe: &self.probe,
         };
         let files = files_panel::FilesView {
             files: &self.files,

@@ -8,7 +8,7 @@ use bumpview::render::BumpSource;
 use bumpview::scene::{GreenAxis, Material, MaterialOverrides, ShadingModel};
 use bumpview::shading::{OVER_TILT_LIMIT_DEG, ShadingMode, ViewMode};
 use bumpview::tangent::{MethodMeasurement, TangentMethod};
-use bumpview::viewer::{Command, STRENGTH_RANGE, ViewerState};
+use bumpview::viewer::{Command, STRENGTH_RANGE, SplitDifference, ViewerState, mode_label};
 
 use super::{Action, MAX_SUPERSAMPLE, PresetForm, ScreenshotForm};
 
@@ -29,6 +29,8 @@ pub(super) struct Stats<'a> {
     pub check: &'a CheckReport,
     /// What the renderer could not do as asked (downscaled textures, dropped bump maps…).
     pub notices: &'a [String],
+    /// The pinned pixel probe.
+    pub probe: &'a super::probe::Probe,
 }
 
 /// The panel's text fields and their outcomes, kept between frames.
@@ -53,6 +55,8 @@ pub(super) fn show(
         bump_section(ui, state, &mut actions);
         light_section(ui, state, &mut actions);
         view_section(ui, state, &mut actions);
+        split_section(ui, state, &mut actions);
+        stats.probe.section(ui, &mut actions);
         methods_section(ui, state, stats.measurements, &mut actions);
         conventions_section(ui, state, stats.materials, &mut actions);
         check_section(ui, stats, &mut actions);
@@ -378,7 +382,80 @@ fn screenshot_section(ui: &mut egui::Ui, form: &mut ScreenshotForm, actions: &mu
     if ui.button("Save PNG (F12)").clicked() {
         actions.push(Action::Screenshot);
     }
+    ui.horizontal(|ui| {
+        if ui
+            .button("Export row")
+            .on_hover_text("flat │ bumped │ Tangent view side by side, tiles of the size above")
+            .clicked()
+        {
+            actions.push(Action::ExportRow);
+        }
+        ui.checkbox(&mut form.captions, "captions")
+            .on_hover_text("a strip under each tile: view and mode, strength, normal-map convention, tangents");
+    });
     outcome(ui, &form.message);
+}
+
+/// The split view: on/off, what differs, and the two values of that difference.
+fn split_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
+    ui.separator();
+    let split = state.split;
+    let mut enabled = split.enabled;
+    if ui.checkbox(&mut enabled, "Split view (S)").on_hover_text("drag the divider in the view to move it").changed() {
+        actions.push(Command::SetSplit(enabled).into());
+    }
+    if !enabled {
+        return;
+    }
+    let mut difference = split.difference;
+    ui.horizontal(|ui| {
+        ui.label("differs in");
+        for d in SplitDifference::ALL {
+            if ui.radio_value(&mut difference, d, d.name()).changed() {
+                actions.push(Command::SetSplitDifference(d).into());
+            }
+        }
+    });
+    match split.difference {
+        SplitDifference::Bump => {
+            ui.weak("left bump off, right bump on");
+        }
+        SplitDifference::View => {
+            let mut views = split.views;
+            for (side, view) in ["left", "right"].into_iter().zip(views.iter_mut()) {
+                egui::ComboBox::from_label(format!("{side} view")).selected_text(view_label(*view)).show_ui(ui, |ui| {
+                    for mode in ViewMode::ALL {
+                        ui.selectable_value(view, mode, view_label(mode));
+                    }
+                });
+            }
+            if views != split.views {
+                actions.push(Command::SetSplitViews(views).into());
+            }
+        }
+        SplitDifference::Strength => {
+            let mut strengths = split.strengths;
+            for (side, strength) in ["left", "right"].into_iter().zip(strengths.iter_mut()) {
+                ui.add(egui::Slider::new(strength, STRENGTH_RANGE).text(format!("{side} strength")).step_by(0.01));
+            }
+            if strengths != split.strengths {
+                actions.push(Command::SetSplitStrengths(strengths).into());
+            }
+        }
+        SplitDifference::Mode => {
+            let mut modes = split.modes;
+            for (side, mode) in ["left", "right"].into_iter().zip(modes.iter_mut()) {
+                egui::ComboBox::from_label(format!("{side} mode")).selected_text(mode_label(*mode)).show_ui(ui, |ui| {
+                    for m in ShadingMode::ALL {
+                        ui.selectable_value(mode, m, mode_label(m));
+                    }
+                });
+            }
+            if modes != split.modes {
+                actions.push(Command::SetSplitModes(modes).into());
+            }
+        }
+    }
 }
 
 /// Save and load the whole state (files, camera, light, settings, screenshot options).

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use super::{Background, FrameParams, RenderTarget, Renderer};
+use super::{Background, FrameParams, RenderTarget, Renderer, SplitFrame};
 use crate::error::RenderError;
 
 /// Format of pictures: 8-bit RGBA holding sRGB-encoded values.
@@ -18,13 +18,15 @@ pub struct FloatImage {
 }
 
 /// Renders one frame at `size` into a fresh texture of `format` and returns its bytes,
-/// tightly packed, rows top to bottom.
+/// tightly packed, rows top to bottom. With `split`, the split view with its divider at the
+/// given column.
 fn render_offscreen(
     renderer: &mut Renderer,
     size: [u32; 2],
     format: wgpu::TextureFormat,
     params: &FrameParams,
     background: Background,
+    split: Option<(&SplitFrame, u32)>,
 ) -> Result<Vec<u8>, RenderError> {
     renderer.check_target_size(size)?;
     let [width, height] = size;
@@ -46,7 +48,14 @@ fn render_offscreen(
     });
     let view = texture.create_view(&Default::default());
     let mut encoder = device.create_command_encoder(&Default::default());
-    renderer.render_with_background(&mut encoder, &RenderTarget { view: &view, format, size }, params, background)?;
+    let target = RenderTarget { view: &view, format, size };
+    match split {
+        None => renderer.render_with_background(&mut encoder, &target, params, background)?,
+        Some((split, divider_x)) => {
+            let split = SplitFrame { divider: divider_x as f32 / width as f32, ..*split };
+            renderer.render_split(&mut encoder, &target, params, &split, background)?
+        }
+    }
 
     let bytes_per_pixel = format.block_copy_size(None).expect("colour format");
     let row_bytes = width * bytes_per_pixel;
@@ -100,13 +109,33 @@ pub fn render_image(
     size: [u32; 2],
     params: &FrameParams,
 ) -> Result<image::RgbaImage, RenderError> {
-    let bytes = render_offscreen(renderer, size, IMAGE_FORMAT, params, Background::Opaque)?;
+    let bytes = render_offscreen(renderer, size, IMAGE_FORMAT, params, Background::Opaque, None)?;
     Ok(image::RgbaImage::from_raw(size[0], size[1], bytes).expect("4 bytes per pixel"))
 }
 
 /// Renders one frame offscreen to a float target: raw shader output, NaN and infinity kept.
 pub fn render_float(renderer: &mut Renderer, size: [u32; 2], params: &FrameParams) -> Result<FloatImage, RenderError> {
-    let bytes = render_offscreen(renderer, size, FLOAT_FORMAT, params, Background::Opaque)?;
+    render_float_with(renderer, size, params, None)
+}
+
+/// [`render_float`] of the split view.
+pub fn render_float_split(
+    renderer: &mut Renderer,
+    size: [u32; 2],
+    params: &FrameParams,
+    split: &SplitFrame,
+) -> Result<FloatImage, RenderError> {
+    render_float_with(renderer, size, params, Some(split))
+}
+
+fn render_float_with(
+    renderer: &mut Renderer,
+    size: [u32; 2],
+    params: &FrameParams,
+    split: Option<&SplitFrame>,
+) -> Result<FloatImage, RenderError> {
+    let split = split.map(|s| (s, s.divider_pixels(size[0])));
+    let bytes = render_offscreen(renderer, size, FLOAT_FORMAT, params, Background::Opaque, split)?;
     let pixels = bytes
         .chunks_exact(16)
         .map(|p| std::array::from_fn(|i| f32::from_le_bytes(p[i * 4..i * 4 + 4].try_into().expect("4 bytes"))))
@@ -143,6 +172,26 @@ pub fn render_capture(
     options: &CaptureOptions,
     params: &FrameParams,
 ) -> Result<image::RgbaImage, RenderError> {
+    capture_with(renderer, options, params, None)
+}
+
+/// [`render_capture`] of the split view: one image, the divider on the column
+/// [`SplitFrame::divider_pixels`] gives at `options.size` (supersampled blocks never straddle it).
+pub fn render_capture_split(
+    renderer: &mut Renderer,
+    options: &CaptureOptions,
+    params: &FrameParams,
+    split: &SplitFrame,
+) -> Result<image::RgbaImage, RenderError> {
+    capture_with(renderer, options, params, Some(split))
+}
+
+fn capture_with(
+    renderer: &mut Renderer,
+    options: &CaptureOptions,
+    params: &FrameParams,
+    split: Option<&SplitFrame>,
+) -> Result<image::RgbaImage, RenderError> {
     let factor = options.supersample;
     if !(1..=MAX_SUPERSAMPLE).contains(&factor) {
         return Err(RenderError::SupersampleFactor { factor, max: MAX_SUPERSAMPLE });
@@ -154,7 +203,8 @@ pub fn render_capture(
     if rendered.iter().any(|&side| side > limit) {
         return Err(RenderError::SupersampleTooLarge { width, height, factor, limit });
     }
-    let bytes = render_offscreen(renderer, rendered, IMAGE_FORMAT, params, options.background)?;
+    let split = split.map(|s| (s, s.divider_pixels(width) * factor));
+    let bytes = render_offscreen(renderer, rendered, IMAGE_FORMAT, params, options.background, split)?;
     let image = image::RgbaImage::from_raw(rendered[0], rendered[1], bytes).expect("4 bytes per pixel");
     let transparent = options.background == Background::Transparent;
     Ok(if factor == 1 && !transparent { image } else { downsample(&image, factor, transparent) })

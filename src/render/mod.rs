@@ -3,6 +3,7 @@
 //! adapter supports it for the target format.
 
 pub mod capture;
+pub mod export;
 pub mod gpu;
 pub mod pipelines;
 mod scene_gpu;
@@ -26,6 +27,24 @@ pub struct FrameParams {
     pub camera: OrbitCamera,
     pub light: Light,
     pub shading: ShadingSettings,
+}
+
+/// The split view's two pictures: the same camera and light, `left` shading left of the
+/// divider and `right` shading right of it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SplitFrame {
+    pub left: ShadingSettings,
+    pub right: ShadingSettings,
+    /// Where the divider is, as a fraction of the width (0 left edge, 1 right edge).
+    pub divider: f32,
+}
+
+impl SplitFrame {
+    /// The divider's column in a target `width` pixels wide: the first column of the right half.
+    pub fn divider_pixels(&self, width: u32) -> u32 {
+        let fraction = if self.divider.is_finite() { self.divider.clamp(0.0, 1.0) } else { 0.5 };
+        ((fraction * width as f32).round() as u32).min(width)
+    }
 }
 
 /// Where the bump comes from. It decides pipelines and uploads, so it is a scene option, not
@@ -144,6 +163,10 @@ pub struct Renderer {
     pipelines: Pipelines,
     frame_uniform: wgpu::Buffer,
     frame_bind_group: wgpu::BindGroup,
+    /// The right half's frame uniform in split view (the left half uses `frame_uniform`):
+    /// both are written before the encoder is submitted, so each half needs its own.
+    split_uniform: wgpu::Buffer,
+    split_bind_group: wgpu::BindGroup,
     scene: Option<GpuScene>,
     targets: Option<FrameTargets>,
     counters: WorkCounters,
@@ -158,17 +181,22 @@ pub const WIREFRAME_UNSUPPORTED: &str =
 impl Renderer {
     pub fn new(device: wgpu::Device, queue: wgpu::Queue, adapter: wgpu::Adapter) -> Self {
         let pipelines = Pipelines::new(&device);
-        let frame_uniform = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("frame"),
-            size: std::mem::size_of::<FrameUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let frame_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("frame"),
-            layout: &pipelines.layouts.frame,
-            entries: &[wgpu::BindGroupEntry { binding: 0, resource: frame_uniform.as_entire_binding() }],
-        });
+        let uniform = |label| {
+            let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: std::mem::size_of::<FrameUniform>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(label),
+                layout: &pipelines.layouts.frame,
+                entries: &[wgpu::BindGroupEntry { binding: 0, resource: buffer.as_entire_binding() }],
+            });
+            (buffer, bind_group)
+        };
+        let (frame_uniform, frame_bind_group) = uniform("frame");
+        let (split_uniform, split_bind_group) = uniform("frame (split, right half)");
         Renderer {
             device,
             queue,
@@ -176,6 +204,8 @@ impl Renderer {
             pipelines,
             frame_uniform,
             frame_bind_group,
+            split_uniform,
+            split_bind_group,
             scene: None,
             targets: None,
             counters: WorkCounters::default(),
@@ -317,38 +347,75 @@ impl Renderer {
         params: &FrameParams,
         background: Background,
     ) -> Result<(), RenderError> {
+        self.record(encoder, target, params, &[(params.shading, None)], background)
+    }
+
+    /// The split view: one frame of the same camera and light whose columns left of
+    /// `divider_x` (pixels from the left edge, clamped to the width) are drawn with `left`
+    /// and the others with `right`, in one pass with a scissor rectangle per half. Each half
+    /// holds exactly the pixels a full [`Self::render`] with its settings would.
+    pub fn render_split(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &RenderTarget,
+        params: &FrameParams,
+        split: &SplitFrame,
+        background: Background,
+    ) -> Result<(), RenderError> {
+        let [width, height] = target.size;
+        let x = split.divider_pixels(width);
+        let halves = [(split.left, Some([0, 0, x, height])), (split.right, Some([x, 0, width - x, height]))];
+        self.record(encoder, target, params, &halves, background)
+    }
+
+    /// Records one frame: per half, its shading settings and scissor rectangle
+    /// (`[x, y, width, height]`; `None`: the whole target). At most two halves; an empty
+    /// rectangle draws nothing.
+    fn record(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &RenderTarget,
+        params: &FrameParams,
+        halves: &[(ShadingSettings, Option<[u32; 4]>)],
+        background: Background,
+    ) -> Result<(), RenderError> {
+        assert!(halves.len() <= 2, "one uniform buffer per half, two in all");
         self.check_target_size(target.size)?;
         let samples = self.sample_count(target.format);
-        let difference = params.shading.view == ViewMode::Difference;
+        let any_difference = halves.iter().any(|(s, _)| s.view == ViewMode::Difference);
         let scene = self.scene.as_mut().ok_or(RenderError::NoScene)?;
-        if difference {
+        if any_difference {
             scene.ensure_reference_frames(&self.device, &mut self.counters);
         }
         let aspect = target.size[0] as f32 / target.size[1] as f32;
-        self.queue.write_buffer(
-            &self.frame_uniform,
-            0,
-            bytemuck::bytes_of(&FrameUniform::new(params, scene.ambient, aspect)),
-        );
+        for ((shading, _), buffer) in halves.iter().zip([&self.frame_uniform, &self.split_uniform]) {
+            let half = FrameParams { shading: *shading, ..*params };
+            self.queue.write_buffer(buffer, 0, bytemuck::bytes_of(&FrameUniform::new(&half, scene.ambient, aspect)));
+        }
         let marker_model = Mat4::from_translation(params.light.position);
         self.queue.write_buffer(&scene.marker.model, 0, bytemuck::bytes_of(&marker_model.to_cols_array()));
 
         let key = |pass| PipelineKey { pass, format: target.format, samples };
-        let marker = params.shading.show_light_marker.then_some(Pass::LightMarker);
-        let wireframe = params.shading.wireframe && self.device.features().contains(wgpu::Features::POLYGON_MODE_LINE);
+        let line_mode = self.device.features().contains(wgpu::Features::POLYGON_MODE_LINE);
+        let wants_wireframe = halves.iter().any(|(s, _)| s.wireframe);
         let unsupported_notice = self.notices.iter().position(|n| n == WIREFRAME_UNSUPPORTED);
-        match (params.shading.wireframe && !wireframe, unsupported_notice) {
+        match (wants_wireframe && !line_mode, unsupported_notice) {
             (true, None) => self.notices.push(WIREFRAME_UNSUPPORTED.to_owned()),
             (false, Some(index)) => {
                 self.notices.remove(index);
             }
             _ => {}
         }
-        let wireframe_passes = scene.instances.iter().filter(|_| wireframe).map(wireframe_pass);
-        for pass in
-            scene.instances.iter().map(|i| drawn_pass(i, scene, difference)).chain(marker).chain(wireframe_passes)
-        {
-            self.pipelines.ensure(&self.device, key(pass), &mut self.counters);
+        for (shading, _) in halves {
+            let difference = shading.view == ViewMode::Difference;
+            let marker = shading.show_light_marker.then_some(Pass::LightMarker);
+            let wireframe = shading.wireframe && line_mode;
+            let wireframe_passes = scene.instances.iter().filter(|_| wireframe).map(wireframe_pass);
+            for pass in
+                scene.instances.iter().map(|i| drawn_pass(i, scene, difference)).chain(marker).chain(wireframe_passes)
+            {
+                self.pipelines.ensure(&self.device, key(pass), &mut self.counters);
+            }
         }
         self.ensure_targets(target.size, target.format);
         let (Some(scene), Some(targets)) = (self.scene.as_ref(), self.targets.as_ref()) else {
@@ -379,41 +446,50 @@ impl Renderer {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        pass.set_bind_group(0, &self.frame_bind_group, &[]);
-        for instance in &scene.instances {
-            let instance_pass = drawn_pass(instance, scene, difference);
-            let mesh = &scene.meshes[instance.mesh];
-            pass.set_pipeline(self.pipelines.get(&key(instance_pass)));
-            pass.set_bind_group(1, &instance.bind_group, &[]);
-            pass.set_vertex_buffer(0, mesh.positions.slice(..));
-            pass.set_vertex_buffer(1, mesh.normals.slice(..));
-            pass.set_vertex_buffer(2, mesh.uvs.slice(..));
-            if let Some(tangents) = &mesh.tangents {
-                pass.set_vertex_buffer(3, tangents.slice(..));
+        for ((shading, scissor), bind_group) in halves.iter().zip([&self.frame_bind_group, &self.split_bind_group]) {
+            if let Some([x, y, width, height]) = *scissor {
+                if width == 0 || height == 0 {
+                    continue;
+                }
+                pass.set_scissor_rect(x, y, width, height);
             }
-            if let (Pass::Difference { .. }, Some(reference)) = (instance_pass, &mesh.reference_tangents) {
-                pass.set_vertex_buffer(4, reference.slice(..));
-            }
-            pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..mesh.index_count, 0, 0..1);
-        }
-        if wireframe {
+            let difference = shading.view == ViewMode::Difference;
+            pass.set_bind_group(0, bind_group, &[]);
             for instance in &scene.instances {
+                let instance_pass = drawn_pass(instance, scene, difference);
                 let mesh = &scene.meshes[instance.mesh];
-                pass.set_pipeline(self.pipelines.get(&key(wireframe_pass(instance))));
+                pass.set_pipeline(self.pipelines.get(&key(instance_pass)));
                 pass.set_bind_group(1, &instance.bind_group, &[]);
                 pass.set_vertex_buffer(0, mesh.positions.slice(..));
+                pass.set_vertex_buffer(1, mesh.normals.slice(..));
+                pass.set_vertex_buffer(2, mesh.uvs.slice(..));
+                if let Some(tangents) = &mesh.tangents {
+                    pass.set_vertex_buffer(3, tangents.slice(..));
+                }
+                if let (Pass::Difference { .. }, Some(reference)) = (instance_pass, &mesh.reference_tangents) {
+                    pass.set_vertex_buffer(4, reference.slice(..));
+                }
                 pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
                 pass.draw_indexed(0..mesh.index_count, 0, 0..1);
             }
-        }
-        if params.shading.show_light_marker {
-            let marker = &scene.marker;
-            pass.set_pipeline(self.pipelines.get(&key(Pass::LightMarker)));
-            pass.set_bind_group(1, &marker.bind_group, &[]);
-            pass.set_vertex_buffer(0, marker.positions.slice(..));
-            pass.set_index_buffer(marker.indices.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..marker.index_count, 0, 0..1);
+            if shading.wireframe && line_mode {
+                for instance in &scene.instances {
+                    let mesh = &scene.meshes[instance.mesh];
+                    pass.set_pipeline(self.pipelines.get(&key(wireframe_pass(instance))));
+                    pass.set_bind_group(1, &instance.bind_group, &[]);
+                    pass.set_vertex_buffer(0, mesh.positions.slice(..));
+                    pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                    pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+                }
+            }
+            if shading.show_light_marker {
+                let marker = &scene.marker;
+                pass.set_pipeline(self.pipelines.get(&key(Pass::LightMarker)));
+                pass.set_bind_group(1, &marker.bind_group, &[]);
+                pass.set_vertex_buffer(0, marker.positions.slice(..));
+                pass.set_index_buffer(marker.indices.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..marker.index_count, 0, 0..1);
+            }
         }
         drop(pass);
         self.counters.frames_drawn += 1;

@@ -5,10 +5,9 @@
 
 use std::path::{Path, PathBuf};
 
-use bumpview::math::srgb_to_linear;
 use bumpview::render::{FrameParams, Gpu, Renderer};
 use bumpview::scene::builtin::{WALL_Z, teaching_scene, wall_uv};
-use bumpview::scene::{OrbitCamera, Scene, TextureImage, TextureKind};
+use bumpview::scene::{OrbitCamera, Scene, TextureImage};
 use bumpview::shading::{LightingInputs, perturbed_normal};
 use bumpview::viewer::ViewerState;
 use glam::{Vec2, Vec3, Vec4};
@@ -83,23 +82,10 @@ pub fn asset(base: &Path, relative: &str) -> PathBuf {
 }
 
 /// Bilinear sample of mip level 0 with repeat addressing, as the GPU's linear magnification
-/// filter does; sRGB texels are decoded before filtering, as for an sRGB texture view.
+/// filter does; sRGB texels are decoded before filtering, as for an sRGB texture view
+/// ([`bumpview::probe::sample_bilinear`]).
 pub fn sample_bilinear(texture: &TextureImage, uv: Vec2) -> Vec3 {
-    let x = uv.x * texture.width as f32 - 0.5;
-    let y = uv.y * texture.height as f32 - 0.5;
-    let (x0, y0) = (x.floor(), y.floor());
-    let (fx, fy) = (x - x0, y - y0);
-    let texel = |dx: i64, dy: i64| {
-        let t = texture.texel(x0 as i64 + dx, y0 as i64 + dy);
-        let rgb = Vec3::new(unit(t[0]), unit(t[1]), unit(t[2]));
-        match texture.kind {
-            TextureKind::Color => rgb.map(srgb_to_linear),
-            TextureKind::NormalMap | TextureKind::Height | TextureKind::Data => rgb,
-        }
-    };
-    let top = texel(0, 0).lerp(texel(1, 0), fx);
-    let bottom = texel(0, 1).lerp(texel(1, 1), fx);
-    top.lerp(bottom, fy)
+    bumpview::probe::sample_bilinear(texture, uv, Default::default())
 }
 
 /// The value at fraction `p` (0..1) of sorted values.

@@ -1,0 +1,167 @@
+//! The split view and the comparison exports on the GPU: each half of a split frame is
+//! the full render of its setting, the row export is single renders side by side with a
+//! caption strip under them, and split frames hold no NaN.
+//!
+//! Halves are compared exactly: both pictures come from the same pipelines, uniforms, vertex
+//! data and target size (so the same rasterisation and MSAA coverage); the scissor rectangle
+//! only decides which pixels each draw may write. A margin of columns next to the divider is
+//! left out as the brief asks, though the frames match there too (the supersampled test
+//! compares every column).
+
+mod common;
+
+use bumpview::render::capture::{CaptureOptions, render_capture, render_capture_split, render_float_split};
+use bumpview::render::export::{CAPTION_BACKGROUND, caption, caption_strip_height, default_row, render_row};
+use bumpview::render::{FrameParams, SplitFrame};
+use bumpview::shading::ViewMode;
+use bumpview::viewer::{Command, SplitDifference, ViewerState};
+
+const SIZE: [u32; 2] = [160, 96];
+/// Columns either side of the divider left out of the comparison.
+const MARGIN: u32 = 2;
+
+fn split_of(state: &ViewerState) -> SplitFrame {
+    state.split_frame().expect("split view on")
+}
+
+/// Asserts the split capture's left part equals a full render with `split.left` and its right
+/// part one with `split.right`, away from the divider; returns the divider column.
+fn assert_halves(renderer: &mut bumpview::render::Renderer, params: &FrameParams, split: &SplitFrame) -> u32 {
+    let options = CaptureOptions::plain(SIZE);
+    let image = render_capture_split(renderer, &options, params, split).unwrap();
+    let left = render_capture(renderer, &options, &FrameParams { shading: split.left, ..*params }).unwrap();
+    let right = render_capture(renderer, &options, &FrameParams { shading: split.right, ..*params }).unwrap();
+    assert_ne!(left, right, "the two settings must look different for the test to mean anything");
+    let divider = split.divider_pixels(SIZE[0]);
+    let mut compared = [0u32; 2];
+    for y in 0..SIZE[1] {
+        for x in 0..SIZE[0] {
+            let (expected, side) = if x + MARGIN < divider {
+                (&left, 0)
+            } else if x >= divider + MARGIN {
+                (&right, 1)
+            } else {
+                continue;
+            };
+            assert_eq!(image.get_pixel(x, y), expected.get_pixel(x, y), "pixel ({x}, {y}), divider at {divider}");
+            compared[side] += 1;
+        }
+    }
+    assert!(compared.iter().all(|&n| n > SIZE[1] * 10), "{compared:?}");
+    divider
+}
+
+#[test]
+fn split_bump_off_on_halves_equal_full_renders() {
+    let scene = common::scene();
+    let mut renderer = common::renderer_for(&scene);
+    let mut state = ViewerState::new(&scene);
+    state.shading.show_light_marker = false;
+    state.apply(Command::ToggleSplit);
+    assert_eq!(state.split.difference, SplitDifference::Bump);
+    let split = split_of(&state);
+    assert!(!split.left.bump_enabled && split.right.bump_enabled);
+    assert_eq!(assert_halves(&mut renderer, &state.frame_params(), &split), 80);
+}
+
+#[test]
+fn split_lit_shading_normal_halves_equal_full_renders_at_any_divider() {
+    let scene = common::scene();
+    let mut renderer = common::renderer_for(&scene);
+    let mut state = ViewerState::new(&scene);
+    state.apply(Command::SetSplit(true));
+    state.apply(Command::SetSplitDifference(SplitDifference::View));
+    state.apply(Command::SetSplitDivider(0.3));
+    let split = split_of(&state);
+    assert_eq!((split.left.view, split.right.view), (ViewMode::Lit, ViewMode::ShadingNormal));
+    assert_eq!(state.split.labels(), ["Lit".to_owned(), "Shading normal".to_owned()]);
+    assert_eq!(assert_halves(&mut renderer, &state.frame_params(), &split), 48);
+}
+
+#[test]
+fn supersampled_split_capture_has_the_divider_on_a_block_boundary() {
+    let scene = common::scene();
+    let mut renderer = common::renderer_for(&scene);
+    let mut state = ViewerState::new(&scene);
+    state.apply(Command::SetSplit(true));
+    state.apply(Command::SetSplitDifference(SplitDifference::Strength));
+    let split = split_of(&state);
+    let params = state.frame_params();
+    let options = CaptureOptions { supersample: 2, ..CaptureOptions::plain(SIZE) };
+    let image = render_capture_split(&mut renderer, &options, &params, &split).unwrap();
+    let left = render_capture(&mut renderer, &options, &FrameParams { shading: split.left, ..params }).unwrap();
+    let right = render_capture(&mut renderer, &options, &FrameParams { shading: split.right, ..params }).unwrap();
+    // Divider at column 80 of the PNG = 160 of the 2× frame: every 2×2 block lies in one half.
+    for y in 0..SIZE[1] {
+        for x in 0..SIZE[0] {
+            let expected = if x < 80 { &left } else { &right };
+            assert_eq!(image.get_pixel(x, y), expected.get_pixel(x, y), "pixel ({x}, {y})");
+        }
+    }
+}
+
+#[test]
+fn row_export_is_single_renders_side_by_side_with_a_caption_strip() {
+    let scene = common::scene();
+    let mut renderer = common::renderer_for(&scene);
+    let state = ViewerState::new(&scene);
+    let params = state.frame_params();
+    let tiles = default_row(&state.shading);
+    assert_eq!(tiles.len(), 3);
+    assert!(!tiles[0].bump_enabled && tiles[1].bump_enabled && tiles[2].view == ViewMode::Tangent);
+    let captions: Vec<_> = tiles.iter().map(|s| caption(&renderer, &scene, &state.scene_options, s)).collect();
+    assert!(captions[0][1].starts_with("bump off"), "{captions:?}");
+    assert_eq!(captions[1][2], "normal map: OpenGL (+Y)");
+    assert!(captions[2][3].starts_with("tangents: auto: "), "{captions:?}");
+    let tile = [128, 80];
+    let options = CaptureOptions::plain(tile);
+    let row = render_row(&mut renderer, &options, &params, &tiles, Some(&captions)).unwrap();
+    let strip = caption_strip_height(tile[0], 4);
+    assert_eq!(row.dimensions(), (3 * tile[0], tile[1] + strip));
+    let plain = render_row(&mut renderer, &options, &params, &tiles, None).unwrap();
+    assert_eq!(plain.dimensions(), (3 * tile[0], tile[1]));
+    let [r, g, b] = CAPTION_BACKGROUND;
+    for (i, shading) in tiles.iter().enumerate() {
+        let single = render_capture(&mut renderer, &options, &FrameParams { shading: *shading, ..params }).unwrap();
+        let x0 = i as u32 * tile[0];
+        for y in 0..tile[1] {
+            for x in 0..tile[0] {
+                assert_eq!(row.get_pixel(x0 + x, y), single.get_pixel(x, y), "tile {i}, pixel ({x}, {y})");
+                assert_eq!(plain.get_pixel(x0 + x, y), single.get_pixel(x, y), "tile {i}, pixel ({x}, {y})");
+            }
+        }
+        // The strip: background with text in it (bright glyph pixels on every line).
+        let mut text = 0;
+        for y in tile[1]..tile[1] + strip {
+            for x in x0..x0 + tile[0] {
+                let p = row.get_pixel(x, y).0;
+                assert_eq!(p[3], 255);
+                if p[..3] != [r, g, b] {
+                    text += 1;
+                }
+            }
+        }
+        assert!(text > 200, "tile {i}: {text} text pixels in the caption strip");
+    }
+}
+
+#[test]
+fn split_frames_on_a_float_target_hold_no_nan() {
+    let scene = common::scene();
+    let mut renderer = common::renderer_for(&scene);
+    let mut state = ViewerState::new(&scene);
+    state.apply(Command::SetSplit(true));
+    for (difference, views) in [
+        (SplitDifference::Bump, [ViewMode::Lit, ViewMode::Lit]),
+        (SplitDifference::View, [ViewMode::Lit, ViewMode::ShadingNormal]),
+        (SplitDifference::View, [ViewMode::Difference, ViewMode::OverTilt]),
+        (SplitDifference::Strength, [ViewMode::Lit, ViewMode::Lit]),
+        (SplitDifference::Mode, [ViewMode::Lit, ViewMode::Lit]),
+    ] {
+        state.apply(Command::SetSplitDifference(difference));
+        state.apply(Command::SetSplitViews(views));
+        let image = render_float_split(&mut renderer, SIZE, &state.frame_params(), &split_of(&state)).unwrap();
+        let bad = image.pixels.iter().filter(|p| p.iter().any(|c| !c.is_finite())).count();
+        assert_eq!(bad, 0, "{difference:?} {views:?}: {bad} pixels not finite");
+    }
+}
