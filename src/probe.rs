@@ -22,28 +22,14 @@
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use crate::math::{handedness, linear_to_srgb, normalize_or, orthonormalize_tangent, smoothstep, srgb_to_linear};
-use crate::render::{BumpSource, FrameParams, SceneOptions};
-use crate::scene::{Mesh, NormalSpace, OrbitCamera, SamplerWrap, Scene, ShadingModel, TextureImage, TextureKind, Wrap};
+use crate::render::{BumpKind, BumpSource, FrameParams, SceneOptions, bump_kind};
+use crate::scene::{Mesh, OrbitCamera, SamplerWrap, Scene, ShadingModel, TextureImage, TextureKind, Wrap};
 use crate::shading::pbr::{PbrInputs, metallic_roughness};
 use crate::shading::{
     LightingInputs, SELF_SHADOW_FADE, ShadingMode, ViewMode, blinn_phong, debug_color, decode_normal, handedness_color,
     object_space_normal, over_tilted,
 };
 use crate::tangent::{self, TangentMethod};
-
-/// How the bump is applied at the probed point (the shader variant the instance is drawn with).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ProbeBump {
-    /// No bump map (or no texture coordinates): the geometric normal shades.
-    None,
-    /// Tangent-space normal map through T, B, N.
-    TangentSpace,
-    /// Object-space normal map through the normal matrix (no tangents).
-    ObjectSpace,
-    /// Blinn's bump from the height map by screen-space derivatives: not reproduced by the
-    /// probe (its shading normal is the geometric normal).
-    HeightInShader,
-}
 
 /// A pinned surface point: a triangle of one instance and barycentric coordinates on it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -73,7 +59,7 @@ pub struct ProbeReadout {
     pub distance: f32,
     /// Texture coordinates (crate conventions: origin top-left, v down).
     pub uv: Vec2,
-    pub bump: ProbeBump,
+    pub bump: BumpKind,
     /// Whether bump mapping is on (the `B` toggle); off, the shading normal is `normal`.
     pub bump_enabled: bool,
     /// The normal map's texel containing `uv` at mip 0: its integer coordinates and raw bytes
@@ -154,9 +140,9 @@ impl ProbeScene {
         for (index, mesh) in scene.meshes.iter().enumerate() {
             let with_tangents = scene.instances.iter().any(|i| {
                 i.mesh == index && {
-                    let bump = bump_of(&scene, i.mesh, i.material, bump_source);
-                    bump == ProbeBump::TangentSpace
-                        || (bump == ProbeBump::None
+                    let bump = bump_kind(&scene, i.mesh, i.material, bump_source);
+                    bump == BumpKind::TangentSpace
+                        || (bump == BumpKind::None
                             && mesh.tangents.as_ref().is_some_and(|t| t.len() == mesh.positions.len()))
                 }
             });
@@ -246,10 +232,10 @@ impl ProbeScene {
             (tangent, w * n.cross(tangent), w, *method)
         });
 
-        let bump = bump_of(&self.scene, instance.mesh, instance.material, self.bump_source);
+        let bump = bump_kind(&self.scene, instance.mesh, instance.material, self.bump_source);
         let shading = &params.shading;
         let map =
-            material.normal_map.as_ref().filter(|_| matches!(bump, ProbeBump::TangentSpace | ProbeBump::ObjectSpace));
+            material.normal_map.as_ref().filter(|_| matches!(bump, BumpKind::TangentSpace | BumpKind::ObjectSpace));
         let strength = shading.strength * map.map_or(1.0, |m| m.scale);
         let sampled = map.map(|m| {
             let texture = &self.scene.textures[m.texture];
@@ -258,13 +244,13 @@ impl ProbeScene {
             (xy, texture.texel(xy[0] as i64, xy[1] as i64), texel, decode_normal(texel, m.convention))
         });
         let after_strength = sampled
-            .filter(|_| bump == ProbeBump::TangentSpace)
+            .filter(|_| bump == BumpKind::TangentSpace)
             .map(|(_, _, _, d)| normalize_or(Vec3::new(d.x * strength, d.y * strength, d.z.max(0.0)), Vec3::Z));
         let shading_normal = match (shading.bump_enabled, bump, frame, after_strength, sampled, map) {
-            (true, ProbeBump::TangentSpace, Some((t, bt, _, _)), Some(nt), _, _) => {
+            (true, BumpKind::TangentSpace, Some((t, bt, _, _)), Some(nt), _, _) => {
                 normalize_or(t * nt.x + bt * nt.y + n * nt.z, n)
             }
-            (true, ProbeBump::ObjectSpace, _, _, Some((_, _, texel, _)), Some(m)) => {
+            (true, BumpKind::ObjectSpace, _, _, Some((_, _, texel, _)), Some(m)) => {
                 let matrix = glam::Mat3::from_mat4(normal_matrix);
                 object_space_normal(n, matrix, point.front_facing, texel, strength, m.convention)
             }
@@ -356,7 +342,7 @@ impl ProbeScene {
             shading_model,
             color_linear,
             shown,
-            reproduced: !(bump == ProbeBump::HeightInShader && shading.bump_enabled),
+            reproduced: !(bump == BumpKind::HeightInShader && shading.bump_enabled),
         }
     }
 
@@ -374,23 +360,6 @@ pub fn project_to_pixel(camera: &OrbitCamera, size: [u32; 2], world: Vec3) -> Op
         let ndc = clip.truncate() / clip.w;
         Vec2::new((ndc.x + 1.0) * 0.5 * size[0] as f32, (1.0 - ndc.y) * 0.5 * size[1] as f32)
     })
-}
-
-/// The bump variant an instance is drawn with (`render::scene_gpu::variant_of`).
-fn bump_of(scene: &Scene, mesh: usize, material: usize, bump_source: BumpSource) -> ProbeBump {
-    let mesh = &scene.meshes[mesh];
-    let material = &scene.materials[material];
-    let has_uvs = mesh.uvs.len() == mesh.positions.len();
-    if bump_source == BumpSource::HeightInShader && material.height_map.is_some() && has_uvs {
-        ProbeBump::HeightInShader
-    } else if let Some(map) = material.normal_map.as_ref().filter(|_| has_uvs) {
-        match map.convention.space {
-            NormalSpace::Tangent => ProbeBump::TangentSpace,
-            NormalSpace::Object => ProbeBump::ObjectSpace,
-        }
-    } else {
-        ProbeBump::None
-    }
 }
 
 /// A triangle's corners in world space, or `None` when an index is out of range or a position

@@ -3,7 +3,8 @@
 //! recomputed whenever the picture's parameters change (the point stays pinned when the
 //! camera or light moves), and a marker is drawn on the view where the point is.
 
-use bumpview::probe::{ProbeBump, ProbePoint, ProbeReadout, ProbeScene, project_to_pixel};
+use bumpview::probe::{ProbePoint, ProbeReadout, ProbeScene, project_to_pixel};
+use bumpview::render::BumpKind;
 use bumpview::render::{FrameParams, SceneOptions};
 use bumpview::scene::Scene;
 use egui::Key;
@@ -149,10 +150,10 @@ fn opt3(v: Option<Vec3>) -> String {
 fn lines(r: &ProbeReadout, mesh_name: &str) -> String {
     let face = if r.point.front_facing { "front" } else { "back" };
     let bump = match r.bump {
-        ProbeBump::None => "no bump map",
-        ProbeBump::TangentSpace => "tangent-space normal map",
-        ProbeBump::ObjectSpace => "object-space normal map",
-        ProbeBump::HeightInShader => "height in shader (not reproduced)",
+        BumpKind::None => "no bump map",
+        BumpKind::TangentSpace => "tangent-space normal map",
+        BumpKind::ObjectSpace => "object-space normal map",
+        BumpKind::HeightInShader => "height in shader (not reproduced)",
     };
     let texel = match (r.texel_xy, r.texel_raw) {
         (Some([x, y]), Some([red, green, blue, alpha])) => format!("({x}, {y}) = {red} {green} {blue} {alpha}"),

@@ -13,7 +13,7 @@ use glam::Mat4;
 
 use crate::counters::WorkCounters;
 use crate::error::RenderError;
-use crate::scene::{Light, MaterialOverrides, OrbitCamera, PerMaterialOverrides, Scene};
+use crate::scene::{Light, MaterialOverrides, NormalSpace, OrbitCamera, PerMaterialOverrides, Scene};
 use crate::shading::{ShadingSettings, ViewMode};
 use crate::tangent::TangentMethod;
 pub use gpu::Gpu;
@@ -71,6 +71,38 @@ impl BumpSource {
 
     pub fn from_name(name: &str) -> Option<BumpSource> {
         BumpSource::ALL.into_iter().find(|b| b.name() == name)
+    }
+}
+
+/// How an instance's surface is bumped: decided by its material, whether its mesh has texture
+/// coordinates, and the bump source. The renderer picks its pipeline variant by it and the
+/// probe reproduces the same chain.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BumpKind {
+    /// No bump map (or no texture coordinates): the geometric normal shades.
+    None,
+    /// Tangent-space normal map through T, B, N.
+    TangentSpace,
+    /// Object-space normal map through the normal matrix (no tangents).
+    ObjectSpace,
+    /// Blinn's bump from the height map by screen-space derivatives (no tangents).
+    HeightInShader,
+}
+
+/// The [`BumpKind`] of an instance drawing `scene.meshes[mesh]` with `scene.materials[material]`.
+pub fn bump_kind(scene: &Scene, mesh: usize, material: usize, bump_source: BumpSource) -> BumpKind {
+    let mesh = &scene.meshes[mesh];
+    let material = &scene.materials[material];
+    let has_uvs = mesh.uvs.len() == mesh.positions.len();
+    if bump_source == BumpSource::HeightInShader && material.height_map.is_some() && has_uvs {
+        BumpKind::HeightInShader
+    } else if let Some(map) = material.normal_map.as_ref().filter(|_| has_uvs) {
+        match map.convention.space {
+            NormalSpace::Tangent => BumpKind::TangentSpace,
+            NormalSpace::Object => BumpKind::ObjectSpace,
+        }
+    } else {
+        BumpKind::None
     }
 }
 

@@ -6,9 +6,9 @@ use wgpu::util::DeviceExt;
 
 use super::pipelines::{Layouts, Pass, Variant};
 use super::uniforms::ObjectUniform;
-use super::{BumpSource, SceneOptions};
+use super::{BumpKind, BumpSource, SceneOptions, bump_kind};
 use crate::counters::WorkCounters;
-use crate::scene::{Mesh, NormalSpace, SamplerWrap, Scene, TextureImage, TextureKind, Wrap};
+use crate::scene::{Mesh, SamplerWrap, Scene, TextureImage, TextureKind, Wrap};
 use crate::tangent::{self, TangentMethod};
 
 pub struct GpuMesh {
@@ -155,25 +155,21 @@ impl TextureCache<'_> {
     }
 }
 
-/// The variant an instance is drawn with: bumped in the shader from the height map when
-/// that is the source and the material has one; with an object-space or tangent-space normal
-/// map when the material has one; with the tangent stream when the mesh supplies tangents;
-/// else plain. Bump needs UVs.
+/// The variant an instance is drawn with: by its [`BumpKind`]; without a bump, with the
+/// tangent stream when the mesh supplies tangents (for the T/B views), else plain.
 fn variant_of(scene: &Scene, mesh: usize, material: usize, bump_source: BumpSource) -> Variant {
-    let mesh = &scene.meshes[mesh];
-    let material = &scene.materials[material];
-    let has_uvs = mesh.uvs.len() == mesh.positions.len();
-    if bump_source == BumpSource::HeightInShader && material.height_map.is_some() && has_uvs {
-        Variant::HeightBump
-    } else if let Some(map) = material.normal_map.as_ref().filter(|_| has_uvs) {
-        match map.convention.space {
-            NormalSpace::Tangent => Variant::NormalMapped,
-            NormalSpace::Object => Variant::ObjectSpace,
+    match bump_kind(scene, mesh, material, bump_source) {
+        BumpKind::HeightInShader => Variant::HeightBump,
+        BumpKind::TangentSpace => Variant::NormalMapped,
+        BumpKind::ObjectSpace => Variant::ObjectSpace,
+        BumpKind::None => {
+            let mesh = &scene.meshes[mesh];
+            if mesh.tangents.as_ref().is_some_and(|t| t.len() == mesh.positions.len()) {
+                Variant::Tangent
+            } else {
+                Variant::Plain
+            }
         }
-    } else if mesh.tangents.as_ref().is_some_and(|t| t.len() == mesh.positions.len()) {
-        Variant::Tangent
-    } else {
-        Variant::Plain
     }
 }
 
