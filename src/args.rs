@@ -38,6 +38,14 @@ pub fn parse_on_off(text: &str) -> Result<bool, String> {
     }
 }
 
+/// The item of `all` whose `name` is `text`, else an error listing the names.
+pub fn parse_named<T: Copy>(text: &str, all: &[T], name: fn(T) -> &'static str) -> Result<T, String> {
+    all.iter().copied().find(|&item| name(item) == text).ok_or_else(|| {
+        let names: Vec<_> = all.iter().map(|&item| name(item)).collect();
+        format!("{text:?}: expected one of {}", names.join(", "))
+    })
+}
+
 pub fn parse_finite(text: &str) -> Result<f32, String> {
     text.trim()
         .parse::<f32>()

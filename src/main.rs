@@ -274,17 +274,11 @@ impl MethodArgs {
 }
 
 fn parse_bump_source(text: &str) -> Result<BumpSource, String> {
-    BumpSource::from_name(text).ok_or_else(|| {
-        let names: Vec<_> = BumpSource::ALL.iter().map(|b| b.name()).collect();
-        format!("{text:?}: expected one of {}", names.join(", "))
-    })
+    args::parse_named(text, &BumpSource::ALL, BumpSource::name)
 }
 
 fn parse_view(text: &str) -> Result<ViewMode, String> {
-    ViewMode::from_name(text).ok_or_else(|| {
-        let names: Vec<_> = ViewMode::ALL.iter().map(|m| m.name()).collect();
-        format!("{text:?}: expected one of {}", names.join(", "))
-    })
+    args::parse_named(text, &ViewMode::ALL, ViewMode::name)
 }
 
 /// A tangent method, or `None` for auto (clap reads a bare `Option` as "flag may be absent").
@@ -296,17 +290,13 @@ fn parse_tangents(text: &str) -> Result<TangentChoice, String> {
     if text == "auto" {
         return Ok(TangentChoice(None));
     }
-    TangentMethod::from_name(text).map(|m| TangentChoice(Some(m))).ok_or_else(|| {
-        let names: Vec<_> = TangentMethod::ALL.iter().map(|m| m.name()).collect();
-        format!("{text:?}: expected auto or one of {}", names.join(", "))
-    })
+    args::parse_named(text, &TangentMethod::ALL, TangentMethod::name)
+        .map(|m| TangentChoice(Some(m)))
+        .map_err(|e| format!("{e} or auto"))
 }
 
 fn parse_kernel(text: &str) -> Result<Kernel, String> {
-    Kernel::from_name(text).ok_or_else(|| {
-        let names: Vec<_> = Kernel::ALL.iter().map(|k| k.name()).collect();
-        format!("{text:?}: expected one of {}", names.join(", "))
-    })
+    args::parse_named(text, &Kernel::ALL, Kernel::name)
 }
 
 fn parse_border(text: &str) -> Result<Border, String> {

@@ -208,6 +208,8 @@ struct ViewerApp {
     measurements: Vec<(String, MethodMeasurement)>,
     /// What `bumpview check` finds in the current scene.
     check: CheckReport,
+    /// `check`'s warnings, made once per scene rather than per drawn panel.
+    check_warnings: Vec<String>,
     renderer: Renderer,
     render_state: RenderState,
     adapter_name: String,
@@ -253,9 +255,11 @@ impl ViewerApp {
         let wake = ctx.clone();
         let (mut watcher, watching) = watch::Watcher::new(move || wake.request_repaint());
         let watch_error = watching.and_then(|()| watcher.watch(&files.source.files())).err();
+        let check = check_scene(&scene);
         Ok(ViewerApp {
             measurements: measure_all(&scene, state.scene_options.tangent_method),
-            check: check_scene(&scene),
+            check_warnings: check.warnings(),
+            check,
             uploaded: state.scene_options.clone(),
             scene,
             files,
@@ -363,6 +367,7 @@ impl ViewerApp {
         self.uploaded = self.state.scene_options.clone();
         self.measurements = measure_all(&scene, self.state.scene_options.tangent_method);
         self.check = check_scene(&scene);
+        self.check_warnings = self.check.warnings();
         self.state.default_camera = scene.default_camera;
         if purpose == Purpose::Open {
             self.state.camera = scene.default_camera;
@@ -662,6 +667,7 @@ impl eframe::App for ViewerApp {
             render_error: self.render_error.as_deref(),
             materials: &self.scene.materials,
             check: &self.check,
+            check_warnings: &self.check_warnings,
             notices: self.renderer.notices(),
             probe: &self.probe,
         };

@@ -27,6 +27,8 @@ pub(super) struct Stats<'a> {
     pub materials: &'a [Material],
     /// What `bumpview check` finds in the scene.
     pub check: &'a CheckReport,
+    /// The check's warnings, one line each.
+    pub check_warnings: &'a [String],
     /// What the renderer could not do as asked (downscaled textures, dropped bump maps…).
     pub notices: &'a [String],
     /// The pinned pixel probe.
@@ -510,7 +512,7 @@ fn check_section(ui: &mut egui::Ui, stats: &Stats, actions: &mut Vec<Action>) {
         ui.small(format!("{}: {convention}", map.material));
     }
     let warn = ui.visuals().warn_fg_color;
-    for line in stats.check.warnings().iter().chain(stats.notices) {
+    for line in stats.check_warnings.iter().chain(stats.notices) {
         ui.colored_label(warn, egui::RichText::new(line).small());
     }
     if ui.button("Highlight degenerate / mirrored UVs").clicked() {
