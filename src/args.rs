@@ -1,5 +1,11 @@
 //! Parsers for command-line and panel values: sizes, vectors, camera, on/off.
 
+use bumpview::preset::green_name;
+use bumpview::render::BumpSource;
+use bumpview::scene::GreenAxis;
+use bumpview::shading::{ShadingMode, ViewMode};
+use bumpview::tangent::TangentMethod;
+use bumpview::viewer::{Command, SplitDifference};
 use glam::Vec3;
 
 /// `"WxH"` → `[W, H]` in pixels (each at least 1).
@@ -46,6 +52,41 @@ pub fn parse_named<T: Copy>(text: &str, all: &[T], name: fn(T) -> &'static str) 
     })
 }
 
+/// `"LEFT,RIGHT"` → the command that sets the split view's pair for `difference`: two views,
+/// strengths, modes, tangent methods, conventions (`opengl`, `directx`) or bump sources.
+pub fn parse_split_sides(difference: SplitDifference, text: &str) -> Result<Command, String> {
+    let (left, right) = text
+        .split_once(',')
+        .map(|(l, r)| (l.trim(), r.trim()))
+        .ok_or_else(|| format!("{text:?}: expected LEFT,RIGHT"))?;
+    let sides = [left, right];
+    let greens = [GreenAxis::OpenGl, GreenAxis::DirectX];
+    Ok(match difference {
+        SplitDifference::Bump => return Err("--split bump has fixed sides (off │ on)".into()),
+        SplitDifference::View => {
+            Command::SetSplitViews(pair(sides, |t| parse_named(t, &ViewMode::ALL, ViewMode::name))?)
+        }
+        SplitDifference::Strength => Command::SetSplitStrengths(pair(sides, parse_finite)?),
+        SplitDifference::Mode => {
+            Command::SetSplitModes(pair(sides, |t| parse_named(t, &ShadingMode::ALL, ShadingMode::name))?)
+        }
+        SplitDifference::Tangents => {
+            Command::SetSplitTangentMethods(pair(sides, |t| parse_named(t, &TangentMethod::ALL, TangentMethod::name))?)
+        }
+        SplitDifference::Convention => {
+            Command::SetSplitConventions(pair(sides, |t| parse_named(t, &greens, green_name))?)
+        }
+        SplitDifference::BumpSource => {
+            Command::SetSplitBumpSources(pair(sides, |t| parse_named(t, &BumpSource::ALL, BumpSource::name))?)
+        }
+    })
+}
+
+/// Both of `sides` parsed by `parse`.
+fn pair<T>(sides: [&str; 2], parse: impl Fn(&str) -> Result<T, String>) -> Result<[T; 2], String> {
+    Ok([parse(sides[0])?, parse(sides[1])?])
+}
+
 pub fn parse_finite(text: &str) -> Result<f32, String> {
     text.trim()
         .parse::<f32>()
@@ -65,5 +106,17 @@ mod tests {
         assert_eq!(parse_vec3("1, -2,3.5"), Ok(Vec3::new(1.0, -2.0, 3.5)));
         assert!(parse_vec3("1,2").is_err() && parse_vec3("1,2,nan").is_err());
         assert!(parse_finite("inf").is_err());
+    }
+
+    #[test]
+    fn split_sides_parse_by_the_difference() {
+        let methods = parse_split_sides(SplitDifference::Tangents, "per-face, mikktspace");
+        assert_eq!(methods, Ok(Command::SetSplitTangentMethods([TangentMethod::PerFace, TangentMethod::MikkTSpace])));
+        let greens = parse_split_sides(SplitDifference::Convention, "directx,opengl");
+        assert_eq!(greens, Ok(Command::SetSplitConventions([GreenAxis::DirectX, GreenAxis::OpenGl])));
+        assert_eq!(parse_split_sides(SplitDifference::Strength, "0.5,2"), Ok(Command::SetSplitStrengths([0.5, 2.0])));
+        assert!(parse_split_sides(SplitDifference::Bump, "off,on").is_err());
+        assert!(parse_split_sides(SplitDifference::View, "lit").is_err());
+        assert!(parse_split_sides(SplitDifference::Tangents, "mikktspace,bogus").unwrap_err().contains("per-face"));
     }
 }

@@ -141,10 +141,16 @@ struct RenderArgs {
     /// Hide the light marker.
     #[arg(long)]
     no_light_marker: bool,
-    /// Split view: bump (off │ on), view (lit │ shading-normal), strength (1 │ 3) or mode
-    /// (colour-only │ bump-colour), left │ right, as one image [default: the preset's].
+    /// Split view, left │ right, as one image: bump (off │ on), view (lit │ shading-normal),
+    /// strength (1 │ 3), mode (colour-only │ bump-colour), tangents (per-face │ mikktspace),
+    /// convention (opengl │ directx) or bump-source (normal-map │ height-in-shader)
+    /// [default: the preset's].
     #[arg(long, value_name = "KIND", value_parser = parse_split, conflicts_with = "row")]
     split: Option<SplitDifference>,
+    /// With --split: the two sides instead of the defaults above, e.g. `averaged-uniform,mikktspace`
+    /// for tangents or `0.5,2` for strength.
+    #[arg(long, value_name = "LEFT,RIGHT", requires = "split")]
+    split_sides: Option<String>,
     /// With --split: the divider as a fraction of the width [default: 0.5].
     #[arg(long, value_name = "FRACTION", value_parser = args::parse_finite, requires = "split")]
     split_at: Option<f32>,
@@ -162,7 +168,7 @@ struct RenderArgs {
 }
 
 fn parse_split(text: &str) -> Result<SplitDifference, String> {
-    SplitDifference::from_name(text).ok_or_else(|| format!("{text:?}: expected bump, view, strength or mode"))
+    args::parse_named(text, &SplitDifference::ALL, SplitDifference::name)
 }
 
 /// The numerical methods behind the picture (shared by the viewer and `render`).
@@ -365,6 +371,9 @@ fn render(args: RenderArgs) -> Result<(), String> {
         state.split.enabled = true;
         state.split.difference = difference;
     }
+    if let (Some(difference), Some(sides)) = (args.split, &args.split_sides) {
+        state.apply(args::parse_split_sides(difference, sides).map_err(|e| format!("--split-sides {e}"))?);
+    }
     if let Some(at) = args.split_at {
         if !(0.0..=1.0).contains(&at) {
             return Err(format!("--split-at {at}: expected a fraction of the width, 0 to 1"));
@@ -382,7 +391,7 @@ fn render(args: RenderArgs) -> Result<(), String> {
     }
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let mut renderer = Renderer::from_gpu(&gpu);
-    renderer.set_scene(&scene, state.scene_options.clone());
+    renderer.set_scene_uploads(&scene, &state.scene_uploads());
     let options = capture_options(&capture, DEFAULT_RENDER_SIZE);
     let params = state.frame_params();
     let image = if args.row {

@@ -59,7 +59,8 @@ pub struct Preset {
 #[serde(default, deny_unknown_fields)]
 pub struct SplitPreset {
     pub enabled: bool,
-    /// A [`SplitDifference`] name: `bump`, `view`, `strength` or `mode`.
+    /// A [`SplitDifference`] name: `bump`, `view`, `strength`, `mode`, `tangents`,
+    /// `convention` or `bump-source`.
     pub difference: String,
     /// The divider, a fraction of the width (0..1).
     pub divider: f32,
@@ -68,6 +69,12 @@ pub struct SplitPreset {
     pub strengths: [f32; 2],
     /// [`ShadingMode`] names, left and right.
     pub modes: [String; 2],
+    /// [`TangentMethod`] names, left and right.
+    pub tangents: [String; 2],
+    /// Green conventions (`opengl`, `directx`), left and right.
+    pub conventions: [String; 2],
+    /// [`BumpSource`] names, left and right.
+    pub bump_sources: [String; 2],
 }
 
 impl Default for SplitPreset {
@@ -85,14 +92,19 @@ impl From<&SplitView> for SplitPreset {
             views: s.views.map(|v| v.name().to_owned()),
             strengths: s.strengths,
             modes: s.modes.map(|m| m.name().to_owned()),
+            tangents: s.tangent_methods.map(|m| m.name().to_owned()),
+            conventions: s.conventions.map(|g| green_name(g).to_owned()),
+            bump_sources: s.bump_sources.map(|b| b.name().to_owned()),
         }
     }
 }
 
 impl SplitPreset {
     fn to_split(&self) -> Result<SplitView, PresetError> {
-        let difference = SplitDifference::from_name(&self.difference)
-            .ok_or_else(|| bad("split.difference", &self.difference, "bump, view, strength or mode"))?;
+        let difference = SplitDifference::from_name(&self.difference).ok_or_else(|| {
+            let names: Vec<_> = SplitDifference::ALL.iter().map(|d| d.name()).collect();
+            bad("split.difference", &self.difference, &format!("one of {}", names.join(", ")))
+        })?;
         if !(self.divider.is_finite() && (0.0..=1.0).contains(&self.divider)) {
             return Err(bad("split.divider", &self.divider.to_string(), "a fraction of the width, 0 to 1"));
         }
@@ -111,6 +123,20 @@ impl SplitPreset {
                 bad("split.modes", name, &format!("one of {}", names.join(", ")))
             })
         };
+        let method = |name: &String| {
+            TangentMethod::from_name(name).ok_or_else(|| {
+                let names: Vec<_> = TangentMethod::ALL.iter().map(|m| m.name()).collect();
+                bad("split.tangents", name, &format!("one of {}", names.join(", ")))
+            })
+        };
+        let green =
+            |name: &String| green_from_name(name).ok_or_else(|| bad("split.conventions", name, "opengl or directx"));
+        let source = |name: &String| {
+            BumpSource::from_name(name).ok_or_else(|| {
+                let names: Vec<_> = BumpSource::ALL.iter().map(|b| b.name()).collect();
+                bad("split.bump_sources", name, &format!("one of {}", names.join(", ")))
+            })
+        };
         Ok(SplitView {
             // Every field: a new split setting must get a place in the preset format too.
             enabled: self.enabled,
@@ -119,6 +145,9 @@ impl SplitPreset {
             views: [view(&self.views[0])?, view(&self.views[1])?],
             strengths: self.strengths,
             modes: [mode(&self.modes[0])?, mode(&self.modes[1])?],
+            tangent_methods: [method(&self.tangents[0])?, method(&self.tangents[1])?],
+            conventions: [green(&self.conventions[0])?, green(&self.conventions[1])?],
+            bump_sources: [source(&self.bump_sources[0])?, source(&self.bump_sources[1])?],
         })
     }
 }
@@ -632,6 +661,9 @@ mod tests {
         state.apply(Command::SetSplitStrengths([0.37, 2.91]));
         state.apply(Command::SetSplitViews([ViewMode::Tangent, ViewMode::Handedness]));
         state.apply(Command::SetSplitModes([ShadingMode::BumpOnly, ShadingMode::ColourOnly]));
+        state.apply(Command::SetSplitTangentMethods([TangentMethod::Analytic, TangentMethod::PerFace]));
+        state.apply(Command::SetSplitConventions([GreenAxis::DirectX, GreenAxis::OpenGl]));
+        state.apply(Command::SetSplitBumpSources([BumpSource::HeightInShader, BumpSource::NormalMap]));
         let files = PresetFiles { height: Some("/x/h.png".into()), ..Default::default() };
         let text = Preset::from_state(&state, files.clone()).to_toml();
         let back = Preset::from_toml(&text).unwrap();

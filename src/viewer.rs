@@ -6,7 +6,7 @@ use glam::{Vec2, Vec3};
 
 use crate::height::Kernel;
 use crate::render::{BumpSource, FrameParams, SceneOptions, SplitFrame};
-use crate::scene::{Light, MaterialOverrides, OrbitCamera, Scene, ShadingModel};
+use crate::scene::{GreenAxis, Light, MaterialOverrides, OrbitCamera, Scene, ShadingModel};
 use crate::shading::{ShadingMode, ShadingSettings, ViewMode};
 use crate::tangent::TangentMethod;
 
@@ -84,11 +84,17 @@ pub enum Command {
     SetSplitStrengths([f32; 2]),
     /// The two modes of [`SplitDifference::Mode`].
     SetSplitModes([ShadingMode; 2]),
+    /// The two tangent methods of [`SplitDifference::Tangents`].
+    SetSplitTangentMethods([TangentMethod; 2]),
+    /// The two green conventions of [`SplitDifference::Convention`].
+    SetSplitConventions([GreenAxis; 2]),
+    /// The two bump sources of [`SplitDifference::BumpSource`].
+    SetSplitBumpSources([BumpSource; 2]),
 }
 
-/// What the split view's two halves differ in: only uniforms, so both halves share one scene
-/// upload. (Two tangent methods or two normal-map conventions need different GPU data and are
-/// not offered.)
+/// What the split view's two halves differ in. The first four are uniforms, so both halves
+/// share one scene upload; the others change GPU data ([`SplitDifference::changes_gpu_data`]),
+/// so the right half is drawn from a second upload of the scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum SplitDifference {
     /// Bump off │ bump on.
@@ -100,11 +106,24 @@ pub enum SplitDifference {
     Strength,
     /// Two lit-picture modes (bump × colour, bump only, colour only).
     Mode,
+    /// Two tangent-frame methods.
+    Tangents,
+    /// Two normal-map green conventions (OpenGL │ DirectX) for every material.
+    Convention,
+    /// Two bump sources (normal map │ height in shader).
+    BumpSource,
 }
 
 impl SplitDifference {
-    pub const ALL: [SplitDifference; 4] =
-        [SplitDifference::Bump, SplitDifference::View, SplitDifference::Strength, SplitDifference::Mode];
+    pub const ALL: [SplitDifference; 7] = [
+        SplitDifference::Bump,
+        SplitDifference::View,
+        SplitDifference::Strength,
+        SplitDifference::Mode,
+        SplitDifference::Tangents,
+        SplitDifference::Convention,
+        SplitDifference::BumpSource,
+    ];
 
     /// Name as used on the command line and in presets.
     pub fn name(self) -> &'static str {
@@ -113,15 +132,24 @@ impl SplitDifference {
             SplitDifference::View => "view",
             SplitDifference::Strength => "strength",
             SplitDifference::Mode => "mode",
+            SplitDifference::Tangents => "tangents",
+            SplitDifference::Convention => "convention",
+            SplitDifference::BumpSource => "bump-source",
         }
     }
 
     pub fn from_name(name: &str) -> Option<SplitDifference> {
         SplitDifference::ALL.into_iter().find(|d| d.name() == name)
     }
+
+    /// Whether the halves need different GPU data (tangent streams, material flags, pipeline
+    /// variants), not only different uniforms.
+    pub fn changes_gpu_data(self) -> bool {
+        matches!(self, SplitDifference::Tangents | SplitDifference::Convention | SplitDifference::BumpSource)
+    }
 }
 
-/// The split view's settings: the two halves are the current shading with one thing changed.
+/// The split view's settings: the two halves are the current settings with one thing changed.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SplitView {
     pub enabled: bool,
@@ -131,6 +159,9 @@ pub struct SplitView {
     pub views: [ViewMode; 2],
     pub strengths: [f32; 2],
     pub modes: [ShadingMode; 2],
+    pub tangent_methods: [TangentMethod; 2],
+    pub conventions: [GreenAxis; 2],
+    pub bump_sources: [BumpSource; 2],
 }
 
 impl Default for SplitView {
@@ -142,6 +173,9 @@ impl Default for SplitView {
             views: [ViewMode::Lit, ViewMode::ShadingNormal],
             strengths: [1.0, 3.0],
             modes: [ShadingMode::ColourOnly, ShadingMode::BumpTimesColour],
+            tangent_methods: [TangentMethod::PerFace, TangentMethod::MikkTSpace],
+            conventions: [GreenAxis::OpenGl, GreenAxis::DirectX],
+            bump_sources: [BumpSource::NormalMap, BumpSource::HeightInShader],
         }
     }
 }
@@ -156,10 +190,33 @@ impl SplitView {
                 SplitDifference::View => s.view = self.views[i],
                 SplitDifference::Strength => s.strength = self.strengths[i],
                 SplitDifference::Mode => s.mode = self.modes[i],
+                SplitDifference::Tangents | SplitDifference::Convention | SplitDifference::BumpSource => {}
             }
             s
         };
         [side(0), side(1)]
+    }
+
+    /// The left and right scene options: `current` with the chosen difference applied (both
+    /// equal to `current` for differences that are only uniforms). A convention applies to
+    /// every material, over per-material choices.
+    pub fn scene_options(&self, current: &SceneOptions) -> [SceneOptions; 2] {
+        std::array::from_fn(|i| {
+            let mut options = current.clone();
+            match self.difference {
+                SplitDifference::Tangents => options.tangent_method = Some(self.tangent_methods[i]),
+                SplitDifference::Convention => {
+                    options.materials.green = Some(self.conventions[i]);
+                    for overrides in options.per_material.values_mut() {
+                        overrides.green = None;
+                    }
+                    options.per_material.retain(|_, o| !o.is_empty());
+                }
+                SplitDifference::BumpSource => options.bump_source = self.bump_sources[i],
+                SplitDifference::Bump | SplitDifference::View | SplitDifference::Strength | SplitDifference::Mode => {}
+            }
+            options
+        })
     }
 
     /// The on-screen labels of the left and right halves.
@@ -169,7 +226,26 @@ impl SplitView {
             SplitDifference::View => view_label(self.views[i]).to_owned(),
             SplitDifference::Strength => format!("strength {:.2}", self.strengths[i]),
             SplitDifference::Mode => mode_label(self.modes[i]).to_owned(),
+            SplitDifference::Tangents => format!("tangents: {}", self.tangent_methods[i].name()),
+            SplitDifference::Convention => format!("normal map: {}", self.conventions[i].label()),
+            SplitDifference::BumpSource => bump_source_label(self.bump_sources[i]).to_owned(),
         })
+    }
+}
+
+/// The scene options the GPU data must be made with: `main` for the picture (and the split
+/// view's left half), `split_right` for the split view's right half when it needs its own upload.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SceneUploads {
+    pub main: SceneOptions,
+    pub split_right: Option<SceneOptions>,
+}
+
+/// A bump source's name for people (labels and captions).
+pub fn bump_source_label(source: BumpSource) -> &'static str {
+    match source {
+        BumpSource::NormalMap => "normal map",
+        BumpSource::HeightInShader => "height in shader",
     }
 }
 
@@ -234,6 +310,32 @@ impl ViewerState {
             let [left, right] = self.split.shading(&self.shading);
             SplitFrame { left, right, divider: self.split.divider }
         })
+    }
+
+    /// The GPU data the current picture needs: with the split view on and its halves differing
+    /// in GPU data, the left half's options for the main upload and the right half's for a
+    /// second one; else the current options alone.
+    pub fn scene_uploads(&self) -> SceneUploads {
+        if self.split.enabled && self.split.difference.changes_gpu_data() {
+            let [left, right] = self.split.scene_options(&self.scene_options);
+            SceneUploads { main: left, split_right: Some(right) }
+        } else {
+            SceneUploads { main: self.scene_options.clone(), split_right: None }
+        }
+    }
+
+    /// The picture at `column` (a fraction of the view's width): its parameters, the scene
+    /// options it is drawn with and, in the split view, its half (0 left, 1 right).
+    pub fn picture_at(&self, column: f32) -> (FrameParams, SceneOptions, Option<usize>) {
+        let params = self.frame_params();
+        let uploads = self.scene_uploads();
+        let Some(split) = self.split_frame() else { return (params, uploads.main, None) };
+        if column < split.divider {
+            (FrameParams { shading: split.left, ..params }, uploads.main, Some(0))
+        } else {
+            let options = uploads.split_right.unwrap_or(uploads.main);
+            (FrameParams { shading: split.right, ..params }, options, Some(1))
+        }
     }
 
     /// What the renderer needs to draw the current picture.
@@ -305,6 +407,9 @@ impl ViewerState {
             }
             Command::SetSplitStrengths(_) => {}
             Command::SetSplitModes(modes) => self.split.modes = modes,
+            Command::SetSplitTangentMethods(methods) => self.split.tangent_methods = methods,
+            Command::SetSplitConventions(conventions) => self.split.conventions = conventions,
+            Command::SetSplitBumpSources(sources) => self.split.bump_sources = sources,
         }
     }
 }
@@ -385,6 +490,65 @@ mod tests {
         state.apply(Command::SetWireframe(false));
         assert!(!state.shading.wireframe);
         assert_eq!(state.scene_options, SceneOptions::default(), "no GPU data to re-make");
+    }
+
+    #[test]
+    fn only_gpu_data_differences_ask_for_a_second_upload_and_only_while_split_is_on() {
+        let scene = teaching_scene();
+        let mut state = ViewerState::new(&scene);
+        let single = SceneUploads { main: SceneOptions::default(), split_right: None };
+        state.apply(Command::SetSplitDifference(SplitDifference::Tangents));
+        assert_eq!(state.scene_uploads(), single, "split off");
+        state.apply(Command::SetSplit(true));
+        for difference in SplitDifference::ALL {
+            state.apply(Command::SetSplitDifference(difference));
+            let uploads = state.scene_uploads();
+            assert_eq!(uploads.split_right.is_some(), difference.changes_gpu_data(), "{difference:?}");
+            if !difference.changes_gpu_data() {
+                assert_eq!(uploads, single, "{difference:?}");
+            }
+        }
+        state.apply(Command::SetSplitDifference(SplitDifference::Tangents));
+        let uploads = state.scene_uploads();
+        assert_eq!(uploads.main.tangent_method, Some(TangentMethod::PerFace));
+        assert_eq!(uploads.split_right.unwrap().tangent_method, Some(TangentMethod::MikkTSpace));
+    }
+
+    #[test]
+    fn a_split_convention_wins_over_per_material_green_and_keeps_other_overrides() {
+        let scene = teaching_scene();
+        let mut state = ViewerState::new(&scene);
+        let own = MaterialOverrides { green: Some(GreenAxis::OpenGl), two_channel: Some(true), ..Default::default() };
+        state.apply(Command::SetMaterialOverrides { material: Some(0), overrides: own });
+        state.apply(Command::SetMaterialOverrides {
+            material: Some(1),
+            overrides: MaterialOverrides { green: Some(GreenAxis::OpenGl), ..Default::default() },
+        });
+        state.apply(Command::SetSplit(true));
+        state.apply(Command::SetSplitDifference(SplitDifference::Convention));
+        let [left, right] = state.split.scene_options(&state.scene_options);
+        for (options, green) in [(left, GreenAxis::OpenGl), (right, GreenAxis::DirectX)] {
+            assert_eq!(options.overrides_in_use(0).green, Some(green));
+            assert_eq!(options.overrides_in_use(0).two_channel, Some(true));
+            assert_eq!(options.overrides_in_use(1).green, Some(green));
+            assert!(!options.per_material.contains_key(&1), "an emptied record is dropped");
+        }
+    }
+
+    #[test]
+    fn the_picture_at_a_column_is_that_of_its_split_half() {
+        let scene = teaching_scene();
+        let mut state = ViewerState::new(&scene);
+        assert_eq!(state.picture_at(0.9), (state.frame_params(), SceneOptions::default(), None));
+        state.apply(Command::SetSplit(true));
+        state.apply(Command::SetSplitDivider(0.25));
+        let (left, _, half) = state.picture_at(0.2);
+        assert_eq!((left.shading.bump_enabled, half), (false, Some(0)));
+        let (right, _, half) = state.picture_at(0.3);
+        assert_eq!((right.shading.bump_enabled, half), (true, Some(1)));
+        state.apply(Command::SetSplitDifference(SplitDifference::BumpSource));
+        assert_eq!(state.picture_at(0.2).1.bump_source, BumpSource::NormalMap);
+        assert_eq!(state.picture_at(0.3).1.bump_source, BumpSource::HeightInShader);
     }
 
     #[test]

@@ -78,6 +78,81 @@ fn split_lit_shading_normal_halves_equal_full_renders_at_any_divider() {
     assert_eq!(assert_halves(&mut renderer, &state.frame_params(), &split), 48);
 }
 
+/// Halves that differ in GPU data: the split capture (right half from the second upload) equals,
+/// away from the divider, full renders of scenes uploaded with the left and the right options.
+fn assert_halves_with_uploads(difference: SplitDifference, view: ViewMode) {
+    let scene = common::scene();
+    let mut renderer = common::renderer_for(&scene);
+    let mut state = ViewerState::new(&scene);
+    state.shading.show_light_marker = false;
+    state.shading.view = view;
+    state.apply(Command::SetSplit(true));
+    state.apply(Command::SetSplitDifference(difference));
+    state.apply(Command::SetSplitDivider(0.45));
+    let uploads = state.scene_uploads();
+    let [left, right] = state.split.scene_options(&state.scene_options);
+    assert_eq!((&uploads.main, uploads.split_right.as_ref()), (&left, Some(&right)));
+    assert_ne!(left, right);
+    renderer.set_scene_uploads(&scene, &uploads);
+
+    let options = CaptureOptions::plain(SIZE);
+    let params = state.frame_params();
+    let split = split_of(&state);
+    assert_eq!(split.left, split.right, "only the GPU data differs");
+    let image = render_capture_split(&mut renderer, &options, &params, &split).unwrap();
+    let mut full = |options_of_half| {
+        renderer.set_scene(&scene, options_of_half);
+        render_capture(&mut renderer, &options, &params).unwrap()
+    };
+    let (left_image, right_image) = (full(left), full(right));
+    assert_ne!(left_image, right_image, "{difference:?}: the two sides must look different");
+    let divider = split.divider_pixels(SIZE[0]);
+    assert_eq!(divider, 72);
+    for y in 0..SIZE[1] {
+        for x in (0..divider - MARGIN).chain(divider + MARGIN..SIZE[0]) {
+            let expected = if x < divider { &left_image } else { &right_image };
+            assert_eq!(image.get_pixel(x, y), expected.get_pixel(x, y), "{difference:?}: pixel ({x}, {y})");
+        }
+    }
+    // Turning the split off drops the second upload: the right half is the main scene again.
+    state.apply(Command::SetSplit(false));
+    assert_eq!(state.scene_uploads().split_right, None);
+}
+
+#[test]
+fn split_two_tangent_methods_halves_equal_full_renders_with_each() {
+    assert_halves_with_uploads(SplitDifference::Tangents, ViewMode::Tangent);
+}
+
+#[test]
+fn split_opengl_directx_halves_equal_full_renders_with_each() {
+    assert_halves_with_uploads(SplitDifference::Convention, ViewMode::Lit);
+}
+
+#[test]
+fn split_normal_map_height_in_shader_halves_equal_full_renders_with_each() {
+    assert_halves_with_uploads(SplitDifference::BumpSource, ViewMode::ShadingNormal);
+}
+
+#[test]
+fn dropping_the_split_scene_draws_the_right_half_from_the_main_scene() {
+    let scene = common::scene();
+    let mut renderer = common::renderer_for(&scene);
+    let mut state = ViewerState::new(&scene);
+    state.shading.show_light_marker = false;
+    state.apply(Command::SetSplit(true));
+    state.apply(Command::SetSplitDifference(SplitDifference::Convention));
+    renderer.set_scene_uploads(&scene, &state.scene_uploads());
+    let options = CaptureOptions::plain(SIZE);
+    let params = state.frame_params();
+    let with_second = render_capture_split(&mut renderer, &options, &params, &split_of(&state)).unwrap();
+    renderer.set_split_scene(&scene, None);
+    let without = render_capture_split(&mut renderer, &options, &params, &split_of(&state)).unwrap();
+    let main_only = render_capture(&mut renderer, &options, &params).unwrap();
+    assert_ne!(with_second, without);
+    assert_eq!(without, main_only, "equal halves from one upload are the full render");
+}
+
 #[test]
 fn supersampled_split_capture_has_the_divider_on_a_block_boundary() {
     let scene = common::scene();

@@ -23,11 +23,11 @@ use bumpview::check::{CheckReport, check_scene};
 use bumpview::height::Kernel;
 use bumpview::preset::{CapturePreset, Preset, PresetFiles};
 use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
-use bumpview::render::{Background, RenderTarget, Renderer, SceneOptions, SplitFrame};
+use bumpview::render::{Background, RenderTarget, Renderer, SplitFrame};
 use bumpview::scene::Scene;
 use bumpview::shading::ViewMode;
 use bumpview::tangent::{MethodMeasurement, TangentMethod, measure};
-use bumpview::viewer::{Command, RedrawTracker, ViewerState};
+use bumpview::viewer::{Command, RedrawTracker, SceneUploads, ViewerState};
 use eframe::egui_wgpu::RenderState;
 use files::{Files, Finished, Purpose, Slot, Source, Status};
 
@@ -202,10 +202,12 @@ struct ViewerApp {
     slot_targets: Vec<(Slot, egui::Rect)>,
     /// To wake the UI from worker threads.
     ctx: egui::Context,
-    /// The options the renderer's scene was made with.
-    uploaded: SceneOptions,
+    /// The options the renderer's scene uploads were made with.
+    uploaded: SceneUploads,
     /// Per mesh: the chosen tangent method timed and compared with the reference.
     measurements: Vec<(String, MethodMeasurement)>,
+    /// The tangent method `measurements` are of.
+    measurements_method: Option<TangentMethod>,
     /// What `bumpview check` finds in the current scene.
     check: CheckReport,
     /// `check`'s warnings, made once per scene rather than per drawn panel.
@@ -243,7 +245,7 @@ impl ViewerApp {
             Renderer::new(render_state.device.clone(), render_state.queue.clone(), render_state.adapter.clone());
         let scene = options.scene;
         let state = options.state;
-        renderer.set_scene(&scene, state.scene_options.clone());
+        renderer.set_scene_uploads(&scene, &state.scene_uploads());
         let adapter_name = renderer.adapter_name();
         let mut files =
             Files::new(source(&options.inputs, state.kernel), Arc::new(Source::build), files::recent_file());
@@ -258,9 +260,10 @@ impl ViewerApp {
         let check = check_scene(&scene);
         Ok(ViewerApp {
             measurements: measure_all(&scene, state.scene_options.tangent_method),
+            measurements_method: state.scene_options.tangent_method,
             check_warnings: check.warnings(),
             check,
-            uploaded: state.scene_options.clone(),
+            uploaded: state.scene_uploads(),
             scene,
             files,
             dialog: dialog::Dialog::default(),
@@ -363,9 +366,10 @@ impl ViewerApp {
             // Per-material overrides name materials by index: they belong to the old mesh.
             self.state.scene_options.per_material.clear();
         }
-        self.renderer.set_scene(&scene, self.state.scene_options.clone());
-        self.uploaded = self.state.scene_options.clone();
+        self.uploaded = self.state.scene_uploads();
+        self.renderer.set_scene_uploads(&scene, &self.uploaded);
         self.measurements = measure_all(&scene, self.state.scene_options.tangent_method);
+        self.measurements_method = self.state.scene_options.tangent_method;
         self.check = check_scene(&scene);
         self.check_warnings = self.check.warnings();
         self.state.default_camera = scene.default_camera;
@@ -531,15 +535,25 @@ impl ViewerApp {
         }
     }
 
-    /// Re-makes the tangent frames (and GPU data) when their method or the bump source
-    /// changed. (A kernel change re-makes the built-in scene: [`Self::rebuild_builtin`].)
+    /// Re-makes the GPU data whose options changed: the tangent method, bump source or
+    /// conventions, or the split view's halves. (A kernel change re-makes the built-in scene:
+    /// [`Self::rebuild_builtin`].)
     fn apply_methods(&mut self) {
-        let wanted = self.state.scene_options.clone();
+        let wanted = self.state.scene_uploads();
         if wanted == self.uploaded {
             return;
         }
-        self.renderer.set_scene(&self.scene, wanted.clone());
-        self.measurements = measure_all(&self.scene, wanted.tangent_method);
+        if wanted.main != self.uploaded.main {
+            self.renderer.set_scene(&self.scene, wanted.main.clone());
+        }
+        if wanted.split_right != self.uploaded.split_right {
+            self.renderer.set_split_scene(&self.scene, wanted.split_right.clone());
+        }
+        let method = self.state.scene_options.tangent_method;
+        if self.measurements_method != method {
+            self.measurements = measure_all(&self.scene, method);
+            self.measurements_method = method;
+        }
         self.uploaded = wanted;
         self.tracker.invalidate();
     }
@@ -604,7 +618,7 @@ impl ViewerApp {
         let options = crate::capture_options(&capture, tile);
         let tiles = bumpview::render::export::default_row(&self.state.shading);
         let captions: Option<Vec<_>> = capture.captions.then(|| {
-            let caption = |s| bumpview::render::export::caption(&self.renderer, &self.scene, &self.uploaded, s);
+            let caption = |s| bumpview::render::export::caption(&self.renderer, &self.scene, &self.uploaded.main, s);
             tiles.iter().map(caption).collect()
         });
         let params = self.state.frame_params();
@@ -658,7 +672,12 @@ impl eframe::App for ViewerApp {
         self.apply(keys);
         let arrivals = self.arrivals(&ctx);
         self.apply(arrivals);
-        self.probe.update(&self.scene, &self.uploaded, &self.state.frame_params());
+        // The probe follows the picture at its pixel: in the split view, that half's.
+        let column = self.probe.pinned_column().unwrap_or(0.0);
+        let (probe_params, probe_options, half) = self.state.picture_at(column);
+        let half = half.map(|i| format!("{}: {}", ["left", "right"][i], self.state.split.labels()[i]));
+        self.probe.update(&self.scene, &probe_options, &probe_params, half);
+        let notices = self.renderer.notices();
         let stats = panel::Stats {
             measurements: &self.measurements,
             adapter: &self.adapter_name,
@@ -668,7 +687,7 @@ impl eframe::App for ViewerApp {
             materials: &self.scene.materials,
             check: &self.check,
             check_warnings: &self.check_warnings,
-            notices: self.renderer.notices(),
+            notices: &notices,
             probe: &self.probe,
         };
         let files = files_panel::FilesView {

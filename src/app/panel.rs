@@ -8,7 +8,7 @@ use bumpview::render::BumpSource;
 use bumpview::scene::{GreenAxis, Material, MaterialOverrides, ShadingModel};
 use bumpview::shading::{OVER_TILT_LIMIT_DEG, ShadingMode, ViewMode};
 use bumpview::tangent::{MethodMeasurement, TangentMethod};
-use bumpview::viewer::{Command, STRENGTH_RANGE, SplitDifference, ViewerState, mode_label};
+use bumpview::viewer::{Command, STRENGTH_RANGE, SplitDifference, ViewerState, bump_source_label, mode_label};
 
 use super::{Action, MAX_SUPERSAMPLE, PresetForm, ScreenshotForm};
 
@@ -409,55 +409,67 @@ fn split_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Actio
     if !enabled {
         return;
     }
-    let mut difference = split.difference;
-    ui.horizontal(|ui| {
-        ui.label("differs in");
+    egui::ComboBox::from_label("differs in").selected_text(split.difference.name()).show_ui(ui, |ui| {
         for d in SplitDifference::ALL {
-            if ui.radio_value(&mut difference, d, d.name()).changed() {
+            if ui.selectable_label(split.difference == d, d.name()).clicked() && d != split.difference {
                 actions.push(Command::SetSplitDifference(d).into());
             }
         }
     });
-    match split.difference {
+    if split.difference.changes_gpu_data() {
+        ui.weak("the right half is drawn from a second upload of the scene");
+    }
+    let command = match split.difference {
         SplitDifference::Bump => {
             ui.weak("left bump off, right bump on");
+            None
         }
         SplitDifference::View => {
-            let mut views = split.views;
-            for (side, view) in ["left", "right"].into_iter().zip(views.iter_mut()) {
-                egui::ComboBox::from_label(format!("{side} view")).selected_text(view_label(*view)).show_ui(ui, |ui| {
-                    for mode in ViewMode::ALL {
-                        ui.selectable_value(view, mode, view_label(mode));
-                    }
-                });
-            }
-            if views != split.views {
-                actions.push(Command::SetSplitViews(views).into());
-            }
+            pair_combos(ui, "view", split.views, &ViewMode::ALL, view_label).map(Command::SetSplitViews)
         }
         SplitDifference::Strength => {
             let mut strengths = split.strengths;
             for (side, strength) in ["left", "right"].into_iter().zip(strengths.iter_mut()) {
                 ui.add(egui::Slider::new(strength, STRENGTH_RANGE).text(format!("{side} strength")).step_by(0.01));
             }
-            if strengths != split.strengths {
-                actions.push(Command::SetSplitStrengths(strengths).into());
-            }
+            (strengths != split.strengths).then_some(Command::SetSplitStrengths(strengths))
         }
         SplitDifference::Mode => {
-            let mut modes = split.modes;
-            for (side, mode) in ["left", "right"].into_iter().zip(modes.iter_mut()) {
-                egui::ComboBox::from_label(format!("{side} mode")).selected_text(mode_label(*mode)).show_ui(ui, |ui| {
-                    for m in ShadingMode::ALL {
-                        ui.selectable_value(mode, m, mode_label(m));
-                    }
-                });
-            }
-            if modes != split.modes {
-                actions.push(Command::SetSplitModes(modes).into());
-            }
+            pair_combos(ui, "mode", split.modes, &ShadingMode::ALL, mode_label).map(Command::SetSplitModes)
         }
+        SplitDifference::Tangents => {
+            pair_combos(ui, "tangents", split.tangent_methods, &TangentMethod::ALL, TangentMethod::name)
+                .map(Command::SetSplitTangentMethods)
+        }
+        SplitDifference::Convention => {
+            pair_combos(ui, "green", split.conventions, &[GreenAxis::OpenGl, GreenAxis::DirectX], GreenAxis::label)
+                .map(Command::SetSplitConventions)
+        }
+        SplitDifference::BumpSource => {
+            pair_combos(ui, "bump source", split.bump_sources, &BumpSource::ALL, bump_source_label)
+                .map(Command::SetSplitBumpSources)
+        }
+    };
+    actions.extend(command.map(Action::from));
+}
+
+/// A left and a right combo box choosing among `all`; the new pair when one changed.
+fn pair_combos<T: Copy + PartialEq>(
+    ui: &mut egui::Ui,
+    what: &str,
+    pair: [T; 2],
+    all: &[T],
+    label: fn(T) -> &'static str,
+) -> Option<[T; 2]> {
+    let mut chosen = pair;
+    for (side, value) in ["left", "right"].into_iter().zip(chosen.iter_mut()) {
+        egui::ComboBox::from_label(format!("{side} {what}")).selected_text(label(*value)).show_ui(ui, |ui| {
+            for &option in all {
+                ui.selectable_value(value, option, label(option));
+            }
+        });
     }
+    (chosen != pair).then_some(chosen)
 }
 
 /// Save and load the whole state (files, camera, light, settings, screenshot options).

@@ -29,12 +29,19 @@ struct Pinned {
     /// The last readout and the parameters it was computed for.
     last: Option<(FrameParams, ProbeReadout)>,
     mesh_name: String,
+    /// In the split view: which half the readout follows, e.g. "right: tangents: mikktspace".
+    half: Option<String>,
 }
 
 impl Probe {
     /// Pins the point under `pixel` of a `size` view.
     pub(super) fn pin(&mut self, pixel: [u32; 2], size: [u32; 2]) {
-        self.pinned = Some(Pinned { pixel, size, point: None, last: None, mesh_name: String::new() });
+        self.pinned = Some(Pinned { pixel, size, point: None, last: None, mesh_name: String::new(), half: None });
+    }
+
+    /// The pinned pixel's column as a fraction of the view's width (to find its split half).
+    pub(super) fn pinned_column(&self) -> Option<f32> {
+        self.pinned.as_ref().map(|p| (p.pixel[0] as f32 + 0.5) / p.size[0] as f32)
     }
 
     pub(super) fn clear(&mut self) {
@@ -50,9 +57,11 @@ impl Probe {
         }
     }
 
-    /// Recomputes the readout when the options, the point or the parameters changed.
-    pub(super) fn update(&mut self, scene: &Scene, options: &SceneOptions, params: &FrameParams) {
+    /// Recomputes the readout when the options, the point or the parameters changed; `half`
+    /// names the split view's half they belong to.
+    pub(super) fn update(&mut self, scene: &Scene, options: &SceneOptions, params: &FrameParams, half: Option<String>) {
         let Some(pinned) = &mut self.pinned else { return };
+        pinned.half = half;
         if self.cache.as_ref().is_none_or(|(made_with, _)| made_with != options) {
             // Geometry and triangle order do not depend on the options: the point stays.
             self.cache = Some((options.clone(), ProbeScene::new(scene, options)));
@@ -109,6 +118,9 @@ impl Probe {
                 actions.push(Action::ClearProbe);
             }
         });
+        if let Some(half) = &pinned.half {
+            ui.label(format!("split half {half}"));
+        }
         match (&pinned.point, &pinned.last) {
             (Some(None), _) => {
                 ui.weak("nothing at that pixel (background)");

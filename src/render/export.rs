@@ -8,7 +8,7 @@ use ab_glyph::{Font, FontRef, PxScale, ScaleFont, point};
 use super::capture::{CaptureOptions, render_capture};
 use super::{BumpSource, FrameParams, Renderer, SceneOptions};
 use crate::error::RenderError;
-use crate::scene::{GreenAxis, Scene};
+use crate::scene::Scene;
 use crate::shading::{ShadingSettings, ViewMode};
 use crate::viewer::{mode_label, view_label};
 
@@ -44,10 +44,7 @@ pub fn caption(renderer: &Renderer, scene: &Scene, options: &SceneOptions, shadi
     for (index, material) in scene.materials.iter().enumerate() {
         let Some(map) = &material.normal_map else { continue };
         let green = options.overrides_in_use(index).green.unwrap_or(map.convention.green);
-        let name = match green {
-            GreenAxis::OpenGl => "OpenGL (+Y)",
-            GreenAxis::DirectX => "DirectX (−Y)",
-        };
+        let name = green.label();
         if !greens.contains(&name) {
             greens.push(name);
         }

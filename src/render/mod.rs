@@ -200,6 +200,9 @@ pub struct Renderer {
     split_uniform: wgpu::Buffer,
     split_bind_group: wgpu::BindGroup,
     scene: Option<GpuScene>,
+    /// The split view's right half, when it differs from the left in GPU data
+    /// ([`Self::set_split_scene`]); else the right half is drawn from `scene` too.
+    split_scene: Option<GpuScene>,
     targets: Option<FrameTargets>,
     counters: WorkCounters,
     /// The scene's notices, plus one while the wireframe is asked for but unsupported.
@@ -239,6 +242,7 @@ impl Renderer {
             split_uniform,
             split_bind_group,
             scene: None,
+            split_scene: None,
             targets: None,
             counters: WorkCounters::default(),
             notices: Vec::new(),
@@ -265,6 +269,26 @@ impl Renderer {
     /// Replaces the scene: applies the material overrides to a copy, makes the tangent
     /// frames it needs and uploads what it uses, as `options` say.
     pub fn set_scene(&mut self, scene: &Scene, options: SceneOptions) {
+        let gpu = self.upload(scene, options);
+        self.notices = gpu.notices.clone();
+        self.scene = Some(gpu);
+    }
+
+    /// Gives the split view's right half its own upload of `scene` made with `options` (two
+    /// tangent methods, two conventions, two bump sources), or with `None` drops it, so the
+    /// right half is drawn from the main scene again. Its notices are added to the main ones.
+    pub fn set_split_scene(&mut self, scene: &Scene, options: Option<SceneOptions>) {
+        self.split_scene = options.map(|options| self.upload(scene, options));
+    }
+
+    /// [`Self::set_scene`] and [`Self::set_split_scene`] for what a viewer state asks.
+    pub fn set_scene_uploads(&mut self, scene: &Scene, uploads: &crate::viewer::SceneUploads) {
+        self.set_scene(scene, uploads.main.clone());
+        self.set_split_scene(scene, uploads.split_right.clone());
+    }
+
+    /// The GPU data of `scene` made with `options` (material overrides applied to a copy).
+    fn upload(&mut self, scene: &Scene, options: SceneOptions) -> GpuScene {
         let overridden;
         let scene = if options.materials.is_empty() && options.per_material.values().all(|o| o.is_empty()) {
             scene
@@ -273,9 +297,7 @@ impl Renderer {
             &overridden
         };
         let layouts = &self.pipelines.layouts;
-        let gpu = scene_gpu::upload(&self.device, &self.queue, layouts, scene, options, &mut self.counters);
-        self.notices = gpu.notices.clone();
-        self.scene = Some(gpu);
+        scene_gpu::upload(&self.device, &self.queue, layouts, scene, options, &mut self.counters)
     }
 
     /// Whether the device can draw the wireframe overlay (`POLYGON_MODE_LINE`).
@@ -290,9 +312,11 @@ impl Renderer {
     }
 
     /// What the current scene asked for but could not get (a texture downscaled to fit the
-    /// adapter, a bump map on a mesh without texture coordinates), one line each.
-    pub fn notices(&self) -> &[String] {
-        &self.notices
+    /// adapter, a bump map on a mesh without texture coordinates), one line each; the split
+    /// view's right-half upload adds those the main one does not have.
+    pub fn notices(&self) -> Vec<String> {
+        let split = self.split_scene.iter().flat_map(|s| &s.notices).filter(|n| !self.notices.contains(n));
+        self.notices.iter().chain(split).cloned().collect()
     }
 
     /// The work done so far.
@@ -379,13 +403,15 @@ impl Renderer {
         params: &FrameParams,
         background: Background,
     ) -> Result<(), RenderError> {
-        self.record(encoder, target, params, &[(params.shading, None)], background)
+        let whole = Half { shading: params.shading, scissor: None, scene: SceneSlot::Main };
+        self.record(encoder, target, params, &[whole], background)
     }
 
-    /// The split view: one frame of the same camera and light whose columns left of
-    /// `divider_x` (pixels from the left edge, clamped to the width) are drawn with `left`
-    /// and the others with `right`, in one pass with a scissor rectangle per half. Each half
-    /// holds exactly the pixels a full [`Self::render`] with its settings would.
+    /// The split view: one frame of the same camera and light whose columns left of the
+    /// divider are drawn with `split.left` and the others with `split.right`, in one pass with
+    /// a scissor rectangle per half. The right half is drawn from the split scene when one is
+    /// set ([`Self::set_split_scene`]). Each half holds exactly the pixels a full
+    /// [`Self::render`] with its settings (and scene upload) would.
     pub fn render_split(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
@@ -396,40 +422,57 @@ impl Renderer {
     ) -> Result<(), RenderError> {
         let [width, height] = target.size;
         let x = split.divider_pixels(width);
-        let halves = [(split.left, Some([0, 0, x, height])), (split.right, Some([x, 0, width - x, height]))];
+        let right_scene = if self.split_scene.is_some() { SceneSlot::Split } else { SceneSlot::Main };
+        let halves = [
+            Half { shading: split.left, scissor: Some([0, 0, x, height]), scene: SceneSlot::Main },
+            Half { shading: split.right, scissor: Some([x, 0, width - x, height]), scene: right_scene },
+        ];
         self.record(encoder, target, params, &halves, background)
     }
 
-    /// Records one frame: per half, its shading settings and scissor rectangle
-    /// (`[x, y, width, height]`; `None`: the whole target). At most two halves; an empty
-    /// rectangle draws nothing.
+    /// The upload a half is drawn from.
+    fn scene_in(&self, slot: SceneSlot) -> Option<&GpuScene> {
+        match slot {
+            SceneSlot::Main => self.scene.as_ref(),
+            SceneSlot::Split => self.split_scene.as_ref(),
+        }
+    }
+
+    /// Records one frame of at most two halves, each with its shading, scissor rectangle and
+    /// scene upload. An empty rectangle draws nothing.
     fn record(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
         target: &RenderTarget,
         params: &FrameParams,
-        halves: &[(ShadingSettings, Option<[u32; 4]>)],
+        halves: &[Half],
         background: Background,
     ) -> Result<(), RenderError> {
         assert!(halves.len() <= 2, "one uniform buffer per half, two in all");
         self.check_target_size(target.size)?;
         let samples = self.sample_count(target.format);
-        let any_difference = halves.iter().any(|(s, _)| s.view == ViewMode::Difference);
-        let scene = self.scene.as_mut().ok_or(RenderError::NoScene)?;
-        if any_difference {
-            scene.ensure_reference_frames(&self.device, &mut self.counters);
+        for half in halves {
+            let scene = match half.scene {
+                SceneSlot::Main => self.scene.as_mut(),
+                SceneSlot::Split => self.split_scene.as_mut(),
+            }
+            .ok_or(RenderError::NoScene)?;
+            if half.shading.view == ViewMode::Difference {
+                scene.ensure_reference_frames(&self.device, &mut self.counters);
+            }
         }
         let aspect = target.size[0] as f32 / target.size[1] as f32;
-        for ((shading, _), buffer) in halves.iter().zip([&self.frame_uniform, &self.split_uniform]) {
-            let half = FrameParams { shading: *shading, ..*params };
-            self.queue.write_buffer(buffer, 0, bytemuck::bytes_of(&FrameUniform::new(&half, scene.ambient, aspect)));
-        }
         let marker_model = Mat4::from_translation(params.light.position);
-        self.queue.write_buffer(&scene.marker.model, 0, bytemuck::bytes_of(&marker_model.to_cols_array()));
+        for (half, buffer) in halves.iter().zip([&self.frame_uniform, &self.split_uniform]) {
+            let scene = self.scene_in(half.scene).ok_or(RenderError::NoScene)?;
+            let frame = FrameParams { shading: half.shading, ..*params };
+            self.queue.write_buffer(buffer, 0, bytemuck::bytes_of(&FrameUniform::new(&frame, scene.ambient, aspect)));
+            self.queue.write_buffer(&scene.marker.model, 0, bytemuck::bytes_of(&marker_model.to_cols_array()));
+        }
 
         let key = |pass| PipelineKey { pass, format: target.format, samples };
         let line_mode = self.device.features().contains(wgpu::Features::POLYGON_MODE_LINE);
-        let wants_wireframe = halves.iter().any(|(s, _)| s.wireframe);
+        let wants_wireframe = halves.iter().any(|h| h.shading.wireframe);
         let unsupported_notice = self.notices.iter().position(|n| n == WIREFRAME_UNSUPPORTED);
         match (wants_wireframe && !line_mode, unsupported_notice) {
             (true, None) => self.notices.push(WIREFRAME_UNSUPPORTED.to_owned()),
@@ -438,7 +481,13 @@ impl Renderer {
             }
             _ => {}
         }
-        for (shading, _) in halves {
+        for half in halves {
+            let scene = match half.scene {
+                SceneSlot::Main => self.scene.as_ref(),
+                SceneSlot::Split => self.split_scene.as_ref(),
+            }
+            .ok_or(RenderError::NoScene)?;
+            let shading = &half.shading;
             let difference = shading.view == ViewMode::Difference;
             let marker = shading.show_light_marker.then_some(Pass::LightMarker);
             let wireframe = shading.wireframe && line_mode;
@@ -450,9 +499,7 @@ impl Renderer {
             }
         }
         self.ensure_targets(target.size, target.format);
-        let (Some(scene), Some(targets)) = (self.scene.as_ref(), self.targets.as_ref()) else {
-            unreachable!("scene checked and targets made above");
-        };
+        let Some(targets) = self.targets.as_ref() else { unreachable!("targets made above") };
 
         let (view, resolve_target) = match &targets.msaa_color {
             Some(msaa) => (msaa, Some(target.view)),
@@ -478,13 +525,15 @@ impl Renderer {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        for ((shading, scissor), bind_group) in halves.iter().zip([&self.frame_bind_group, &self.split_bind_group]) {
-            if let Some([x, y, width, height]) = *scissor {
+        for (half, bind_group) in halves.iter().zip([&self.frame_bind_group, &self.split_bind_group]) {
+            if let Some([x, y, width, height]) = half.scissor {
                 if width == 0 || height == 0 {
                     continue;
                 }
                 pass.set_scissor_rect(x, y, width, height);
             }
+            let scene = self.scene_in(half.scene).expect("checked above");
+            let shading = &half.shading;
             let difference = shading.view == ViewMode::Difference;
             pass.set_bind_group(0, bind_group, &[]);
             for instance in &scene.instances {
@@ -527,6 +576,22 @@ impl Renderer {
         self.counters.frames_drawn += 1;
         Ok(())
     }
+}
+
+/// Which scene upload a half of the frame is drawn from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum SceneSlot {
+    Main,
+    /// The split view's right-half upload.
+    Split,
+}
+
+/// One half of a frame (or the whole of it).
+struct Half {
+    shading: ShadingSettings,
+    /// `[x, y, width, height]` in pixels; `None`: the whole target.
+    scissor: Option<[u32; 4]>,
+    scene: SceneSlot,
 }
 
 /// The wireframe pass of an instance: the group-1 layout of its own variant.

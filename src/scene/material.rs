@@ -20,6 +20,16 @@ pub enum GreenAxis {
     DirectX,
 }
 
+impl GreenAxis {
+    /// Name for people (panel, labels, captions).
+    pub fn label(self) -> &'static str {
+        match self {
+            GreenAxis::OpenGl => "OpenGL (+Y)",
+            GreenAxis::DirectX => "DirectX (−Y)",
+        }
+    }
+}
+
 /// The space a normal map's vectors are in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum NormalSpace {
@@ -67,10 +77,7 @@ impl NormalConvention {
 
     /// A short description for the panel, e.g. "OpenGL (+Y), tangent space".
     pub fn describe(self) -> String {
-        let green = match self.green {
-            GreenAxis::OpenGl => "OpenGL (+Y)",
-            GreenAxis::DirectX => "DirectX (−Y)",
-        };
+        let green = self.green.label();
         let space = match self.space {
             NormalSpace::Tangent => "tangent space",
             NormalSpace::Object => "object space",
