@@ -232,9 +232,17 @@ fn split_frames_on_a_float_target_hold_no_nan() {
         (SplitDifference::View, [ViewMode::Difference, ViewMode::OverTilt]),
         (SplitDifference::Strength, [ViewMode::Lit, ViewMode::Lit]),
         (SplitDifference::Mode, [ViewMode::Lit, ViewMode::Lit]),
+        // Second uploads; the Difference view makes reference frames for both.
+        (SplitDifference::Tangents, [ViewMode::Difference; 2]),
+        (SplitDifference::Convention, [ViewMode::Lit; 2]),
+        (SplitDifference::BumpSource, [ViewMode::Lit; 2]),
     ] {
         state.apply(Command::SetSplitDifference(difference));
         state.apply(Command::SetSplitViews(views));
+        if difference.changes_gpu_data() {
+            state.apply(Command::SetView(views[0]));
+        }
+        renderer.set_scene_uploads(&scene, &state.scene_uploads());
         let image = render_float_split(&mut renderer, SIZE, &state.frame_params(), &split_of(&state)).unwrap();
         let bad = image.pixels.iter().filter(|p| p.iter().any(|c| !c.is_finite())).count();
         assert_eq!(bad, 0, "{difference:?} {views:?}: {bad} pixels not finite");
