@@ -11,6 +11,7 @@
 //   vs_plain  + fs_height_bump    bump from the height map in screen space, no tangents
 //   vs_difference + fs_difference the Difference view: a mesh's frames against reference frames
 //   vs_wireframe + fs_wireframe   the wireframe overlay (a second pass, PolygonMode::Line)
+//   vs_glyph + fs_glyph           T/B/N glyphs at vertices (a line list, src/render/glyphs.rs)
 //
 // Prepended at build time: frame.wgsl (the Frame uniform, group 0) and pbr.wgsl.
 
@@ -404,4 +405,50 @@ fn vs_wireframe(@location(0) position: vec3<f32>) -> @builtin(position) vec4<f32
 @fragment
 fn fs_wireframe() -> @location(0) vec4<f32> {
     return stored(vec3<f32>(0.08, 0.08, 0.1));
+}
+
+// ---- T/B/N glyphs (src/render/glyphs.rs) ----
+
+// Glyph bases sit this fraction of the glyph length above the surface, along N, so the T and
+// B lines, which lie in the tangent plane, win the depth test against their own surface.
+const GLYPH_LIFT: f32 = 0.04;
+
+struct GlyphOutput {
+    @builtin(position) clip_position: vec4<f32>,
+    @location(0) color: vec3<f32>,
+};
+
+// glyph = [axis (0 T, 1 B, 2 N), end (0 surface, 1 tip), length (model-space metres)]. The
+// frame is the shading's: T orthonormalised against N, B = w·(N × T), in world space.
+@vertex
+fn vs_glyph(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(3) tangent: vec4<f32>,
+    @location(5) glyph: vec3<f32>,
+) -> GlyphOutput {
+    let v = to_world(position, normal, vec2<f32>(0.0), tangent);
+    let n = normalize_or(v.world_normal, vec3<f32>(0.0, 0.0, 1.0));
+    let tb = tangent_frame(v.world_tangent, n);
+    let model = mat3x3<f32>(object.model[0].xyz, object.model[1].xyz, object.model[2].xyz);
+    let length = glyph.z * pow(abs(determinant(model)), 1.0 / 3.0);
+    var direction = n;
+    var color = vec3<f32>(0.2, 0.4, 1.0);
+    if glyph.x < 0.5 {
+        direction = tb.t;
+        color = vec3<f32>(1.0, 0.15, 0.1);
+    } else if glyph.x < 1.5 {
+        direction = tb.b;
+        color = vec3<f32>(0.1, 1.0, 0.15);
+    }
+    let world = v.world_position + n * (GLYPH_LIFT * length) + direction * (glyph.y * length);
+    var out: GlyphOutput;
+    out.clip_position = frame.view_proj * vec4<f32>(world, 1.0);
+    out.color = color;
+    return out;
+}
+
+@fragment
+fn fs_glyph(in: GlyphOutput) -> @location(0) vec4<f32> {
+    return stored(in.color);
 }

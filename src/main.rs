@@ -141,6 +141,9 @@ struct RenderArgs {
     /// Hide the light marker.
     #[arg(long)]
     no_light_marker: bool,
+    /// Draw T/B/N glyphs (red, green, blue lines) at vertices of meshes with tangent frames.
+    #[arg(long)]
+    glyphs: bool,
     /// Split view, left │ right, as one image: bump (off │ on), view (lit │ shading-normal),
     /// strength (1 │ 3), mode (colour-only │ bump-colour), tangents (per-face │ mikktspace),
     /// convention (opengl │ directx) or bump-source (normal-map │ height-in-shader)
@@ -348,6 +351,9 @@ fn render(args: RenderArgs) -> Result<(), String> {
     }
     if args.no_light_marker {
         state.shading.show_light_marker = false;
+    }
+    if args.glyphs {
+        state.shading.tbn_glyphs = true;
     }
     if let Some(light) = args.light {
         state.light.position = light;

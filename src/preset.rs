@@ -240,6 +240,8 @@ pub struct ShadingPreset {
     pub mode: String,
     /// The wireframe overlay.
     pub wireframe: bool,
+    /// T/B/N glyphs at vertices.
+    pub tbn_glyphs: bool,
 }
 
 /// How the scene is prepared: tangents, bump source, kernel and material conventions.
@@ -304,6 +306,7 @@ impl From<&ShadingSettings> for ShadingPreset {
             model: shading_model_name(s.shading_override).to_owned(),
             mode: s.mode.name().to_owned(),
             wireframe: s.wireframe,
+            tbn_glyphs: s.tbn_glyphs,
         }
     }
 }
@@ -547,6 +550,7 @@ impl Preset {
                 shading_override: model,
                 mode,
                 wireframe: s.wireframe,
+                tbn_glyphs: s.tbn_glyphs,
             },
             light_orbit: self.light.orbit,
             scene_options: SceneOptions {
@@ -655,6 +659,7 @@ mod tests {
         state.apply(Command::SetShadingOverride(Some(ShadingModel::MetallicRoughness)));
         state.apply(Command::SetShadingMode(ShadingMode::BumpOnly));
         state.apply(Command::ToggleWireframe);
+        state.apply(Command::ToggleGlyphs);
         state.apply(Command::SetSplit(true));
         state.apply(Command::SetSplitDifference(crate::viewer::SplitDifference::Strength));
         state.apply(Command::SetSplitDivider(0.3137));

@@ -139,6 +139,9 @@ pub struct ShadingSettings {
     /// Draw the triangle edges over the picture (a second pass; needs
     /// `wgpu::Features::POLYGON_MODE_LINE`, else it is skipped with a notice).
     pub wireframe: bool,
+    /// Draw T/B/N glyphs (red, green, blue lines) at vertices of meshes with tangent frames,
+    /// thinned on dense meshes (a line pass).
+    pub tbn_glyphs: bool,
 }
 
 impl Default for ShadingSettings {
@@ -152,6 +155,7 @@ impl Default for ShadingSettings {
             shading_override: None,
             mode: ShadingMode::BumpTimesColour,
             wireframe: false,
+            tbn_glyphs: false,
         }
     }
 }

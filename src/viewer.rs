@@ -71,6 +71,9 @@ pub enum Command {
     /// The wireframe overlay (a second pass).
     SetWireframe(bool),
     ToggleWireframe,
+    /// T/B/N glyphs at vertices (key G; a line pass).
+    SetGlyphs(bool),
+    ToggleGlyphs,
     /// The split view on or off (key S).
     SetSplit(bool),
     ToggleSplit,
@@ -396,6 +399,8 @@ impl ViewerState {
             Command::SetShadingMode(mode) => self.shading.mode = mode,
             Command::SetWireframe(on) => self.shading.wireframe = on,
             Command::ToggleWireframe => self.shading.wireframe = !self.shading.wireframe,
+            Command::SetGlyphs(on) => self.shading.tbn_glyphs = on,
+            Command::ToggleGlyphs => self.shading.tbn_glyphs = !self.shading.tbn_glyphs,
             Command::SetSplit(on) => self.split.enabled = on,
             Command::ToggleSplit => self.split.enabled = !self.split.enabled,
             Command::SetSplitDifference(difference) => self.split.difference = difference,

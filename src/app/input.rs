@@ -50,6 +50,7 @@ fn key_action(key: Key, repeat: bool) -> Option<Action> {
         Key::Num2 => Command::SetShadingMode(ShadingMode::BumpOnly),
         Key::Num3 => Command::SetShadingMode(ShadingMode::ColourOnly),
         Key::W => Command::ToggleWireframe,
+        Key::G => Command::ToggleGlyphs,
         Key::S => Command::ToggleSplit,
         Key::F12 => return Some(Action::Screenshot),
         _ => return None,

@@ -5,6 +5,7 @@ use bumpview::WorkCounters;
 use bumpview::check::{CheckReport, GreenConvention};
 use bumpview::height::{Border, Kernel};
 use bumpview::render::BumpSource;
+use bumpview::render::glyphs::MAX_GLYPHS_PER_MESH;
 use bumpview::scene::{GreenAxis, Material, MaterialOverrides, ShadingModel};
 use bumpview::shading::{OVER_TILT_LIMIT_DEG, ShadingMode, ViewMode};
 use bumpview::tangent::{MethodMeasurement, TangentMethod};
@@ -127,7 +128,7 @@ fn view_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action
     modes_and_overlay(ui, state, actions);
 }
 
-/// The classic demo modes (keys 1/2/3) and the wireframe overlay (W).
+/// The classic demo modes (keys 1/2/3), the wireframe overlay (W) and the T/B/N glyphs (G).
 fn modes_and_overlay(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
     ui.label("Lit picture");
     let mut mode = state.shading.mode;
@@ -149,6 +150,14 @@ fn modes_and_overlay(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<A
     );
     if checkbox.changed() {
         actions.push(Command::SetWireframe(wireframe).into());
+    }
+    let mut glyphs = state.shading.tbn_glyphs;
+    let checkbox = ui.checkbox(&mut glyphs, "T/B/N glyphs (G)").on_hover_text(format!(
+        "short lines at vertices: tangent red, bitangent green, normal blue (the frames the shading uses); \
+         meshes with tangent frames only, at most {MAX_GLYPHS_PER_MESH} glyphs per mesh, spread evenly"
+    ));
+    if checkbox.changed() {
+        actions.push(Command::SetGlyphs(glyphs).into());
     }
 }
 

@@ -4,6 +4,7 @@
 
 pub mod capture;
 pub mod export;
+pub mod glyphs;
 pub mod gpu;
 pub mod pipelines;
 mod scene_gpu;
@@ -460,6 +461,9 @@ impl Renderer {
             if half.shading.view == ViewMode::Difference {
                 scene.ensure_reference_frames(&self.device, &mut self.counters);
             }
+            if half.shading.tbn_glyphs {
+                scene.ensure_glyphs(&self.device);
+            }
         }
         let aspect = target.size[0] as f32 / target.size[1] as f32;
         let marker_model = Mat4::from_translation(params.light.position);
@@ -492,9 +496,10 @@ impl Renderer {
             let marker = shading.show_light_marker.then_some(Pass::LightMarker);
             let wireframe = shading.wireframe && line_mode;
             let wireframe_passes = scene.instances.iter().filter(|_| wireframe).map(wireframe_pass);
-            for pass in
-                scene.instances.iter().map(|i| drawn_pass(i, scene, difference)).chain(marker).chain(wireframe_passes)
-            {
+            let glyph_passes =
+                scene.instances.iter().filter(|i| shading.tbn_glyphs && has_glyphs(i, scene)).map(glyph_pass);
+            let drawn = scene.instances.iter().map(|i| drawn_pass(i, scene, difference));
+            for pass in drawn.chain(marker).chain(wireframe_passes).chain(glyph_passes) {
                 self.pipelines.ensure(&self.device, key(pass), &mut self.counters);
             }
         }
@@ -563,6 +568,15 @@ impl Renderer {
                     pass.draw_indexed(0..mesh.index_count, 0, 0..1);
                 }
             }
+            if shading.tbn_glyphs {
+                for instance in scene.instances.iter().filter(|i| has_glyphs(i, scene)) {
+                    let Some((lines, count)) = &scene.meshes[instance.mesh].glyphs else { continue };
+                    pass.set_pipeline(self.pipelines.get(&key(glyph_pass(instance))));
+                    pass.set_bind_group(1, &instance.bind_group, &[]);
+                    pass.set_vertex_buffer(0, lines.slice(..));
+                    pass.draw(0..*count, 0..1);
+                }
+            }
             if shading.show_light_marker {
                 let marker = &scene.marker;
                 pass.set_pipeline(self.pipelines.get(&key(Pass::LightMarker)));
@@ -594,14 +608,28 @@ struct Half {
     scene: SceneSlot,
 }
 
-/// The wireframe pass of an instance: the group-1 layout of its own variant.
-fn wireframe_pass(instance: &scene_gpu::GpuInstance) -> Pass {
+/// The variant whose group-1 layout an instance's overlays (wireframe, glyphs) bind.
+fn overlay_variant(instance: &scene_gpu::GpuInstance) -> pipelines::Variant {
     match instance.pass {
-        Pass::Mesh { variant, .. } | Pass::Difference { variant, .. } | Pass::Wireframe { variant } => {
-            Pass::Wireframe { variant }
-        }
-        Pass::LightMarker => Pass::Wireframe { variant: pipelines::Variant::Plain },
+        Pass::Mesh { variant, .. }
+        | Pass::Difference { variant, .. }
+        | Pass::Wireframe { variant }
+        | Pass::Glyphs { variant } => variant,
+        Pass::LightMarker => pipelines::Variant::Plain,
     }
+}
+
+fn wireframe_pass(instance: &scene_gpu::GpuInstance) -> Pass {
+    Pass::Wireframe { variant: overlay_variant(instance) }
+}
+
+fn glyph_pass(instance: &scene_gpu::GpuInstance) -> Pass {
+    Pass::Glyphs { variant: overlay_variant(instance) }
+}
+
+/// Whether an instance's mesh has glyph lines to draw (made for meshes with tangent frames).
+fn has_glyphs(instance: &scene_gpu::GpuInstance, scene: &GpuScene) -> bool {
+    scene.meshes[instance.mesh].glyphs.as_ref().is_some_and(|(_, count)| *count > 0)
 }
 
 /// The pass an instance is drawn with: the Difference view swaps in its own pass for meshes

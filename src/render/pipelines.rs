@@ -60,6 +60,11 @@ pub enum Pass {
     Wireframe {
         variant: Variant,
     },
+    /// The T/B/N glyphs of a mesh drawn with `variant` (whose group-1 layout it binds): a line
+    /// list ([`super::glyphs`]), depth-tested, no depth writes.
+    Glyphs {
+        variant: Variant,
+    },
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -187,6 +192,13 @@ const REFERENCE_TANGENT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferL
     attributes: &wgpu::vertex_attr_array![4 => Float32x4],
 };
 
+/// [`super::glyphs::GlyphVertex`]: position, normal, tangent, `[axis, end, length]`.
+const GLYPH: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: std::mem::size_of::<super::glyphs::GlyphVertex>() as u64,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 3 => Float32x4, 5 => Float32x3],
+};
+
 impl Pipelines {
     pub fn new(device: &wgpu::Device) -> Self {
         let module = |label: &str, source: &'static str| {
@@ -256,6 +268,15 @@ impl Pipelines {
                     None,
                     &encodes_srgb,
                 ),
+                Pass::Glyphs { variant } => (
+                    &self.mesh_module,
+                    self.layouts.material(variant),
+                    "vs_glyph",
+                    "fs_glyph",
+                    &[GLYPH],
+                    None,
+                    &encodes_srgb,
+                ),
                 Pass::LightMarker => (
                     &self.marker_module,
                     &self.layouts.marker,
@@ -267,7 +288,12 @@ impl Pipelines {
                 ),
             };
         let wireframe = matches!(key.pass, Pass::Wireframe { .. });
+        let overlay = wireframe || matches!(key.pass, Pass::Glyphs { .. });
         let polygon_mode = if wireframe { wgpu::PolygonMode::Line } else { wgpu::PolygonMode::Fill };
+        let topology = match key.pass {
+            Pass::Glyphs { .. } => wgpu::PrimitiveTopology::LineList,
+            _ => wgpu::PrimitiveTopology::TriangleList,
+        };
         let buffers: Vec<_> = buffers.iter().cloned().map(Some).collect();
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("bumpview"),
@@ -284,11 +310,11 @@ impl Pipelines {
                 buffers: &buffers,
                 compilation_options: options.clone(),
             },
-            primitive: wgpu::PrimitiveState { cull_mode, front_face, polygon_mode, ..Default::default() },
+            primitive: wgpu::PrimitiveState { topology, cull_mode, front_face, polygon_mode, ..Default::default() },
             depth_stencil: Some(wgpu::DepthStencilState {
                 format: DEPTH_FORMAT,
-                depth_write_enabled: Some(!wireframe),
-                depth_compare: Some(if wireframe {
+                depth_write_enabled: Some(!overlay),
+                depth_compare: Some(if overlay {
                     wgpu::CompareFunction::LessEqual
                 } else {
                     wgpu::CompareFunction::Less
@@ -337,6 +363,8 @@ mod tests {
                     "fs_difference",
                     "vs_wireframe",
                     "fs_wireframe",
+                    "vs_glyph",
+                    "fs_glyph",
                 ],
             ),
             (MARKER_WGSL, &["vs_marker", "fs_marker"]),

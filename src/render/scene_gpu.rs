@@ -4,6 +4,7 @@
 use glam::{Vec2, Vec3, Vec4};
 use wgpu::util::DeviceExt;
 
+use super::glyphs::{MAX_GLYPHS_PER_MESH, glyph_lines};
 use super::pipelines::{Layouts, Pass, Variant};
 use super::uniforms::ObjectUniform;
 use super::{BumpKind, BumpSource, SceneOptions, bump_kind};
@@ -18,6 +19,8 @@ pub struct GpuMesh {
     pub tangents: Option<wgpu::Buffer>,
     /// Reference frames for the Difference view, made on its first use.
     pub reference_tangents: Option<wgpu::Buffer>,
+    /// The T/B/N glyph line list and its vertex count, made on first use (meshes with frames).
+    pub glyphs: Option<(wgpu::Buffer, u32)>,
     pub indices: wgpu::Buffer,
     pub index_count: u32,
 }
@@ -26,6 +29,8 @@ pub struct GpuMesh {
 /// (unwelded for per-face frames), kept to make reference frames on demand.
 pub struct DrawnFrames {
     pub mesh: Mesh,
+    /// The frames drawn, one per vertex of `mesh`.
+    pub tangents: Vec<Vec4>,
     pub method: TangentMethod,
 }
 
@@ -264,7 +269,7 @@ pub fn upload(
                 counters.tangent_frames_generated += tangents.len() as u64;
             }
             let gpu = upload_mesh(device, &drawn, Some(&tangents), &mut notices);
-            frames.push(Some(DrawnFrames { mesh: drawn, method }));
+            frames.push(Some(DrawnFrames { mesh: drawn, tangents, method }));
             gpu
         })
         .collect();
@@ -379,12 +384,25 @@ fn upload_mesh(device: &wgpu::Device, mesh: &Mesh, tangents: Option<&[Vec4]>, no
         uvs: buffer(device, "uvs", &uvs, usage),
         tangents: tangents.map(|t| buffer(device, "tangents", &stream::<Vec4>(t, count), usage)),
         reference_tangents: None,
+        glyphs: None,
         index_count: indices.len() as u32,
         indices: buffer(device, "indices", &indices, wgpu::BufferUsages::INDEX),
     }
 }
 
 impl GpuScene {
+    /// Makes the T/B/N glyph lines of every mesh with a tangent stream, once.
+    pub fn ensure_glyphs(&mut self, device: &wgpu::Device) {
+        for (gpu, drawn) in self.meshes.iter_mut().zip(&self.frames) {
+            let Some(drawn) = drawn else { continue };
+            if gpu.glyphs.is_none() {
+                let lines = glyph_lines(&drawn.mesh, &drawn.tangents, MAX_GLYPHS_PER_MESH);
+                let count = lines.len() as u32;
+                gpu.glyphs = Some((buffer(device, "T/B/N glyphs", &lines, wgpu::BufferUsages::VERTEX), count));
+            }
+        }
+    }
+
     /// Makes the Difference view's reference frames (analytic where the mesh has them,
     /// else MikkTSpace) for every mesh with a tangent stream, once.
     pub fn ensure_reference_frames(&mut self, device: &wgpu::Device, counters: &mut WorkCounters) {
