@@ -13,7 +13,7 @@ use bumpview::preset::{self, CapturePreset, Preset, PresetFiles};
 use bumpview::render::capture::{
     CaptureOptions, MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically,
 };
-use bumpview::render::export::{caption, default_row, render_row};
+use bumpview::render::export::{TileGrid, caption, render_grid};
 use bumpview::render::{Background, BumpSource, Gpu, Renderer};
 use bumpview::scene::{GreenAxis, MaterialOverrides, Scene, ShadingModel};
 use bumpview::shading::ViewMode;
@@ -148,7 +148,7 @@ struct RenderArgs {
     /// strength (1 │ 3), mode (colour-only │ bump-colour), tangents (per-face │ mikktspace),
     /// convention (opengl │ directx) or bump-source (normal-map │ height-in-shader)
     /// [default: the preset's].
-    #[arg(long, value_name = "KIND", value_parser = parse_split, conflicts_with = "row")]
+    #[arg(long, value_name = "KIND", value_parser = parse_split, conflicts_with = "tiles")]
     split: Option<SplitDifference>,
     /// With --split: the two sides instead of the defaults above, e.g. `averaged-uniform,mikktspace`
     /// for tangents or `0.5,2` for strength.
@@ -158,11 +158,16 @@ struct RenderArgs {
     #[arg(long, value_name = "FRACTION", value_parser = args::parse_finite, requires = "split")]
     split_at: Option<f32>,
     /// A row of tiles of --size side by side: flat │ bumped │ Tangent view.
-    #[arg(long)]
+    #[arg(long, group = "tiles")]
     row: bool,
-    /// With --row: a caption strip under each tile (view and mode, strength, normal-map
-    /// convention, tangent source).
-    #[arg(long, requires = "row")]
+    /// A grid of tiles of --size: rows separated by `;`, tiles by `,`, each NAME[@STRENGTH]
+    /// with NAME flat, bumped, bump-only, colour-only or a view name; without SPEC
+    /// `flat,bumped,bump-only;tangent,bitangent,shading-normal`.
+    #[arg(long, value_name = "SPEC", num_args = 0..=1, default_missing_value = "", group = "tiles")]
+    grid: Option<String>,
+    /// With --row or --grid: a caption strip under each tile (view and mode, strength,
+    /// normal-map convention, tangent source).
+    #[arg(long, requires = "tiles")]
     captions: bool,
     #[command(flatten)]
     methods: MethodArgs,
@@ -334,7 +339,20 @@ struct Started {
     state: ViewerState,
 }
 
-fn render(args: RenderArgs) -> Result<(), String> {
+/// Why a command failed: its arguments (exit status 2, as for flags clap rejects) or the
+/// work itself (exit status 1).
+enum Failure {
+    BadArguments(String),
+    Failed(String),
+}
+
+impl From<String> for Failure {
+    fn from(message: String) -> Self {
+        Failure::Failed(message)
+    }
+}
+
+fn render(args: RenderArgs) -> Result<(), Failure> {
     let preset = match &args.preset {
         Some(path) => Preset::load(path).map_err(|e| e.to_string())?,
         None => Preset::default(),
@@ -360,7 +378,7 @@ fn render(args: RenderArgs) -> Result<(), String> {
     }
     if let Some([yaw, pitch, distance]) = args.camera {
         if distance <= 0.0 {
-            return Err(format!("camera distance {distance} must be positive"));
+            return Err(Failure::BadArguments(format!("--camera: distance {distance} must be positive")));
         }
         state.camera.yaw = yaw.to_radians();
         state.camera.pitch = 0.0;
@@ -378,11 +396,12 @@ fn render(args: RenderArgs) -> Result<(), String> {
         state.split.difference = difference;
     }
     if let (Some(difference), Some(sides)) = (args.split, &args.split_sides) {
-        state.apply(args::parse_split_sides(difference, sides).map_err(|e| format!("--split-sides {e}"))?);
+        let sides = args::parse_split_sides(difference, sides);
+        state.apply(sides.map_err(|e| Failure::BadArguments(format!("--split-sides {e}")))?);
     }
     if let Some(at) = args.split_at {
         if !(0.0..=1.0).contains(&at) {
-            return Err(format!("--split-at {at}: expected a fraction of the width, 0 to 1"));
+            return Err(Failure::BadArguments(format!("--split-at {at}: expected a fraction of the width, 0 to 1")));
         }
         state.split.divider = at;
     }
@@ -395,17 +414,28 @@ fn render(args: RenderArgs) -> Result<(), String> {
         let preset = Preset { capture, ..Preset::from_state(&state, files) };
         preset.save(path).map_err(|e| e.to_string())?;
     }
+    let grid = match (&args.grid, args.row) {
+        (Some(spec), _) if spec.is_empty() => Some(TileGrid::default_grid(&state.shading)),
+        (Some(spec), _) => {
+            Some(TileGrid::parse(spec, &state.shading).map_err(|e| Failure::BadArguments(format!("--grid {e}")))?)
+        }
+        (None, true) => Some(TileGrid::default_row(&state.shading)),
+        (None, false) => None,
+    };
+    if grid.is_some() {
+        // Tiles are single pictures: a preset's split view does not apply.
+        state.split.enabled = false;
+    }
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let mut renderer = Renderer::from_gpu(&gpu);
     renderer.set_scene_uploads(&scene, &state.scene_uploads());
     let options = capture_options(&capture, DEFAULT_RENDER_SIZE);
     let params = state.frame_params();
-    let image = if args.row {
-        let tiles = default_row(&state.shading);
+    let image = if let Some(grid) = grid {
         let captions: Option<Vec<_>> = capture
             .captions
-            .then(|| tiles.iter().map(|s| caption(&renderer, &scene, &state.scene_options, s)).collect());
-        render_row(&mut renderer, &options, &params, &tiles, captions.as_deref())
+            .then(|| grid.tiles.iter().map(|s| caption(&renderer, &scene, &state.scene_options, s)).collect());
+        render_grid(&mut renderer, &options, &params, &grid, captions.as_deref())
     } else if let Some(split) = state.split_frame() {
         render_capture_split(&mut renderer, &options, &params, &split)
     } else {
@@ -481,13 +511,17 @@ fn main() -> ExitCode {
     };
     let result = match cli.command.take() {
         Some(Command::Render(args)) => render(*args),
-        Some(Command::Report(args)) => report(args),
+        Some(Command::Report(args)) => report(args).map_err(Failure::Failed),
         Some(Command::Check { files }) => return check(&files),
-        None => viewer(&cli),
+        None => viewer(&cli).map_err(Failure::Failed),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(message) => {
+        Err(Failure::BadArguments(message)) => {
+            eprintln!("bumpview: {message}");
+            ExitCode::from(2)
+        }
+        Err(Failure::Failed(message)) => {
             eprintln!("bumpview: {message}");
             ExitCode::FAILURE
         }

@@ -44,26 +44,35 @@ fn render_writes_a_png_of_the_requested_size() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// Bad flags and values exit 2, failures of the work itself 1; either prints one line.
 #[test]
 fn failures_exit_non_zero_with_one_line() {
-    let cases: [&[&str]; 8] = [
-        &["render", "--out", "x.png", "--frobnicate"],
-        &["render", "--out", "x.png", "--view", "sideways"],
-        &["render", "--out", "x.png", "--size", "0x10"],
-        &["render", "--out", "x.png", "--light", "1,2"],
-        &["render", "--out", "x.png", "--bump", "maybe"],
-        &["render", "--out", "x.png", "--height-kernel", "median"],
-        &["render", "--out", "x.png", "--height-border", "mirror"],
-        &["render", "--out", "/nonexistent-dir/x.png", "--size", "16x16"],
+    let cases: [(&[&str], i32); 14] = [
+        (&["render", "--out", "x.png", "--frobnicate"], 2),
+        (&["render", "--out", "x.png", "--view", "sideways"], 2),
+        (&["render", "--out", "x.png", "--size", "0x10"], 2),
+        (&["render", "--out", "x.png", "--light", "1,2"], 2),
+        (&["render", "--out", "x.png", "--bump", "maybe"], 2),
+        (&["render", "--out", "x.png", "--height-kernel", "median"], 2),
+        (&["render", "--out", "x.png", "--height-border", "mirror"], 2),
+        (&["render", "--out", "x.png", "--camera=0,0,-1"], 2),
+        (&["render", "--out", "x.png", "--split", "view", "--split-at", "1.5"], 2),
+        (&["render", "--out", "x.png", "--split", "tangents", "--split-sides", "mikktspace,bogus"], 2),
+        (&["render", "--out", "x.png", "--grid", "flat,shiny"], 2),
+        (&["render", "--out", "x.png", "--grid", "flat;bumped,tangent"], 2),
+        (&["render", "--out", "x.png", "--row", "--grid"], 2),
+        (&["render", "--out", "/nonexistent-dir/x.png", "--size", "16x16"], 1),
     ];
-    for args in cases {
+    for (args, code) in cases {
         let output = bumpview(args);
-        assert!(!output.status.success(), "{args:?} succeeded");
+        assert_eq!(output.status.code(), Some(code), "{args:?}: {}", String::from_utf8_lossy(&output.stderr));
         let lines = stderr_lines(&output);
         assert_eq!(lines.len(), 1, "{args:?}: {:?}", String::from_utf8_lossy(&output.stderr));
     }
     let unwritable = bumpview(&["render", "--out", "/nonexistent-dir/x.png", "--size", "16x16"]);
     assert!(stderr_lines(&unwritable)[0].contains("/nonexistent-dir/x.png"));
+    let grid = bumpview(&["render", "--out", "x.png", "--grid", "flat,shiny"]);
+    assert!(stderr_lines(&grid)[0].contains("shading-normal"), "{:?}", stderr_lines(&grid));
 }
 
 /// `--height-kernel` re-makes loaded height maps' normal maps: on the built-in scene it gives

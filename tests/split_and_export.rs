@@ -11,7 +11,7 @@
 mod common;
 
 use bumpview::render::capture::{CaptureOptions, render_capture, render_capture_split, render_float_split};
-use bumpview::render::export::{CAPTION_BACKGROUND, caption, caption_strip_height, default_row, render_row};
+use bumpview::render::export::{CAPTION_BACKGROUND, TileGrid, caption, caption_strip_height, render_grid};
 use bumpview::render::{FrameParams, SplitFrame};
 use bumpview::shading::ViewMode;
 use bumpview::viewer::{Command, SplitDifference, ViewerState};
@@ -181,7 +181,8 @@ fn row_export_is_single_renders_side_by_side_with_a_caption_strip() {
     let mut renderer = common::renderer_for(&scene);
     let state = ViewerState::new(&scene);
     let params = state.frame_params();
-    let tiles = default_row(&state.shading);
+    let grid = TileGrid::default_row(&state.shading);
+    let tiles = &grid.tiles;
     assert_eq!(tiles.len(), 3);
     assert!(!tiles[0].bump_enabled && tiles[1].bump_enabled && tiles[2].view == ViewMode::Tangent);
     let captions: Vec<_> = tiles.iter().map(|s| caption(&renderer, &scene, &state.scene_options, s)).collect();
@@ -190,10 +191,10 @@ fn row_export_is_single_renders_side_by_side_with_a_caption_strip() {
     assert!(captions[2][3].starts_with("tangents: auto: "), "{captions:?}");
     let tile = [128, 80];
     let options = CaptureOptions::plain(tile);
-    let row = render_row(&mut renderer, &options, &params, &tiles, Some(&captions)).unwrap();
+    let row = render_grid(&mut renderer, &options, &params, &grid, Some(&captions)).unwrap();
     let strip = caption_strip_height(tile[0], 4);
     assert_eq!(row.dimensions(), (3 * tile[0], tile[1] + strip));
-    let plain = render_row(&mut renderer, &options, &params, &tiles, None).unwrap();
+    let plain = render_grid(&mut renderer, &options, &params, &grid, None).unwrap();
     assert_eq!(plain.dimensions(), (3 * tile[0], tile[1]));
     let [r, g, b] = CAPTION_BACKGROUND;
     for (i, shading) in tiles.iter().enumerate() {
@@ -247,4 +248,32 @@ fn split_frames_on_a_float_target_hold_no_nan() {
         let bad = image.pixels.iter().filter(|p| p.iter().any(|c| !c.is_finite())).count();
         assert_eq!(bad, 0, "{difference:?} {views:?}: {bad} pixels not finite");
     }
+}
+
+#[test]
+fn grid_export_puts_each_tile_at_its_row_and_column_above_its_caption() {
+    let scene = common::scene();
+    let mut renderer = common::renderer_for(&scene);
+    let state = ViewerState::new(&scene);
+    let params = state.frame_params();
+    let grid = TileGrid::parse("flat,bumped@3;handedness,bump-only", &state.shading).unwrap();
+    let captions: Vec<_> = grid.tiles.iter().map(|s| caption(&renderer, &scene, &state.scene_options, s)).collect();
+    let tile = [96, 64];
+    let options = CaptureOptions::plain(tile);
+    let image = render_grid(&mut renderer, &options, &params, &grid, Some(&captions)).unwrap();
+    let strip = caption_strip_height(tile[0], 4);
+    assert_eq!(image.dimensions(), (2 * tile[0], 2 * (tile[1] + strip)));
+    for (i, shading) in grid.tiles.iter().enumerate() {
+        let single = render_capture(&mut renderer, &options, &FrameParams { shading: *shading, ..params }).unwrap();
+        let (x0, y0) = (i as u32 % 2 * tile[0], i as u32 / 2 * (tile[1] + strip));
+        for y in 0..tile[1] {
+            for x in 0..tile[0] {
+                assert_eq!(image.get_pixel(x0 + x, y0 + y), single.get_pixel(x, y), "tile {i}, pixel ({x}, {y})");
+            }
+        }
+        let strip_pixels = (y0 + tile[1]..y0 + tile[1] + strip).flat_map(|y| (x0..x0 + tile[0]).map(move |x| (x, y)));
+        let text = strip_pixels.filter(|&(x, y)| image.get_pixel(x, y).0[..3] != CAPTION_BACKGROUND).count();
+        assert!(text > 50, "tile {i}: {text} text pixels in its caption strip");
+    }
+    assert!(captions[1][1].contains("strength 3.00"), "{:?}", captions[1]);
 }

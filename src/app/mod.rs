@@ -23,6 +23,7 @@ use bumpview::check::{CheckReport, check_scene};
 use bumpview::height::Kernel;
 use bumpview::preset::{CapturePreset, Preset, PresetFiles};
 use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
+use bumpview::render::export::{self, TileGrid};
 use bumpview::render::{Background, RenderTarget, Renderer, SplitFrame};
 use bumpview::scene::Scene;
 use bumpview::shading::ViewMode;
@@ -60,8 +61,9 @@ enum Action {
     Viewer(Command),
     /// Save a PNG of the 3D view (F12 or the panel button).
     Screenshot,
-    /// Save a PNG of the row export: flat │ bumped │ Tangent view, captions as the form says.
-    ExportRow,
+    /// Save a PNG of the tile export (the form's spec, else flat │ bumped │ Tangent view),
+    /// captions as the form says.
+    ExportTiles,
     /// Write the whole state as a preset file.
     SavePreset(PathBuf),
     /// Read a preset file and show its files and state.
@@ -155,8 +157,10 @@ struct ScreenshotForm {
     transparent: bool,
     /// Render at this many times the size and downsample (1..=[`MAX_SUPERSAMPLE`]).
     supersample: u32,
-    /// Row exports get a caption strip under each tile.
+    /// Tile exports get a caption strip under each tile.
     captions: bool,
+    /// The tile export's spec ([`TileGrid::parse`]); empty: the default row.
+    tiles_text: String,
     /// Where the last PNG went, or why it failed.
     message: Option<Result<String, String>>,
 }
@@ -168,6 +172,7 @@ impl ScreenshotForm {
             transparent: capture.transparent,
             supersample: capture.supersample,
             captions: capture.captions,
+            tiles_text: String::new(),
             message: None,
         }
     }
@@ -299,7 +304,7 @@ impl ViewerApp {
                     }
                 }
                 Action::Screenshot => self.screenshot.message = Some(self.save_screenshot()),
-                Action::ExportRow => self.screenshot.message = Some(self.export_row()),
+                Action::ExportTiles => self.screenshot.message = Some(self.export_tiles()),
                 Action::SavePreset(path) => {
                     let saved = self.current_preset().save(&path).map_err(|e| e.to_string());
                     self.preset.message = Some(saved.map(|()| format!("saved {}", path.display())));
@@ -607,28 +612,30 @@ impl ViewerApp {
         Ok(format!("wrote {} ({}x{})", shown.display(), view_size[0], view_size[1]))
     }
 
-    /// Renders the row export (flat │ bumped │ Tangent view) with tiles of the screenshot size
-    /// (else the view's) and writes a fresh PNG; captions as the form says.
-    fn export_row(&mut self) -> Result<String, String> {
+    /// Renders the tile export (the form's spec, else flat │ bumped │ Tangent view) with tiles
+    /// of the screenshot size (else the view's) and writes a fresh PNG; captions as the form says.
+    fn export_tiles(&mut self) -> Result<String, String> {
         let tile = match self.screenshot.size_text.trim() {
             "" => self.view.as_ref().map(|v| v.size).ok_or("the view has no size yet")?,
             text => crate::args::parse_size(text)?,
         };
         let capture = CapturePreset { size: Some(tile), ..self.screenshot.capture() };
         let options = crate::capture_options(&capture, tile);
-        let tiles = bumpview::render::export::default_row(&self.state.shading);
+        let grid = match self.screenshot.tiles_text.trim() {
+            "" => TileGrid::default_row(&self.state.shading),
+            spec => TileGrid::parse(spec, &self.state.shading)?,
+        };
         let captions: Option<Vec<_>> = capture.captions.then(|| {
-            let caption = |s| bumpview::render::export::caption(&self.renderer, &self.scene, &self.uploaded.main, s);
-            tiles.iter().map(caption).collect()
+            let caption = |s| export::caption(&self.renderer, &self.scene, &self.uploaded.main, s);
+            grid.tiles.iter().map(caption).collect()
         });
         let params = self.state.frame_params();
-        let image =
-            bumpview::render::export::render_row(&mut self.renderer, &options, &params, &tiles, captions.as_deref())
-                .map_err(|e| e.to_string())?;
+        let image = export::render_grid(&mut self.renderer, &options, &params, &grid, captions.as_deref())
+            .map_err(|e| e.to_string())?;
         let path = unused_screenshot_path();
         write_png_atomically(&image, &path).map_err(|e| e.to_string())?;
         let shown = std::path::absolute(&path).unwrap_or(path);
-        Ok(format!("wrote {} ({}x{}, {} tiles)", shown.display(), image.width(), image.height(), tiles.len()))
+        Ok(format!("wrote {} ({}x{}, {} tiles)", shown.display(), image.width(), image.height(), grid.tiles.len()))
     }
 
     /// The whole state, the scene's files and the screenshot settings as a preset.

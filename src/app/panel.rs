@@ -393,13 +393,16 @@ fn screenshot_section(ui: &mut egui::Ui, form: &mut ScreenshotForm, actions: &mu
     if ui.button("Save PNG (F12)").clicked() {
         actions.push(Action::Screenshot);
     }
+    ui.add(
+        egui::TextEdit::singleline(&mut form.tiles_text).hint_text("flat,bumped,tangent").desired_width(f32::INFINITY),
+    )
+    .on_hover_text(
+        "tiles: rows separated by ';', tiles by ',', each NAME or NAME@STRENGTH; NAME is flat, bumped, \
+         bump-only, colour-only or a view (tangent, shading-normal, handedness, ...); empty: flat,bumped,tangent",
+    );
     ui.horizontal(|ui| {
-        if ui
-            .button("Export row")
-            .on_hover_text("flat │ bumped │ Tangent view side by side, tiles of the size above")
-            .clicked()
-        {
-            actions.push(Action::ExportRow);
+        if ui.button("Export tiles").on_hover_text("the tiles above as one PNG, each of the size above").clicked() {
+            actions.push(Action::ExportTiles);
         }
         ui.checkbox(&mut form.captions, "captions")
             .on_hover_text("a strip under each tile: view and mode, strength, normal-map convention, tangents");

@@ -1,6 +1,6 @@
-//! Comparison exports: a row of tiles, each the same camera and light under other shading
-//! settings, with an optional caption strip under each tile stating view, mode, strength,
-//! normal-map convention and tangent source. The captions are drawn on the CPU with the Hack
+//! Comparison exports: a grid of tiles (a row is a grid of one row), each the same camera and
+//! light under other shading settings, with an optional caption strip under each tile stating
+//! view, mode, strength, normal-map convention and tangent source. The captions are drawn on the CPU with the Hack
 //! font that `epaint_default_fonts` bundles, rasterised by `ab_glyph`.
 
 use ab_glyph::{Font, FontRef, PxScale, ScaleFont, point};
@@ -9,22 +9,86 @@ use super::capture::{CaptureOptions, render_capture};
 use super::{BumpSource, FrameParams, Renderer, SceneOptions};
 use crate::error::RenderError;
 use crate::scene::Scene;
-use crate::shading::{ShadingSettings, ViewMode};
+use crate::shading::{ShadingMode, ShadingSettings, ViewMode};
 use crate::viewer::{mode_label, view_label};
 
 /// The caption strip's background and text colours (sRGB).
 pub const CAPTION_BACKGROUND: [u8; 3] = [24, 26, 30];
 const CAPTION_TEXT: [u8; 3] = [235, 235, 235];
 
-/// The default row: flat │ bumped │ Tangent view, from `current` (lit pictures in its mode,
-/// at its strength).
-pub fn default_row(current: &ShadingSettings) -> Vec<ShadingSettings> {
-    let lit = ShadingSettings { view: ViewMode::Lit, ..*current };
-    vec![
-        ShadingSettings { bump_enabled: false, ..lit },
-        ShadingSettings { bump_enabled: true, ..lit },
-        ShadingSettings { view: ViewMode::Tangent, bump_enabled: true, ..lit },
-    ]
+/// Tiles in rows of `columns`, left to right, then top to bottom.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TileGrid {
+    pub columns: usize,
+    pub tiles: Vec<ShadingSettings>,
+}
+
+/// How [`TileGrid::parse`] names a tile, beside the view names.
+const TILE_NAMES: [&str; 4] = ["flat", "bumped", "bump-only", "colour-only"];
+
+impl TileGrid {
+    /// The default row: flat │ bumped │ Tangent view, from `current` (lit pictures in its mode,
+    /// at its strength).
+    pub fn default_row(current: &ShadingSettings) -> TileGrid {
+        TileGrid::parse("flat,bumped,tangent", current).expect("a valid spec")
+    }
+
+    /// The default grid: flat │ bumped │ bump only over Tangent │ Bitangent │ Shading normal.
+    pub fn default_grid(current: &ShadingSettings) -> TileGrid {
+        TileGrid::parse("flat,bumped,bump-only;tangent,bitangent,shading-normal", current).expect("a valid spec")
+    }
+
+    /// Tiles from a spec: rows separated by `;`, tiles by `,`, each `NAME[@STRENGTH]`. A name
+    /// is `flat` (lit, bump off), `bumped` (lit, bump on), `bump-only` or `colour-only` (lit in
+    /// that mode), or a view name (`tangent`, `shading-normal`, `difference`, ...: that view,
+    /// bump on). Lit tiles keep `current`'s mode unless named otherwise; every tile keeps its
+    /// strength unless `@STRENGTH` gives one. Every row must have as many tiles.
+    pub fn parse(spec: &str, current: &ShadingSettings) -> Result<TileGrid, String> {
+        let rows: Vec<Vec<&str>> = spec.split(';').map(|row| row.split(',').map(str::trim).collect()).collect();
+        let columns = rows[0].len();
+        if let Some(row) = rows.iter().find(|r| r.len() != columns) {
+            return Err(format!("{spec:?}: every row needs {columns} tiles, one has {}", row.len()));
+        }
+        let tiles = rows.iter().flatten().map(|tile| parse_tile(tile, current)).collect::<Result<_, _>>()?;
+        Ok(TileGrid { columns, tiles })
+    }
+
+    pub fn rows(&self) -> usize {
+        self.tiles.len().div_ceil(self.columns.max(1))
+    }
+}
+
+/// One tile of a [`TileGrid::parse`] spec.
+fn parse_tile(text: &str, current: &ShadingSettings) -> Result<ShadingSettings, String> {
+    let (name, strength) = match text.split_once('@') {
+        Some((name, s)) => {
+            let strength = s.trim().parse::<f32>().ok().filter(|s| s.is_finite());
+            (
+                name.trim(),
+                Some(strength.ok_or_else(|| format!("tile {text:?}: expected NAME@STRENGTH, e.g. bumped@2"))?),
+            )
+        }
+        None => (text, None),
+    };
+    let lit = ShadingSettings { view: ViewMode::Lit, bump_enabled: true, ..*current };
+    let mut tile = match name {
+        "flat" => ShadingSettings { bump_enabled: false, ..lit },
+        "bumped" => lit,
+        "bump-only" => ShadingSettings { mode: ShadingMode::BumpOnly, ..lit },
+        "colour-only" => ShadingSettings { mode: ShadingMode::ColourOnly, ..lit },
+        other => match ViewMode::from_name(other) {
+            Some(view) => ShadingSettings { view, ..lit },
+            None => {
+                let views = ViewMode::ALL.map(ViewMode::name);
+                let names: Vec<&str> = TILE_NAMES.iter().chain(views.iter()).copied().collect();
+                return Err(format!("tile {other:?}: expected one of {}", names.join(", ")));
+            }
+        },
+    };
+    if let Some(strength) = strength {
+        tile.strength = strength;
+    }
+    Ok(tile)
 }
 
 /// The caption of a tile: view (and mode), bump and strength, the normal-map convention of the
@@ -79,41 +143,43 @@ pub fn caption_strip_height(tile_width: u32, lines: usize) -> u32 {
     (lines as f32 * px * 1.25 + px).ceil() as u32
 }
 
-/// Renders one tile per entry of `tiles` (each a capture as `options` say, with `params`'
-/// camera and light) side by side, left to right, with no gap: tile `i` is the pixels
-/// `[i·w, (i+1)·w) × [0, h)`. With `captions` (one list of lines per tile), a strip of
-/// [`caption_strip_height`] under each tile holds its lines.
-pub fn render_row(
+/// Renders the tiles of `grid` (each a capture as `options` say, with `params`' camera and
+/// light) in rows with no gap: tile `i` is the pixels `[c·w, (c+1)·w) × [r·(h+s), r·(h+s)+h)`
+/// with `c = i mod columns`, `r = i div columns`, and `s` the caption strip's height: with
+/// `captions` (one list of lines per tile) [`caption_strip_height`], else 0. The strip under a
+/// tile holds its lines.
+pub fn render_grid(
     renderer: &mut Renderer,
     options: &CaptureOptions,
     params: &FrameParams,
-    tiles: &[ShadingSettings],
+    grid: &TileGrid,
     captions: Option<&[Vec<String>]>,
 ) -> Result<image::RgbaImage, RenderError> {
     let [width, height] = options.size;
     let lines = captions.map_or(0, |c| c.iter().map(Vec::len).max().unwrap_or(0));
     let strip = if captions.is_some() { caption_strip_height(width, lines) } else { 0 };
-    let count = tiles.len() as u32;
-    let mut row = image::RgbaImage::new(width.saturating_mul(count), height + strip);
-    for (i, shading) in tiles.iter().enumerate() {
+    let columns = grid.columns.max(1) as u32;
+    let rows = grid.rows() as u32;
+    let mut image = image::RgbaImage::new(width.saturating_mul(columns), (height + strip).saturating_mul(rows));
+    for (i, shading) in grid.tiles.iter().enumerate() {
         let tile = render_capture(renderer, options, &FrameParams { shading: *shading, ..*params })?;
-        let x0 = i as u32 * width;
-        image::imageops::replace(&mut row, &tile, x0 as i64, 0);
+        let (x0, y0) = (i as u32 % columns * width, i as u32 / columns * (height + strip));
+        image::imageops::replace(&mut image, &tile, x0 as i64, y0 as i64);
         if let Some(text) = captions.and_then(|c| c.get(i)) {
             let [r, g, b] = CAPTION_BACKGROUND;
-            for y in height..height + strip {
+            for y in y0 + height..y0 + height + strip {
                 for x in x0..x0 + width {
-                    row.put_pixel(x, y, image::Rgba([r, g, b, 255]));
+                    image.put_pixel(x, y, image::Rgba([r, g, b, 255]));
                 }
             }
             let px = caption_px(width);
             for (line, words) in text.iter().enumerate() {
-                let baseline = height as f32 + px * 0.5 + px * (1.25 * line as f32 + 1.0);
-                draw_text(&mut row, words, [x0, x0 + width], x0 as f32 + px * 0.5, baseline, px);
+                let baseline = (y0 + height) as f32 + px * 0.5 + px * (1.25 * line as f32 + 1.0);
+                draw_text(&mut image, words, [x0, x0 + width], x0 as f32 + px * 0.5, baseline, px);
             }
         }
     }
-    Ok(row)
+    Ok(image)
 }
 
 /// Draws `text` in Hack at `px` pixels, left end of the baseline at `(x, baseline)`, clipped to
@@ -140,5 +206,35 @@ fn draw_text(image: &mut image::RgbaImage, text: &str, columns: [u32; 2], x: f32
                 }
             }
         });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn specs_name_tiles_by_picture_view_and_strength() {
+        let current = ShadingSettings { strength: 1.5, mode: ShadingMode::BumpOnly, ..Default::default() };
+        let row = TileGrid::default_row(&current);
+        assert_eq!((row.columns, row.rows()), (3, 1));
+        assert!(!row.tiles[0].bump_enabled && row.tiles[1].bump_enabled);
+        assert_eq!(row.tiles[1].mode, ShadingMode::BumpOnly, "lit tiles keep the current mode");
+        assert_eq!(row.tiles[2].view, ViewMode::Tangent);
+        let grid = TileGrid::parse("flat, bumped@3 ; handedness,colour-only@-1", &current).unwrap();
+        assert_eq!((grid.columns, grid.rows()), (2, 2));
+        assert_eq!([grid.tiles[0].strength, grid.tiles[1].strength, grid.tiles[3].strength], [1.5, 3.0, -1.0]);
+        assert_eq!(grid.tiles[2].view, ViewMode::Handedness);
+        assert_eq!(grid.tiles[3].mode, ShadingMode::ColourOnly);
+        assert_eq!(TileGrid::default_grid(&current).tiles.len(), 6);
+    }
+
+    #[test]
+    fn bad_specs_say_what_is_wrong() {
+        let current = ShadingSettings::default();
+        assert!(TileGrid::parse("flat,bumped;tangent", &current).unwrap_err().contains("every row needs 2 tiles"));
+        assert!(TileGrid::parse("flat,shiny", &current).unwrap_err().contains("shading-normal"));
+        assert!(TileGrid::parse("bumped@lots", &current).unwrap_err().contains("NAME@STRENGTH"));
+        assert!(TileGrid::parse("", &current).is_err());
     }
 }
