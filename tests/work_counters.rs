@@ -72,7 +72,7 @@ fn supplied_tangents_without_normal_map_use_the_tangent_variant() {
         .into_iter()
         .filter_map(|k| match k.pass {
             Pass::Mesh { variant, .. } => Some(variant),
-            Pass::Difference { .. } | Pass::LightMarker | Pass::Wireframe { .. } => None,
+            Pass::Difference { .. } | Pass::LightMarker | Pass::Wireframe { .. } | Pass::Glyphs { .. } => None,
         })
         .collect();
     assert!(variants.contains(&Variant::Tangent) && variants.contains(&Variant::Plain), "{variants:?}");
@@ -114,4 +114,37 @@ fn height_in_shader_needs_no_tangents() {
             .iter()
             .all(|k| matches!(k.pass, Pass::Mesh { variant: Variant::HeightBump, .. } | Pass::LightMarker))
     );
+}
+
+/// Glyphs add only a line pipeline (no tangents, no textures); a split view that differs in
+/// uniforms uploads nothing more, and one that differs in GPU data uploads the scene once more.
+#[test]
+fn glyphs_and_uniform_splits_upload_nothing_and_gpu_data_splits_upload_once() {
+    use bumpview::viewer::{Command, SplitDifference, ViewerState};
+    let scene = scene();
+    let mut renderer = renderer_for(&scene);
+    let mut state = ViewerState::new(&scene);
+    render_image(&mut renderer, [64, 48], &state.frame_params()).unwrap();
+    let before = renderer.counters();
+    state.apply(Command::SetGlyphs(true));
+    render_image(&mut renderer, [64, 48], &state.frame_params()).unwrap();
+    let after = renderer.counters();
+    assert_eq!(
+        (after.tangent_frames_generated, after.textures_uploaded),
+        (before.tangent_frames_generated, before.textures_uploaded)
+    );
+    assert_eq!(after.pipelines_built, before.pipelines_built + 1, "one glyph pipeline");
+
+    state.apply(Command::SetSplit(true));
+    for difference in [SplitDifference::Bump, SplitDifference::View, SplitDifference::Strength, SplitDifference::Mode] {
+        state.apply(Command::SetSplitDifference(difference));
+        assert_eq!(state.scene_uploads().split_right, None, "{difference:?}");
+    }
+    state.apply(Command::SetSplitDifference(SplitDifference::Convention));
+    let uploads = state.scene_uploads();
+    renderer.set_split_scene(&scene, uploads.split_right.clone());
+    let split = renderer.counters();
+    assert_eq!(split.textures_uploaded, 2 * after.textures_uploaded, "the scene's textures once more");
+    renderer.set_split_scene(&scene, None);
+    assert_eq!(renderer.counters().textures_uploaded, split.textures_uploaded, "dropping uploads nothing");
 }
