@@ -1,10 +1,11 @@
 //! Start-up (built-in scene with its normal-map generation, then tangents and upload) and
 //! offscreen frame time of the built-in scene at 1280×720 on whatever adapter wgpu picks
-//! (set WGPU_BACKEND=vulkan for lavapipe). Run: `cargo bench --bench startup_and_frame`.
+//! (set WGPU_BACKEND=vulkan for lavapipe): lit, with T/B/N glyphs, and the split view with a
+//! second upload (OpenGL │ DirectX). Run: `cargo bench --bench startup_and_frame`.
 
 use bumpview::render::{Gpu, RenderTarget, Renderer};
 use bumpview::scene::builtin::teaching_scene;
-use bumpview::viewer::ViewerState;
+use bumpview::viewer::{Command, SplitDifference, ViewerState};
 use criterion::{Criterion, criterion_group, criterion_main};
 
 fn startup(c: &mut Criterion) {
@@ -23,8 +24,10 @@ fn frame(c: &mut Criterion) {
     let gpu = Gpu::headless().expect("adapter");
     let scene = teaching_scene();
     let mut renderer = Renderer::from_gpu(&gpu);
+    let mut state = ViewerState::new(&scene);
+    state.apply(Command::SetSplitDifference(SplitDifference::Convention));
     renderer.set_scene(&scene, Default::default());
-    let params = ViewerState::new(&scene).frame_params();
+    let params = state.frame_params();
     let size = [1280, 720];
     let format = wgpu::TextureFormat::Rgba8UnormSrgb;
     let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
@@ -40,12 +43,29 @@ fn frame(c: &mut Criterion) {
     let view = texture.create_view(&Default::default());
     let mut group = c.benchmark_group("frame");
     group.sample_size(20);
+    let target = RenderTarget { view: &view, format, size };
+    let mut draw = |renderer: &mut Renderer, record: &dyn Fn(&mut Renderer, &mut wgpu::CommandEncoder)| {
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        record(renderer, &mut encoder);
+        gpu.queue.submit([encoder.finish()]);
+        gpu.device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
+    };
     group.bench_function(format!("1280x720 lit, {}", gpu.adapter_name()), |b| {
+        b.iter(|| draw(&mut renderer, &|r, e| r.render(e, &target, &params).unwrap()))
+    });
+    let glyphs = bumpview::render::FrameParams {
+        shading: bumpview::shading::ShadingSettings { tbn_glyphs: true, ..params.shading },
+        ..params
+    };
+    group.bench_function("1280x720 lit with T/B/N glyphs", |b| {
+        b.iter(|| draw(&mut renderer, &|r, e| r.render(e, &target, &glyphs).unwrap()))
+    });
+    state.apply(Command::SetSplit(true));
+    renderer.set_scene_uploads(&scene, &state.scene_uploads());
+    let split = state.split_frame().expect("split on");
+    group.bench_function("1280x720 split OpenGL | DirectX (second upload)", |b| {
         b.iter(|| {
-            let mut encoder = gpu.device.create_command_encoder(&Default::default());
-            renderer.render(&mut encoder, &RenderTarget { view: &view, format, size }, &params).unwrap();
-            gpu.queue.submit([encoder.finish()]);
-            gpu.device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
+            draw(&mut renderer, &|r, e| r.render_split(e, &target, &params, &split, Default::default()).unwrap())
         })
     });
     group.finish();
