@@ -64,9 +64,7 @@ fn frame(c: &mut Criterion) {
     renderer.set_scene_uploads(&scene, &state.scene_uploads());
     let split = state.split_frame().expect("split on");
     group.bench_function("1280x720 split OpenGL | DirectX (second upload)", |b| {
-        b.iter(|| {
-            draw(&mut renderer, &|r, e| r.render_split(e, &target, &params, &split, Default::default()).unwrap())
-        })
+        b.iter(|| draw(&mut renderer, &|r, e| r.render_split(e, &target, &params, &split, Default::default()).unwrap()))
     });
     group.finish();
 }

@@ -98,6 +98,39 @@ fn a_saved_state_renders_the_same_pixels_as_the_flags_and_again() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A split view that needs a second upload, with glyphs: the preset `--save-preset` wrote
+/// renders the picture of the flags, byte for byte, and keeps the chosen sides.
+#[test]
+fn a_gpu_data_split_with_glyphs_round_trips_through_a_preset() {
+    let dir = temp_dir("preset-split");
+    let s = |p: &Path| p.to_str().unwrap().to_owned();
+    let (flags, preset, again) = (dir.join("flags.png"), dir.join("split.toml"), dir.join("again.png"));
+    render_ok(&[
+        "render",
+        "--out",
+        &s(&flags),
+        "--size",
+        "200x120",
+        "--glyphs",
+        "--view",
+        "tangent",
+        "--split",
+        "tangents",
+        "--split-sides",
+        "averaged-uniform,analytic",
+        "--split-at",
+        "0.4",
+        "--save-preset",
+        &s(&preset),
+    ]);
+    let text = std::fs::read_to_string(&preset).unwrap();
+    assert!(text.contains("tangents = [\"averaged-uniform\", \"analytic\"]"), "{text}");
+    assert!(text.contains("tbn_glyphs = true") && text.contains("difference = \"tangents\""), "{text}");
+    render_ok(&["render", "--preset", &s(&preset), "--out", &s(&again)]);
+    assert_eq!(std::fs::read(&flags).unwrap(), std::fs::read(&again).unwrap(), "identical PNG bytes");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn a_broken_preset_is_one_line_naming_the_key() {
     let dir = temp_dir("preset-bad");
