@@ -23,7 +23,7 @@ struct Object {
     handedness: f32,            // sign(det(model)), multiplies tangent w
     normal_scale: f32,          // the material's normalTexture.scale
     height_range_m: f32,        // metres spanned by the height map's full range
-    flags: u32,                 // NormalConvention::flags | DEPTH_MAP | HAS_METALLIC_ROUGHNESS
+    flags: u32,                 // NormalConvention::flags | DEPTH_MAP | HAS_METALLIC_ROUGHNESS | HAS_GLOSS
     metallic: f32,              // metallic-roughness factors
     roughness: f32,
     occlusion_strength: f32,
@@ -37,11 +37,13 @@ struct Object {
 @group(1) @binding(4) var detail_sampler: sampler;             // bump, metallic-roughness, occlusion
 @group(1) @binding(5) var metallic_roughness_texture: texture_2d<f32>; // linear: B metal, G rough
 @group(1) @binding(6) var occlusion_texture: texture_2d<f32>;  // linear: R occlusion
+@group(1) @binding(7) var gloss_texture: texture_2d<f32>;      // linear: RGB scales k_s
 
 const FLIP_GREEN: u32 = 1u;
 const TWO_CHANNEL: u32 = 2u;
 const DEPTH_MAP: u32 = 8u;
 const HAS_METALLIC_ROUGHNESS: u32 = 16u;
+const HAS_GLOSS: u32 = 32u;
 const SHADING_METALLIC_ROUGHNESS: u32 = 1u;
 
 // True when the target stores sRGB-encoded values (Rgba8UnormSrgb): debug colours are then
@@ -159,7 +161,8 @@ fn perturbed_normal(n: vec3<f32>, frame_tb: TangentFrame, texel: vec3<f32>, stre
 }
 
 // shading::blinn_phong
-fn blinn_phong(albedo: vec3<f32>, n_geo: vec3<f32>, n_shading: vec3<f32>, position: vec3<f32>) -> vec3<f32> {
+// k_s: the material's specular colour, times its gloss map where it has one.
+fn blinn_phong(albedo: vec3<f32>, k_s: vec3<f32>, n_geo: vec3<f32>, n_shading: vec3<f32>, position: vec3<f32>) -> vec3<f32> {
     let l = normalize_or(frame.light_pos.xyz - position, n_geo);
     let v = normalize_or(frame.camera_pos.xyz - position, n_geo);
     let h = normalize_or(l + v, n_geo);
@@ -171,7 +174,7 @@ fn blinn_phong(albedo: vec3<f32>, n_geo: vec3<f32>, n_shading: vec3<f32>, positi
         specular = pow(n_dot_h, object.specular.a);
     }
     return albedo * frame.ambient.rgb
-        + self_shadow * frame.light_color.rgb * (albedo * n_dot_l + object.specular.rgb * specular);
+        + self_shadow * frame.light_color.rgb * (albedo * n_dot_l + k_s * specular);
 }
 
 fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
@@ -201,7 +204,11 @@ fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>) -> vec3<f
         model = frame.shading_override - 1u;
     }
     if model != SHADING_METALLIC_ROUGHNESS {
-        return blinn_phong(albedo, n_geo, n_shading, in.world_position);
+        var k_s = object.specular.rgb;
+        if (object.flags & HAS_GLOSS) != 0u {
+            k_s *= textureSample(gloss_texture, detail_sampler, in.uv).rgb;
+        }
+        return blinn_phong(albedo, k_s, n_geo, n_shading, in.world_position);
     }
     var metal_rough = textureSample(metallic_roughness_texture, detail_sampler, in.uv);
     if (object.flags & HAS_METALLIC_ROUGHNESS) == 0u {

@@ -277,7 +277,10 @@ impl ProbeScene {
                 eye,
                 light: params.light,
                 ambient: self.scene.ambient,
-                specular: material.specular,
+                specular: material.specular
+                    * material
+                        .gloss_texture
+                        .map_or(Vec3::ONE, |t| sample_bilinear(&self.scene.textures[t], uv, material.detail_wrap)),
                 shininess: material.shininess.max(1.0),
             }),
             (_, ShadingModel::MetallicRoughness) => {

@@ -227,6 +227,7 @@ pub struct LightingInputs {
     pub eye: Vec3,
     pub light: Light,
     pub ambient: Vec3,
+    /// k_s, linear: the material's specular colour times its gloss map's texel where it has one.
     pub specular: Vec3,
     pub shininess: f32,
 }

@@ -20,9 +20,14 @@ fn reference_pixel(scene: &Scene, params: &bumpview::render::FrameParams, size: 
 /// CPU reference uses bump strength `cpu_strength_factor` times the GPU's.
 fn differences(bump: bool, cpu_strength_factor: f32) -> Vec<f32> {
     let scene = scene();
-    let mut renderer = renderer_for(&scene);
+    differences_of(&scene, &scene, bump, cpu_strength_factor)
+}
+
+/// [`differences`] of `scene` drawn on the GPU against `cpu_scene` shaded on the CPU.
+fn differences_of(scene: &Scene, cpu_scene: &Scene, bump: bool, cpu_strength_factor: f32) -> Vec<f32> {
+    let mut renderer = renderer_for(scene);
     let size = [256, 256];
-    let mut params = close_wall_params(&scene, 0.3);
+    let mut params = close_wall_params(scene, 0.3);
     params.shading.bump_enabled = bump;
     let image = render_image(&mut renderer, size, &params).unwrap();
     let mut diffs = vec![];
@@ -31,7 +36,7 @@ fn differences(bump: bool, cpu_strength_factor: f32) -> Vec<f32> {
             let gpu = image.get_pixel(x, y);
             let mut cpu_params = params;
             cpu_params.shading.strength *= cpu_strength_factor;
-            let cpu = reference_pixel(&scene, &cpu_params, size, x, y);
+            let cpu = reference_pixel(cpu_scene, &cpu_params, size, x, y);
             let diff = (0..3).map(|c| (gpu[c] as f32 - cpu[c]).abs()).fold(0.0, f32::max);
             diffs.push(diff);
         }
@@ -76,4 +81,38 @@ fn inverted_relief_is_detected() {
     let p99 = percentile(&diffs, 0.99);
     println!("inverted reference: p99 {p99}");
     assert!(p99 > 10.0, "99th percentile {p99} steps");
+}
+
+/// The wall with a gloss (specular) map: vertical stripes of k_s × 1, × 0.25, × 0 and × 1,
+/// 4 texels wide (linear 8-bit data) over the bricks' UVs.
+fn glossy_wall() -> Scene {
+    let mut scene = scene();
+    let (width, height) = (64u32, 64u32);
+    let levels = [255u8, 64, 0, 255];
+    let rgba =
+        (0..width * height).flat_map(|i| [levels[(i % width / 4 % 4) as usize]; 3].into_iter().chain([255])).collect();
+    scene.textures.push(bumpview::scene::TextureImage {
+        name: "gloss stripes".into(),
+        width,
+        height,
+        kind: bumpview::scene::TextureKind::Data,
+        rgba,
+    });
+    scene.materials[0].gloss_texture = Some(scene.textures.len() - 1);
+    scene
+}
+
+/// The gloss map scales k_s texel for texel as the CPU reference does (flat-wall tolerance),
+/// and the comparison can fail: a reference that ignores the map is off in the highlight.
+#[test]
+fn gloss_map_scales_the_specular_term_as_the_cpu_reference_does() {
+    let glossy = glossy_wall();
+    let diffs = differences_of(&glossy, &glossy, false, 1.0);
+    let max = diffs.last().copied().unwrap();
+    println!("gloss: median {} p99 {} max {max}", percentile(&diffs, 0.5), percentile(&diffs, 0.99));
+    assert!(max <= 1.0, "max difference {max} steps");
+    let ignored = differences_of(&glossy, &scene(), false, 1.0);
+    let worst = ignored.last().copied().unwrap();
+    println!("gloss map ignored by the reference: max {worst} steps");
+    assert!(worst > 10.0, "a reference without the gloss map is only {worst} steps off");
 }

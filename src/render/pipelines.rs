@@ -76,7 +76,8 @@ pub struct PipelineKey {
 
 /// Bind group layouts: group 0 is the frame, group 1 the object and its material: 0 object
 /// uniform, 1 base colour texture, 2 its sampler, 3 normal or height map (bump layouts
-/// only), 4 the sampler of 3, 5 and 6, 5 metallic-roughness texture, 6 occlusion texture.
+/// only), 4 the sampler of 3, 5, 6 and 7, 5 metallic-roughness texture, 6 occlusion texture,
+/// 7 gloss (specular) map.
 pub struct Layouts {
     pub frame: wgpu::BindGroupLayout,
     pub plain_material: wgpu::BindGroupLayout,
@@ -131,6 +132,7 @@ impl Layouts {
             sampler_entry(4),
             texture_entry(5),
             texture_entry(6),
+            texture_entry(7),
         ];
         let normal_mapped = [
             uniform_entry(0),
@@ -140,6 +142,7 @@ impl Layouts {
             sampler_entry(4),
             texture_entry(5),
             texture_entry(6),
+            texture_entry(7),
         ];
         Layouts {
             frame: layout("frame", &[uniform_entry(0)]),

@@ -289,14 +289,15 @@ pub fn upload(
                 Some(t) => textures.get(scene, t, counters),
                 None => textures.white(counters),
             };
-            // Without a metallic-roughness or occlusion texture the base colour view stands in
-            // (no upload); the shader then ignores it (flag, occlusion strength 0).
+            // Without a metallic-roughness, occlusion or gloss texture the base colour view stands
+            // in (no upload); the shader then ignores it (flags, occlusion strength 0).
             let mut optional = |slot: Option<usize>| match slot {
                 Some(t) => textures.get(scene, t, counters),
                 None => base_color.clone(),
             };
             let metallic_roughness = optional(material.metallic_roughness_texture);
             let occlusion = optional(material.occlusion.as_ref().map(|o| o.texture));
+            let gloss = optional(material.gloss_texture);
             let base_sampler = samplers.get(device, material.base_color_wrap);
             let detail_sampler = samplers.get(device, material.detail_wrap);
             let mut entries = vec![
@@ -306,6 +307,7 @@ pub fn upload(
                 wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::Sampler(&detail_sampler) },
                 wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(&metallic_roughness) },
                 wgpu::BindGroupEntry { binding: 6, resource: wgpu::BindingResource::TextureView(&occlusion) },
+                wgpu::BindGroupEntry { binding: 7, resource: wgpu::BindingResource::TextureView(&gloss) },
             ];
             // Binding 3: the normal map or the height map, as the variant needs.
             let bump_texture = match (variant, &material.normal_map, &material.height_map) {

@@ -70,6 +70,8 @@ const DEPTH_MAP: u32 = 8;
 /// Bit of `flags`: binding 5 holds the material's metallic-roughness texture (else a
 /// placeholder the shader ignores).
 const HAS_METALLIC_ROUGHNESS: u32 = 16;
+/// Bit of `flags`: binding 7 holds the material's gloss (specular) map, which scales k_s.
+const HAS_GLOSS: u32 = 32;
 
 impl ObjectUniform {
     /// Normals go through the inverse-transpose of the model matrix; tangent `w` is
@@ -89,7 +91,8 @@ impl ObjectUniform {
             height_range_m: material.height_map.as_ref().map_or(0.0, |h| h.range_m),
             flags: material.normal_map.as_ref().map_or(0, |n| n.convention.flags())
                 | if material.height_map.as_ref().is_some_and(|h| h.depth) { DEPTH_MAP } else { 0 }
-                | if material.metallic_roughness_texture.is_some() { HAS_METALLIC_ROUGHNESS } else { 0 },
+                | if material.metallic_roughness_texture.is_some() { HAS_METALLIC_ROUGHNESS } else { 0 }
+                | if material.gloss_texture.is_some() { HAS_GLOSS } else { 0 },
             metallic: material.metallic,
             roughness: material.roughness,
             occlusion_strength: material.occlusion.as_ref().map_or(0.0, |o| o.strength),

@@ -189,8 +189,9 @@ pub struct Material {
     pub normal_map: Option<NormalMap>,
     /// Heights for bump mapping in the shader and for making the normal map.
     pub height_map: Option<HeightMap>,
-    /// Linear gloss/specular map (OBJ `map_Ks`/`map_Ns`, `--gloss`): loaded and kept with the
-    /// material; the Blinn-Phong shader does not read it yet.
+    /// Linear gloss (specular) map (OBJ `map_Ks`/`map_Ns`, `--gloss`): Blinn-Phong's k_s is
+    /// multiplied by its RGB (sampled with the detail sampler); metallic-roughness shading
+    /// does not read it.
     pub gloss_texture: Option<usize>,
     /// Blinn-Phong: linear specular colour k_s.
     pub specular: Vec3,

@@ -118,7 +118,8 @@ pub fn wall_lighting_inputs(scene: &Scene, params: &FrameParams, size: [u32; 2],
         eye: params.camera.eye(),
         light: params.light,
         ambient: scene.ambient,
-        specular: material.specular,
+        specular: material.specular
+            * material.gloss_texture.map_or(Vec3::ONE, |t| sample_bilinear(&scene.textures[t], uv)),
         shininess: material.shininess,
     }
 }
