@@ -16,8 +16,10 @@
 //! sRGB. The barycentric coordinates of a ray-triangle hit are the perspective-correct ones
 //! the rasteriser interpolates with, so the interpolated values equal the GPU's up to float
 //! rounding. Where the GPU reads a smaller mip level (minified textures) or downscaled a texture
-//! larger than the adapter allows, the probe (mip 0) differs from the picture; the height bump
-//! in the shader (screen-space derivatives) is not reproduced ([`ProbeReadout::reproduced`]).
+//! larger than the adapter allows, the probe (mip 0) differs from the picture. The height bump
+//! in the shader needs screen-space derivatives: the probe finds position and height at the
+//! four pixel centres of the 2×2 quad holding the point's pixel on the triangle's plane, as
+//! the rasteriser does for the quad, and differences them ([`height_bump_normal`]).
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
@@ -106,9 +108,6 @@ pub struct ProbeReadout {
     /// lit picture, `0.5·v + 0.5` for vector views); `None` for the Difference and UV check
     /// views, which the probe does not reproduce.
     pub shown: Option<Vec3>,
-    /// Whether `shown` is the CPU twin of the GPU's pixel (false for the height bump in the
-    /// shader).
-    pub reproduced: bool,
 }
 
 impl ProbeReadout {
@@ -193,8 +192,9 @@ impl ProbeScene {
         best.map(|(_, point)| point)
     }
 
-    /// The chain at a pinned point under `params` (camera, light, strength, toggles).
-    pub fn readout(&self, point: &ProbePoint, params: &FrameParams) -> ProbeReadout {
+    /// The chain at a pinned point under `params` (camera, light, strength, toggles) in a view
+    /// `size` pixels large (the height bump in the shader depends on the pixel grid).
+    pub fn readout(&self, point: &ProbePoint, params: &FrameParams, size: [u32; 2]) -> ProbeReadout {
         let instance = &self.scene.instances[point.instance];
         let material = &self.scene.materials[instance.material];
         let mesh = &self.drawn[instance.mesh];
@@ -253,6 +253,25 @@ impl ProbeScene {
             (true, BumpKind::ObjectSpace, _, _, Some((_, _, texel, _)), Some(m)) => {
                 let matrix = glam::Mat3::from_mat4(normal_matrix);
                 object_space_normal(n, matrix, point.front_facing, texel, strength, m.convention)
+            }
+            (true, BumpKind::HeightInShader, ..) => {
+                let (Some(map), Some(corners_world)) =
+                    (material.height_map.as_ref(), corner_positions(mesh, corners, &model))
+                else {
+                    unreachable!("a height-in-shader bump has a height map; the pick hit finite corners")
+                };
+                let texture = &self.scene.textures[map.texture];
+                let height_at = |barycentric: Vec3| {
+                    let uv = corners.iter().zip(barycentric.to_array()).fold(Vec2::ZERO, |acc, (&i, w)| {
+                        acc + Some(mesh.uvs[i as usize]).filter(|v| v.is_finite()).unwrap_or(Vec2::ZERO) * w
+                    });
+                    let texel = sample_bilinear(texture, uv, material.detail_wrap);
+                    let sample = (texel.x * 65280.0 + texel.y * 255.0) / 65535.0;
+                    let sample = if map.depth { 1.0 - sample } else { sample };
+                    sample * map.range_m * shading.strength
+                };
+                let quad = Quad { camera: &params.camera, size, triangle: corners_world, position };
+                height_bump_normal(&quad, n, height_at)
             }
             _ => n,
         };
@@ -345,14 +364,76 @@ impl ProbeScene {
             shading_model,
             color_linear,
             shown,
-            reproduced: !(bump == BumpKind::HeightInShader && shading.bump_enabled),
         }
     }
 
     /// [`Self::pick`] then [`Self::readout`] with `params`' camera.
     pub fn probe(&self, params: &FrameParams, size: [u32; 2], pixel: [u32; 2]) -> Option<ProbeReadout> {
-        self.pick(&params.camera, size, pixel).map(|point| self.readout(&point, params))
+        self.pick(&params.camera, size, pixel).map(|point| self.readout(&point, params, size))
     }
+}
+
+/// A surface point's triangle seen in a view: what the rasteriser's 2×2 pixel quad around it
+/// interpolates over.
+struct Quad<'a> {
+    camera: &'a OrbitCamera,
+    size: [u32; 2],
+    /// The triangle's corners, world space.
+    triangle: [Vec3; 3],
+    /// The point, world space.
+    position: Vec3,
+}
+
+impl Quad<'_> {
+    /// Barycentric coordinates (unbounded: helper pixels lie off the triangle) and position
+    /// where the ray through the centre of pixel `(x, y)` meets the triangle's plane.
+    fn on_plane(&self, x: i64, y: i64) -> Option<(Vec3, Vec3)> {
+        let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+        let (origin, dir) = self.camera.ray_through_pixel(centre, Vec2::new(self.size[0] as f32, self.size[1] as f32));
+        let p = self.triangle;
+        let (e1, e2) = (p[1] - p[0], p[2] - p[0]);
+        let h = dir.cross(e2);
+        let a = e1.dot(h);
+        if !(a.abs() >= 1e-12) {
+            return None;
+        }
+        let s = origin - p[0];
+        let q = s.cross(e1);
+        let (u, v) = (s.dot(h) / a, dir.dot(q) / a);
+        let t = e2.dot(q) / a;
+        let barycentric = Vec3::new(1.0 - u - v, u, v);
+        (t.is_finite() && barycentric.is_finite()).then(|| (barycentric, origin + dir * t))
+    }
+}
+
+/// The shading normal `fs_height_bump` makes from the height map: Mikkelsen's surface gradient
+/// from screen-space derivatives of the position and of `height_at(barycentric)` (metres).
+/// Derivatives are fine ones: differences across the point's 2×2 quad along its own row and
+/// column, as lavapipe takes them. Falls back on `n` where the view sees the plane edge-on.
+fn height_bump_normal(quad: &Quad, n: Vec3, height_at: impl Fn(Vec3) -> f32) -> Vec3 {
+    let Some(pixel) = project_to_pixel(quad.camera, quad.size, quad.position) else { return n };
+    let (x, y) = (pixel.x.floor() as i64, pixel.y.floor() as i64);
+    let (x0, y0) = (x & !1, y & !1);
+    let sample = |x, y| quad.on_plane(x, y).map(|(b, p)| (p, height_at(b)));
+    let (Some(left), Some(right), Some(top), Some(bottom)) =
+        (sample(x0, y), sample(x0 + 1, y), sample(x, y0), sample(x, y0 + 1))
+    else {
+        return n;
+    };
+    let (dp_dx, dh_dx) = (right.0 - left.0, right.1 - left.1);
+    let (dp_dy, dh_dy) = (bottom.0 - top.0, bottom.1 - top.1);
+    let r1 = dp_dy.cross(n);
+    let r2 = n.cross(dp_dx);
+    let det = dp_dx.dot(r1);
+    let sign = if det > 0.0 {
+        1.0
+    } else if det < 0.0 {
+        -1.0
+    } else {
+        0.0
+    };
+    let surface_gradient = sign * (dh_dx * r1 + dh_dy * r2);
+    normalize_or(det.abs() * n - surface_gradient, n)
 }
 
 /// Where a world-space point appears in a `size` view: pixels from the top-left (`None` behind

@@ -51,7 +51,7 @@ fn probe_on_the_close_wall_matches_the_wall_and_the_rendered_pixels() {
         assert!(close(readout.bitangent.unwrap(), Vec3::Y, 1e-5), "B {:?}", readout.bitangent);
         assert!(close(readout.normal, Vec3::Z, 1e-5), "N {}", readout.normal);
         assert_eq!(readout.w, Some(1.0));
-        assert!(readout.reproduced && readout.texel_raw.is_some() && readout.decoded.is_some());
+        assert!(readout.texel_raw.is_some() && readout.decoded.is_some());
         // The same chain as the wall reference of tests/common.
         let reference = wall_lighting_inputs(&scene, &params, SIZE, x, y);
         let n_diff = (readout.shading_normal - reference.shading_normal).abs().max_element();
@@ -97,10 +97,10 @@ fn moving_the_light_changes_n_dot_l_at_the_pinned_point() {
     let mut params = close_wall_params(&scene, 0.3);
     let probe_scene = ProbeScene::new(&scene, &SceneOptions::default());
     let point = probe_scene.pick(&params.camera, SIZE, [90, 140]).unwrap();
-    let before = probe_scene.readout(&point, &params);
+    let before = probe_scene.readout(&point, &params, SIZE);
     params.light.position = Vec3::new(-0.4, 1.2, WALL_Z + 0.2);
     params.camera.yaw = 0.3; // the camera may move too: the point stays pinned
-    let after = probe_scene.readout(&point, &params);
+    let after = probe_scene.readout(&point, &params, SIZE);
     assert_eq!(before.position, after.position);
     assert_eq!(before.shading_normal, after.shading_normal);
     let expected = after.shading_normal.dot((params.light.position - after.position).normalize());
@@ -155,7 +155,7 @@ fn pick_cost_on_the_asset_meshes() {
         let start = Instant::now();
         if let Some(point) = &point {
             for _ in 0..runs {
-                std::hint::black_box(probe_scene.readout(point, &params));
+                std::hint::black_box(probe_scene.readout(point, &params, SIZE));
             }
         }
         let readout = start.elapsed() / runs;
@@ -219,5 +219,51 @@ fn probe_frames_match_the_rendered_debug_views_on_assets() {
         println!("{relative}: {} pixels ({back_faces} on back faces), p95 {p95} max {max} steps", diffs.len());
         assert!(diffs.len() > 300 && back_faces > 50, "{relative}: {} pixels", diffs.len());
         assert!(p95 <= 1.0 && max <= 3.0, "{relative}: p95 {p95} max {max} steps");
+    }
+}
+
+/// Blinn's bump from the height map in the shader: the probe's screen-space differences over
+/// the pixel's 2×2 quad give the shading normal and colour the GPU stores there, face-on and
+/// from an angle. The probe computes in exact arithmetic; lavapipe filters the 16-bit height's
+/// two 8-bit channels with 8-bit results, which a difference of neighbouring samples magnifies
+/// (measured: median ≈ 1 step, 95th percentile 2.8 / 5.0, max 3.9 / 6.3 steps face-on / at
+/// yaw 0.5). The bounds sit above that; a probe without the bump is far further off.
+#[test]
+fn probe_reproduces_the_height_bump_in_the_shader() {
+    let scene = scene();
+    let options = SceneOptions { bump_source: bumpview::render::BumpSource::HeightInShader, ..Default::default() };
+    let probe_scene = ProbeScene::new(&scene, &options);
+    let mut renderer = renderer_for(&scene);
+    renderer.set_scene(&scene, options);
+    let max_diff = |stored: &image::Rgba<u8>, expected: Vec3| {
+        (0..3).map(|c| (stored[c] as f32 - expected[c]).abs()).fold(0.0, f32::max)
+    };
+    for (yaw, pitch) in [(0.0f32, 0.0f32), (0.5, 0.3)] {
+        let mut params = close_wall_params(&scene, 0.3);
+        params.camera.yaw = yaw;
+        params.camera.pitch = pitch;
+        let lit = render_image(&mut renderer, SIZE, &params).unwrap();
+        let mut normal_params = params;
+        normal_params.shading.view = ViewMode::ShadingNormal;
+        let normals = render_image(&mut renderer, SIZE, &normal_params).unwrap();
+        let (mut colour, mut normal, mut unbumped) = (vec![], vec![], vec![]);
+        for [x, y] in pixels() {
+            let Some(readout) = probe_scene.probe(&params, SIZE, [x, y]) else { continue };
+            let stored = normals.get_pixel(x, y);
+            normal.push(max_diff(stored, (readout.shading_normal * 0.5 + 0.5) * 255.0));
+            unbumped.push(max_diff(stored, (readout.normal * 0.5 + 0.5) * 255.0));
+            colour.push(max_diff(lit.get_pixel(x, y), readout.shown_bytes().unwrap()));
+        }
+        for diffs in [&mut colour, &mut normal, &mut unbumped] {
+            diffs.sort_by(f32::total_cmp);
+        }
+        let stats = |d: &[f32]| (percentile(d, 0.5), percentile(d, 0.95), d[d.len() - 1]);
+        let (c, n, u) = (stats(&colour), stats(&normal), stats(&unbumped));
+        println!("yaw {yaw}: {} pixels; (p50, p95, max) colour {c:?} normal {n:?} without bump {u:?}", normal.len());
+        assert!(normal.len() > 100);
+        for (what, (p50, p95, max)) in [("colour", c), ("shading normal", n)] {
+            assert!(p50 <= 1.5 && p95 <= 6.0 && max <= 10.0, "{what}: p50 {p50} p95 {p95} max {max} steps");
+        }
+        assert!(u.1 > 3.0 * n.1, "without the bump: p95 {} steps, probe {}", u.1, n.1);
     }
 }

@@ -76,7 +76,7 @@ impl Probe {
         if pinned.last.as_ref().is_some_and(|(p, _)| p == params) {
             return;
         }
-        let readout = probe_scene.readout(&point, params);
+        let readout = probe_scene.readout(&point, params, pinned.size);
         pinned.mesh_name = probe_scene.scene().meshes[readout.mesh].name.clone();
         pinned.last = Some((*params, readout));
     }
@@ -165,7 +165,7 @@ fn lines(r: &ProbeReadout, mesh_name: &str) -> String {
         BumpKind::None => "no bump map",
         BumpKind::TangentSpace => "tangent-space normal map",
         BumpKind::ObjectSpace => "object-space normal map",
-        BumpKind::HeightInShader => "height in shader (not reproduced)",
+        BumpKind::HeightInShader => "height map in the shader (screen-space derivatives)",
     };
     let texel = match (r.texel_xy, r.texel_raw) {
         (Some([x, y]), Some([red, green, blue, alpha])) => format!("({x}, {y}) = {red} {green} {blue} {alpha}"),
