@@ -6,8 +6,9 @@
 //! and its barycentric coordinates ([`ProbePoint`]). [`ProbeScene::readout`] then interpolates
 //! what the vertex shader passes on (position, normal, UV, tangent frame — the frames the
 //! renderer draws with: the same [`tangent::resolve`] on the same, possibly unwelded, mesh
-//! with the same scene options and material overrides), samples the textures bilinearly at
-//! mip level 0 ([`sample_bilinear`]) and runs the CPU twin of `shaders/mesh.wgsl`
+//! with the same scene options and material overrides), samples the textures as the GPU's
+//! trilinear sampler does (level of detail from the UV footprint of the pixel's 2×2 quad,
+//! [`sample_bilinear`] on the mip levels around it) and runs the CPU twin of `shaders/mesh.wgsl`
 //! ([`crate::shading`]). The pinned point stays where it is when the camera or light moves;
 //! only the readout is recomputed.
 //!
@@ -15,11 +16,10 @@
 //! unit length, world space unless named tangent space; colours linear RGB 0..1 unless named
 //! sRGB. The barycentric coordinates of a ray-triangle hit are the perspective-correct ones
 //! the rasteriser interpolates with, so the interpolated values equal the GPU's up to float
-//! rounding. Where the GPU reads a smaller mip level (minified textures) or downscaled a texture
-//! larger than the adapter allows, the probe (mip 0) differs from the picture. The height bump
-//! in the shader needs screen-space derivatives: the probe finds position and height at the
-//! four pixel centres of the 2×2 quad holding the point's pixel on the triangle's plane, as
-//! the rasteriser does for the quad, and differences them ([`height_bump_normal`]).
+//! rounding. Screen-space derivatives (texture footprints, the height bump in the shader) come
+//! from the values at the four pixel centres of the 2×2 quad holding the point's pixel, found
+//! on the triangle's plane as the rasteriser does for the quad. Where the GPU
+//! downscaled a texture larger than the adapter allows, the probe differs from the picture.
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
@@ -68,7 +68,8 @@ pub struct ProbeReadout {
     /// (RGBA, 0–255, before filtering).
     pub texel_xy: Option<[u32; 2]>,
     pub texel_raw: Option<[u8; 4]>,
-    /// The normal map's bilinear sample at `uv` (RGB, 0..1, linear): what the shader decodes.
+    /// The normal map's filtered sample at `uv` (RGB, 0..1, linear; at the mip levels the GPU
+    /// reads): what the shader decodes.
     pub texel: Option<Vec3>,
     /// The decoded unit vector ([`decode_normal`]): tangent space, or model space for an
     /// object-space map.
@@ -99,7 +100,7 @@ pub struct ProbeReadout {
     pub n_dot_h: f32,
     /// The geometric self-shadow fade `smoothstep(0, SELF_SHADOW_FADE, N_geo·L)`, 0..1.
     pub self_shadow: f32,
-    /// Linear albedo: base colour texture (bilinear, mip 0) times the factor.
+    /// Linear albedo: base colour texture (filtered as the GPU does) times the factor.
     pub albedo: Vec3,
     pub shading_model: ShadingModel,
     /// The lit colour in the viewer's shading mode, linear RGB.
@@ -127,6 +128,8 @@ pub struct ProbeScene {
     drawn: Vec<Mesh>,
     /// Per mesh: its frames and their method, when drawn with tangents.
     frames: Vec<Option<(Vec<Vec4>, TangentMethod)>>,
+    /// Per texture: its mip chain as uploaded ([`TextureImage::mip_chain`]), level 0 first.
+    mips: Vec<Vec<TextureImage>>,
 }
 
 impl ProbeScene {
@@ -155,7 +158,8 @@ impl ProbeScene {
             frames.push(Some(tangent::resolve(&mesh, options.tangent_method)));
             drawn.push(mesh);
         }
-        ProbeScene { scene, bump_source, drawn, frames }
+        let mips = scene.textures.iter().map(TextureImage::mip_chain).collect();
+        ProbeScene { scene, bump_source, drawn, frames, mips }
     }
 
     /// The scene with the material overrides applied.
@@ -219,6 +223,20 @@ impl ProbeScene {
         } else {
             Vec2::ZERO
         };
+        // The pixel's 2×2 quad: texture footprints (mip levels) and the height bump need it.
+        let quad = corner_positions(mesh, corners, &model).map(|triangle| Quad {
+            camera: &params.camera,
+            size,
+            triangle,
+            position,
+        });
+        let uv_at = |barycentric: Vec3| {
+            corners.iter().zip(barycentric.to_array()).fold(Vec2::ZERO, |acc, (&i, w)| {
+                acc + mesh.uvs.get(i as usize).copied().filter(|v| v.is_finite()).unwrap_or(Vec2::ZERO) * w
+            })
+        };
+        let footprint = quad.as_ref().filter(|_| has_uvs).and_then(|q| q.derivatives(|b, _| uv_at(b)));
+        let sample = |texture: usize, wrap: SamplerWrap| self.sample(texture, uv, wrap, footprint);
         let normals = if mesh.normals.len() == mesh.positions.len() { &mesh.normals[..] } else { &[] };
         let world_normal = normal_matrix.transform_vector3(lerp3(normals));
         let n = normalize_or(world_normal, Vec3::Z) * if point.front_facing { 1.0 } else { -1.0 };
@@ -239,7 +257,7 @@ impl ProbeScene {
         let strength = shading.strength * map.map_or(1.0, |m| m.scale);
         let sampled = map.map(|m| {
             let texture = &self.scene.textures[m.texture];
-            let texel = sample_bilinear(texture, uv, material.detail_wrap);
+            let texel = sample(m.texture, material.detail_wrap);
             let xy = nearest_texel(texture, uv, material.detail_wrap);
             (xy, texture.texel(xy[0] as i64, xy[1] as i64), texel, decode_normal(texel, m.convention))
         });
@@ -255,23 +273,17 @@ impl ProbeScene {
                 object_space_normal(n, matrix, point.front_facing, texel, strength, m.convention)
             }
             (true, BumpKind::HeightInShader, ..) => {
-                let (Some(map), Some(corners_world)) =
-                    (material.height_map.as_ref(), corner_positions(mesh, corners, &model))
-                else {
+                let (Some(map), Some(quad)) = (material.height_map.as_ref(), quad.as_ref()) else {
                     unreachable!("a height-in-shader bump has a height map; the pick hit finite corners")
                 };
-                let texture = &self.scene.textures[map.texture];
+                // Every pixel of the quad samples at the quad's footprint, as the GPU does.
                 let height_at = |barycentric: Vec3| {
-                    let uv = corners.iter().zip(barycentric.to_array()).fold(Vec2::ZERO, |acc, (&i, w)| {
-                        acc + Some(mesh.uvs[i as usize]).filter(|v| v.is_finite()).unwrap_or(Vec2::ZERO) * w
-                    });
-                    let texel = sample_bilinear(texture, uv, material.detail_wrap);
+                    let texel = self.sample(map.texture, uv_at(barycentric), material.detail_wrap, footprint);
                     let sample = (texel.x * 65280.0 + texel.y * 255.0) / 65535.0;
                     let sample = if map.depth { 1.0 - sample } else { sample };
                     sample * map.range_m * shading.strength
                 };
-                let quad = Quad { camera: &params.camera, size, triangle: corners_world, position };
-                height_bump_normal(&quad, n, height_at)
+                height_bump_normal(quad, n, height_at)
             }
             _ => n,
         };
@@ -280,9 +292,7 @@ impl ProbeScene {
         let light_dir = normalize_or(params.light.position - position, n);
         let view_dir = normalize_or(eye - position, n);
         let half = normalize_or(light_dir + view_dir, n);
-        let base = material
-            .base_color_texture
-            .map_or(Vec3::ONE, |t| sample_bilinear(&self.scene.textures[t], uv, material.base_color_wrap));
+        let base = material.base_color_texture.map_or(Vec3::ONE, |t| sample(t, material.base_color_wrap));
         let albedo = base * material.base_color_factor.truncate();
         let shading_model = shading.shading_override.unwrap_or(material.shading_model);
         let lit_albedo = if shading.mode == ShadingMode::BumpOnly { Vec3::ONE } else { albedo };
@@ -297,13 +307,11 @@ impl ProbeScene {
                 light: params.light,
                 ambient: self.scene.ambient,
                 specular: material.specular
-                    * material
-                        .gloss_texture
-                        .map_or(Vec3::ONE, |t| sample_bilinear(&self.scene.textures[t], uv, material.detail_wrap)),
+                    * material.gloss_texture.map_or(Vec3::ONE, |t| sample(t, material.detail_wrap)),
                 shininess: material.shininess.max(1.0),
             }),
             (_, ShadingModel::MetallicRoughness) => {
-                let detail = |t: usize| sample_bilinear(&self.scene.textures[t], uv, material.detail_wrap);
+                let detail = |t: usize| sample(t, material.detail_wrap);
                 let metal_rough = material.metallic_roughness_texture.map_or(Vec3::ONE, detail);
                 let occlusion =
                     material.occlusion.as_ref().map_or(1.0, |o| 1.0 + o.strength * (detail(o.texture).x - 1.0));
@@ -367,6 +375,23 @@ impl ProbeScene {
         }
     }
 
+    /// Texture `index` at `uv` as the GPU's sampler reads it (linear filtering, linear between
+    /// mip levels, no anisotropy): level of detail `log2` of the longer of the footprint's
+    /// derivatives in texels (`footprint`: d(uv)/dx and d(uv)/dy per pixel; `None`: level 0),
+    /// bilinear at level 0 when magnified, else between the two levels around it.
+    fn sample(&self, index: usize, uv: Vec2, wrap: SamplerWrap, footprint: Option<(Vec2, Vec2)>) -> Vec3 {
+        let chain = &self.mips[index];
+        let texels = Vec2::new(chain[0].width as f32, chain[0].height as f32);
+        let lod = footprint.map_or(0.0, |(dx, dy)| (dx * texels).length().max((dy * texels).length()).log2());
+        let lod = if lod.is_finite() { lod.clamp(0.0, (chain.len() - 1) as f32) } else { 0.0 };
+        let level = lod.floor() as usize;
+        let fine = sample_bilinear(&chain[level], uv, wrap);
+        match chain.get(level + 1) {
+            Some(coarse) if lod > level as f32 => fine.lerp(sample_bilinear(coarse, uv, wrap), lod - level as f32),
+            _ => fine,
+        }
+    }
+
     /// [`Self::pick`] then [`Self::readout`] with `params`' camera.
     pub fn probe(&self, params: &FrameParams, size: [u32; 2], pixel: [u32; 2]) -> Option<ProbeReadout> {
         self.pick(&params.camera, size, pixel).map(|point| self.readout(&point, params, size))
@@ -404,24 +429,25 @@ impl Quad<'_> {
         let barycentric = Vec3::new(1.0 - u - v, u, v);
         (t.is_finite() && barycentric.is_finite()).then(|| (barycentric, origin + dir * t))
     }
+
+    /// Fine screen-space derivatives of `value(barycentric, position)` at the point's pixel, as
+    /// lavapipe takes them: differences across its 2×2 quad along the pixel's own row
+    /// (`d/dx`) and column (`d/dy`). `None` where the view sees the plane edge-on.
+    fn derivatives<T: std::ops::Sub<Output = T> + Copy>(&self, value: impl Fn(Vec3, Vec3) -> T) -> Option<(T, T)> {
+        let pixel = project_to_pixel(self.camera, self.size, self.position)?;
+        let (x, y) = (pixel.x.floor() as i64, pixel.y.floor() as i64);
+        let (x0, y0) = (x & !1, y & !1);
+        let at = |x, y| self.on_plane(x, y).map(|(b, p)| value(b, p));
+        Some((at(x0 + 1, y)? - at(x0, y)?, at(x, y0 + 1)? - at(x, y0)?))
+    }
 }
 
 /// The shading normal `fs_height_bump` makes from the height map: Mikkelsen's surface gradient
 /// from screen-space derivatives of the position and of `height_at(barycentric)` (metres).
-/// Derivatives are fine ones: differences across the point's 2×2 quad along its own row and
-/// column, as lavapipe takes them. Falls back on `n` where the view sees the plane edge-on.
+/// Falls back on `n` where the view sees the plane edge-on.
 fn height_bump_normal(quad: &Quad, n: Vec3, height_at: impl Fn(Vec3) -> f32) -> Vec3 {
-    let Some(pixel) = project_to_pixel(quad.camera, quad.size, quad.position) else { return n };
-    let (x, y) = (pixel.x.floor() as i64, pixel.y.floor() as i64);
-    let (x0, y0) = (x & !1, y & !1);
-    let sample = |x, y| quad.on_plane(x, y).map(|(b, p)| (p, height_at(b)));
-    let (Some(left), Some(right), Some(top), Some(bottom)) =
-        (sample(x0, y), sample(x0 + 1, y), sample(x, y0), sample(x, y0 + 1))
-    else {
-        return n;
-    };
-    let (dp_dx, dh_dx) = (right.0 - left.0, right.1 - left.1);
-    let (dp_dy, dh_dy) = (bottom.0 - top.0, bottom.1 - top.1);
+    let Some((dx, dy)) = quad.derivatives(|b, p| p.extend(height_at(b))) else { return n };
+    let (dp_dx, dh_dx, dp_dy, dh_dy) = (dx.truncate(), dx.w, dy.truncate(), dy.w);
     let r1 = dp_dy.cross(n);
     let r2 = n.cross(dp_dx);
     let det = dp_dx.dot(r1);
