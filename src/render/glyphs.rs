@@ -103,7 +103,7 @@ pub fn glyph_vertices(mesh: &Mesh, tangents: &[Vec4], max: usize) -> Vec<usize> 
     }
 }
 
-/// Glyph length for `count` glyphs on `mesh`: [`LENGTH_PER_SPACING`] of the spacing they would
+/// Glyph length for `count` glyphs on `mesh`: 0.4 of the spacing they would
 /// have spread evenly over its surface (model-space metres); a mesh without area falls back on
 /// its size.
 pub fn glyph_length(mesh: &Mesh, count: usize) -> f32 {

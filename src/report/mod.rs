@@ -2,7 +2,7 @@
 //! height kernel, from exact references, written as `report.md`, `report.csv` and two PNG
 //! charts.
 //!
-//! [`surfaces`] makes the references, [`measure`] the rows, `convergence` the fitted orders,
+//! [`surfaces`] makes the references, [`mod@measure`] the rows, `convergence` the fitted orders,
 //! `markdown`, `csv` and `chart` the files; this module plans the run and writes atomically.
 
 mod chart;

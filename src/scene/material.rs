@@ -144,7 +144,7 @@ pub enum ShadingModel {
     #[default]
     BlinnPhong,
     /// glTF 2.0 metallic-roughness: GGX, Smith height-correlated visibility, Schlick Fresnel,
-    /// with the point light and the procedural sky ([`crate::shading::metallic_roughness`]).
+    /// with the point light and the procedural sky ([`crate::shading::pbr::metallic_roughness`]).
     MetallicRoughness,
 }
 
