@@ -1,5 +1,6 @@
 //! Broken files: each returns an error whose one-line message names the file and the
-//! problem, and nothing panics. The files are made here, in a temporary folder.
+//! problem, and nothing panics; good ones list the files they refer to. The files are made
+//! here, in a temporary folder.
 
 use std::path::{Path, PathBuf};
 
@@ -184,5 +185,31 @@ fn render_draws_a_mesh_file_or_fails_with_the_loaders_one_line() {
     let lines: Vec<&str> = stderr.lines().filter(|l| l.starts_with("bumpview:")).collect();
     assert_eq!(lines.len(), 1, "{stderr}");
     assert!(lines[0].contains("broken.gltf") && lines[0].contains("JSON"), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The files a mesh refers to, wherever they are, are listed for hot reload: a glTF's buffer
+/// and its image in a sub-folder, an OBJ's material library and the texture it names; the
+/// mesh file itself, embedded data and a GLB's own chunk are not.
+#[test]
+fn the_files_a_mesh_refers_to_are_listed_for_hot_reload() {
+    let dir = temp_dir("referred");
+    std::fs::create_dir_all(dir.join("textures")).unwrap();
+    image::RgbaImage::from_pixel(2, 2, image::Rgba([200, 100, 50, 255])).save(dir.join("textures/c.png")).unwrap();
+    std::fs::write(dir.join("tri.bin"), triangle_bin()).unwrap();
+    std::fs::write(dir.join("tri.gltf"), triangle_gltf(Some("tri.bin"), Some("textures/c.png"), "")).unwrap();
+    let scene = load_scene(&dir.join("tri.gltf")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.files, [dir.join("tri.bin"), dir.join("textures/c.png")]);
+    std::fs::write(dir.join("tri.glb"), glb(&triangle_gltf(None, None, ""), &triangle_bin())).unwrap();
+    assert!(load_scene(&dir.join("tri.glb")).unwrap().files.is_empty());
+
+    std::fs::write(dir.join("quad.mtl"), "newmtl paint\nmap_Kd textures/c.png\n").unwrap();
+    std::fs::write(
+        dir.join("quad.obj"),
+        "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nusemtl paint\nf 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    let scene = load_scene(&dir.join("quad.obj")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.files, [dir.join("textures/c.png"), dir.join("quad.mtl")]);
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -261,7 +261,7 @@ impl ViewerApp {
         let ctx = cc.egui_ctx.clone();
         let wake = ctx.clone();
         let (mut watcher, watching) = watch::Watcher::new(move || wake.request_repaint());
-        let watch_error = watching.and_then(|()| watcher.watch(&files.source.files())).err();
+        let watch_error = watching.and_then(|()| watcher.watch(&watched_files(&files.source, &scene))).err();
         let check = check_scene(&scene);
         Ok(ViewerApp {
             measurements: measure_all(&scene, state.scene_options.tangent_method),
@@ -385,7 +385,7 @@ impl ViewerApp {
         self.scene = scene;
         self.probe.scene_changed();
         self.tracker.invalidate();
-        self.watch_error = self.watcher.watch(&self.files.source.files()).err();
+        self.watch_error = self.watcher.watch(&watched_files(&self.files.source, &self.scene)).err();
     }
 
     /// What arrived from other threads this frame: dropped files, the dialog's answer, settled
@@ -404,7 +404,8 @@ impl ViewerApp {
             actions.push(Action::DialogClosed { slot, path });
         }
         let now = Instant::now();
-        if self.watcher.changes().iter().any(|path| self.files.source.is_affected_by(path)) {
+        let referred = |path: &PathBuf| self.scene.files.contains(path);
+        if self.watcher.changes().iter().any(|path| self.files.source.is_affected_by(path) || referred(path)) {
             self.files.debouncer.changed(now);
         }
         if let Some(finished) = self.files.loader.poll() {
@@ -756,6 +757,14 @@ fn source(inputs: &InputArgs, kernel: Kernel) -> Source {
 
 /// Where the viewer keeps its state between runs: `last.toml`, a preset, next to the recent
 /// list ([`files::recent_file`]).
+/// The files hot reload watches: the source's (mesh, slot textures) and those the mesh file
+/// referred to (buffers, material libraries, textures, also in other folders).
+fn watched_files<'a>(source: &'a Source, scene: &'a Scene) -> Vec<&'a Path> {
+    let mut files = source.files();
+    files.extend(scene.files.iter().map(PathBuf::as_path));
+    files
+}
+
 pub fn last_state_file() -> Option<PathBuf> {
     files::recent_file().map(|recent| recent.with_file_name("last.toml"))
 }

@@ -52,15 +52,16 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
                     format!("buffer {} should hold {} bytes but has {}", buffer.index(), buffer.length(), data.len());
                 return Err(LoadError::new(&source, format!("{problem} (truncated?)")));
             }
-            Ok(data)
+            Ok((data, source))
         })
         .collect::<Result<Vec<_>, _>>()?;
+    let (buffers, sources): (Vec<_>, Vec<_>) = buffers.into_iter().unzip();
     let mut loader = Loader {
         path,
         base,
         document: &document,
         buffers,
-        scene: super::empty_scene(),
+        scene: Scene { files: sources.into_iter().filter(|s| s != path).collect(), ..super::empty_scene() },
         textures: HashMap::new(),
         materials: HashMap::new(),
         meshes: HashMap::new(),
@@ -257,8 +258,9 @@ impl Loader<'_> {
         Ok(index)
     }
 
-    /// A glTF texture's image, read and decoded as `kind`.
-    fn decode(&self, texture: gltf::Texture, kind: TextureKind) -> Result<TextureImage, LoadError> {
+    /// A glTF texture's image, read and decoded as `kind`; an image file is remembered in
+    /// [`Scene::files`].
+    fn decode(&mut self, texture: gltf::Texture, kind: TextureKind) -> Result<TextureImage, LoadError> {
         let image = texture.source();
         // gltf's `Image::source` unwraps the uri, or the mimeType of a bufferView image, and
         // validation does not always catch their absence (found by tests/fuzz.rs).
@@ -272,7 +274,13 @@ impl Loader<'_> {
             return Err(LoadError::new(self.path, problem));
         }
         let (bytes, file) = match image.source() {
-            gltf::image::Source::Uri { uri, .. } => read_uri(uri, self.base, self.path, "image")?,
+            gltf::image::Source::Uri { uri, .. } => {
+                let (bytes, file) = read_uri(uri, self.base, self.path, "image")?;
+                if file != self.path && !self.scene.files.contains(&file) {
+                    self.scene.files.push(file.clone());
+                }
+                (bytes, file)
+            }
             gltf::image::Source::View { view, .. } => {
                 let range = view.offset()..view.offset() + view.length();
                 let bytes = self.buffers.get(view.buffer().index()).and_then(|b| b.get(range));

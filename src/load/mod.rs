@@ -52,5 +52,6 @@ fn empty_scene() -> Scene {
         ambient: Vec3::ZERO,
         default_light: crate::scene::builtin::default_light(),
         default_camera: crate::scene::builtin::default_camera(),
+        files: vec![],
     }
 }

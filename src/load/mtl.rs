@@ -46,6 +46,7 @@ pub fn load_libraries(
             LoadError::new(&path, format!("could not read the material library that {obj_name} names: {e}"))
         })?;
         parse(&String::from_utf8_lossy(&text), &path, scene, &mut names)?;
+        scene.files.push(path);
     }
     Ok(names)
 }
@@ -60,6 +61,15 @@ pub fn material_index(name: Option<&str>, materials: &HashMap<String, usize>, sc
     }
     scene.materials.push(default_material("default"));
     scene.materials.len() - 1
+}
+
+/// [`load_texture`], and `path` remembered in [`Scene::files`].
+fn load_referenced(scene: &mut Scene, path: &Path, kind: TextureKind) -> Result<TextureImage, LoadError> {
+    let image = load_texture(path, kind)?;
+    if !scene.files.iter().any(|f| f == path) {
+        scene.files.push(path.to_owned());
+    }
+    Ok(image)
 }
 
 fn parse(text: &str, path: &Path, scene: &mut Scene, names: &mut HashMap<String, usize>) -> Result<(), LoadError> {
@@ -100,22 +110,24 @@ fn parse(text: &str, path: &Path, scene: &mut Scene, names: &mut HashMap<String,
                 scene.materials[material_index].shininess = ns.clamp(*SHININESS.start(), *SHININESS.end());
             }
             "map_kd" => {
-                let texture = add(scene, load_texture(&map()?.path, TextureKind::Color)?);
+                let image = load_referenced(scene, &map()?.path, TextureKind::Color)?;
+                let texture = add(scene, image);
                 scene.materials[material_index].base_color_texture = Some(texture);
             }
             "map_ks" | "map_ns" => {
-                let texture = add(scene, load_texture(&map()?.path, TextureKind::Data)?);
+                let image = load_referenced(scene, &map()?.path, TextureKind::Data)?;
+                let texture = add(scene, image);
                 scene.materials[material_index].gloss_texture = Some(texture);
             }
             "norm" | "map_bump" | "bump" => {
                 let reference = map()?;
-                let image = load_texture(&reference.path, TextureKind::NormalMap)?;
+                let image = load_referenced(scene, &reference.path, TextureKind::NormalMap)?;
                 if lower == "norm" || looks_like_normal_map(&image) {
                     let texture = add(scene, image);
                     scene.materials[material_index].normal_map =
                         Some(NormalMap::new(texture, reference.bump_multiplier));
                 } else {
-                    let heights = load_texture(&reference.path, TextureKind::Height)?;
+                    let heights = load_referenced(scene, &reference.path, TextureKind::Height)?;
                     add_height_map(scene, &[material_index], heights, reference.bump_multiplier);
                 }
             }

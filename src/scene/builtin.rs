@@ -163,6 +163,7 @@ pub fn teaching_scene_with_kernel(kernel: Kernel) -> Scene {
         ambient: Vec3::splat(0.08),
         default_light: default_light(),
         default_camera: default_camera(),
+        files: vec![],
     }
 }
 

@@ -69,6 +69,9 @@ pub struct Scene {
     pub default_light: Light,
     /// The camera a new view starts with and that "reset camera" returns to.
     pub default_camera: OrbitCamera,
+    /// The files the mesh file referred to and that were read (buffers, material libraries,
+    /// textures; wherever they are), for hot reload. Empty for the built-in scene.
+    pub files: Vec<std::path::PathBuf>,
 }
 
 impl Mesh {
