@@ -404,7 +404,10 @@ impl ViewerApp {
             actions.push(Action::DialogClosed { slot, path });
         }
         let now = Instant::now();
-        let referred = |path: &PathBuf| self.scene.files.contains(path);
+        // Scene files are relative where the mesh path was (a command-line argument); the
+        // watcher reports absolute paths.
+        let referred =
+            |path: &PathBuf| self.scene.files.iter().any(|f| std::path::absolute(f).is_ok_and(|f| f == *path));
         if self.watcher.changes().iter().any(|path| self.files.source.is_affected_by(path) || referred(path)) {
             self.files.debouncer.changed(now);
         }
@@ -755,8 +758,6 @@ fn source(inputs: &InputArgs, kernel: Kernel) -> Source {
     Source { mesh: absolute(&inputs.mesh), slots, kernel }
 }
 
-/// Where the viewer keeps its state between runs: `last.toml`, a preset, next to the recent
-/// list ([`files::recent_file`]).
 /// The files hot reload watches: the source's (mesh, slot textures) and those the mesh file
 /// referred to (buffers, material libraries, textures, also in other folders).
 fn watched_files<'a>(source: &'a Source, scene: &'a Scene) -> Vec<&'a Path> {
@@ -765,6 +766,8 @@ fn watched_files<'a>(source: &'a Source, scene: &'a Scene) -> Vec<&'a Path> {
     files
 }
 
+/// Where the viewer keeps its state between runs: `last.toml`, a preset, next to the recent
+/// list ([`files::recent_file`]).
 pub fn last_state_file() -> Option<PathBuf> {
     files::recent_file().map(|recent| recent.with_file_name("last.toml"))
 }

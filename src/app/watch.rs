@@ -45,10 +45,13 @@ impl Watcher {
     }
 
     /// Watches the folders holding `files` (and stops watching the others). The error names
-    /// a folder that cannot be watched.
+    /// a folder that cannot be watched. Changes are reported with absolute paths.
     pub fn watch(&mut self, files: &[&Path]) -> Result<(), String> {
         let Some(inner) = &mut self.inner else { return Ok(()) };
-        let wanted: BTreeSet<PathBuf> = files.iter().filter_map(|f| f.parent()).map(Path::to_owned).collect();
+        // Absolute folders: a relative file's parent may be empty, and changes then come back
+        // with absolute paths.
+        let folder = |f: &&Path| std::path::absolute(f).ok()?.parent().map(Path::to_owned);
+        let wanted: BTreeSet<PathBuf> = files.iter().filter_map(folder).collect();
         for old in self.folders.difference(&wanted) {
             let _ = inner.unwatch(old);
         }
