@@ -60,7 +60,6 @@ pub fn parse_split_sides(difference: SplitDifference, text: &str) -> Result<Comm
         .map(|(l, r)| (l.trim(), r.trim()))
         .ok_or_else(|| format!("{text:?}: expected LEFT,RIGHT"))?;
     let sides = [left, right];
-    let greens = [GreenAxis::OpenGl, GreenAxis::DirectX];
     Ok(match difference {
         SplitDifference::Bump => return Err("--split bump has fixed sides (off │ on)".into()),
         SplitDifference::View => {
@@ -74,7 +73,7 @@ pub fn parse_split_sides(difference: SplitDifference, text: &str) -> Result<Comm
             Command::SetSplitTangentMethods(pair(sides, |t| parse_named(t, &TangentMethod::ALL, TangentMethod::name))?)
         }
         SplitDifference::Convention => {
-            Command::SetSplitConventions(pair(sides, |t| parse_named(t, &greens, green_name))?)
+            Command::SetSplitConventions(pair(sides, |t| parse_named(t, &GreenAxis::ALL, green_name))?)
         }
         SplitDifference::BumpSource => {
             Command::SetSplitBumpSources(pair(sides, |t| parse_named(t, &BumpSource::ALL, BumpSource::name))?)

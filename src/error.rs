@@ -13,6 +13,8 @@ pub enum RenderError {
     EmptyViewport { width: u32, height: u32 },
     #[error("viewport size {width}x{height} exceeds the adapter's limit of {limit} pixels per side")]
     ViewportTooLarge { width: u32, height: u32, limit: u32 },
+    #[error("export of {width}x{height} pixels is larger than the {limit} pixels an export may hold")]
+    ExportTooLarge { width: u64, height: u64, limit: u64 },
     #[error("supersampling factor {factor} is out of range: 1 to {max}")]
     SupersampleFactor { factor: u32, max: u32 },
     #[error(

@@ -410,10 +410,6 @@ fn render(args: RenderArgs) -> Result<(), Failure> {
         (None, Some(preset)) => preset.with_extension("png"),
         (None, None) => unreachable!("clap requires --out without --preset"),
     };
-    if let Some(path) = &args.save_preset {
-        let preset = Preset { capture, ..Preset::from_state(&state, files) };
-        preset.save(path).map_err(|e| e.to_string())?;
-    }
     let grid = match (&args.grid, args.row) {
         (Some(spec), _) if spec.is_empty() => Some(TileGrid::default_grid(&state.shading)),
         (Some(spec), _) => {
@@ -425,6 +421,10 @@ fn render(args: RenderArgs) -> Result<(), Failure> {
     if grid.is_some() {
         // Tiles are single pictures: a preset's split view does not apply.
         state.split.enabled = false;
+    }
+    if let Some(path) = &args.save_preset {
+        let preset = Preset { capture, ..Preset::from_state(&state, files) };
+        preset.save(path).map_err(|e| e.to_string())?;
     }
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let mut renderer = Renderer::from_gpu(&gpu);

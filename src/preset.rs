@@ -590,7 +590,7 @@ pub fn green_name(green: GreenAxis) -> &'static str {
 }
 
 pub fn green_from_name(name: &str) -> Option<GreenAxis> {
-    [GreenAxis::OpenGl, GreenAxis::DirectX].into_iter().find(|&g| green_name(g) == name)
+    GreenAxis::ALL.into_iter().find(|&g| green_name(g) == name)
 }
 
 /// `wrap` or `clamp`.

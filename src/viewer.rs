@@ -177,7 +177,7 @@ impl Default for SplitView {
             strengths: [1.0, 3.0],
             modes: [ShadingMode::ColourOnly, ShadingMode::BumpTimesColour],
             tangent_methods: [TangentMethod::PerFace, TangentMethod::MikkTSpace],
-            conventions: [GreenAxis::OpenGl, GreenAxis::DirectX],
+            conventions: GreenAxis::ALL,
             bump_sources: [BumpSource::NormalMap, BumpSource::HeightInShader],
         }
     }
@@ -327,13 +327,14 @@ impl ViewerState {
         }
     }
 
-    /// The picture at `column` (a fraction of the view's width): its parameters, the scene
-    /// options it is drawn with and, in the split view, its half (0 left, 1 right).
-    pub fn picture_at(&self, column: f32) -> (FrameParams, SceneOptions, Option<usize>) {
+    /// The picture at pixel column `column` of a view `width` pixels wide: its parameters, the
+    /// scene options it is drawn with and, in the split view, its half (0 left, 1 right; the
+    /// renderer's divider column [`SplitFrame::divider_pixels`] is the right half's first).
+    pub fn picture_at(&self, column: u32, width: u32) -> (FrameParams, SceneOptions, Option<usize>) {
         let params = self.frame_params();
         let uploads = self.scene_uploads();
         let Some(split) = self.split_frame() else { return (params, uploads.main, None) };
-        if column < split.divider {
+        if column < split.divider_pixels(width) {
             (FrameParams { shading: split.left, ..params }, uploads.main, Some(0))
         } else {
             let options = uploads.split_right.unwrap_or(uploads.main);
@@ -544,16 +545,17 @@ mod tests {
     fn the_picture_at_a_column_is_that_of_its_split_half() {
         let scene = teaching_scene();
         let mut state = ViewerState::new(&scene);
-        assert_eq!(state.picture_at(0.9), (state.frame_params(), SceneOptions::default(), None));
+        assert_eq!(state.picture_at(90, 100), (state.frame_params(), SceneOptions::default(), None));
         state.apply(Command::SetSplit(true));
-        state.apply(Command::SetSplitDivider(0.25));
-        let (left, _, half) = state.picture_at(0.2);
+        state.apply(Command::SetSplitDivider(0.255));
+        // The renderer's divider column: round(0.255 · 100) = 26 is the right half's first.
+        let (left, _, half) = state.picture_at(25, 100);
         assert_eq!((left.shading.bump_enabled, half), (false, Some(0)));
-        let (right, _, half) = state.picture_at(0.3);
+        let (right, _, half) = state.picture_at(26, 100);
         assert_eq!((right.shading.bump_enabled, half), (true, Some(1)));
         state.apply(Command::SetSplitDifference(SplitDifference::BumpSource));
-        assert_eq!(state.picture_at(0.2).1.bump_source, BumpSource::NormalMap);
-        assert_eq!(state.picture_at(0.3).1.bump_source, BumpSource::HeightInShader);
+        assert_eq!(state.picture_at(25, 100).1.bump_source, BumpSource::NormalMap);
+        assert_eq!(state.picture_at(26, 100).1.bump_source, BumpSource::HeightInShader);
     }
 
     #[test]

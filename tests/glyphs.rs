@@ -141,13 +141,17 @@ fn glyphs_with_every_tangent_method_hold_no_nan_on_a_float_target() {
     let scene = common::scene();
     let mut renderer = common::renderer_for(&scene);
     let mut params = common::default_params(&scene);
-    params.shading.tbn_glyphs = true;
     for method in TangentMethod::ALL {
         let options = bumpview::render::SceneOptions { tangent_method: Some(method), ..Default::default() };
         renderer.set_scene(&scene, options);
+        params.shading.tbn_glyphs = false;
+        let without = render_float(&mut renderer, [96, 64], &params).unwrap();
+        params.shading.tbn_glyphs = true;
         let image = render_float(&mut renderer, [96, 64], &params).unwrap();
         let bad = image.pixels.iter().filter(|p| p.iter().any(|c| !c.is_finite())).count();
         assert_eq!(bad, 0, "{method:?}: {bad} pixels not finite");
+        let drawn = image.pixels.iter().zip(&without.pixels).filter(|(a, b)| a != b).count();
+        assert!(drawn > 100, "{method:?}: glyphs changed only {drawn} pixels");
     }
     assert!(renderer.built_pipelines().iter().any(|k| matches!(k.pass, Pass::Glyphs { .. })));
 }

@@ -277,3 +277,16 @@ fn grid_export_puts_each_tile_at_its_row_and_column_above_its_caption() {
     }
     assert!(captions[1][1].contains("strength 3.00"), "{:?}", captions[1]);
 }
+
+#[test]
+fn an_export_too_large_to_hold_is_a_clear_error_before_any_rendering() {
+    let scene = common::scene();
+    let mut renderer = common::renderer_for(&scene);
+    let state = ViewerState::new(&scene);
+    let grid = TileGrid::parse("flat,bumped", &state.shading).unwrap();
+    let options = CaptureOptions::plain([16384, 16384]);
+    let frames = renderer.counters().frames_drawn;
+    let error = render_grid(&mut renderer, &options, &state.frame_params(), &grid, None).unwrap_err();
+    assert!(error.to_string().contains("32768x16384"), "{error}");
+    assert_eq!(renderer.counters().frames_drawn, frames);
+}

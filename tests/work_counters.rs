@@ -138,7 +138,21 @@ fn glyphs_and_uniform_splits_upload_nothing_and_gpu_data_splits_upload_once() {
     state.apply(Command::SetSplit(true));
     for difference in [SplitDifference::Bump, SplitDifference::View, SplitDifference::Strength, SplitDifference::Mode] {
         state.apply(Command::SetSplitDifference(difference));
-        assert_eq!(state.scene_uploads().split_right, None, "{difference:?}");
+        renderer.set_split_scene(&scene, state.scene_uploads().split_right);
+        let split = state.split_frame().unwrap();
+        bumpview::render::capture::render_capture_split(
+            &mut renderer,
+            &bumpview::render::capture::CaptureOptions::plain([64, 48]),
+            &state.frame_params(),
+            &split,
+        )
+        .unwrap();
+        let counters = renderer.counters();
+        assert_eq!(
+            (counters.tangent_frames_generated, counters.textures_uploaded),
+            (after.tangent_frames_generated, after.textures_uploaded),
+            "{difference:?}"
+        );
     }
     state.apply(Command::SetSplitDifference(SplitDifference::Convention));
     let uploads = state.scene_uploads();

@@ -15,7 +15,7 @@ const ZOOM_PER_POINT: f32 = 0.002;
 const STRENGTH_STEP: f32 = 0.1;
 
 /// The shortcuts pressed this frame: B bump, `[`/`]` strength, 1/2/3 bump × colour, bump
-/// only, colour only, W wireframe, S split view, L light orbit, V view, R camera reset, F12 screenshot. None while a text field has keyboard focus.
+/// only, colour only, W wireframe, G T/B/N glyphs, S split view, L light orbit, V view, R camera reset, F12 screenshot. None while a text field has keyboard focus.
 pub(super) fn keyboard(ctx: &egui::Context) -> Vec<Action> {
     if ctx.text_edit_focused() {
         return Vec::new();

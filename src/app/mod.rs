@@ -629,13 +629,23 @@ impl ViewerApp {
             "" => TileGrid::default_row(&self.state.shading),
             spec => TileGrid::parse(spec, &self.state.shading)?,
         };
+        // Tiles are single pictures: while a split view's left half has its own upload, the
+        // current settings' upload stands in for the export.
+        let current = &self.state.scene_options;
+        let swapped = self.uploaded.main != *current;
+        if swapped {
+            self.renderer.set_scene(&self.scene, current.clone());
+        }
         let captions: Option<Vec<_>> = capture.captions.then(|| {
-            let caption = |s| export::caption(&self.renderer, &self.scene, &self.uploaded.main, s);
+            let caption = |s| export::caption(&self.renderer, &self.scene, current, s);
             grid.tiles.iter().map(caption).collect()
         });
         let params = self.state.frame_params();
-        let image = export::render_grid(&mut self.renderer, &options, &params, &grid, captions.as_deref())
-            .map_err(|e| e.to_string())?;
+        let image = export::render_grid(&mut self.renderer, &options, &params, &grid, captions.as_deref());
+        if swapped {
+            self.renderer.set_scene(&self.scene, self.uploaded.main.clone());
+        }
+        let image = image.map_err(|e| e.to_string())?;
         let path = unused_screenshot_path();
         write_png_atomically(&image, &path).map_err(|e| e.to_string())?;
         let shown = std::path::absolute(&path).unwrap_or(path);
@@ -683,11 +693,13 @@ impl eframe::App for ViewerApp {
         self.apply(keys);
         let arrivals = self.arrivals(&ctx);
         self.apply(arrivals);
-        // The probe follows the picture at its pixel: in the split view, that half's.
-        let column = self.probe.pinned_column().unwrap_or(0.0);
-        let (probe_params, probe_options, half) = self.state.picture_at(column);
-        let half = half.map(|i| format!("{}: {}", ["left", "right"][i], self.state.split.labels()[i]));
-        self.probe.update(&self.scene, &probe_options, &probe_params, half);
+        // The probe follows the picture where its point shows now: in the split view, that half's.
+        if let (Some(size), true) = (self.view.as_ref().map(|v| v.size), self.probe.is_pinned()) {
+            let column = self.probe.shown_at(&self.state.camera, size).map_or(0, |p| p.x.max(0.0) as u32);
+            let (probe_params, probe_options, half) = self.state.picture_at(column, size[0]);
+            let half = half.map(|i| format!("{}: {}", ["left", "right"][i], self.state.split.labels()[i]));
+            self.probe.update(&self.scene, &probe_options, &probe_params, size, half);
+        }
         let notices = self.renderer.notices();
         let stats = panel::Stats {
             measurements: &self.measurements,

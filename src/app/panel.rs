@@ -453,10 +453,8 @@ fn split_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Actio
             pair_combos(ui, "tangents", split.tangent_methods, &TangentMethod::ALL, TangentMethod::name)
                 .map(Command::SetSplitTangentMethods)
         }
-        SplitDifference::Convention => {
-            pair_combos(ui, "green", split.conventions, &[GreenAxis::OpenGl, GreenAxis::DirectX], GreenAxis::label)
-                .map(Command::SetSplitConventions)
-        }
+        SplitDifference::Convention => pair_combos(ui, "green", split.conventions, &GreenAxis::ALL, GreenAxis::label)
+            .map(Command::SetSplitConventions),
         SplitDifference::BumpSource => {
             pair_combos(ui, "bump source", split.bump_sources, &BumpSource::ALL, bump_source_label)
                 .map(Command::SetSplitBumpSources)

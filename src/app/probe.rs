@@ -6,7 +6,7 @@
 use bumpview::probe::{ProbePoint, ProbeReadout, ProbeScene, project_to_pixel};
 use bumpview::render::BumpKind;
 use bumpview::render::{FrameParams, SceneOptions};
-use bumpview::scene::Scene;
+use bumpview::scene::{OrbitCamera, Scene};
 use egui::Key;
 use glam::{Vec2, Vec3};
 
@@ -26,8 +26,8 @@ struct Pinned {
     size: [u32; 2],
     /// `None` until picked (again after the scene changed); `Some(None)`: nothing there.
     point: Option<Option<ProbePoint>>,
-    /// The last readout and the parameters it was computed for.
-    last: Option<(FrameParams, ProbeReadout)>,
+    /// The last readout and the parameters and view size it was computed for.
+    last: Option<(FrameParams, [u32; 2], ProbeReadout)>,
     mesh_name: String,
     /// In the split view: which half the readout follows, e.g. "right: tangents: mikktspace".
     half: Option<String>,
@@ -39,9 +39,21 @@ impl Probe {
         self.pinned = Some(Pinned { pixel, size, point: None, last: None, mesh_name: String::new(), half: None });
     }
 
-    /// The pinned pixel's column as a fraction of the view's width (to find its split half).
-    pub(super) fn pinned_column(&self) -> Option<f32> {
-        self.pinned.as_ref().map(|p| (p.pixel[0] as f32 + 0.5) / p.size[0] as f32)
+    pub(super) fn is_pinned(&self) -> bool {
+        self.pinned.is_some()
+    }
+
+    /// Where the pinned point shows in a `size` view seen by `camera`, pixels from the top-left:
+    /// its projection once read out, else the clicked pixel (scaled to `size`).
+    pub(super) fn shown_at(&self, camera: &OrbitCamera, size: [u32; 2]) -> Option<Vec2> {
+        let pinned = self.pinned.as_ref()?;
+        match &pinned.last {
+            Some((_, _, readout)) => project_to_pixel(camera, size, readout.position),
+            None => Some(Vec2::new(
+                (pinned.pixel[0] as f32 + 0.5) * size[0] as f32 / pinned.size[0] as f32,
+                (pinned.pixel[1] as f32 + 0.5) * size[1] as f32 / pinned.size[1] as f32,
+            )),
+        }
     }
 
     pub(super) fn clear(&mut self) {
@@ -57,9 +69,16 @@ impl Probe {
         }
     }
 
-    /// Recomputes the readout when the options, the point or the parameters changed; `half`
-    /// names the split view's half they belong to.
-    pub(super) fn update(&mut self, scene: &Scene, options: &SceneOptions, params: &FrameParams, half: Option<String>) {
+    /// Recomputes the readout when the options, the point, the parameters or the view's `size`
+    /// changed; `half` names the split view's half they belong to.
+    pub(super) fn update(
+        &mut self,
+        scene: &Scene,
+        options: &SceneOptions,
+        params: &FrameParams,
+        size: [u32; 2],
+        half: Option<String>,
+    ) {
         let Some(pinned) = &mut self.pinned else { return };
         pinned.half = half;
         if self.cache.as_ref().is_none_or(|(made_with, _)| made_with != options) {
@@ -73,26 +92,17 @@ impl Probe {
             pinned.last = None;
             return;
         };
-        if pinned.last.as_ref().is_some_and(|(p, _)| p == params) {
+        if pinned.last.as_ref().is_some_and(|(p, s, _)| p == params && *s == size) {
             return;
         }
-        let readout = probe_scene.readout(&point, params, pinned.size);
+        let readout = probe_scene.readout(&point, params, size);
         pinned.mesh_name = probe_scene.scene().meshes[readout.mesh].name.clone();
-        pinned.last = Some((*params, readout));
+        pinned.last = Some((*params, size, readout));
     }
 
     /// Draws the marker at the pinned point in the view `rect` (`size` pixels) seen by `camera`.
     pub(super) fn paint(&self, painter: &egui::Painter, rect: egui::Rect, size: [u32; 2], params: &FrameParams) {
-        let Some(pinned) = &self.pinned else { return };
-        let pixel = match &pinned.last {
-            Some((_, readout)) => project_to_pixel(&params.camera, size, readout.position),
-            // Nothing there: mark the clicked pixel.
-            None => Some(Vec2::new(
-                (pinned.pixel[0] as f32 + 0.5) * size[0] as f32 / pinned.size[0] as f32,
-                (pinned.pixel[1] as f32 + 0.5) * size[1] as f32 / pinned.size[1] as f32,
-            )),
-        };
-        let Some(pixel) = pixel else { return };
+        let Some(pixel) = self.shown_at(&params.camera, size) else { return };
         let centre = rect.min + egui::vec2(pixel.x, pixel.y) * (rect.width() / size[0] as f32);
         for (width, colour) in [(3.0, egui::Color32::BLACK), (1.5, egui::Color32::from_rgb(255, 220, 0))] {
             let stroke = egui::Stroke::new(width, colour);
@@ -125,7 +135,7 @@ impl Probe {
             (Some(None), _) => {
                 ui.weak("nothing at that pixel (background)");
             }
-            (_, Some((_, readout))) => {
+            (_, Some((_, _, readout))) => {
                 ui.label(egui::RichText::new(lines(readout, &pinned.mesh_name)).monospace().size(11.0));
             }
             _ => {}

@@ -10,7 +10,10 @@ use super::{BumpSource, FrameParams, Renderer, SceneOptions};
 use crate::error::RenderError;
 use crate::scene::Scene;
 use crate::shading::{ShadingMode, ShadingSettings, ViewMode};
-use crate::viewer::{mode_label, view_label};
+use crate::viewer::{STRENGTH_RANGE, mode_label, view_label};
+
+/// The most pixels a tile export may hold (1 GiB of RGBA8).
+pub const MAX_EXPORT_PIXELS: u64 = 1 << 28;
 
 /// The caption strip's background and text colours (sRGB).
 pub const CAPTION_BACKGROUND: [u8; 3] = [24, 26, 30];
@@ -42,7 +45,8 @@ impl TileGrid {
     /// is `flat` (lit, bump off), `bumped` (lit, bump on), `bump-only` or `colour-only` (lit in
     /// that mode), or a view name (`tangent`, `shading-normal`, `difference`, ...: that view,
     /// bump on). Lit tiles keep `current`'s mode unless named otherwise; every tile keeps its
-    /// strength unless `@STRENGTH` gives one. Every row must have as many tiles.
+    /// strength unless `@STRENGTH` gives one (clamped to the strength slider's range). Every
+    /// row must have as many tiles.
     pub fn parse(spec: &str, current: &ShadingSettings) -> Result<TileGrid, String> {
         let rows: Vec<Vec<&str>> = spec.split(';').map(|row| row.split(',').map(str::trim).collect()).collect();
         let columns = rows[0].len();
@@ -86,7 +90,7 @@ fn parse_tile(text: &str, current: &ShadingSettings) -> Result<ShadingSettings, 
         },
     };
     if let Some(strength) = strength {
-        tile.strength = strength;
+        tile.strength = strength.clamp(*STRENGTH_RANGE.start(), *STRENGTH_RANGE.end());
     }
     Ok(tile)
 }
@@ -158,9 +162,14 @@ pub fn render_grid(
     let [width, height] = options.size;
     let lines = captions.map_or(0, |c| c.iter().map(Vec::len).max().unwrap_or(0));
     let strip = if captions.is_some() { caption_strip_height(width, lines) } else { 0 };
-    let columns = grid.columns.max(1) as u32;
-    let rows = grid.rows() as u32;
-    let mut image = image::RgbaImage::new(width.saturating_mul(columns), (height + strip).saturating_mul(rows));
+    let (columns, rows) = (grid.columns.max(1) as u64, grid.rows() as u64);
+    let (total_width, total_height) = (u64::from(width) * columns, u64::from(height + strip) * rows);
+    if total_width * total_height > MAX_EXPORT_PIXELS || total_width > u32::MAX.into() || total_height > u32::MAX.into()
+    {
+        return Err(RenderError::ExportTooLarge { width: total_width, height: total_height, limit: MAX_EXPORT_PIXELS });
+    }
+    let columns = columns as u32;
+    let mut image = image::RgbaImage::new(total_width as u32, total_height as u32);
     for (i, shading) in grid.tiles.iter().enumerate() {
         let tile = render_capture(renderer, options, &FrameParams { shading: *shading, ..*params })?;
         let (x0, y0) = (i as u32 % columns * width, i as u32 / columns * (height + strip));
@@ -236,5 +245,6 @@ mod tests {
         assert!(TileGrid::parse("flat,shiny", &current).unwrap_err().contains("shading-normal"));
         assert!(TileGrid::parse("bumped@lots", &current).unwrap_err().contains("NAME@STRENGTH"));
         assert!(TileGrid::parse("", &current).is_err());
+        assert_eq!(TileGrid::parse("bumped@1e30", &current).unwrap().tiles[0].strength, 4.0, "clamped");
     }
 }

@@ -1,7 +1,8 @@
 //! T/B/N glyphs: three short lines at chosen vertices of a mesh with tangent frames, drawn
 //! red (T), green (B) and blue (N). The frame at a glyph is the one the shader shades with
 //! (T orthonormalised against N, `B = w·(N × T)`), computed in the vertex shader from the
-//! vertex's own normal and tangent, so the glyphs show exactly the frames in use.
+//! vertex's own normal and tangent, so the glyphs show exactly the frames in use (the front
+//! face's: on the back of a double-sided material the shading flips N and B, the glyphs not).
 //!
 //! Dense meshes are thinned: at most [`MAX_GLYPHS_PER_MESH`] vertices carry a glyph, one per
 //! cell of a uniform grid over the mesh (model space), so glyphs are spread evenly and do not

@@ -268,7 +268,8 @@ impl Renderer {
     }
 
     /// Replaces the scene: applies the material overrides to a copy, makes the tangent
-    /// frames it needs and uploads what it uses, as `options` say.
+    /// frames it needs and uploads what it uses, as `options` say. A split scene
+    /// ([`Self::set_split_scene`]) is kept: replace or drop it too when the scene changes.
     pub fn set_scene(&mut self, scene: &Scene, options: SceneOptions) {
         let gpu = self.upload(scene, options);
         self.notices = gpu.notices.clone();
@@ -452,6 +453,8 @@ impl Renderer {
         assert!(halves.len() <= 2, "one uniform buffer per half, two in all");
         self.check_target_size(target.size)?;
         let samples = self.sample_count(target.format);
+        // Here and for the pipelines below the scene is borrowed field by field ([`Self::scene_in`]
+        // would borrow all of `self`), as the counters and the pipeline cache change meanwhile.
         for half in halves {
             let scene = match half.scene {
                 SceneSlot::Main => self.scene.as_mut(),

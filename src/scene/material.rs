@@ -21,6 +21,8 @@ pub enum GreenAxis {
 }
 
 impl GreenAxis {
+    pub const ALL: [GreenAxis; 2] = [GreenAxis::OpenGl, GreenAxis::DirectX];
+
     /// Name for people (panel, labels, captions).
     pub fn label(self) -> &'static str {
         match self {
