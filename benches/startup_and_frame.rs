@@ -44,7 +44,7 @@ fn frame(c: &mut Criterion) {
     let mut group = c.benchmark_group("frame");
     group.sample_size(20);
     let target = RenderTarget { view: &view, format, size };
-    let mut draw = |renderer: &mut Renderer, record: &dyn Fn(&mut Renderer, &mut wgpu::CommandEncoder)| {
+    let draw = |renderer: &mut Renderer, record: &dyn Fn(&mut Renderer, &mut wgpu::CommandEncoder)| {
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         record(renderer, &mut encoder);
         gpu.queue.submit([encoder.finish()]);

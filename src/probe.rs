@@ -419,7 +419,7 @@ impl Quad<'_> {
         let (e1, e2) = (p[1] - p[0], p[2] - p[0]);
         let h = dir.cross(e2);
         let a = e1.dot(h);
-        if !(a.abs() >= 1e-12) {
+        if a.is_nan() || a.abs() < 1e-12 {
             return None;
         }
         let s = origin - p[0];
