@@ -415,19 +415,7 @@ impl Quad<'_> {
     fn on_plane(&self, x: i64, y: i64) -> Option<(Vec3, Vec3)> {
         let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
         let (origin, dir) = self.camera.ray_through_pixel(centre, Vec2::new(self.size[0] as f32, self.size[1] as f32));
-        let p = self.triangle;
-        let (e1, e2) = (p[1] - p[0], p[2] - p[0]);
-        let h = dir.cross(e2);
-        let a = e1.dot(h);
-        if a.is_nan() || a.abs() < 1e-12 {
-            return None;
-        }
-        let s = origin - p[0];
-        let q = s.cross(e1);
-        let (u, v) = (s.dot(h) / a, dir.dot(q) / a);
-        let t = e2.dot(q) / a;
-        let barycentric = Vec3::new(1.0 - u - v, u, v);
-        (t.is_finite() && barycentric.is_finite()).then(|| (barycentric, origin + dir * t))
+        meet_plane(origin, dir, self.triangle).map(|(t, barycentric)| (barycentric, origin + dir * t))
     }
 
     /// Fine screen-space derivatives of `value(barycentric, position)` at the point's pixel, as
@@ -483,24 +471,31 @@ fn corner_positions(mesh: &Mesh, corners: &[u32], model: &Mat4) -> Option<[Vec3;
     Some(p)
 }
 
-/// Möller–Trumbore, both faces: the distance along `dir` (unit) and the barycentric weights.
+/// Möller–Trumbore, both faces: the distance along `dir` (unit) and the barycentric weights
+/// of the hit inside the triangle, in front of `origin`.
 fn intersect(origin: Vec3, dir: Vec3, p: [Vec3; 3]) -> Option<(f32, Vec3)> {
+    let (t, barycentric) = meet_plane(origin, dir, p)?;
+    let [_, u, v] = barycentric.to_array();
+    let inside = (0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0;
+    (inside && t > 0.0).then_some((t, barycentric))
+}
+
+/// Where the ray meets the plane of triangle `p` (either side, behind `origin` too): the
+/// signed distance along `dir` and the barycentric weights, unbounded off the triangle.
+/// `None` for a ray parallel to the plane.
+fn meet_plane(origin: Vec3, dir: Vec3, p: [Vec3; 3]) -> Option<(f32, Vec3)> {
     let (e1, e2) = (p[1] - p[0], p[2] - p[0]);
     let h = dir.cross(e2);
     let a = e1.dot(h);
-    if a.abs() < 1e-12 {
+    if a.is_nan() || a.abs() < 1e-12 {
         return None;
     }
     let f = 1.0 / a;
     let s = origin - p[0];
-    let u = f * s.dot(h);
     let q = s.cross(e1);
-    let v = f * dir.dot(q);
-    if !(0.0..=1.0).contains(&u) || v < 0.0 || u + v > 1.0 {
-        return None;
-    }
-    let t = f * e2.dot(q);
-    (t > 0.0 && t.is_finite()).then_some((t, Vec3::new(1.0 - u - v, u, v)))
+    let (u, v, t) = (f * s.dot(h), f * dir.dot(q), f * e2.dot(q));
+    let barycentric = Vec3::new(1.0 - u - v, u, v);
+    (t.is_finite() && barycentric.is_finite()).then_some((t, barycentric))
 }
 
 /// Integer texel coordinate `i` of a `size`-texel axis under a wrap mode.
