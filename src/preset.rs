@@ -101,53 +101,24 @@ impl From<&SplitView> for SplitPreset {
 
 impl SplitPreset {
     fn to_split(&self) -> Result<SplitView, PresetError> {
-        let difference = SplitDifference::from_name(&self.difference).ok_or_else(|| {
-            let names: Vec<_> = SplitDifference::ALL.iter().map(|d| d.name()).collect();
-            bad("split.difference", &self.difference, &format!("one of {}", names.join(", ")))
-        })?;
+        let difference = named("split.difference", &self.difference, &SplitDifference::ALL, SplitDifference::name)?;
         if !(self.divider.is_finite() && (0.0..=1.0).contains(&self.divider)) {
             return Err(bad("split.divider", &self.divider.to_string(), "a fraction of the width, 0 to 1"));
         }
         if let Some(s) = self.strengths.iter().find(|s| !s.is_finite()) {
             return Err(bad("split.strengths", &s.to_string(), "finite numbers"));
         }
-        let view = |name: &String| {
-            ViewMode::from_name(name).ok_or_else(|| {
-                let names: Vec<_> = ViewMode::ALL.iter().map(|m| m.name()).collect();
-                bad("split.views", name, &format!("one of {}", names.join(", ")))
-            })
-        };
-        let mode = |name: &String| {
-            ShadingMode::from_name(name).ok_or_else(|| {
-                let names: Vec<_> = ShadingMode::ALL.iter().map(|m| m.name()).collect();
-                bad("split.modes", name, &format!("one of {}", names.join(", ")))
-            })
-        };
-        let method = |name: &String| {
-            TangentMethod::from_name(name).ok_or_else(|| {
-                let names: Vec<_> = TangentMethod::ALL.iter().map(|m| m.name()).collect();
-                bad("split.tangents", name, &format!("one of {}", names.join(", ")))
-            })
-        };
-        let green =
-            |name: &String| green_from_name(name).ok_or_else(|| bad("split.conventions", name, "opengl or directx"));
-        let source = |name: &String| {
-            BumpSource::from_name(name).ok_or_else(|| {
-                let names: Vec<_> = BumpSource::ALL.iter().map(|b| b.name()).collect();
-                bad("split.bump_sources", name, &format!("one of {}", names.join(", ")))
-            })
-        };
         Ok(SplitView {
             // Every field: a new split setting must get a place in the preset format too.
             enabled: self.enabled,
             difference,
             divider: self.divider,
-            views: [view(&self.views[0])?, view(&self.views[1])?],
+            views: named_pair("split.views", &self.views, &ViewMode::ALL, ViewMode::name)?,
             strengths: self.strengths,
-            modes: [mode(&self.modes[0])?, mode(&self.modes[1])?],
-            tangent_methods: [method(&self.tangents[0])?, method(&self.tangents[1])?],
-            conventions: [green(&self.conventions[0])?, green(&self.conventions[1])?],
-            bump_sources: [source(&self.bump_sources[0])?, source(&self.bump_sources[1])?],
+            modes: named_pair("split.modes", &self.modes, &ShadingMode::ALL, ShadingMode::name)?,
+            tangent_methods: named_pair("split.tangents", &self.tangents, &TangentMethod::ALL, TangentMethod::name)?,
+            conventions: named_pair("split.conventions", &self.conventions, &GreenAxis::ALL, green_name)?,
+            bump_sources: named_pair("split.bump_sources", &self.bump_sources, &BumpSource::ALL, BumpSource::name)?,
         })
     }
 }
@@ -503,10 +474,7 @@ impl Preset {
         if !s.strength.is_finite() {
             return Err(bad("shading.strength", &s.strength.to_string(), "a finite number"));
         }
-        let view = ViewMode::from_name(&s.view).ok_or_else(|| {
-            let names: Vec<_> = ViewMode::ALL.iter().map(|m| m.name()).collect();
-            bad("shading.view", &s.view, &format!("one of {}", names.join(", ")))
-        })?;
+        let view = named("shading.view", &s.view, &ViewMode::ALL, ViewMode::name)?;
         let model = shading_model_from_name(&s.model)
             .ok_or_else(|| bad("shading.model", &s.model, "auto, blinn-phong or pbr"))?;
         let scene = &self.scene;
@@ -517,10 +485,7 @@ impl Preset {
                 bad("scene.tangents", name, &format!("auto or one of {}", names.join(", ")))
             })?),
         };
-        let bump_source = BumpSource::from_name(&scene.bump_source).ok_or_else(|| {
-            let names: Vec<_> = BumpSource::ALL.iter().map(|b| b.name()).collect();
-            bad("scene.bump_source", &scene.bump_source, &format!("one of {}", names.join(", ")))
-        })?;
+        let bump_source = named("scene.bump_source", &scene.bump_source, &BumpSource::ALL, BumpSource::name)?;
         let mut per_material = BTreeMap::new();
         for (index, overrides) in &scene.per_material {
             let section = format!("scene.per_material.{index}");
@@ -535,10 +500,7 @@ impl Preset {
         if let Some([w, h]) = capture.size.filter(|[w, h]| *w == 0 || *h == 0) {
             return Err(bad("capture.size", &format!("[{w}, {h}]"), "[width, height], each at least 1"));
         }
-        let mode = ShadingMode::from_name(&s.mode).ok_or_else(|| {
-            let names: Vec<_> = ShadingMode::ALL.iter().map(|m| m.name()).collect();
-            bad("shading.mode", &s.mode, &format!("one of {}", names.join(", ")))
-        })?;
+        let mode = named("shading.mode", &s.mode, &ShadingMode::ALL, ShadingMode::name)?;
         Ok(Settings {
             // Every field: a new setting must get a place in the preset format too.
             shading: ShadingSettings {
@@ -606,10 +568,25 @@ pub fn border_from_name(name: &str) -> Option<Border> {
 }
 
 fn kernel(key: &str, name: &str) -> Result<Kernel, PresetError> {
-    Kernel::from_name(name).ok_or_else(|| {
-        let names: Vec<_> = Kernel::ALL.iter().map(|k| k.name()).collect();
-        bad(key, name, &format!("one of {}", names.join(", ")))
+    named(key, name, &Kernel::ALL, Kernel::name)
+}
+
+/// The item of `all` whose `name` is `text`, else an error for `key` listing the names.
+fn named<T: Copy>(key: &str, text: &str, all: &[T], name: fn(T) -> &'static str) -> Result<T, PresetError> {
+    all.iter().copied().find(|&item| name(item) == text).ok_or_else(|| {
+        let names: Vec<_> = all.iter().map(|&item| name(item)).collect();
+        bad(key, text, &format!("one of {}", names.join(", ")))
     })
+}
+
+/// [`named`] for a left and a right value.
+fn named_pair<T: Copy>(
+    key: &str,
+    pair: &[String; 2],
+    all: &[T],
+    name: fn(T) -> &'static str,
+) -> Result<[T; 2], PresetError> {
+    Ok([named(key, &pair[0], all, name)?, named(key, &pair[1], all, name)?])
 }
 
 /// "`key` = "value": expected …".
