@@ -5,7 +5,7 @@
 
 use bumpview::render::{Gpu, RenderTarget, Renderer};
 use bumpview::scene::builtin::teaching_scene;
-use bumpview::viewer::{Command, SplitDifference, ViewerState};
+use bumpview::state::{Command, SplitDifference, ViewerState};
 use criterion::{Criterion, criterion_group, criterion_main};
 
 fn startup(c: &mut Criterion) {
@@ -53,8 +53,8 @@ fn frame(c: &mut Criterion) {
     group.bench_function(format!("1280x720 lit, {}", gpu.adapter_name()), |b| {
         b.iter(|| draw(&mut renderer, &|r, e| r.render(e, &target, &params).unwrap()))
     });
-    let glyphs = bumpview::render::FrameParams {
-        shading: bumpview::shading::ShadingSettings { tbn_glyphs: true, ..params.shading },
+    let glyphs = bumpview::frame::FrameParams {
+        shading: bumpview::frame::ShadingSettings { tbn_glyphs: true, ..params.shading },
         ..params
     };
     group.bench_function("1280x720 lit with T/B/N glyphs", |b| {

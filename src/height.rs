@@ -8,7 +8,7 @@
 use glam::Vec3;
 
 use crate::math::normalize_or;
-use crate::scene::{TextureImage, TextureKind};
+use crate::texture::{TextureImage, TextureKind};
 
 /// A wrapping (tileable) height field, rows top to bottom.
 #[derive(Debug, Clone, PartialEq)]
@@ -89,7 +89,7 @@ impl HeightField {
             .samples
             .iter()
             .flat_map(|&h| {
-                let [high, low] = crate::scene::encode_height(h);
+                let [high, low] = crate::texture::encode_height(h);
                 [high, low, 0, 255]
             })
             .collect();

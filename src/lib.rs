@@ -36,20 +36,23 @@
 //!   to a valid vector; degenerate UV triangles fall back to a valid orthonormal frame.
 
 pub mod atomic;
+pub mod chain;
 pub mod check;
 pub mod counters;
 pub mod error;
+pub mod frame;
 pub mod height;
 pub mod load;
 pub mod math;
-pub mod preset;
+pub mod prepare;
 pub mod probe;
 pub mod render;
 pub mod report;
 pub mod scene;
 pub mod shading;
+pub mod state;
 pub mod tangent;
-pub mod viewer;
+pub mod texture;
 
 pub use counters::WorkCounters;
 pub use error::{LoadError, RenderError};

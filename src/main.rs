@@ -2,26 +2,27 @@
 
 #[cfg(feature = "ui")]
 mod app;
-mod args;
-mod inputs;
+mod cli;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use bumpview::frame::BumpSource;
+use bumpview::frame::ViewMode;
 use bumpview::height::{Border, Kernel};
-use bumpview::preset::{self, CapturePreset, Preset, PresetFiles};
 use bumpview::render::capture::{
     CaptureOptions, MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically,
 };
 use bumpview::render::export::{TileGrid, caption, render_grid};
-use bumpview::render::{Background, BumpSource, Gpu, Renderer};
+use bumpview::render::{Background, Gpu, Renderer};
 use bumpview::scene::{GreenAxis, MaterialOverrides, Scene, ShadingModel};
-use bumpview::shading::ViewMode;
+use bumpview::state::preset::{self, CapturePreset, Preset, PresetFiles};
+use bumpview::state::{SplitDifference, ViewerState};
 use bumpview::tangent::TangentMethod;
-use bumpview::viewer::{SplitDifference, ViewerState};
 use clap::{Parser, Subcommand};
+use cli::args;
+use cli::inputs::InputArgs;
 use glam::Vec3;
-use inputs::InputArgs;
 
 #[derive(Parser)]
 #[command(name = "bumpview", version, about = "A viewer and teaching tool for bump and normal mapping")]

@@ -1,6 +1,6 @@
 //! Guarded vector helpers: nothing here returns NaN or infinity for finite or non-finite input.
 
-use glam::{Vec3, Vec4};
+use glam::{Mat4, Vec3, Vec4};
 
 /// Squared lengths outside this range are treated as degenerate by [`normalize_or`].
 const MIN_LENGTH_SQUARED: f32 = 1e-30;
@@ -50,6 +50,13 @@ pub fn srgb_to_linear(c: f32) -> f32 {
 pub fn linear_to_srgb(c: f32) -> f32 {
     let c = c.clamp(0.0, 1.0);
     if c <= 0.003_130_8 { c * 12.92 } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 }
+}
+
+/// The matrix that takes model-space normals to world space: the inverse-transpose of `model`,
+/// or the identity where `model` is singular or not finite.
+pub fn normal_matrix(model: Mat4) -> Mat4 {
+    let determinant = model.determinant();
+    if determinant.is_finite() && determinant != 0.0 { model.inverse().transpose() } else { Mat4::IDENTITY }
 }
 
 #[cfg(test)]

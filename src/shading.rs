@@ -1,164 +1,22 @@
-//! What a pixel shows, and a CPU reference of the shading in `shaders/mesh.wgsl`.
+//! The formulas of the shading in `shaders/mesh.wgsl`, one function each: normal-map decoding,
+//! the bump by a normal map, an object-space map or a height field, Blinn-Phong and
+//! metallic-roughness ([`pbr`]), and the colours of the debug views. [`crate::chain`] runs them
+//! in the shader's order.
 //!
 //! The GPU and this module implement the same formulas line for line; tests render with the
-//! GPU and compare against these functions. All vectors are world space and unit length
-//! unless stated; colours are linear RGB.
+//! GPU and compare against them. All vectors are world space and unit length unless stated;
+//! colours are linear RGB.
 
 pub mod pbr;
 
 use glam::{Mat3, Vec3, Vec4};
 
 use crate::math::{handedness, normalize_or, orthonormalize_tangent, smoothstep};
-use crate::scene::{GreenAxis, Light, NormalConvention, ShadingModel};
+use crate::scene::{GreenAxis, Light, NormalConvention};
 
 /// Width of the self-shadow fade in units of `N_geo · L` (a cosine): the light fades in
 /// smoothly from grazing (0) to `N_geo · L = 0.1` (about 84° from the normal).
 pub const SELF_SHADOW_FADE: f32 = 0.1;
-
-/// What the view shows. Debug views show a world-space unit vector `v` as `0.5·v + 0.5`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum ViewMode {
-    /// Blinn-Phong shading.
-    #[default]
-    Lit,
-    /// The tangent `T` after Gram-Schmidt against the geometric normal.
-    Tangent,
-    /// The bitangent `B = w · cross(N, T)`.
-    Bitangent,
-    /// The geometric (interpolated vertex) normal.
-    Normal,
-    /// The normal after the normal map and bump strength.
-    ShadingNormal,
-    /// Angle between the mesh's tangent frame and the reference frame (analytic where the
-    /// mesh has one, else MikkTSpace), on the [`difference_color`] scale.
-    Difference,
-    /// Triangles whose UVs have no area (red) or are mirrored (blue), as `bumpview check`
-    /// counts them, from screen-space derivatives.
-    UvCheck,
-    /// Tangent handedness `w`: green where +1, magenta where −1 (mirrored UV islands), grey
-    /// where the mesh is drawn without tangents ([`handedness_color`]).
-    Handedness,
-    /// The lit picture with pixels in [`OVER_TILT_COLOR`] where the shading normal tilts
-    /// past [`OVER_TILT_LIMIT_DEG`] from the geometric normal ([`over_tilted`]).
-    OverTilt,
-}
-
-impl ViewMode {
-    pub const ALL: [ViewMode; 9] = [
-        ViewMode::Lit,
-        ViewMode::Tangent,
-        ViewMode::Bitangent,
-        ViewMode::Normal,
-        ViewMode::ShadingNormal,
-        ViewMode::Difference,
-        ViewMode::UvCheck,
-        ViewMode::Handedness,
-        ViewMode::OverTilt,
-    ];
-
-    /// The next mode in [`ViewMode::ALL`], wrapping around.
-    pub fn next(self) -> ViewMode {
-        let i = ViewMode::ALL.iter().position(|&m| m == self).unwrap_or(0);
-        ViewMode::ALL[(i + 1) % ViewMode::ALL.len()]
-    }
-
-    /// The index the shader switches on (`frame.view_mode`).
-    pub fn shader_index(self) -> u32 {
-        self as u32
-    }
-
-    /// Name as used on the command line and in the panel.
-    pub fn name(self) -> &'static str {
-        match self {
-            ViewMode::Lit => "lit",
-            ViewMode::Tangent => "tangent",
-            ViewMode::Bitangent => "bitangent",
-            ViewMode::Normal => "normal",
-            ViewMode::ShadingNormal => "shading-normal",
-            ViewMode::Difference => "difference",
-            ViewMode::UvCheck => "uv-check",
-            ViewMode::Handedness => "handedness",
-            ViewMode::OverTilt => "over-tilt",
-        }
-    }
-
-    pub fn from_name(name: &str) -> Option<ViewMode> {
-        ViewMode::ALL.into_iter().find(|m| m.name() == name)
-    }
-}
-
-/// What the lit picture is made of, as in the classic demos (keys 1/2/3). A uniform.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum ShadingMode {
-    /// Lighting with the (bumped) shading normal times the colour texture.
-    #[default]
-    BumpTimesColour,
-    /// Lighting with the shading normal and a white albedo: the relief alone.
-    BumpOnly,
-    /// The albedo as stored (colour texture × factor): no bump, no lighting.
-    ColourOnly,
-}
-
-impl ShadingMode {
-    pub const ALL: [ShadingMode; 3] = [ShadingMode::BumpTimesColour, ShadingMode::BumpOnly, ShadingMode::ColourOnly];
-
-    /// The index the shader switches on (`frame.shading_mode`).
-    pub fn shader_index(self) -> u32 {
-        self as u32
-    }
-
-    /// Name as used on the command line and in presets.
-    pub fn name(self) -> &'static str {
-        match self {
-            ShadingMode::BumpTimesColour => "bump-colour",
-            ShadingMode::BumpOnly => "bump-only",
-            ShadingMode::ColourOnly => "colour-only",
-        }
-    }
-
-    pub fn from_name(name: &str) -> Option<ShadingMode> {
-        ShadingMode::ALL.into_iter().find(|m| m.name() == name)
-    }
-}
-
-/// The cheap toggles: they are shader uniforms, never a pipeline change.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ShadingSettings {
-    pub bump_enabled: bool,
-    /// Bump strength `s`, glTF `normalTexture.scale` semantics, multiplied with the
-    /// material's own scale. 0 is flat, negative inverts.
-    pub strength: f32,
-    pub view: ViewMode,
-    pub show_light_marker: bool,
-    /// The Difference view's colour scale spans 0 to this many degrees.
-    pub difference_range_deg: f32,
-    /// Shade every material with this model (`None`: each material's own).
-    pub shading_override: Option<ShadingModel>,
-    /// Bump × colour, bump only or colour only (a uniform).
-    pub mode: ShadingMode,
-    /// Draw the triangle edges over the picture (a second pass; needs
-    /// `wgpu::Features::POLYGON_MODE_LINE`, else it is skipped with a notice).
-    pub wireframe: bool,
-    /// Draw T/B/N glyphs (red, green, blue lines) at vertices of meshes with tangent frames,
-    /// thinned on dense meshes (a line pass).
-    pub tbn_glyphs: bool,
-}
-
-impl Default for ShadingSettings {
-    fn default() -> Self {
-        ShadingSettings {
-            bump_enabled: true,
-            strength: 1.0,
-            view: ViewMode::Lit,
-            show_light_marker: true,
-            difference_range_deg: 5.0,
-            shading_override: None,
-            mode: ShadingMode::BumpTimesColour,
-            wireframe: false,
-            tbn_glyphs: false,
-        }
-    }
-}
 
 /// A normal map texel (`rgb` in 0..1) as a unit vector in the map's space:
 /// `2·rgb − 1`, green negated for DirectX, `z = sqrt(max(0, 1 − x² − y²))` for two-channel
@@ -248,15 +106,29 @@ pub fn blinn_phong(p: &LightingInputs) -> Vec3 {
     p.albedo * p.ambient + self_shadow * p.light.color * (p.albedo * n_dot_l + p.specular * specular)
 }
 
-/// The lit colour in `mode`: Blinn-Phong ([`blinn_phong`]) for bump × colour, the same with
-/// a white albedo for bump only, and the albedo itself for colour only. The twin of the
-/// mode switch in `lit_color` of `shaders/mesh.wgsl` (Blinn-Phong materials).
-pub fn shade_in_mode(mode: ShadingMode, p: &LightingInputs) -> Vec3 {
-    match mode {
-        ShadingMode::BumpTimesColour => blinn_phong(p),
-        ShadingMode::BumpOnly => blinn_phong(&LightingInputs { albedo: Vec3::ONE, ..*p }),
-        ShadingMode::ColourOnly => p.albedo,
-    }
+/// A height map's filtered texel as a height sample, 0..1 of the full range: 16 bits in red
+/// (high byte) and green (low byte), [`crate::scene::TextureKind::Height`].
+pub fn height_sample(texel: Vec3) -> f32 {
+    (texel.x * 65280.0 + texel.y * 255.0) / 65535.0
+}
+
+/// Blinn's bump without tangents: Mikkelsen's surface gradient from screen-space derivatives
+/// of the position (`dp_dx`, `dp_dy`, metres per pixel, world space) and of the height
+/// (`dh_dx`, `dh_dy`, metres per pixel) around the unit geometric normal `n`. Falls back on `n`
+/// where the derivatives are degenerate (the plane seen edge-on).
+pub fn surface_gradient_normal(n: Vec3, dp_dx: Vec3, dp_dy: Vec3, dh_dx: f32, dh_dy: f32) -> Vec3 {
+    let r1 = dp_dy.cross(n);
+    let r2 = n.cross(dp_dx);
+    let det = dp_dx.dot(r1);
+    let sign = if det > 0.0 {
+        1.0
+    } else if det < 0.0 {
+        -1.0
+    } else {
+        0.0
+    };
+    let surface_gradient = sign * (dh_dx * r1 + dh_dy * r2);
+    normalize_or(det.abs() * n - surface_gradient, n)
 }
 
 /// Over-tilt threshold, degrees between the shading and the geometric normal. A

@@ -4,14 +4,15 @@
 
 mod common;
 
+use bumpview::frame::ViewMode;
+use bumpview::frame::{BumpSource, FrameParams, SceneOptions};
 use bumpview::render::capture::{render_float, render_image};
-use bumpview::render::{BumpSource, FrameParams, SceneOptions};
 use bumpview::scene::builtin::{WALL_Z, wall_uv};
 use bumpview::scene::{
     GreenAxis, Instance, MaterialOverrides, NormalSpace, SamplerWrap, Scene, ShadingModel, TextureImage, TextureKind,
     Wrap,
 };
-use bumpview::shading::{ViewMode, decode_normal, object_space_normal};
+use bumpview::shading::{decode_normal, object_space_normal};
 use common::*;
 use glam::{Mat3, Mat4, Vec3};
 

@@ -2,13 +2,13 @@
 
 mod common;
 
+use bumpview::frame::ViewMode;
 use bumpview::height::{Border, Kernel};
 use bumpview::render::capture::render_image;
 use bumpview::scene::bricks::brick_height_field;
 use bumpview::scene::builtin::{
     BRICK_TILE_M, FLOOR_Z, TORUS_CENTER, TORUS_MAJOR_RADIUS, TORUS_MINOR_RADIUS, WALL_X, WALL_Y, WALL_Z, wall_uv,
 };
-use bumpview::shading::ViewMode;
 use common::*;
 use glam::{Vec2, Vec3};
 
@@ -195,7 +195,7 @@ fn bevels_lean_the_way_the_height_field_slopes() {
 /// more; the mean and the median are the fair measures.
 #[test]
 fn height_in_shader_matches_the_normal_map() {
-    use bumpview::render::{BumpSource, SceneOptions};
+    use bumpview::frame::{BumpSource, SceneOptions};
     let scene = scene();
     let size = [256, 256];
     let mut params = close_wall_params(&scene, 0.3);

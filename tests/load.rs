@@ -9,12 +9,12 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
+use bumpview::frame::ViewMode;
 use bumpview::load::{TextureSlots, load_scene, replace_textures};
 use bumpview::render::capture::{render_float, render_image};
 use bumpview::render::{Gpu, Renderer};
 use bumpview::scene::Scene;
 use bumpview::scene::builtin::teaching_scene;
-use bumpview::shading::ViewMode;
 use common::{asset, assets, decode_debug, default_params};
 use glam::Vec2;
 

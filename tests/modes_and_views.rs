@@ -1,17 +1,16 @@
 //! The classic demo modes (bump × colour, bump only, colour only), the Handedness and
 //! Over-tilt views and the wireframe overlay, on the software adapter, against the CPU twin
-//! in src/shading.rs.
+//! in src/chain.rs.
 
 mod common;
 
+use bumpview::frame::FrameParams;
+use bumpview::frame::{ShadingMode, ViewMode};
 use bumpview::math::linear_to_srgb;
-use bumpview::render::FrameParams;
 use bumpview::render::capture::{render_float, render_image};
 use bumpview::report::stiff::mirrored_halves;
 use bumpview::scene::{Instance, OrbitCamera, Scene};
-use bumpview::shading::{
-    HANDEDNESS_NEGATIVE, HANDEDNESS_POSITIVE, ShadingMode, ViewMode, handedness_color, over_tilted, shade_in_mode,
-};
+use bumpview::shading::{HANDEDNESS_NEGATIVE, HANDEDNESS_POSITIVE, handedness_color, over_tilted};
 use common::*;
 use glam::{Mat4, Vec3};
 
@@ -27,8 +26,7 @@ fn mode_differences(mode: ShadingMode) -> Vec<f32> {
     for y in (2..size[1]).step_by(5) {
         for x in (2..size[0]).step_by(5) {
             let gpu = image.get_pixel(x, y);
-            let cpu = shade_in_mode(mode, &wall_lighting_inputs(&scene, &params, size, x, y))
-                .map(|c| linear_to_srgb(c) * 255.0);
+            let cpu = wall_chain(&scene, &params, size, x, y).color_linear.map(|c| linear_to_srgb(c) * 255.0);
             diffs.push((0..3).map(|c| (gpu[c] as f32 - cpu[c]).abs()).fold(0.0, f32::max));
         }
     }
@@ -101,14 +99,14 @@ fn over_tilt_counts(strength: f32) -> (usize, usize, usize) {
     let limit = bumpview::shading::over_tilt_cos();
     for y in (1..size[1]).step_by(2) {
         for x in (1..size[0]).step_by(2) {
-            let inputs = wall_lighting_inputs(&scene, &params, size, x, y);
-            let cpu = over_tilted(inputs.geometric_normal, inputs.shading_normal);
+            let chain = wall_chain(&scene, &params, size, x, y);
+            let cpu = over_tilted(chain.normal, chain.shading_normal);
             let gpu = is_over_tilt_red(image.get_pixel(x, y));
             gpu_count += gpu as usize;
             cpu_count += cpu as usize;
             // Filtering differences move the boundary by a fraction of a texel: count only
             // the pixels whose cosine is clearly on one side.
-            let margin = (inputs.geometric_normal.dot(inputs.shading_normal) - limit).abs();
+            let margin = (chain.normal.dot(chain.shading_normal) - limit).abs();
             if gpu != cpu && margin > 0.02 {
                 wrong += 1;
             }

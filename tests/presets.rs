@@ -4,13 +4,14 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use bumpview::preset::{Preset, PresetFiles};
+use bumpview::frame::SceneOptions;
+use bumpview::frame::ViewMode;
 use bumpview::render::capture::{CaptureOptions, render_capture};
-use bumpview::render::{Background, Gpu, Renderer, SceneOptions};
+use bumpview::render::{Background, Gpu, Renderer};
 use bumpview::scene::builtin::teaching_scene;
-use bumpview::shading::ViewMode;
+use bumpview::state::preset::{Preset, PresetFiles};
+use bumpview::state::{Command as ViewerCommand, ViewerState};
 use bumpview::tangent::TangentMethod;
-use bumpview::viewer::{Command as ViewerCommand, ViewerState};
 use glam::Vec3;
 
 fn bumpview(args: &[&str]) -> std::process::Output {
@@ -146,7 +147,7 @@ fn a_broken_preset_is_one_line_naming_the_key() {
 }
 
 /// The renderer on the software adapter with the built-in scene, and its default picture.
-fn setup() -> (Renderer, bumpview::render::FrameParams) {
+fn setup() -> (Renderer, bumpview::frame::FrameParams) {
     let gpu = Gpu::headless().expect("a GPU adapter (WGPU_BACKEND=vulkan with lavapipe)");
     let mut renderer = Renderer::from_gpu(&gpu);
     let scene = teaching_scene();

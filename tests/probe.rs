@@ -5,14 +5,14 @@ mod common;
 
 use std::time::Instant;
 
+use bumpview::frame::SceneOptions;
+use bumpview::frame::ViewMode;
 use bumpview::load::load_scene;
 use bumpview::probe::ProbeScene;
 use bumpview::render::Background;
-use bumpview::render::SceneOptions;
 use bumpview::render::capture::{CaptureOptions, render_capture, render_image};
 use bumpview::scene::builtin::{WALL_Z, wall_uv};
 use bumpview::scene::{GreenAxis, MaterialOverrides, OrbitCamera};
-use bumpview::shading::ViewMode;
 use common::*;
 use glam::Vec3;
 
@@ -53,7 +53,7 @@ fn probe_on_the_close_wall_matches_the_wall_and_the_rendered_pixels() {
         assert_eq!(readout.w, Some(1.0));
         assert!(readout.texel_raw.is_some() && readout.decoded.is_some());
         // The same chain as the wall reference of tests/common.
-        let reference = wall_lighting_inputs(&scene, &params, SIZE, x, y);
+        let reference = wall_chain(&scene, &params, SIZE, x, y);
         let n_diff = (readout.shading_normal - reference.shading_normal).abs().max_element();
         assert!(
             n_diff < 1e-3,
@@ -143,7 +143,7 @@ fn pick_cost_on_the_asset_meshes() {
         }
         let scene = load_scene(&path).unwrap();
         let probe_scene = ProbeScene::new(&scene, &SceneOptions::default());
-        let params = bumpview::viewer::ViewerState::new(&scene).frame_params();
+        let params = bumpview::state::ViewerState::new(&scene).frame_params();
         let start = Instant::now();
         let runs = 20;
         let mut hits = 0;
@@ -231,7 +231,7 @@ fn probe_frames_match_the_rendered_debug_views_on_assets() {
 #[test]
 fn probe_reproduces_the_height_bump_in_the_shader() {
     let scene = scene();
-    let options = SceneOptions { bump_source: bumpview::render::BumpSource::HeightInShader, ..Default::default() };
+    let options = SceneOptions { bump_source: bumpview::frame::BumpSource::HeightInShader, ..Default::default() };
     let probe_scene = ProbeScene::new(&scene, &options);
     let mut renderer = renderer_for(&scene);
     renderer.set_scene(&scene, options);

@@ -1,19 +1,17 @@
 //! Rendered pixels on the wall against the CPU reference of the same Blinn-Phong shading
-//! (src/shading.rs), texel for texel.
+//! (the CPU chain, src/chain.rs), texel for texel.
 
 mod common;
 
 use bumpview::math::linear_to_srgb;
 use bumpview::render::capture::render_image;
 use bumpview::scene::Scene;
-use bumpview::shading::blinn_phong;
 use common::*;
 use glam::Vec3;
 
 /// The CPU picture of the wall (8-bit sRGB) at one pixel.
-fn reference_pixel(scene: &Scene, params: &bumpview::render::FrameParams, size: [u32; 2], x: u32, y: u32) -> Vec3 {
-    let linear = blinn_phong(&wall_lighting_inputs(scene, params, size, x, y));
-    linear.map(|c| linear_to_srgb(c) * 255.0)
+fn reference_pixel(scene: &Scene, params: &bumpview::frame::FrameParams, size: [u32; 2], x: u32, y: u32) -> Vec3 {
+    wall_chain(scene, params, size, x, y).color_linear.map(|c| linear_to_srgb(c) * 255.0)
 }
 
 /// Per-channel differences |GPU − CPU| in 8-bit steps over a grid of pixels, sorted. The

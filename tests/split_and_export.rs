@@ -10,11 +10,11 @@
 
 mod common;
 
+use bumpview::frame::ViewMode;
+use bumpview::frame::{FrameParams, SplitFrame};
 use bumpview::render::capture::{CaptureOptions, render_capture, render_capture_split, render_float_split};
 use bumpview::render::export::{CAPTION_BACKGROUND, TileGrid, caption, caption_strip_height, render_grid};
-use bumpview::render::{FrameParams, SplitFrame};
-use bumpview::shading::ViewMode;
-use bumpview::viewer::{Command, SplitDifference, ViewerState};
+use bumpview::state::{Command, SplitDifference, ViewerState};
 
 const SIZE: [u32; 2] = [160, 96];
 /// Columns either side of the divider left out of the comparison.

@@ -3,10 +3,10 @@
 mod common;
 
 use bumpview::RenderError;
-use bumpview::render::FrameParams;
+use bumpview::frame::FrameParams;
+use bumpview::frame::{ShadingMode, ViewMode};
 use bumpview::render::capture::{render_float, render_image};
 use bumpview::scene::builtin::WALL_Z;
-use bumpview::shading::{ShadingMode, ViewMode};
 use common::*;
 use glam::Vec3;
 

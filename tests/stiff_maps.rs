@@ -4,11 +4,11 @@
 
 mod common;
 
+use bumpview::frame::FrameParams;
+use bumpview::frame::ViewMode;
 use bumpview::height::{Border, HeightField, Kernel};
-use bumpview::render::FrameParams;
 use bumpview::render::capture::{render_float, render_image};
 use bumpview::scene::{Scene, TextureImage};
-use bumpview::shading::ViewMode;
 use common::*;
 
 fn assert_finite_everywhere(scene: &Scene, params: &FrameParams, case: &str) {

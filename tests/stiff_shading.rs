@@ -4,12 +4,13 @@
 
 mod common;
 
+use bumpview::frame::FrameParams;
+use bumpview::frame::ViewMode;
+use bumpview::render::Renderer;
 use bumpview::render::capture::{render_float, render_image};
-use bumpview::render::{FrameParams, Renderer};
 use bumpview::report::surfaces::uv_sphere;
 use bumpview::scene::builtin::{WALL_Z, teaching_scene};
 use bumpview::scene::{Instance, OrbitCamera, Scene};
-use bumpview::shading::ViewMode;
 use common::*;
 use glam::{Mat4, Vec2, Vec3};
 
@@ -183,7 +184,7 @@ fn uv_check_view_marks_mirrored_and_degenerate_triangles() {
 /// case with NaN and infinity in its vertices is repaired on upload, with a notice.
 #[test]
 fn every_stiff_tangent_case_renders_finite_with_every_method() {
-    use bumpview::render::SceneOptions;
+    use bumpview::frame::SceneOptions;
     use bumpview::report::stiff::cases;
     use bumpview::tangent::TangentMethod;
     for case in cases() {

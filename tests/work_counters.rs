@@ -2,8 +2,9 @@
 
 mod common;
 
+use bumpview::prepare::Variant;
 use bumpview::render::capture::render_image;
-use bumpview::render::pipelines::{Pass, Variant};
+use bumpview::render::pipelines::Pass;
 use common::*;
 
 #[test]
@@ -42,7 +43,7 @@ fn built_in_scene_generates_tangents_only_where_missing_and_caches_pipelines() {
     assert_eq!(after_first.pipelines_built, 2);
     let mut toggled = params;
     toggled.shading.bump_enabled = false;
-    toggled.shading.view = bumpview::shading::ViewMode::Tangent;
+    toggled.shading.view = bumpview::frame::ViewMode::Tangent;
     toggled.shading.strength = -2.0;
     render_image(&mut renderer, [64, 48], &toggled).unwrap();
     let after_second = renderer.counters();
@@ -64,7 +65,7 @@ fn supplied_tangents_without_normal_map_use_the_tangent_variant() {
     torus.tangents = torus.analytic_tangents.clone();
     let mut renderer = renderer_for(&scene);
     let mut params = default_params(&scene);
-    params.shading.view = bumpview::shading::ViewMode::Tangent;
+    params.shading.view = bumpview::frame::ViewMode::Tangent;
     render_image(&mut renderer, [64, 48], &params).unwrap();
     assert_eq!(renderer.counters().tangent_frames_generated, 0);
     let variants: Vec<_> = renderer
@@ -89,7 +90,7 @@ fn difference_view_adds_reference_frames_on_first_use_only() {
     let mut params = default_params(&scene);
     render_image(&mut renderer, [64, 48], &params).unwrap();
     assert!(!renderer.built_pipelines().iter().any(|k| matches!(k.pass, Pass::Difference { .. })));
-    params.shading.view = bumpview::shading::ViewMode::Difference;
+    params.shading.view = bumpview::frame::ViewMode::Difference;
     render_image(&mut renderer, [64, 48], &params).unwrap();
     render_image(&mut renderer, [64, 48], &params).unwrap();
     assert!(renderer.built_pipelines().iter().any(|k| matches!(k.pass, Pass::Difference { .. })));
@@ -100,7 +101,7 @@ fn difference_view_adds_reference_frames_on_first_use_only() {
 /// map is uploaded and the normal map is not.
 #[test]
 fn height_in_shader_needs_no_tangents() {
-    use bumpview::render::{BumpSource, SceneOptions};
+    use bumpview::frame::{BumpSource, SceneOptions};
     let scene = scene();
     let gpu = bumpview::render::Gpu::headless().unwrap();
     let mut renderer = bumpview::render::Renderer::from_gpu(&gpu);
@@ -120,7 +121,7 @@ fn height_in_shader_needs_no_tangents() {
 /// uniforms uploads nothing more, and one that differs in GPU data uploads the scene once more.
 #[test]
 fn glyphs_and_uniform_splits_upload_nothing_and_gpu_data_splits_upload_once() {
-    use bumpview::viewer::{Command, SplitDifference, ViewerState};
+    use bumpview::state::{Command, SplitDifference, ViewerState};
     let scene = scene();
     let mut renderer = renderer_for(&scene);
     let mut state = ViewerState::new(&scene);

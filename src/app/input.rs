@@ -1,7 +1,7 @@
 //! Keyboard shortcuts and mouse gestures on the 3D view, turned into [`Action`]s.
 
-use bumpview::shading::ShadingMode;
-use bumpview::viewer::Command;
+use bumpview::frame::ShadingMode;
+use bumpview::state::Command;
 use egui::{Event, Key, PointerButton};
 use glam::Vec2;
 

@@ -20,19 +20,21 @@ use std::sync::{Arc, mpsc};
 use std::time::Instant;
 
 use bumpview::check::{CheckReport, check_scene};
+use bumpview::frame::SceneUploads;
+use bumpview::frame::SplitFrame;
+use bumpview::frame::ViewMode;
 use bumpview::height::Kernel;
-use bumpview::preset::{CapturePreset, Preset, PresetFiles};
 use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
 use bumpview::render::export::{self, TileGrid};
-use bumpview::render::{Background, RenderTarget, Renderer, SplitFrame};
+use bumpview::render::{Background, RenderTarget, Renderer};
 use bumpview::scene::Scene;
-use bumpview::shading::ViewMode;
+use bumpview::state::preset::{CapturePreset, Preset, PresetFiles};
+use bumpview::state::{Command, RedrawTracker, ViewerState};
 use bumpview::tangent::{MethodMeasurement, TangentMethod, measure};
-use bumpview::viewer::{Command, RedrawTracker, SceneUploads, ViewerState};
 use eframe::egui_wgpu::RenderState;
 use files::{Files, Finished, Purpose, Slot, Source, Status};
 
-use crate::inputs::InputArgs;
+use crate::cli::inputs::InputArgs;
 
 /// How the viewer is started; see `--exit-after` and `--capture-window`.
 pub struct Options {
@@ -179,7 +181,7 @@ impl ScreenshotForm {
 
     /// The settings as a preset stores them (a size field that does not parse is left out).
     fn capture(&self) -> CapturePreset {
-        let size = crate::args::parse_size(&self.size_text).ok();
+        let size = crate::cli::args::parse_size(&self.size_text).ok();
         CapturePreset { size, transparent: self.transparent, supersample: self.supersample, captions: self.captions }
     }
 }
@@ -600,7 +602,7 @@ impl ViewerApp {
     fn save_screenshot(&mut self) -> Result<String, String> {
         let view_size = match self.screenshot.size_text.trim() {
             "" => self.view.as_ref().map(|v| v.size).ok_or("the view has no size yet")?,
-            text => crate::args::parse_size(text)?,
+            text => crate::cli::args::parse_size(text)?,
         };
         let capture = CapturePreset { size: Some(view_size), ..self.screenshot.capture() };
         let options = crate::capture_options(&capture, view_size);
@@ -621,7 +623,7 @@ impl ViewerApp {
     fn export_tiles(&mut self) -> Result<String, String> {
         let tile = match self.screenshot.size_text.trim() {
             "" => self.view.as_ref().map(|v| v.size).ok_or("the view has no size yet")?,
-            text => crate::args::parse_size(text)?,
+            text => crate::cli::args::parse_size(text)?,
         };
         let capture = CapturePreset { size: Some(tile), ..self.screenshot.capture() };
         let options = crate::capture_options(&capture, tile);
@@ -672,7 +674,7 @@ impl ViewerApp {
         let preset = Preset::load(path).map_err(|e| e.to_string())?;
         let mut state = preset.to_state(&self.scene).map_err(|e| e.to_string())?;
         state.default_camera = self.state.default_camera;
-        let inputs = crate::inputs::InputArgs::from_files(&preset.files);
+        let inputs = crate::cli::inputs::InputArgs::from_files(&preset.files);
         let wanted = source(&inputs, state.kernel);
         self.state = state;
         self.screenshot = ScreenshotForm::new(&preset.capture);

@@ -3,13 +3,15 @@
 
 use bumpview::WorkCounters;
 use bumpview::check::{CheckReport, GreenConvention};
+use bumpview::frame::BumpSource;
+use bumpview::frame::STRENGTH_RANGE;
+use bumpview::frame::{ShadingMode, ViewMode};
 use bumpview::height::{Border, Kernel};
-use bumpview::render::BumpSource;
 use bumpview::render::glyphs::MAX_GLYPHS_PER_MESH;
 use bumpview::scene::{GreenAxis, Material, MaterialOverrides, ShadingModel};
-use bumpview::shading::{OVER_TILT_LIMIT_DEG, ShadingMode, ViewMode};
+use bumpview::shading::OVER_TILT_LIMIT_DEG;
+use bumpview::state::{Command, SplitDifference, ViewerState};
 use bumpview::tangent::{MethodMeasurement, TangentMethod};
-use bumpview::viewer::{Command, STRENGTH_RANGE, SplitDifference, ViewerState, bump_source_label, mode_label};
 
 use super::{Action, MAX_SUPERSAMPLE, PresetForm, ScreenshotForm};
 
@@ -113,7 +115,7 @@ fn view_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action
     ui.strong("View (V cycles)");
     let mut view = state.shading.view;
     for mode in ViewMode::ALL {
-        if ui.radio_value(&mut view, mode, view_label(mode)).changed() {
+        if ui.radio_value(&mut view, mode, view_radio_label(mode)).changed() {
             actions.push(Command::SetView(view).into());
         }
     }
@@ -332,21 +334,6 @@ fn convention_in_use(material: &Material, remade: bool) -> String {
     format!("{normal}\n{kind} map: {kernel} kernel, {border}, {:.2} mm range", height.range_m * 1e3)
 }
 
-/// The panel's name for a view mode.
-fn view_label(mode: ViewMode) -> &'static str {
-    match mode {
-        ViewMode::Lit => "Lit",
-        ViewMode::Tangent => "Tangent",
-        ViewMode::Bitangent => "Bitangent",
-        ViewMode::Normal => "Normal",
-        ViewMode::ShadingNormal => "Shading normal",
-        ViewMode::Difference => "Difference (frame vs reference)",
-        ViewMode::UvCheck => "UV check (degenerate / mirrored)",
-        ViewMode::Handedness => "Handedness (tangent w)",
-        ViewMode::OverTilt => "Over-tilt (normal near or below the surface)",
-    }
-}
-
 /// One line on what the colours of a view mean.
 fn view_hint(mode: ViewMode) -> &'static str {
     match mode {
@@ -437,7 +424,7 @@ fn split_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Actio
             None
         }
         SplitDifference::View => {
-            pair_combos(ui, "view", split.views, &ViewMode::ALL, view_label).map(Command::SetSplitViews)
+            pair_combos(ui, "view", split.views, &ViewMode::ALL, ViewMode::label).map(Command::SetSplitViews)
         }
         SplitDifference::Strength => {
             let mut strengths = split.strengths;
@@ -447,7 +434,7 @@ fn split_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Actio
             (strengths != split.strengths).then_some(Command::SetSplitStrengths(strengths))
         }
         SplitDifference::Mode => {
-            pair_combos(ui, "mode", split.modes, &ShadingMode::ALL, mode_label).map(Command::SetSplitModes)
+            pair_combos(ui, "mode", split.modes, &ShadingMode::ALL, ShadingMode::label).map(Command::SetSplitModes)
         }
         SplitDifference::Tangents => {
             pair_combos(ui, "tangents", split.tangent_methods, &TangentMethod::ALL, TangentMethod::name)
@@ -456,7 +443,7 @@ fn split_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Actio
         SplitDifference::Convention => pair_combos(ui, "green", split.conventions, &GreenAxis::ALL, GreenAxis::label)
             .map(Command::SetSplitConventions),
         SplitDifference::BumpSource => {
-            pair_combos(ui, "bump source", split.bump_sources, &BumpSource::ALL, bump_source_label)
+            pair_combos(ui, "bump source", split.bump_sources, &BumpSource::ALL, BumpSource::label)
                 .map(Command::SetSplitBumpSources)
         }
     };
@@ -551,4 +538,16 @@ fn stats_section(ui: &mut egui::Ui, stats: &Stats) {
     if let Some(error) = stats.render_error {
         ui.colored_label(ui.visuals().error_fg_color, error);
     }
+}
+
+/// The panel's radio-button text for a view: its label and, for the analysis views, what it shows.
+fn view_radio_label(mode: ViewMode) -> String {
+    let what = match mode {
+        ViewMode::Difference => " (frame vs reference)",
+        ViewMode::UvCheck => " (degenerate / mirrored)",
+        ViewMode::Handedness => " (tangent w)",
+        ViewMode::OverTilt => " (normal near or below the surface)",
+        _ => "",
+    };
+    format!("{}{what}", mode.label())
 }

@@ -3,9 +3,9 @@
 //! recomputed whenever the picture's parameters change (the point stays pinned when the
 //! camera or light moves), and a marker is drawn on the view where the point is.
 
+use bumpview::frame::BumpKind;
+use bumpview::frame::{FrameParams, SceneOptions};
 use bumpview::probe::{ProbePoint, ProbeReadout, ProbeScene, project_to_pixel};
-use bumpview::render::BumpKind;
-use bumpview::render::{FrameParams, SceneOptions};
 use bumpview::scene::{OrbitCamera, Scene};
 use egui::Key;
 use glam::{Vec2, Vec3};

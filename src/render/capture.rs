@@ -2,8 +2,9 @@
 
 use std::path::Path;
 
-use super::{Background, FrameParams, RenderTarget, Renderer, SplitFrame};
+use super::{Background, RenderTarget, Renderer};
 use crate::error::RenderError;
+use crate::frame::{FrameParams, SplitFrame};
 
 /// Format of pictures: 8-bit RGBA holding sRGB-encoded values.
 pub const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;

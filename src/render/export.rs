@@ -5,12 +5,11 @@
 
 use ab_glyph::{Font, FontRef, PxScale, ScaleFont, point};
 
+use super::Renderer;
 use super::capture::{CaptureOptions, render_capture};
-use super::{BumpSource, FrameParams, Renderer, SceneOptions};
 use crate::error::RenderError;
+use crate::frame::{BumpSource, FrameParams, STRENGTH_RANGE, SceneOptions, ShadingMode, ShadingSettings, ViewMode};
 use crate::scene::Scene;
-use crate::shading::{ShadingMode, ShadingSettings, ViewMode};
-use crate::viewer::{STRENGTH_RANGE, mode_label, view_label};
 
 /// The most pixels a tile export may hold (1 GiB of RGBA8).
 pub const MAX_EXPORT_PIXELS: u64 = 1 << 28;
@@ -100,8 +99,8 @@ fn parse_tile(text: &str, current: &ShadingSettings) -> Result<ShadingSettings, 
 /// with (its current scene, made with `options`).
 pub fn caption(renderer: &Renderer, scene: &Scene, options: &SceneOptions, shading: &ShadingSettings) -> Vec<String> {
     let view = match shading.view {
-        ViewMode::Lit | ViewMode::OverTilt => format!("{}: {}", view_label(shading.view), mode_label(shading.mode)),
-        other => format!("{} view", view_label(other)),
+        ViewMode::Lit | ViewMode::OverTilt => format!("{}: {}", shading.view.label(), shading.mode.label()),
+        other => format!("{} view", other.label()),
     };
     let bump = if shading.bump_enabled {
         format!("bump on, strength {:.2}", shading.strength)

@@ -2,6 +2,7 @@
 //! and tests share one code path: [`Renderer::render`]. Depth-tested, with 4× MSAA where the
 //! adapter supports it for the target format.
 
+mod bindings;
 pub mod capture;
 pub mod export;
 pub mod glyphs;
@@ -10,144 +11,20 @@ pub mod pipelines;
 mod scene_gpu;
 mod uniforms;
 
+use std::sync::Arc;
+
 use glam::Mat4;
 
 use crate::counters::WorkCounters;
 use crate::error::RenderError;
-use crate::scene::{Light, MaterialOverrides, NormalSpace, OrbitCamera, PerMaterialOverrides, Scene};
-use crate::shading::{ShadingSettings, ViewMode};
+use crate::frame::{FrameParams, SceneOptions, SceneUploads, ShadingSettings, SplitFrame, ViewMode};
+use crate::prepare::{PreparedScene, Variant};
+use crate::scene::Scene;
 use crate::tangent::TangentMethod;
 pub use gpu::Gpu;
 use pipelines::{DEPTH_FORMAT, Pass, PipelineKey, Pipelines};
 use scene_gpu::GpuScene;
 use uniforms::FrameUniform;
-
-/// Everything that decides one picture, besides the scene and the target size.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FrameParams {
-    pub camera: OrbitCamera,
-    pub light: Light,
-    pub shading: ShadingSettings,
-}
-
-/// The split view's two pictures: the same camera and light, `left` shading left of the
-/// divider and `right` shading right of it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SplitFrame {
-    pub left: ShadingSettings,
-    pub right: ShadingSettings,
-    /// Where the divider is, as a fraction of the width (0 left edge, 1 right edge).
-    pub divider: f32,
-}
-
-impl SplitFrame {
-    /// The divider's column in a target `width` pixels wide: the first column of the right half.
-    pub fn divider_pixels(&self, width: u32) -> u32 {
-        let fraction = if self.divider.is_finite() { self.divider.clamp(0.0, 1.0) } else { 0.5 };
-        ((fraction * width as f32).round() as u32).min(width)
-    }
-}
-
-/// Where the bump comes from. It decides pipelines and uploads, so it is a scene option, not
-/// a uniform.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum BumpSource {
-    /// The material's normal map (the built-in one is made from its height field by a kernel).
-    #[default]
-    NormalMap,
-    /// Blinn's bump from the material's height map, differentiated in screen space in the
-    /// shader (Mikkelsen's surface gradient): no tangents needed.
-    HeightInShader,
-}
-
-impl BumpSource {
-    pub const ALL: [BumpSource; 2] = [BumpSource::NormalMap, BumpSource::HeightInShader];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            BumpSource::NormalMap => "normal-map",
-            BumpSource::HeightInShader => "height-in-shader",
-        }
-    }
-
-    pub fn from_name(name: &str) -> Option<BumpSource> {
-        BumpSource::ALL.into_iter().find(|b| b.name() == name)
-    }
-}
-
-/// How an instance's surface is bumped: decided by its material, whether its mesh has texture
-/// coordinates, and the bump source. The renderer picks its pipeline variant by it and the
-/// probe reproduces the same chain.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum BumpKind {
-    /// No bump map (or no texture coordinates): the geometric normal shades.
-    None,
-    /// Tangent-space normal map through T, B, N.
-    TangentSpace,
-    /// Object-space normal map through the normal matrix (no tangents).
-    ObjectSpace,
-    /// Blinn's bump from the height map by screen-space derivatives (no tangents).
-    HeightInShader,
-}
-
-/// The [`BumpKind`] of an instance drawing `scene.meshes[mesh]` with `scene.materials[material]`.
-pub fn bump_kind(scene: &Scene, mesh: usize, material: usize, bump_source: BumpSource) -> BumpKind {
-    let mesh = &scene.meshes[mesh];
-    let material = &scene.materials[material];
-    let has_uvs = mesh.uvs.len() == mesh.positions.len();
-    if bump_source == BumpSource::HeightInShader && material.height_map.is_some() && has_uvs {
-        BumpKind::HeightInShader
-    } else if let Some(map) = material.normal_map.as_ref().filter(|_| has_uvs) {
-        match map.convention.space {
-            NormalSpace::Tangent => BumpKind::TangentSpace,
-            NormalSpace::Object => BumpKind::ObjectSpace,
-        }
-    } else {
-        BumpKind::None
-    }
-}
-
-/// How a scene is prepared for drawing: changing these re-makes GPU data.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct SceneOptions {
-    /// Tangent frames by this method; `None`: the mesh's own, else MikkTSpace.
-    pub tangent_method: Option<TangentMethod>,
-    pub bump_source: BumpSource,
-    /// Normal- and height-map conventions that replace every material's own.
-    pub materials: MaterialOverrides,
-    /// Per material (index into the scene's materials): conventions that win over
-    /// `materials` field by field.
-    pub per_material: PerMaterialOverrides,
-}
-
-impl SceneOptions {
-    /// The overrides edited for `material` (`None`: the viewer-wide ones), not merged.
-    pub fn overrides(&self, material: Option<usize>) -> MaterialOverrides {
-        match material {
-            None => self.materials,
-            Some(index) => self.per_material.get(&index).copied().unwrap_or_default(),
-        }
-    }
-
-    /// Replaces the overrides of `material` (`None`: the viewer-wide ones); an empty
-    /// per-material record is dropped.
-    pub fn set_overrides(&mut self, material: Option<usize>, overrides: MaterialOverrides) {
-        match material {
-            None => self.materials = overrides,
-            Some(index) if overrides.is_empty() => {
-                self.per_material.remove(&index);
-            }
-            Some(index) => {
-                self.per_material.insert(index, overrides);
-            }
-        }
-    }
-
-    /// What material `index` is drawn with: its own overrides over the viewer-wide ones.
-    pub fn overrides_in_use(&self, index: usize) -> MaterialOverrides {
-        self.materials.for_material(&self.per_material, index)
-    }
-}
 
 /// Where to draw: a view of a 2D texture of `format`, `size` pixels.
 pub struct RenderTarget<'a> {
@@ -227,7 +104,7 @@ impl Renderer {
             let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(label),
                 layout: &pipelines.layouts.frame,
-                entries: &[wgpu::BindGroupEntry { binding: 0, resource: buffer.as_entire_binding() }],
+                entries: &[bindings::FRAME.entry(buffer.as_entire_binding())],
             });
             (buffer, bind_group)
         };
@@ -267,11 +144,16 @@ impl Renderer {
         &self.queue
     }
 
-    /// Replaces the scene: applies the material overrides to a copy, makes the tangent
-    /// frames it needs and uploads what it uses, as `options` say. A split scene
-    /// ([`Self::set_split_scene`]) is kept: replace or drop it too when the scene changes.
+    /// Replaces the scene with `scene` prepared with `options` ([`PreparedScene::new`]) and
+    /// uploads what it uses. A split scene ([`Self::set_split_scene`]) is kept: replace or
+    /// drop it too when the scene changes.
     pub fn set_scene(&mut self, scene: &Scene, options: SceneOptions) {
-        let gpu = self.upload(scene, options);
+        self.set_prepared(Arc::new(PreparedScene::new(scene, &options)));
+    }
+
+    /// Replaces the scene with one prepared already (e.g. off the UI thread).
+    pub fn set_prepared(&mut self, prepared: Arc<PreparedScene>) {
+        let gpu = self.upload(prepared);
         self.notices = gpu.notices.clone();
         self.scene = Some(gpu);
     }
@@ -280,26 +162,31 @@ impl Renderer {
     /// tangent methods, two conventions, two bump sources), or with `None` drops it, so the
     /// right half is drawn from the main scene again. Its notices are added to the main ones.
     pub fn set_split_scene(&mut self, scene: &Scene, options: Option<SceneOptions>) {
-        self.split_scene = options.map(|options| self.upload(scene, options));
+        self.set_split_prepared(options.map(|options| Arc::new(PreparedScene::new(scene, &options))));
+    }
+
+    /// [`Self::set_split_scene`] with a scene prepared already.
+    pub fn set_split_prepared(&mut self, prepared: Option<Arc<PreparedScene>>) {
+        self.split_scene = prepared.map(|prepared| self.upload(prepared));
     }
 
     /// [`Self::set_scene`] and [`Self::set_split_scene`] for what a viewer state asks.
-    pub fn set_scene_uploads(&mut self, scene: &Scene, uploads: &crate::viewer::SceneUploads) {
+    pub fn set_scene_uploads(&mut self, scene: &Scene, uploads: &SceneUploads) {
         self.set_scene(scene, uploads.main.clone());
         self.set_split_scene(scene, uploads.split_right.clone());
     }
 
-    /// The GPU data of `scene` made with `options` (material overrides applied to a copy).
-    fn upload(&mut self, scene: &Scene, options: SceneOptions) -> GpuScene {
-        let overridden;
-        let scene = if options.materials.is_empty() && options.per_material.values().all(|o| o.is_empty()) {
-            scene
-        } else {
-            overridden = options.materials.applied_with(&options.per_material, scene);
-            &overridden
-        };
+    /// The prepared scene the main picture (`split_half` false) or the split view's right
+    /// half (true; the main one when the right half has no upload of its own) is drawn from:
+    /// what the probe of that picture wraps.
+    pub fn prepared(&self, split_half: bool) -> Option<&Arc<PreparedScene>> {
+        let split = self.split_scene.as_ref().filter(|_| split_half);
+        split.or(self.scene.as_ref()).map(|s| &s.prepared)
+    }
+
+    fn upload(&mut self, prepared: Arc<PreparedScene>) -> GpuScene {
         let layouts = &self.pipelines.layouts;
-        scene_gpu::upload(&self.device, &self.queue, layouts, scene, options, &mut self.counters)
+        scene_gpu::upload(&self.device, &self.queue, layouts, prepared, &mut self.counters)
     }
 
     /// Whether the device can draw the wireframe overlay (`POLYGON_MODE_LINE`).
@@ -310,7 +197,8 @@ impl Renderer {
     /// Per mesh of the current scene: the tangent method its frames come from, or `None`
     /// when it is drawn without tangents.
     pub fn tangent_methods(&self) -> Vec<Option<TangentMethod>> {
-        self.scene.iter().flat_map(|s| s.frames.iter().map(|f| f.as_ref().map(|f| f.method))).collect()
+        let meshes = self.scene.iter().flat_map(|s| &s.prepared.meshes);
+        meshes.map(|m| m.frames.as_ref().map(|f| f.method)).collect()
     }
 
     /// What the current scene asked for but could not get (a texture downscaled to fit the
@@ -612,13 +500,13 @@ struct Half {
 }
 
 /// The variant whose group-1 layout an instance's overlays (wireframe, glyphs) bind.
-fn overlay_variant(instance: &scene_gpu::GpuInstance) -> pipelines::Variant {
+fn overlay_variant(instance: &scene_gpu::GpuInstance) -> Variant {
     match instance.pass {
         Pass::Mesh { variant, .. }
         | Pass::Difference { variant, .. }
         | Pass::Wireframe { variant }
         | Pass::Glyphs { variant } => variant,
-        Pass::LightMarker => pipelines::Variant::Plain,
+        Pass::LightMarker => Variant::Plain,
     }
 }
 
@@ -639,7 +527,9 @@ fn has_glyphs(instance: &scene_gpu::GpuInstance, scene: &GpuScene) -> bool {
 /// that have tangent frames.
 fn drawn_pass(instance: &scene_gpu::GpuInstance, scene: &GpuScene, difference: bool) -> Pass {
     match instance.pass {
-        Pass::Mesh { variant, cull_back_faces, mirrored } if difference && scene.frames[instance.mesh].is_some() => {
+        Pass::Mesh { variant, cull_back_faces, mirrored }
+            if difference && scene.prepared.meshes[instance.mesh].frames.is_some() =>
+        {
             Pass::Difference { variant, cull_back_faces, mirrored }
         }
         pass => pass,

@@ -3,7 +3,9 @@
 
 use std::collections::HashMap;
 
+use super::bindings;
 use crate::counters::WorkCounters;
+use crate::prepare::Variant;
 
 /// Shader sources, embedded at build time; frame.wgsl is the shared Frame uniform, pbr.wgsl
 /// the metallic-roughness shading the mesh shader calls.
@@ -20,21 +22,6 @@ pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// Pulls the wireframe's edges towards the eye so they win the depth test against the faces
 /// they border (negative: nearer), by a constant and by the faces' depth slope.
 const WIREFRAME_DEPTH_BIAS: wgpu::DepthBiasState = wgpu::DepthBiasState { constant: -8, slope_scale: -1.0, clamp: 0.0 };
-
-/// What a drawn mesh needs from its pipeline.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Variant {
-    /// Positions, normals, UVs; no tangent stream, no normal map.
-    Plain,
-    /// Adds the tangent stream (tangents supplied by the mesh, shown in the T/B views).
-    Tangent,
-    /// Adds the tangent stream and the (tangent-space) normal map.
-    NormalMapped,
-    /// No tangent stream; an object-space normal map.
-    ObjectSpace,
-    /// No tangent stream; the height map, differentiated in screen space.
-    HeightBump,
-}
 
 /// A pipeline in the cache.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -74,10 +61,8 @@ pub struct PipelineKey {
     pub samples: u32,
 }
 
-/// Bind group layouts: group 0 is the frame, group 1 the object and its material: 0 object
-/// uniform, 1 base colour texture, 2 its sampler, 3 normal or height map (bump layouts
-/// only), 4 the sampler of 3, 5, 6 and 7, 5 metallic-roughness texture, 6 occlusion texture,
-/// 7 gloss (specular) map.
+/// Bind group layouts ([`super::bindings`]): group 0 is the frame; group 1 the object and
+/// its material, with the bump texture only for variants that have one, or the light marker.
 pub struct Layouts {
     pub frame: wgpu::BindGroupLayout,
     pub plain_material: wgpu::BindGroupLayout,
@@ -85,70 +70,18 @@ pub struct Layouts {
     pub marker: wgpu::BindGroupLayout,
 }
 
-fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
-fn texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable: true },
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
-    }
-}
-
-fn sampler_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-        count: None,
-    }
-}
-
 impl Layouts {
     fn new(device: &wgpu::Device) -> Self {
-        let layout = |label: &str, entries: &[wgpu::BindGroupLayoutEntry]| {
-            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries })
+        let layout = |label: &str, slots: &[bindings::Slot]| {
+            let entries: Vec<_> = slots.iter().map(bindings::Slot::layout_entry).collect();
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries: &entries })
         };
-        let plain = [
-            uniform_entry(0),
-            texture_entry(1),
-            sampler_entry(2),
-            sampler_entry(4),
-            texture_entry(5),
-            texture_entry(6),
-            texture_entry(7),
-        ];
-        let normal_mapped = [
-            uniform_entry(0),
-            texture_entry(1),
-            sampler_entry(2),
-            texture_entry(3),
-            sampler_entry(4),
-            texture_entry(5),
-            texture_entry(6),
-            texture_entry(7),
-        ];
+        let plain: Vec<_> = bindings::MATERIAL.into_iter().filter(|s| *s != bindings::BUMP_TEXTURE).collect();
         Layouts {
-            frame: layout("frame", &[uniform_entry(0)]),
+            frame: layout("frame", &[bindings::FRAME]),
             plain_material: layout("plain material", &plain),
-            normal_mapped_material: layout("normal-mapped material", &normal_mapped),
-            marker: layout("light marker", &[uniform_entry(0)]),
+            normal_mapped_material: layout("normal-mapped material", &bindings::MATERIAL),
+            marker: layout("light marker", &[bindings::MARKER_MODEL]),
         }
     }
 

@@ -3,8 +3,9 @@
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
 
-use super::FrameParams;
-use crate::scene::{Instance, Material};
+use crate::frame::FrameParams;
+use crate::math::normal_matrix;
+use crate::scene::Material;
 use crate::shading::SELF_SHADOW_FADE;
 
 /// WGSL `Frame`.
@@ -66,24 +67,21 @@ pub struct ObjectUniform {
 
 /// Bit of `flags` beside [`crate::scene::NormalConvention::flags`]: the height map stores
 /// depth (white = deep).
-const DEPTH_MAP: u32 = 8;
+pub(crate) const DEPTH_MAP: u32 = 8;
 /// Bit of `flags`: binding 5 holds the material's metallic-roughness texture (else a
 /// placeholder the shader ignores).
-const HAS_METALLIC_ROUGHNESS: u32 = 16;
+pub(crate) const HAS_METALLIC_ROUGHNESS: u32 = 16;
 /// Bit of `flags`: binding 7 holds the material's gloss (specular) map, which scales k_s.
-const HAS_GLOSS: u32 = 32;
+pub(crate) const HAS_GLOSS: u32 = 32;
 
 impl ObjectUniform {
     /// Normals go through the inverse-transpose of the model matrix; tangent `w` is
     /// multiplied by `sign(det(model))` (crate conventions).
-    pub fn new(instance: &Instance, material: &Material) -> Self {
-        let model = instance.transform;
+    pub fn new(model: Mat4, material: &Material) -> Self {
         let determinant = model.determinant();
-        let normal_matrix =
-            if determinant.is_finite() && determinant != 0.0 { model.inverse().transpose() } else { Mat4::IDENTITY };
         ObjectUniform {
             model: model.to_cols_array_2d(),
-            normal_matrix: normal_matrix.to_cols_array_2d(),
+            normal_matrix: normal_matrix(model).to_cols_array_2d(),
             base_color: material.base_color_factor.to_array(),
             specular: material.specular.extend(material.shininess.max(1.0)).to_array(),
             handedness: if determinant < 0.0 { -1.0 } else { 1.0 },

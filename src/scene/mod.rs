@@ -6,7 +6,6 @@ pub mod builtin;
 pub mod camera;
 pub mod material;
 pub mod overrides;
-pub mod texture;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
@@ -16,7 +15,8 @@ pub use material::{
     Wrap,
 };
 pub use overrides::{MaterialOverrides, PerMaterialOverrides};
-pub use texture::{TextureImage, TextureKind, decode_height, encode_height};
+// Images are plain data below scene and height (see [`crate::texture`]); scenes hold them.
+pub use crate::texture::{TextureImage, TextureKind, decode_height, encode_height};
 
 /// Indexed triangle mesh in its own (model) space.
 #[derive(Debug, Clone, PartialEq)]

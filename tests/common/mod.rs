@@ -5,12 +5,14 @@
 
 use std::path::{Path, PathBuf};
 
-use bumpview::render::{FrameParams, Gpu, Renderer};
+use bumpview::chain::{BumpSample, ChainValues, SurfaceSample, shade};
+use bumpview::frame::BumpKind;
+use bumpview::frame::FrameParams;
+use bumpview::render::{Gpu, Renderer};
 use bumpview::scene::builtin::{WALL_Z, teaching_scene, wall_uv};
 use bumpview::scene::{OrbitCamera, Scene, TextureImage};
-use bumpview::shading::{LightingInputs, perturbed_normal};
-use bumpview::viewer::ViewerState;
-use glam::{Vec2, Vec3, Vec4};
+use bumpview::state::ViewerState;
+use glam::{Mat3, Vec2, Vec3, Vec4};
 
 pub fn renderer_for(scene: &Scene) -> Renderer {
     let gpu =
@@ -93,33 +95,25 @@ pub fn percentile(sorted: &[f32], p: f32) -> f32 {
     sorted[((sorted.len() - 1) as f32 * p).round() as usize]
 }
 
-/// The CPU inputs of the wall's shading at pixel `(x, y)` of a `size` picture: the bricks'
-/// bilinear colour and (with bump on) normal-map texel, the wall's frame T = +X, w = +1
-/// (its MikkTSpace frame, tests/debug_views.rs), `params`' strength.
-pub fn wall_lighting_inputs(scene: &Scene, params: &FrameParams, size: [u32; 2], x: u32, y: u32) -> LightingInputs {
+/// The CPU shading chain ([`bumpview::chain::shade`]) on the wall at pixel `(x, y)` of a
+/// `size` picture under `params`: the bricks' bilinear colour, gloss and normal-map texels,
+/// the wall's frame T = +X, w = +1 (its MikkTSpace frame, tests/debug_views.rs).
+pub fn wall_chain(scene: &Scene, params: &FrameParams, size: [u32; 2], x: u32, y: u32) -> ChainValues {
     let p = hit_plane(&params.camera, size, x, y, Vec3::Z, WALL_Z).expect("the wall fills the view");
     let uv = wall_uv(p);
     let material = &scene.materials[0];
-    let albedo = sample_bilinear(&scene.textures[material.base_color_texture.unwrap()], uv);
-    let normal_map = material.normal_map.as_ref().unwrap();
-    let n_geo = Vec3::Z;
-    let tangent = Vec4::new(1.0, 0.0, 0.0, 1.0);
-    let shading_normal = if params.shading.bump_enabled {
-        let texel = sample_bilinear(&scene.textures[normal_map.texture], uv);
-        perturbed_normal(n_geo, tangent, texel, params.shading.strength * normal_map.scale, normal_map.convention)
-    } else {
-        n_geo
-    };
-    LightingInputs {
-        albedo,
-        geometric_normal: n_geo,
-        shading_normal,
+    let sample = |t: usize| sample_bilinear(&scene.textures[t], uv);
+    let surface = SurfaceSample {
         position: p,
-        eye: params.camera.eye(),
-        light: params.light,
-        ambient: scene.ambient,
-        specular: material.specular
-            * material.gloss_texture.map_or(Vec3::ONE, |t| sample_bilinear(&scene.textures[t], uv)),
-        shininess: material.shininess,
-    }
+        world_normal: Vec3::Z,
+        front_facing: true,
+        world_tangent: Some(Vec4::new(1.0, 0.0, 0.0, 1.0)),
+        normal_matrix: Mat3::IDENTITY,
+        base_color: material.base_color_texture.map(sample),
+        bump: material.normal_map.as_ref().map(|m| BumpSample::NormalMap(sample(m.texture))),
+        metallic_roughness: None,
+        occlusion: None,
+        gloss: material.gloss_texture.map(sample),
+    };
+    shade(BumpKind::TangentSpace, material, scene.ambient, &surface, params)
 }

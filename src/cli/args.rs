@@ -1,11 +1,11 @@
 //! Parsers for command-line and panel values: sizes, vectors, camera, on/off.
 
-use bumpview::preset::green_name;
-use bumpview::render::BumpSource;
+use bumpview::frame::BumpSource;
+use bumpview::frame::{ShadingMode, ViewMode};
 use bumpview::scene::GreenAxis;
-use bumpview::shading::{ShadingMode, ViewMode};
+use bumpview::state::preset::green_name;
+use bumpview::state::{Command, SplitDifference};
 use bumpview::tangent::TangentMethod;
-use bumpview::viewer::{Command, SplitDifference};
 use glam::Vec3;
 
 /// `"WxH"` → `[W, H]` in pixels (each at least 1).

@@ -2,16 +2,18 @@
 //! [`Command`]s; [`ViewerState::apply`] is the one place they take effect, so the window, the
 //! `render` command and the tests all describe a picture the same way: a [`FrameParams`].
 
+pub mod preset;
+
 use glam::{Vec2, Vec3};
 
+use crate::frame::{
+    BumpSource, FrameParams, STRENGTH_RANGE, SceneOptions, SceneUploads, ShadingMode, ShadingSettings, SplitFrame,
+    ViewMode,
+};
 use crate::height::Kernel;
-use crate::render::{BumpSource, FrameParams, SceneOptions, SplitFrame};
 use crate::scene::{GreenAxis, Light, MaterialOverrides, OrbitCamera, Scene, ShadingModel};
-use crate::shading::{ShadingMode, ShadingSettings, ViewMode};
 use crate::tangent::TangentMethod;
 
-/// The strength slider's range; typed values outside it are clamped.
-pub const STRENGTH_RANGE: std::ops::RangeInclusive<f32> = -2.0..=4.0;
 /// Allowed colour-scale spans of the Difference view, degrees.
 pub const DIFFERENCE_RANGE: std::ops::Range<f32> = 0.01..180.0;
 /// Orbit animation speed of the light, radians per second about the scene's vertical axis.
@@ -226,53 +228,13 @@ impl SplitView {
     pub fn labels(&self) -> [String; 2] {
         std::array::from_fn(|i| match self.difference {
             SplitDifference::Bump => ["bump off", "bump on"][i].to_owned(),
-            SplitDifference::View => view_label(self.views[i]).to_owned(),
+            SplitDifference::View => self.views[i].label().to_owned(),
             SplitDifference::Strength => format!("strength {:.2}", self.strengths[i]),
-            SplitDifference::Mode => mode_label(self.modes[i]).to_owned(),
+            SplitDifference::Mode => self.modes[i].label().to_owned(),
             SplitDifference::Tangents => format!("tangents: {}", self.tangent_methods[i].name()),
             SplitDifference::Convention => format!("normal map: {}", self.conventions[i].label()),
-            SplitDifference::BumpSource => bump_source_label(self.bump_sources[i]).to_owned(),
+            SplitDifference::BumpSource => self.bump_sources[i].label().to_owned(),
         })
-    }
-}
-
-/// The scene options the GPU data must be made with: `main` for the picture (and the split
-/// view's left half), `split_right` for the split view's right half when it needs its own upload.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct SceneUploads {
-    pub main: SceneOptions,
-    pub split_right: Option<SceneOptions>,
-}
-
-/// A bump source's name for people (labels and captions).
-pub fn bump_source_label(source: BumpSource) -> &'static str {
-    match source {
-        BumpSource::NormalMap => "normal map",
-        BumpSource::HeightInShader => "height in shader",
-    }
-}
-
-/// A view's name for people (labels and captions).
-pub fn view_label(view: ViewMode) -> &'static str {
-    match view {
-        ViewMode::Lit => "Lit",
-        ViewMode::Tangent => "Tangent",
-        ViewMode::Bitangent => "Bitangent",
-        ViewMode::Normal => "Normal",
-        ViewMode::ShadingNormal => "Shading normal",
-        ViewMode::Difference => "Difference",
-        ViewMode::UvCheck => "UV check",
-        ViewMode::Handedness => "Handedness",
-        ViewMode::OverTilt => "Over-tilt",
-    }
-}
-
-/// A lit-picture mode's name for people (labels and captions).
-pub fn mode_label(mode: ShadingMode) -> &'static str {
-    match mode {
-        ShadingMode::BumpTimesColour => "bump × colour",
-        ShadingMode::BumpOnly => "bump only",
-        ShadingMode::ColourOnly => "colour only",
     }
 }
 

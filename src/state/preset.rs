@@ -20,15 +20,14 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
+use crate::frame::{BumpSource, SceneOptions, ShadingMode, ShadingSettings, ViewMode};
 use crate::height::{Border, Kernel};
 use crate::load::{TextureSlots, load_scene, replace_textures};
 use crate::render::capture::MAX_SUPERSAMPLE;
-use crate::render::{BumpSource, SceneOptions};
 use crate::scene::builtin::teaching_scene_with_kernel;
 use crate::scene::{GreenAxis, MaterialOverrides, Scene, ShadingModel};
-use crate::shading::{ShadingMode, ShadingSettings, ViewMode};
+use crate::state::{SplitDifference, SplitView, ViewerState};
 use crate::tangent::TangentMethod;
-use crate::viewer::{SplitDifference, SplitView, ViewerState};
 
 /// The preset format this code writes and reads.
 pub const FORMAT_VERSION: u32 = 1;
@@ -614,7 +613,7 @@ fn degrees(radians: f32) -> f64 {
 mod tests {
     use super::*;
     use crate::scene::builtin::teaching_scene;
-    use crate::viewer::Command;
+    use crate::state::Command;
 
     #[test]
     fn a_changed_state_round_trips_exactly() {
@@ -638,7 +637,7 @@ mod tests {
         state.apply(Command::ToggleWireframe);
         state.apply(Command::ToggleGlyphs);
         state.apply(Command::SetSplit(true));
-        state.apply(Command::SetSplitDifference(crate::viewer::SplitDifference::Strength));
+        state.apply(Command::SetSplitDifference(crate::state::SplitDifference::Strength));
         state.apply(Command::SetSplitDivider(0.3137));
         state.apply(Command::SetSplitStrengths([0.37, 2.91]));
         state.apply(Command::SetSplitViews([ViewMode::Tangent, ViewMode::Handedness]));

@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use bumpview::preset::PresetFiles;
+use bumpview::state::preset::PresetFiles;
 
 #[derive(clap::Args, Clone, Debug, Default)]
 pub struct InputArgs {

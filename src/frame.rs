@@ -1,0 +1,323 @@
+//! What a frame shows, as plain types: the frame parameters (camera, light, the cheap shading
+//! toggles), the scene options that decide GPU data (tangent method, bump source, material
+//! overrides), the views and lit modes with their labels, and the one function that decides
+//! how an instance is bumped ([`bump_kind`]). Everything above this layer — the prepare
+//! stage, the GPU renderer, the CPU probe, the viewer state — describes a picture with these.
+
+use crate::scene::{Light, MaterialOverrides, NormalSpace, OrbitCamera, PerMaterialOverrides, Scene, ShadingModel};
+use crate::tangent::TangentMethod;
+
+/// The bump strength's range (the slider's; typed values outside it are clamped).
+pub const STRENGTH_RANGE: std::ops::RangeInclusive<f32> = -2.0..=4.0;
+
+/// What the view shows. Debug views show a world-space unit vector `v` as `0.5·v + 0.5`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum ViewMode {
+    /// Blinn-Phong shading.
+    #[default]
+    Lit,
+    /// The tangent `T` after Gram-Schmidt against the geometric normal.
+    Tangent,
+    /// The bitangent `B = w · cross(N, T)`.
+    Bitangent,
+    /// The geometric (interpolated vertex) normal.
+    Normal,
+    /// The normal after the normal map and bump strength.
+    ShadingNormal,
+    /// Angle between the mesh's tangent frame and the reference frame (analytic where the
+    /// mesh has one, else MikkTSpace), on the [`difference_color`] scale.
+    Difference,
+    /// Triangles whose UVs have no area (red) or are mirrored (blue), as `bumpview check`
+    /// counts them, from screen-space derivatives.
+    UvCheck,
+    /// Tangent handedness `w`: green where +1, magenta where −1 (mirrored UV islands), grey
+    /// where the mesh is drawn without tangents ([`handedness_color`]).
+    Handedness,
+    /// The lit picture with pixels in [`OVER_TILT_COLOR`] where the shading normal tilts
+    /// past [`OVER_TILT_LIMIT_DEG`] from the geometric normal ([`over_tilted`]).
+    OverTilt,
+}
+
+impl ViewMode {
+    /// A view's name for people (labels and captions).
+    pub fn label(self) -> &'static str {
+        match self {
+            ViewMode::Lit => "Lit",
+            ViewMode::Tangent => "Tangent",
+            ViewMode::Bitangent => "Bitangent",
+            ViewMode::Normal => "Normal",
+            ViewMode::ShadingNormal => "Shading normal",
+            ViewMode::Difference => "Difference",
+            ViewMode::UvCheck => "UV check",
+            ViewMode::Handedness => "Handedness",
+            ViewMode::OverTilt => "Over-tilt",
+        }
+    }
+
+    pub const ALL: [ViewMode; 9] = [
+        ViewMode::Lit,
+        ViewMode::Tangent,
+        ViewMode::Bitangent,
+        ViewMode::Normal,
+        ViewMode::ShadingNormal,
+        ViewMode::Difference,
+        ViewMode::UvCheck,
+        ViewMode::Handedness,
+        ViewMode::OverTilt,
+    ];
+
+    /// The next mode in [`ViewMode::ALL`], wrapping around.
+    pub fn next(self) -> ViewMode {
+        let i = ViewMode::ALL.iter().position(|&m| m == self).unwrap_or(0);
+        ViewMode::ALL[(i + 1) % ViewMode::ALL.len()]
+    }
+
+    /// The index the shader switches on (`frame.view_mode`).
+    pub fn shader_index(self) -> u32 {
+        self as u32
+    }
+
+    /// Name as used on the command line and in the panel.
+    pub fn name(self) -> &'static str {
+        match self {
+            ViewMode::Lit => "lit",
+            ViewMode::Tangent => "tangent",
+            ViewMode::Bitangent => "bitangent",
+            ViewMode::Normal => "normal",
+            ViewMode::ShadingNormal => "shading-normal",
+            ViewMode::Difference => "difference",
+            ViewMode::UvCheck => "uv-check",
+            ViewMode::Handedness => "handedness",
+            ViewMode::OverTilt => "over-tilt",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<ViewMode> {
+        ViewMode::ALL.into_iter().find(|m| m.name() == name)
+    }
+}
+
+/// What the lit picture is made of, as in the classic demos (keys 1/2/3). A uniform.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum ShadingMode {
+    /// Lighting with the (bumped) shading normal times the colour texture.
+    #[default]
+    BumpTimesColour,
+    /// Lighting with the shading normal and a white albedo: the relief alone.
+    BumpOnly,
+    /// The albedo as stored (colour texture × factor): no bump, no lighting.
+    ColourOnly,
+}
+
+impl ShadingMode {
+    /// A lit-picture mode's name for people (labels and captions).
+    pub fn label(self) -> &'static str {
+        match self {
+            ShadingMode::BumpTimesColour => "bump × colour",
+            ShadingMode::BumpOnly => "bump only",
+            ShadingMode::ColourOnly => "colour only",
+        }
+    }
+
+    pub const ALL: [ShadingMode; 3] = [ShadingMode::BumpTimesColour, ShadingMode::BumpOnly, ShadingMode::ColourOnly];
+
+    /// The index the shader switches on (`frame.shading_mode`).
+    pub fn shader_index(self) -> u32 {
+        self as u32
+    }
+
+    /// Name as used on the command line and in presets.
+    pub fn name(self) -> &'static str {
+        match self {
+            ShadingMode::BumpTimesColour => "bump-colour",
+            ShadingMode::BumpOnly => "bump-only",
+            ShadingMode::ColourOnly => "colour-only",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<ShadingMode> {
+        ShadingMode::ALL.into_iter().find(|m| m.name() == name)
+    }
+}
+
+/// The cheap toggles: they are shader uniforms, never a pipeline change.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShadingSettings {
+    pub bump_enabled: bool,
+    /// Bump strength `s`, glTF `normalTexture.scale` semantics, multiplied with the
+    /// material's own scale. 0 is flat, negative inverts.
+    pub strength: f32,
+    pub view: ViewMode,
+    pub show_light_marker: bool,
+    /// The Difference view's colour scale spans 0 to this many degrees.
+    pub difference_range_deg: f32,
+    /// Shade every material with this model (`None`: each material's own).
+    pub shading_override: Option<ShadingModel>,
+    /// Bump × colour, bump only or colour only (a uniform).
+    pub mode: ShadingMode,
+    /// Draw the triangle edges over the picture (a second pass; needs
+    /// `wgpu::Features::POLYGON_MODE_LINE`, else it is skipped with a notice).
+    pub wireframe: bool,
+    /// Draw T/B/N glyphs (red, green, blue lines) at vertices of meshes with tangent frames,
+    /// thinned on dense meshes (a line pass).
+    pub tbn_glyphs: bool,
+}
+
+impl Default for ShadingSettings {
+    fn default() -> Self {
+        ShadingSettings {
+            bump_enabled: true,
+            strength: 1.0,
+            view: ViewMode::Lit,
+            show_light_marker: true,
+            difference_range_deg: 5.0,
+            shading_override: None,
+            mode: ShadingMode::BumpTimesColour,
+            wireframe: false,
+            tbn_glyphs: false,
+        }
+    }
+}
+
+/// Everything that decides one picture, besides the scene and the target size.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameParams {
+    pub camera: OrbitCamera,
+    pub light: Light,
+    pub shading: ShadingSettings,
+}
+
+/// The split view's two pictures: the same camera and light, `left` shading left of the
+/// divider and `right` shading right of it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SplitFrame {
+    pub left: ShadingSettings,
+    pub right: ShadingSettings,
+    /// Where the divider is, as a fraction of the width (0 left edge, 1 right edge).
+    pub divider: f32,
+}
+
+impl SplitFrame {
+    /// The divider's column in a target `width` pixels wide: the first column of the right half.
+    pub fn divider_pixels(&self, width: u32) -> u32 {
+        let fraction = if self.divider.is_finite() { self.divider.clamp(0.0, 1.0) } else { 0.5 };
+        ((fraction * width as f32).round() as u32).min(width)
+    }
+}
+
+/// Where the bump comes from. It decides pipelines and uploads, so it is a scene option, not
+/// a uniform.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum BumpSource {
+    /// The material's normal map (the built-in one is made from its height field by a kernel).
+    #[default]
+    NormalMap,
+    /// Blinn's bump from the material's height map, differentiated in screen space in the
+    /// shader (Mikkelsen's surface gradient): no tangents needed.
+    HeightInShader,
+}
+
+impl BumpSource {
+    /// A bump source's name for people (labels and captions).
+    pub fn label(self) -> &'static str {
+        match self {
+            BumpSource::NormalMap => "normal map",
+            BumpSource::HeightInShader => "height in shader",
+        }
+    }
+
+    pub const ALL: [BumpSource; 2] = [BumpSource::NormalMap, BumpSource::HeightInShader];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            BumpSource::NormalMap => "normal-map",
+            BumpSource::HeightInShader => "height-in-shader",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<BumpSource> {
+        BumpSource::ALL.into_iter().find(|b| b.name() == name)
+    }
+}
+
+/// How an instance's surface is bumped: decided by its material, whether its mesh has texture
+/// coordinates, and the bump source. The renderer picks its pipeline variant by it and the
+/// probe reproduces the same chain.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BumpKind {
+    /// No bump map (or no texture coordinates): the geometric normal shades.
+    None,
+    /// Tangent-space normal map through T, B, N.
+    TangentSpace,
+    /// Object-space normal map through the normal matrix (no tangents).
+    ObjectSpace,
+    /// Blinn's bump from the height map by screen-space derivatives (no tangents).
+    HeightInShader,
+}
+
+/// The [`BumpKind`] of an instance drawing `scene.meshes[mesh]` with `scene.materials[material]`.
+pub fn bump_kind(scene: &Scene, mesh: usize, material: usize, bump_source: BumpSource) -> BumpKind {
+    let mesh = &scene.meshes[mesh];
+    let material = &scene.materials[material];
+    let has_uvs = mesh.uvs.len() == mesh.positions.len();
+    if bump_source == BumpSource::HeightInShader && material.height_map.is_some() && has_uvs {
+        BumpKind::HeightInShader
+    } else if let Some(map) = material.normal_map.as_ref().filter(|_| has_uvs) {
+        match map.convention.space {
+            NormalSpace::Tangent => BumpKind::TangentSpace,
+            NormalSpace::Object => BumpKind::ObjectSpace,
+        }
+    } else {
+        BumpKind::None
+    }
+}
+
+/// How a scene is prepared for drawing: changing these re-makes GPU data.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SceneOptions {
+    /// Tangent frames by this method; `None`: the mesh's own, else MikkTSpace.
+    pub tangent_method: Option<TangentMethod>,
+    pub bump_source: BumpSource,
+    /// Normal- and height-map conventions that replace every material's own.
+    pub materials: MaterialOverrides,
+    /// Per material (index into the scene's materials): conventions that win over
+    /// `materials` field by field.
+    pub per_material: PerMaterialOverrides,
+}
+
+impl SceneOptions {
+    /// The overrides edited for `material` (`None`: the viewer-wide ones), not merged.
+    pub fn overrides(&self, material: Option<usize>) -> MaterialOverrides {
+        match material {
+            None => self.materials,
+            Some(index) => self.per_material.get(&index).copied().unwrap_or_default(),
+        }
+    }
+
+    /// Replaces the overrides of `material` (`None`: the viewer-wide ones); an empty
+    /// per-material record is dropped.
+    pub fn set_overrides(&mut self, material: Option<usize>, overrides: MaterialOverrides) {
+        match material {
+            None => self.materials = overrides,
+            Some(index) if overrides.is_empty() => {
+                self.per_material.remove(&index);
+            }
+            Some(index) => {
+                self.per_material.insert(index, overrides);
+            }
+        }
+    }
+
+    /// What material `index` is drawn with: its own overrides over the viewer-wide ones.
+    pub fn overrides_in_use(&self, index: usize) -> MaterialOverrides {
+        self.materials.for_material(&self.per_material, index)
+    }
+}
+
+/// The scene options the GPU data must be made with: `main` for the picture (and the split
+/// view's left half), `split_right` for the split view's right half when it needs its own upload.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SceneUploads {
+    pub main: SceneOptions,
+    pub split_right: Option<SceneOptions>,
+}

@@ -1,0 +1,280 @@
+//! The prepare stage: everything decided about a scene before anything is drawn, on the CPU
+//! and without a GPU. [`PreparedScene::new`] applies the material overrides, decides each
+//! instance's [`BumpKind`] and pipeline [`Variant`], which textures each binds, which meshes
+//! get tangent frames (only those drawn with a tangent stream) and by which method, makes the
+//! drawn geometry (unwelded for per-face frames, non-finite data repaired) and lists what it
+//! could not honour as notices. The GPU renderer uploads exactly what a prepared scene holds;
+//! the CPU probe samples and shades the same prepared scene, so both draw the same surface.
+
+mod repair;
+
+use glam::{Mat4, Vec4};
+
+use crate::frame::{BumpKind, SceneOptions, bump_kind};
+use crate::scene::{Material, Mesh, Scene, TextureImage};
+use crate::tangent::{self, TangentMethod};
+
+/// What a drawn instance needs from its pipeline: by its [`BumpKind`], plus whether the mesh
+/// brings a tangent stream to show in the T/B views.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Variant {
+    /// Positions, normals, UVs; no tangent stream, no bump texture.
+    Plain,
+    /// Adds the tangent stream (tangents supplied by the mesh, shown in the T/B views).
+    Tangent,
+    /// Adds the tangent stream and the (tangent-space) normal map.
+    NormalMapped,
+    /// No tangent stream; an object-space normal map.
+    ObjectSpace,
+    /// No tangent stream; the height map, differentiated in screen space.
+    HeightBump,
+}
+
+impl Variant {
+    /// Whether the variant reads a tangent stream.
+    pub fn has_tangents(self) -> bool {
+        matches!(self, Variant::Tangent | Variant::NormalMapped)
+    }
+
+    /// Whether the variant binds a bump texture (normal or height map).
+    pub fn has_bump_texture(self) -> bool {
+        matches!(self, Variant::NormalMapped | Variant::ObjectSpace | Variant::HeightBump)
+    }
+}
+
+/// The textures an instance binds, as indices into the prepared scene's textures; `None`
+/// where the material has no such texture (the shader then ignores the slot).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct InstanceTextures {
+    pub base_color: Option<usize>,
+    /// The normal map or the height map, as the variant needs; `None` for variants without one.
+    pub bump: Option<usize>,
+    pub metallic_roughness: Option<usize>,
+    pub occlusion: Option<usize>,
+    pub gloss: Option<usize>,
+}
+
+impl InstanceTextures {
+    fn of(material: &Material, variant: Variant) -> InstanceTextures {
+        let bump = match variant {
+            Variant::NormalMapped | Variant::ObjectSpace => material.normal_map.as_ref().map(|m| m.texture),
+            Variant::HeightBump => material.height_map.as_ref().map(|m| m.texture),
+            Variant::Plain | Variant::Tangent => None,
+        };
+        InstanceTextures {
+            base_color: material.base_color_texture,
+            bump,
+            metallic_roughness: material.metallic_roughness_texture,
+            occlusion: material.occlusion.as_ref().map(|o| o.texture),
+            gloss: material.gloss_texture,
+        }
+    }
+
+    fn all(&self) -> impl Iterator<Item = usize> {
+        [self.base_color, self.bump, self.metallic_roughness, self.occlusion, self.gloss].into_iter().flatten()
+    }
+}
+
+/// One placed mesh as it is drawn.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PreparedInstance {
+    /// Indices into [`PreparedScene::meshes`] and the scene's materials.
+    pub mesh: usize,
+    pub material: usize,
+    /// Model → world.
+    pub transform: Mat4,
+    pub bump: BumpKind,
+    pub variant: Variant,
+    pub textures: InstanceTextures,
+}
+
+impl PreparedInstance {
+    /// The model matrix mirrors (negative determinant): front faces, counter-clockwise in
+    /// model space, are clockwise on screen.
+    pub fn mirrored(&self) -> bool {
+        self.transform.determinant() < 0.0
+    }
+}
+
+/// A mesh's tangent frames as drawn: one per vertex of the drawn geometry, model space.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DrawnFrames {
+    pub tangents: Vec<Vec4>,
+    /// The method they come from (the file's own, or a generator).
+    pub method: TangentMethod,
+}
+
+/// A mesh as drawn.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PreparedMesh {
+    /// The geometry drawn: unwelded (a vertex per corner) for per-face frames; triangles with
+    /// a non-finite or out-of-range position dropped; normals and UVs one per vertex, a
+    /// non-finite or missing one replaced (+Z, 0). Model space.
+    pub mesh: Mesh,
+    /// The tangent frames, for meshes drawn with a tangent stream only.
+    pub frames: Option<DrawnFrames>,
+}
+
+/// A scene as it is drawn with one set of [`SceneOptions`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct PreparedScene {
+    /// The scene with the material overrides applied (normal maps re-made from height maps
+    /// where their height settings changed).
+    pub scene: Scene,
+    pub options: SceneOptions,
+    /// Per mesh of `scene`.
+    pub meshes: Vec<PreparedMesh>,
+    /// Per instance of `scene`, in its order.
+    pub instances: Vec<PreparedInstance>,
+    /// What the scene asked for but cannot get (a bump map on a mesh without texture
+    /// coordinates, non-finite vertex data repaired), one line each, for the user.
+    pub notices: Vec<String>,
+    /// Tangent frames made by a generator (not read from the file) for this preparation.
+    pub tangent_frames_generated: u64,
+}
+
+impl PreparedScene {
+    /// Prepares `scene` for drawing with `options`.
+    pub fn new(scene: &Scene, options: &SceneOptions) -> PreparedScene {
+        let scene = options.materials.applied_with(&options.per_material, scene);
+        let instances: Vec<PreparedInstance> = scene
+            .instances
+            .iter()
+            .map(|instance| {
+                let material = &scene.materials[instance.material];
+                let bump = bump_kind(&scene, instance.mesh, instance.material, options.bump_source);
+                let variant = variant_of(bump, &scene.meshes[instance.mesh]);
+                PreparedInstance {
+                    mesh: instance.mesh,
+                    material: instance.material,
+                    transform: instance.transform,
+                    bump,
+                    variant,
+                    textures: InstanceTextures::of(material, variant),
+                }
+            })
+            .collect();
+        let mut notices = missing_uv_notices(&scene);
+        let mut tangent_frames_generated = 0;
+        let meshes = scene
+            .meshes
+            .iter()
+            .enumerate()
+            .map(|(index, mesh)| {
+                let with_tangents = instances.iter().any(|i| i.mesh == index && i.variant.has_tangents());
+                if !with_tangents {
+                    return PreparedMesh { mesh: repair::repaired(mesh, &mut notices), frames: None };
+                }
+                // Per-face frames need a vertex per corner.
+                let per_face = options.tangent_method == Some(TangentMethod::PerFace);
+                let drawn = if per_face { mesh.unwelded() } else { mesh.clone() };
+                let (tangents, method) = tangent::resolve(&drawn, options.tangent_method);
+                if method.is_generated() {
+                    tangent_frames_generated += tangents.len() as u64;
+                }
+                let tangents = repair::full_stream(&tangents, drawn.positions.len());
+                let frames = Some(DrawnFrames { tangents, method });
+                PreparedMesh { mesh: repair::repaired(&drawn, &mut notices), frames }
+            })
+            .collect();
+        PreparedScene { scene, options: options.clone(), meshes, instances, notices, tangent_frames_generated }
+    }
+
+    /// Whether any instance binds texture `index` of [`Self::scene`].
+    pub fn uses_texture(&self, index: usize) -> bool {
+        self.instances.iter().any(|i| i.textures.all().any(|t| t == index))
+    }
+
+    /// The mip chain of texture `index` as it is sampled (level 0 first, box-filtered down to
+    /// one texel; see [`TextureImage::mip_chain`]).
+    pub fn mip_chain(&self, index: usize) -> Vec<TextureImage> {
+        self.scene.textures[index].mip_chain()
+    }
+
+    /// Number of triangles drawn.
+    pub fn triangle_count(&self) -> usize {
+        self.instances.iter().map(|i| self.meshes[i.mesh].mesh.indices.len() / 3).sum()
+    }
+}
+
+/// The variant an instance is drawn with: by its [`BumpKind`]; without a bump, with the
+/// tangent stream when the mesh supplies tangents (for the T/B views), else plain.
+fn variant_of(bump: BumpKind, mesh: &Mesh) -> Variant {
+    match bump {
+        BumpKind::HeightInShader => Variant::HeightBump,
+        BumpKind::TangentSpace => Variant::NormalMapped,
+        BumpKind::ObjectSpace => Variant::ObjectSpace,
+        BumpKind::None if mesh.tangents.as_ref().is_some_and(|t| t.len() == mesh.positions.len()) => Variant::Tangent,
+        BumpKind::None => Variant::Plain,
+    }
+}
+
+/// A notice per mesh whose material has a normal or height map but which has no texture
+/// coordinates: it is drawn without bump.
+fn missing_uv_notices(scene: &Scene) -> Vec<String> {
+    let mut notices = vec![];
+    for instance in &scene.instances {
+        let (mesh, material) = (&scene.meshes[instance.mesh], &scene.materials[instance.material]);
+        let bumped = material.normal_map.is_some() || material.height_map.is_some();
+        let notice = format!("mesh {:?} has no texture coordinates: drawn without its bump map", mesh.name);
+        if bumped && mesh.uvs.len() != mesh.positions.len() && !notices.contains(&notice) {
+            notices.push(notice);
+        }
+    }
+    notices
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{Vec2, Vec3};
+
+    use super::*;
+    use crate::frame::BumpSource;
+    use crate::scene::builtin::teaching_scene;
+
+    #[test]
+    fn the_built_in_scene_gets_tangents_only_where_a_normal_map_is_drawn() {
+        let scene = teaching_scene();
+        let prepared = PreparedScene::new(&scene, &SceneOptions::default());
+        for (instance, prepared_instance) in scene.instances.iter().zip(&prepared.instances) {
+            let has_map = scene.materials[instance.material].normal_map.is_some();
+            assert_eq!(prepared_instance.bump == BumpKind::TangentSpace, has_map);
+            assert_eq!(prepared.meshes[instance.mesh].frames.is_some(), prepared_instance.variant.has_tangents());
+        }
+        let height = SceneOptions { bump_source: BumpSource::HeightInShader, ..Default::default() };
+        let prepared = PreparedScene::new(&scene, &height);
+        assert!(prepared.meshes.iter().all(|m| m.frames.is_none()), "height in shader needs no tangents");
+        assert_eq!(prepared.tangent_frames_generated, 0);
+    }
+
+    #[test]
+    fn a_material_without_maps_binds_no_bump_texture_and_the_unused_ones_are_not_used() {
+        let mut scene = teaching_scene();
+        for material in &mut scene.materials {
+            material.normal_map = None;
+            material.height_map = None;
+        }
+        let prepared = PreparedScene::new(&scene, &SceneOptions::default());
+        assert!(prepared.instances.iter().all(|i| i.variant == Variant::Plain && i.textures.bump.is_none()));
+        let bump_textures: Vec<usize> =
+            teaching_scene().materials.iter().filter_map(|m| m.normal_map.as_ref().map(|n| n.texture)).collect();
+        assert!(!bump_textures.is_empty());
+        assert!(bump_textures.iter().all(|&t| !prepared.uses_texture(t)));
+    }
+
+    #[test]
+    fn non_finite_vertex_data_is_repaired_with_a_notice() {
+        let mut scene = teaching_scene();
+        let mesh = &mut scene.meshes[0];
+        mesh.positions[mesh.indices[0] as usize] = Vec3::NAN;
+        mesh.normals[1] = Vec3::INFINITY;
+        mesh.uvs[2] = Vec2::NAN;
+        let triangles = mesh.indices.len() / 3;
+        let prepared = PreparedScene::new(&scene, &SceneOptions::default());
+        let drawn = &prepared.meshes[0].mesh;
+        assert!(drawn.indices.len() / 3 < triangles);
+        assert!(drawn.indices.iter().all(|&i| drawn.positions[i as usize].is_finite()));
+        assert!(drawn.normals.iter().all(|n| n.is_finite()) && drawn.uvs.iter().all(|uv| uv.is_finite()));
+        assert!(prepared.notices.iter().any(|n| n.contains("NaN or infinite data")), "{:?}", prepared.notices);
+    }
+}

@@ -1,0 +1,298 @@
+//! The pixel probe: the whole shading chain at one pixel of the 3D view, on the CPU.
+//!
+//! [`ProbeScene::pick`] casts the ray through a pixel's centre ([`OrbitCamera::ray_through_pixel`])
+//! against every drawn triangle in world space (brute force, nearest hit; back faces of
+//! single-sided materials are culled as on the GPU) and pins the surface point as a triangle
+//! and its barycentric coordinates ([`ProbePoint`]). [`ProbeScene::readout`] then interpolates
+//! what the vertex shader passes on (position, normal, UV, tangent frame — the frames the
+//! renderer draws with: the same [`tangent::resolve`] on the same, possibly unwelded, mesh
+//! with the same scene options and material overrides), samples the textures as the GPU's
+//! trilinear sampler does (level of detail from the UV footprint of the pixel's 2×2 quad,
+//! [`sample_bilinear`] on the mip levels around it) and runs the CPU twin of `shaders/mesh.wgsl`
+//! ([`crate::shading`]). The pinned point stays where it is when the camera or light moves;
+//! only the readout is recomputed.
+//!
+//! Spaces and units follow the crate conventions: positions in metres, world space; vectors
+//! unit length, world space unless named tangent space; colours linear RGB 0..1 unless named
+//! sRGB. The barycentric coordinates of a ray-triangle hit are the perspective-correct ones
+//! the rasteriser interpolates with, so the interpolated values equal the GPU's up to float
+//! rounding. Screen-space derivatives (texture footprints, the height bump in the shader) come
+//! from the values at the four pixel centres of the 2×2 quad holding the point's pixel, found
+//! on the triangle's plane as the rasteriser does for the quad. Where the GPU
+//! downscaled a texture larger than the adapter allows, the probe differs from the picture.
+
+mod pick;
+mod sample;
+
+use std::sync::Arc;
+
+use glam::{Mat3, Vec2, Vec3, Vec4};
+
+use crate::chain::{BumpSample, SurfaceSample, shade};
+use crate::frame::{BumpKind, FrameParams, SceneOptions};
+use crate::math::normal_matrix;
+use crate::prepare::PreparedScene;
+use crate::scene::{OrbitCamera, SamplerWrap, Scene, ShadingModel, TextureImage};
+use crate::shading::height_sample;
+use crate::tangent::TangentMethod;
+pub use pick::project_to_pixel;
+use pick::{Quad, corner_positions, intersect};
+use sample::sample_trilinear;
+pub use sample::{nearest_texel, sample_bilinear};
+
+/// A pinned surface point: a triangle of one instance and barycentric coordinates on it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProbePoint {
+    /// Index into [`Scene::instances`].
+    pub instance: usize,
+    /// Triangle index into the drawn mesh's indices (`3 · triangle ..`); the drawn mesh is the
+    /// unwelded one for per-face frames, with the same triangle order.
+    pub triangle: usize,
+    /// Weights of the triangle's three corners (sum 1).
+    pub barycentric: Vec3,
+    /// Whether the hit face is a front face (else a back face of a double-sided material).
+    pub front_facing: bool,
+}
+
+/// Everything along the chain at a probed point. Tangent-space quantities are `None` where the
+/// mesh is drawn without tangents; normal-map quantities are `None` without a normal map.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProbeReadout {
+    pub point: ProbePoint,
+    /// Index into [`Scene::meshes`] and [`Scene::materials`].
+    pub mesh: usize,
+    pub material: usize,
+    /// World-space position, metres.
+    pub position: Vec3,
+    /// Distance from the eye, metres.
+    pub distance: f32,
+    /// Texture coordinates (crate conventions: origin top-left, v down).
+    pub uv: Vec2,
+    pub bump: BumpKind,
+    /// Whether bump mapping is on (the `B` toggle); off, the shading normal is `normal`.
+    pub bump_enabled: bool,
+    /// The normal map's texel containing `uv` at mip 0: its integer coordinates and raw bytes
+    /// (RGBA, 0–255, before filtering).
+    pub texel_xy: Option<[u32; 2]>,
+    pub texel_raw: Option<[u8; 4]>,
+    /// The normal map's filtered sample at `uv` (RGB, 0..1, linear; at the mip levels the GPU
+    /// reads): what the shader decodes.
+    pub texel: Option<Vec3>,
+    /// The decoded unit vector ([`decode_normal`]): tangent space, or model space for an
+    /// object-space map.
+    pub decoded: Option<Vec3>,
+    /// Effective strength: the viewer's strength times the material's `normalTexture.scale`.
+    pub strength: f32,
+    /// Tangent-space normal after strength: `normalize(x·s, y·s, max(z, 0))` (tangent-space
+    /// maps only).
+    pub after_strength: Option<Vec3>,
+    /// World-space tangent after Gram-Schmidt against `normal`, bitangent `w · cross(N, T)`,
+    /// handedness `w = ±1` (the instance's mirroring included).
+    pub tangent: Option<Vec3>,
+    pub bitangent: Option<Vec3>,
+    pub w: Option<f32>,
+    /// The tangent method the frames come from.
+    pub tangent_method: Option<TangentMethod>,
+    /// Geometric (interpolated vertex) normal, world space, facing the viewer's side on a
+    /// double-sided back face.
+    pub normal: Vec3,
+    /// The normal used for lighting, world space.
+    pub shading_normal: Vec3,
+    /// Unit directions from the point to the light and the eye, and their half vector.
+    pub light_dir: Vec3,
+    pub view_dir: Vec3,
+    pub half: Vec3,
+    /// `N·L` and `N·H` with the shading normal, signed (the shader uses `max(·, 0)`).
+    pub n_dot_l: f32,
+    pub n_dot_h: f32,
+    /// The geometric self-shadow fade `smoothstep(0, SELF_SHADOW_FADE, N_geo·L)`, 0..1.
+    pub self_shadow: f32,
+    /// Linear albedo: base colour texture (filtered as the GPU does) times the factor.
+    pub albedo: Vec3,
+    pub shading_model: ShadingModel,
+    /// The lit colour in the viewer's shading mode, linear RGB.
+    pub color_linear: Vec3,
+    /// What the current view stores at this pixel, 0..1 as in the PNG (sRGB-encoded for the
+    /// lit picture, `0.5·v + 0.5` for vector views); `None` for the Difference and UV check
+    /// views, which the probe does not reproduce.
+    pub shown: Option<Vec3>,
+}
+
+impl ProbeReadout {
+    /// `shown` as 8-bit values (unrounded), as they compare with a rendered PNG.
+    pub fn shown_bytes(&self) -> Option<Vec3> {
+        self.shown.map(|c| c * 255.0)
+    }
+}
+
+/// A prepared scene ([`PreparedScene`]: the renderer's drawn geometry, frames and overrides)
+/// with the mip chains of the textures it uses, for probing. Re-make it when the scene or the
+/// scene options change.
+#[derive(Debug, Clone)]
+pub struct ProbeScene {
+    prepared: Arc<PreparedScene>,
+    /// Per texture: its mip chain as uploaded, level 0 first; empty for textures no instance uses.
+    mips: Vec<Vec<TextureImage>>,
+}
+
+impl ProbeScene {
+    /// Prepares `scene` with `options` as the renderer does and wraps it.
+    pub fn new(scene: &Scene, options: &SceneOptions) -> ProbeScene {
+        ProbeScene::wrap(Arc::new(PreparedScene::new(scene, options)))
+    }
+
+    /// Probes the scene a renderer draws (e.g. [`crate::render::Renderer::prepared`]).
+    pub fn wrap(prepared: Arc<PreparedScene>) -> ProbeScene {
+        let used = |index: &usize| prepared.uses_texture(*index);
+        let mips = (0..prepared.scene.textures.len())
+            .map(|index| if used(&index) { prepared.mip_chain(index) } else { vec![] })
+            .collect();
+        ProbeScene { prepared, mips }
+    }
+
+    /// The scene with the material overrides applied.
+    pub fn scene(&self) -> &Scene {
+        &self.prepared.scene
+    }
+
+    /// Number of triangles a pick tests.
+    pub fn triangle_count(&self) -> usize {
+        self.prepared.triangle_count()
+    }
+
+    /// The nearest drawn surface under the centre of pixel `pixel` (from the top-left) of a
+    /// `size` view, or `None` where the ray meets nothing.
+    pub fn pick(&self, camera: &OrbitCamera, size: [u32; 2], pixel: [u32; 2]) -> Option<ProbePoint> {
+        let centre = Vec2::new(pixel[0] as f32 + 0.5, pixel[1] as f32 + 0.5);
+        let (origin, dir) = camera.ray_through_pixel(centre, Vec2::new(size[0] as f32, size[1] as f32));
+        let mut best: Option<(f32, ProbePoint)> = None;
+        for (instance_index, instance) in self.prepared.instances.iter().enumerate() {
+            let mesh = &self.prepared.meshes[instance.mesh].mesh;
+            let double_sided = self.scene().materials[instance.material].double_sided;
+            let mirror = if instance.mirrored() { -1.0 } else { 1.0 };
+            for (triangle, corners) in mesh.indices.chunks_exact(3).enumerate() {
+                let Some(p) = corner_positions(mesh, corners, &instance.transform) else { continue };
+                let Some((t, barycentric)) = intersect(origin, dir, p) else { continue };
+                let face = (p[1] - p[0]).cross(p[2] - p[0]) * mirror;
+                let front_facing = face.dot(dir) < 0.0;
+                if (!front_facing && !double_sided) || best.is_some_and(|(d, _)| d <= t) {
+                    continue;
+                }
+                best = Some((t, ProbePoint { instance: instance_index, triangle, barycentric, front_facing }));
+            }
+        }
+        best.map(|(_, point)| point)
+    }
+
+    /// The chain at a pinned point under `params` (camera, light, strength, toggles) in a view
+    /// `size` pixels large (texture footprints and the height bump depend on the pixel grid):
+    /// the vertex stage's outputs interpolated with the point's barycentric weights, the
+    /// textures sampled as the GPU does, then [`crate::chain::shade`].
+    pub fn readout(&self, point: &ProbePoint, params: &FrameParams, size: [u32; 2]) -> ProbeReadout {
+        let instance = &self.prepared.instances[point.instance];
+        let material = &self.scene().materials[instance.material];
+        let prepared_mesh = &self.prepared.meshes[instance.mesh];
+        let mesh = &prepared_mesh.mesh;
+        let corners = &mesh.indices[3 * point.triangle..3 * point.triangle + 3];
+        let at = |barycentric: Vec3| {
+            move |values: &[Vec3]| -> Vec3 {
+                corners.iter().zip(barycentric.to_array()).fold(Vec3::ZERO, |acc, (&i, w)| acc + values[i as usize] * w)
+            }
+        };
+        let uv_at = |barycentric: Vec3| {
+            corners.iter().zip(barycentric.to_array()).fold(Vec2::ZERO, |acc, (&i, w)| acc + mesh.uvs[i as usize] * w)
+        };
+        let b = point.barycentric;
+        let model = instance.transform;
+        let position = model.transform_point3(at(b)(&mesh.positions));
+        let uv = uv_at(b);
+        // The pixel's 2×2 quad: texture footprints (mip levels) and the height bump need it.
+        let quad = corner_positions(mesh, corners, &model).map(|triangle| Quad {
+            camera: &params.camera,
+            size,
+            triangle,
+            position,
+        });
+        let footprint = quad.as_ref().and_then(|q| q.derivatives(|b, _| uv_at(b)));
+        let sample = |texture: usize, wrap: SamplerWrap| sample_trilinear(&self.mips[texture], uv, wrap, footprint);
+        let normal_matrix = normal_matrix(model);
+        let frames = prepared_mesh.frames.as_ref();
+        let world_tangent = frames.map(|f| {
+            let t = corners.iter().zip(b.to_array()).fold(Vec4::ZERO, |acc, (&i, w)| acc + f.tangents[i as usize] * w);
+            let mirror = if instance.mirrored() { -1.0 } else { 1.0 };
+            model.transform_vector3(t.truncate()).extend(t.w * mirror)
+        });
+
+        let slots = &instance.textures;
+        let detail = material.detail_wrap;
+        let normal_map = slots.bump.filter(|_| matches!(instance.bump, BumpKind::TangentSpace | BumpKind::ObjectSpace));
+        let nearest = normal_map.map(|t| {
+            let texture = &self.scene().textures[t];
+            let xy = nearest_texel(texture, uv, detail);
+            (xy, texture.texel(xy[0] as i64, xy[1] as i64))
+        });
+        let bump = match (instance.bump, slots.bump) {
+            (BumpKind::TangentSpace | BumpKind::ObjectSpace, Some(t)) => Some(BumpSample::NormalMap(sample(t, detail))),
+            (BumpKind::HeightInShader, Some(t)) => quad.as_ref().and_then(|quad| {
+                // Every pixel of the quad samples at the quad's footprint, as the GPU does.
+                let height_at = |b| height_sample(sample_trilinear(&self.mips[t], uv_at(b), detail, footprint));
+                let (dx, dy) = quad.derivatives(|b, p| p.extend(height_at(b)))?;
+                Some(BumpSample::HeightSlopes { dp_dx: dx.truncate(), dp_dy: dy.truncate(), dh_dx: dx.w, dh_dy: dy.w })
+            }),
+            _ => None,
+        };
+        let surface = SurfaceSample {
+            position,
+            world_normal: normal_matrix.transform_vector3(at(b)(&mesh.normals)),
+            front_facing: point.front_facing,
+            world_tangent,
+            normal_matrix: Mat3::from_mat4(normal_matrix),
+            base_color: material.base_color_texture.map(|t| sample(t, material.base_color_wrap)),
+            bump,
+            metallic_roughness: slots.metallic_roughness.map(|t| sample(t, detail)),
+            occlusion: slots.occlusion.map(|t| sample(t, detail).x),
+            gloss: slots.gloss.map(|t| sample(t, detail)),
+        };
+        let chain = shade(instance.bump, material, self.scene().ambient, &surface, params);
+        ProbeReadout {
+            point: *point,
+            mesh: instance.mesh,
+            material: instance.material,
+            position,
+            distance: (params.camera.eye() - position).length(),
+            uv,
+            bump: instance.bump,
+            bump_enabled: params.shading.bump_enabled,
+            texel_xy: nearest.map(|n| n.0),
+            texel_raw: nearest.map(|n| n.1),
+            texel: match bump {
+                Some(BumpSample::NormalMap(texel)) => Some(texel),
+                _ => None,
+            },
+            decoded: chain.decoded,
+            strength: chain.strength,
+            after_strength: chain.after_strength,
+            tangent: chain.tangent,
+            bitangent: chain.bitangent,
+            w: chain.w,
+            tangent_method: frames.map(|f| f.method),
+            normal: chain.normal,
+            shading_normal: chain.shading_normal,
+            light_dir: chain.light_dir,
+            view_dir: chain.view_dir,
+            half: chain.half,
+            n_dot_l: chain.n_dot_l,
+            n_dot_h: chain.n_dot_h,
+            self_shadow: chain.self_shadow,
+            albedo: chain.albedo,
+            shading_model: chain.shading_model,
+            color_linear: chain.color_linear,
+            shown: chain.shown,
+        }
+    }
+
+    /// [`Self::pick`] then [`Self::readout`] with `params`' camera.
+    pub fn probe(&self, params: &FrameParams, size: [u32; 2], pixel: [u32; 2]) -> Option<ProbeReadout> {
+        self.pick(&params.camera, size, pixel).map(|point| self.readout(&point, params, size))
+    }
+}

@@ -1,0 +1,175 @@
+//! Every binding of the shaders, written once: the bind group layouts and the bind groups are
+//! built from these slots, and a test holds the WGSL's `@group`/`@binding` declarations (and
+//! its view, mode and flag constants) to the Rust side.
+//!
+//! Group 0 is the frame ([`FRAME`]); group 1 is the drawn object and its material
+//! ([`MATERIAL`]), or the light marker's model matrix ([`MARKER_MODEL`]).
+
+/// What a slot holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Resource {
+    /// A uniform buffer, read by the vertex and fragment stages.
+    Uniform,
+    /// A filterable 2D float texture, read by the fragment stage.
+    Texture,
+    /// A filtering sampler, used by the fragment stage.
+    Sampler,
+}
+
+/// One binding: its number, the WGSL global it declares, and what it holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Slot {
+    pub binding: u32,
+    pub wgsl_name: &'static str,
+    pub resource: Resource,
+}
+
+const fn slot(binding: u32, wgsl_name: &'static str, resource: Resource) -> Slot {
+    Slot { binding, wgsl_name, resource }
+}
+
+/// Group 0: the `Frame` uniform (shaders/frame.wgsl).
+pub const FRAME: Slot = slot(0, "frame", Resource::Uniform);
+
+/// Group 1 of the mesh shader: the `Object` uniform.
+pub const OBJECT: Slot = slot(0, "object", Resource::Uniform);
+/// The base colour texture, through an sRGB view (samples are linear).
+pub const BASE_COLOR_TEXTURE: Slot = slot(1, "base_color_texture", Resource::Texture);
+/// The base colour texture's sampler (the material's base colour wrap modes).
+pub const BASE_COLOR_SAMPLER: Slot = slot(2, "base_color_sampler", Resource::Sampler);
+/// The normal map or the height map, linear; only in layouts of variants with a bump texture.
+pub const BUMP_TEXTURE: Slot = slot(3, "bump_texture", Resource::Texture);
+/// The sampler of the bump, metallic-roughness, occlusion and gloss textures.
+pub const DETAIL_SAMPLER: Slot = slot(4, "detail_sampler", Resource::Sampler);
+/// Metallic-roughness, linear: B metal, G rough.
+pub const METALLIC_ROUGHNESS_TEXTURE: Slot = slot(5, "metallic_roughness_texture", Resource::Texture);
+/// Occlusion, linear: R.
+pub const OCCLUSION_TEXTURE: Slot = slot(6, "occlusion_texture", Resource::Texture);
+/// Gloss (specular) map, linear: RGB scales k_s.
+pub const GLOSS_TEXTURE: Slot = slot(7, "gloss_texture", Resource::Texture);
+
+/// Group 1 of the mesh shader, in binding order.
+pub const MATERIAL: [Slot; 8] = [
+    OBJECT,
+    BASE_COLOR_TEXTURE,
+    BASE_COLOR_SAMPLER,
+    BUMP_TEXTURE,
+    DETAIL_SAMPLER,
+    METALLIC_ROUGHNESS_TEXTURE,
+    OCCLUSION_TEXTURE,
+    GLOSS_TEXTURE,
+];
+
+/// Group 1 of the marker shader: the marker's model matrix.
+pub const MARKER_MODEL: Slot = slot(0, "marker_model", Resource::Uniform);
+
+impl Slot {
+    /// The layout entry of this slot.
+    pub fn layout_entry(&self) -> wgpu::BindGroupLayoutEntry {
+        let (visibility, ty) = match self.resource {
+            Resource::Uniform => (
+                wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
+                wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+            ),
+            Resource::Texture => (
+                wgpu::ShaderStages::FRAGMENT,
+                wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+            ),
+            Resource::Sampler => {
+                (wgpu::ShaderStages::FRAGMENT, wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering))
+            }
+        };
+        wgpu::BindGroupLayoutEntry { binding: self.binding, visibility, ty, count: None }
+    }
+
+    /// The bind group entry putting `resource` in this slot.
+    pub fn entry<'a>(&self, resource: wgpu::BindingResource<'a>) -> wgpu::BindGroupEntry<'a> {
+        wgpu::BindGroupEntry { binding: self.binding, resource }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeMap;
+
+    use wgpu::naga;
+
+    use super::*;
+    use crate::frame::{ShadingMode, ViewMode};
+    use crate::render::pipelines::{MARKER_WGSL, MESH_WGSL};
+    use crate::render::uniforms::{DEPTH_MAP, HAS_GLOSS, HAS_METALLIC_ROUGHNESS};
+    use crate::scene::{NormalConvention, ShadingModel};
+
+    fn module(source: &str) -> naga::Module {
+        naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)))
+    }
+
+    /// `(group, binding)` of every resource global, by name.
+    fn wgsl_bindings(module: &naga::Module) -> BTreeMap<String, (u32, u32)> {
+        let globals = module.global_variables.iter().map(|(_, g)| g);
+        globals.filter_map(|g| Some((g.name.clone()?, g.binding.as_ref().map(|b| (b.group, b.binding))?))).collect()
+    }
+
+    /// Every `u32` constant with its value, by name.
+    fn wgsl_u32_constants(module: &naga::Module) -> BTreeMap<String, u32> {
+        let constants = module.constants.iter().map(|(_, c)| c);
+        constants
+            .filter_map(|c| match module.global_expressions[c.init] {
+                naga::Expression::Literal(naga::Literal::U32(value)) => Some((c.name.clone()?, value)),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// `prefix` and a kebab-case name as a WGSL constant name: `VIEW_` + `shading-normal`
+    /// gives `VIEW_SHADING_NORMAL`.
+    fn constant_name(prefix: &str, name: &str) -> String {
+        format!("{prefix}{}", name.replace('-', "_").to_uppercase())
+    }
+
+    #[test]
+    fn the_wgsl_bindings_are_the_tables() {
+        let mesh = wgsl_bindings(&module(MESH_WGSL));
+        let mut expected: BTreeMap<String, (u32, u32)> =
+            MATERIAL.iter().map(|s| (s.wgsl_name.to_owned(), (1, s.binding))).collect();
+        expected.insert(FRAME.wgsl_name.to_owned(), (0, FRAME.binding));
+        assert_eq!(mesh, expected, "shaders/mesh.wgsl against render::bindings");
+        let marker = wgsl_bindings(&module(MARKER_WGSL));
+        let expected = BTreeMap::from([
+            (FRAME.wgsl_name.to_owned(), (0, FRAME.binding)),
+            (MARKER_MODEL.wgsl_name.to_owned(), (1, MARKER_MODEL.binding)),
+        ]);
+        assert_eq!(marker, expected, "shaders/marker.wgsl against render::bindings");
+        let numbers: Vec<u32> = MATERIAL.iter().map(|s| s.binding).collect();
+        assert_eq!(numbers, (0..MATERIAL.len() as u32).collect::<Vec<_>>(), "one slot per number, in order");
+    }
+
+    /// The shader switches on the enums' indices through named constants: each must equal the
+    /// Rust value. The first view and mode are the shader's `default` branches.
+    #[test]
+    fn the_wgsl_constants_are_the_rust_values() {
+        let constants = wgsl_u32_constants(&module(MESH_WGSL));
+        let mut expected = BTreeMap::new();
+        for view in ViewMode::ALL.into_iter().filter(|&v| v != ViewMode::default()) {
+            expected.insert(constant_name("VIEW_", view.name()), view.shader_index());
+        }
+        for mode in ShadingMode::ALL.into_iter().filter(|&m| m != ShadingMode::default()) {
+            expected.insert(constant_name("MODE_", mode.name()), mode.shader_index());
+        }
+        expected.insert("FLIP_GREEN".into(), NormalConvention::FLIP_GREEN);
+        expected.insert("TWO_CHANNEL".into(), NormalConvention::TWO_CHANNEL);
+        expected.insert("DEPTH_MAP".into(), DEPTH_MAP);
+        expected.insert("HAS_METALLIC_ROUGHNESS".into(), HAS_METALLIC_ROUGHNESS);
+        expected.insert("HAS_GLOSS".into(), HAS_GLOSS);
+        expected.insert("SHADING_METALLIC_ROUGHNESS".into(), ShadingModel::MetallicRoughness.shader_index());
+        assert_eq!(constants, expected, "u32 constants of shaders/mesh.wgsl against the Rust side");
+    }
+}
