@@ -629,7 +629,7 @@ impl ViewerApp {
         let options = crate::capture_options(&capture, tile);
         let grid = match self.screenshot.tiles_text.trim() {
             "" => TileGrid::default_row(&self.state.shading),
-            spec => TileGrid::parse(spec, &self.state.shading)?,
+            spec => TileGrid::parse(spec, &self.state.shading).map_err(|e| e.to_string())?,
         };
         // Tiles are single pictures: while a split view's left half has its own upload, the
         // current settings' upload stands in for the export.

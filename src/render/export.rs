@@ -28,6 +28,17 @@ pub struct TileGrid {
 /// How [`TileGrid::parse`] names a tile, beside the view names.
 const TILE_NAMES: [&str; 4] = ["flat", "bumped", "bump-only", "colour-only"];
 
+/// A tile spec ([`TileGrid::parse`]) that does not parse.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TileSpecError {
+    #[error("{spec:?}: every row needs {columns} tiles, one has {found}")]
+    RowLength { spec: String, columns: usize, found: usize },
+    #[error("tile {tile:?}: expected NAME@STRENGTH, e.g. bumped@2")]
+    Strength { tile: String },
+    #[error("tile {tile:?}: expected one of {expected}")]
+    Name { tile: String, expected: String },
+}
+
 impl TileGrid {
     /// The default row: flat │ bumped │ Tangent view, from `current` (lit pictures in its mode,
     /// at its strength).
@@ -46,11 +57,11 @@ impl TileGrid {
     /// bump on). Lit tiles keep `current`'s mode unless named otherwise; every tile keeps its
     /// strength unless `@STRENGTH` gives one (clamped to the strength slider's range). Every
     /// row must have as many tiles.
-    pub fn parse(spec: &str, current: &ShadingSettings) -> Result<TileGrid, String> {
+    pub fn parse(spec: &str, current: &ShadingSettings) -> Result<TileGrid, TileSpecError> {
         let rows: Vec<Vec<&str>> = spec.split(';').map(|row| row.split(',').map(str::trim).collect()).collect();
         let columns = rows[0].len();
         if let Some(row) = rows.iter().find(|r| r.len() != columns) {
-            return Err(format!("{spec:?}: every row needs {columns} tiles, one has {}", row.len()));
+            return Err(TileSpecError::RowLength { spec: spec.to_owned(), columns, found: row.len() });
         }
         let tiles = rows.iter().flatten().map(|tile| parse_tile(tile, current)).collect::<Result<_, _>>()?;
         Ok(TileGrid { columns, tiles })
@@ -62,13 +73,13 @@ impl TileGrid {
 }
 
 /// One tile of a [`TileGrid::parse`] spec.
-fn parse_tile(text: &str, current: &ShadingSettings) -> Result<ShadingSettings, String> {
+fn parse_tile(text: &str, current: &ShadingSettings) -> Result<ShadingSettings, TileSpecError> {
     let (name, strength) = match text.split_once('@') {
         Some((name, s)) => {
             let strength = s.trim().parse::<f32>().ok().filter(|s| s.is_finite());
             (
                 name.trim(),
-                Some(strength.ok_or_else(|| format!("tile {text:?}: expected NAME@STRENGTH, e.g. bumped@2"))?),
+                Some(strength.ok_or_else(|| TileSpecError::Strength { tile: text.to_owned() })?),
             )
         }
         None => (text, None),
@@ -84,7 +95,7 @@ fn parse_tile(text: &str, current: &ShadingSettings) -> Result<ShadingSettings, 
             None => {
                 let views = ViewMode::ALL.map(ViewMode::name);
                 let names: Vec<&str> = TILE_NAMES.iter().chain(views.iter()).copied().collect();
-                return Err(format!("tile {other:?}: expected one of {}", names.join(", ")));
+                return Err(TileSpecError::Name { tile: other.to_owned(), expected: names.join(", ") });
             }
         },
     };
@@ -240,9 +251,9 @@ mod tests {
     #[test]
     fn bad_specs_say_what_is_wrong() {
         let current = ShadingSettings::default();
-        assert!(TileGrid::parse("flat,bumped;tangent", &current).unwrap_err().contains("every row needs 2 tiles"));
-        assert!(TileGrid::parse("flat,shiny", &current).unwrap_err().contains("shading-normal"));
-        assert!(TileGrid::parse("bumped@lots", &current).unwrap_err().contains("NAME@STRENGTH"));
+        assert!(TileGrid::parse("flat,bumped;tangent", &current).unwrap_err().to_string().contains("every row needs 2 tiles"));
+        assert!(TileGrid::parse("flat,shiny", &current).unwrap_err().to_string().contains("shading-normal"));
+        assert!(TileGrid::parse("bumped@lots", &current).unwrap_err().to_string().contains("NAME@STRENGTH"));
         assert!(TileGrid::parse("", &current).is_err());
         assert_eq!(TileGrid::parse("bumped@1e30", &current).unwrap().tiles[0].strength, 4.0, "clamped");
     }

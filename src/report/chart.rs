@@ -39,12 +39,23 @@ struct Series {
     points: Vec<(f64, f64)>,
 }
 
-fn register_hack_font() -> Result<(), String> {
-    static REGISTERED: OnceLock<Result<(), String>> = OnceLock::new();
+/// Why a chart could not be made.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum ChartError {
+    #[error("the bundled Hack font did not load")]
+    Font,
+    #[error("drawing the chart {title:?}: {reason}")]
+    Draw { title: String, reason: String },
+    #[error("encoding the chart {title:?}: {reason}")]
+    Encode { title: String, reason: String },
+}
+
+fn register_hack_font() -> Result<(), ChartError> {
+    static REGISTERED: OnceLock<Result<(), ChartError>> = OnceLock::new();
     REGISTERED
         .get_or_init(|| {
             register_font("sans-serif", FontStyle::Normal, epaint_default_fonts::HACK_REGULAR)
-                .map_err(|_| "the bundled Hack font did not load".to_owned())
+                .map_err(|_| ChartError::Font)
         })
         .clone()
 }
@@ -88,8 +99,8 @@ fn decades(values: impl Iterator<Item = f64>) -> (f64, f64) {
     (10f64.powf(low.log10().floor()) / 1.5, 10f64.powf((high.log10() + 1e-9).ceil()) * 1.5)
 }
 
-fn draw(buffer: &mut [u8], title: &str, y_label: &str, series: &[Series]) -> Result<(), String> {
-    let failed = |e: &dyn std::fmt::Display| format!("drawing the chart {title:?}: {e}");
+fn draw(buffer: &mut [u8], title: &str, y_label: &str, series: &[Series]) -> Result<(), ChartError> {
+    let failed = |e: &dyn std::fmt::Display| ChartError::Draw { title: title.to_owned(), reason: e.to_string() };
     let root = BitMapBackend::with_buffer(buffer, SIZE).into_drawing_area();
     root.fill(&WHITE).map_err(|e| failed(&e))?;
     let (x0, x1) = decades(series.iter().flat_map(|s| s.points.iter().map(|p| p.0)));
@@ -136,20 +147,20 @@ fn draw(buffer: &mut [u8], title: &str, y_label: &str, series: &[Series]) -> Res
     root.present().map_err(|e| failed(&e))
 }
 
-fn png(title: &str, y_label: &str, series: &[Series]) -> Result<Vec<u8>, String> {
+fn png(title: &str, y_label: &str, series: &[Series]) -> Result<Vec<u8>, ChartError> {
     register_hack_font()?;
     let mut rgb = vec![0u8; (SIZE.0 * SIZE.1 * 3) as usize];
     draw(&mut rgb, title, y_label, series)?;
     let mut bytes = vec![];
     PngEncoder::new(&mut bytes)
         .write_image(&rgb, SIZE.0, SIZE.1, image::ExtendedColorType::Rgb8)
-        .map_err(|e| format!("encoding the chart {title:?}: {e}"))?;
+        .map_err(|e| ChartError::Encode { title: title.to_owned(), reason: e.to_string() })?;
     Ok(bytes)
 }
 
 /// Tangent methods on the sphere (circles) and torus (triangles): mean T error over all
 /// vertices against run time, one point per resolution.
-pub fn tangent_chart(rows: &[Row]) -> Result<Vec<u8>, String> {
+pub fn tangent_chart(rows: &[Row]) -> Result<Vec<u8>, ChartError> {
     let series = series(rows, Study::Tangents, &["sphere", "torus"], Vector::Tangent);
     let title = "Tangent methods: mean T error vs run time (one point per resolution)";
     png(title, "mean angular error of T, all vertices (°)", &series)
@@ -157,7 +168,7 @@ pub fn tangent_chart(rows: &[Row]) -> Result<Vec<u8>, String> {
 
 /// Height kernels on the sine-bump plane (float heights, wrapped): mean normal error against
 /// run time, one point per texels-per-period.
-pub fn kernel_chart(rows: &[Row]) -> Result<Vec<u8>, String> {
+pub fn kernel_chart(rows: &[Row]) -> Result<Vec<u8>, ChartError> {
     let series = series(rows, Study::Kernels, &["plane"], Vector::Normal);
     let title = "Height kernels: mean normal error vs run time (one point per texels/period)";
     png(title, "mean angular error of N (°)", &series)

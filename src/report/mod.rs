@@ -37,8 +37,8 @@ pub const MIKKTSPACE_SANITY_SPHERE: (u32, u32) = (256, 128);
 pub enum ReportError {
     #[error("could not write {path}: {reason}")]
     Write { path: PathBuf, reason: String },
-    #[error("{0}")]
-    Chart(String),
+    #[error(transparent)]
+    Chart(#[from] chart::ChartError),
 }
 
 /// What to measure.
