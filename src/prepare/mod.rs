@@ -126,8 +126,8 @@ pub struct PreparedScene {
     pub meshes: Vec<PreparedMesh>,
     /// Per instance of `scene`, in its order.
     pub instances: Vec<PreparedInstance>,
-    /// What the scene asked for but cannot get (a bump map on a mesh without texture
-    /// coordinates, non-finite vertex data repaired), one line each, for the user.
+    /// What the scene asked for but cannot get (the loader's warnings, a bump map on a mesh
+    /// without texture coordinates, non-finite vertex data repaired), one line each, for the user.
     pub notices: Vec<String>,
     /// Tangent frames made by a generator (not read from the file) for this preparation.
     pub tangent_frames_generated: u64,
@@ -154,7 +154,8 @@ impl PreparedScene {
                 }
             })
             .collect();
-        let mut notices = missing_uv_notices(&scene);
+        let mut notices: Vec<String> = scene.warnings.iter().map(ToString::to_string).collect();
+        notices.extend(missing_uv_notices(&scene));
         let mut tangent_frames_generated = 0;
         let meshes = scene
             .meshes
