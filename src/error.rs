@@ -60,4 +60,7 @@ pub enum LoadWarning {
     /// folder: it opens here, but not where the model is copied without it.
     #[error("{uri:?} ({}) lies outside the model's folder: the model is not portable", file.display())]
     NotPortable { uri: String, file: PathBuf },
+    /// A texture that reads another set of texture coordinates than the mesh's one stream.
+    #[error("material {material:?}: {texture} reads TEXCOORD_{wanted}; drawn with TEXCOORD_{drawn}")]
+    TextureCoordinates { material: String, texture: String, wanted: u32, drawn: u32 },
 }

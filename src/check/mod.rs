@@ -170,8 +170,9 @@ impl CheckReport {
 
     /// The warnings, one line each.
     pub fn warnings(&self) -> Vec<String> {
-        let not_portable = self.load_warnings.iter().filter(|w| matches!(w, LoadWarning::NotPortable { .. }));
-        let mut warnings: Vec<String> = not_portable.map(ToString::to_string).collect();
+        let unreadable = |w: &&LoadWarning| matches!(w, LoadWarning::UnreadableTexture { .. });
+        let mut warnings: Vec<String> =
+            self.load_warnings.iter().filter(|w| !unreadable(w)).map(ToString::to_string).collect();
         for mesh in &self.meshes {
             if mesh.degenerate_uv > 0 {
                 warnings.push(format!("mesh {:?}: {} triangles with degenerate UVs", mesh.name, mesh.degenerate_uv));

@@ -19,7 +19,8 @@ use super::gltf_mesh::{UvChoice, primitive_mesh};
 use super::image::decode_texture;
 use crate::error::{LoadError, LoadWarning};
 use crate::scene::{
-    Instance, Material, NormalMap, Occlusion, SamplerWrap, Scene, ShadingModel, TextureImage, TextureKind, Wrap,
+    Clearcoat, Instance, Material, NormalMap, Occlusion, SamplerWrap, Scene, ShadingModel, TextureImage, TextureKind,
+    Wrap,
 };
 
 /// Extensions a file may list in `extensionsRequired`.
@@ -310,6 +311,15 @@ impl Loader<'_> {
             .normal_texture()
             .map(|n| n.texture().sampler())
             .or_else(|| pbr.metallic_roughness_texture().map(|i| i.texture().sampler()));
+        let emissive_texture = match material.emissive_texture() {
+            Some(info) => self.texture(info.texture(), TextureKind::Color)?,
+            None => None,
+        };
+        let emissive_strength = material.emissive_strength().unwrap_or(1.0);
+        let clearcoat = match material.extension_value("KHR_materials_clearcoat") {
+            Some(json) => Some(self.clearcoat(&material, json)?),
+            None => None,
+        };
         self.scene.materials.push(Material {
             name: material.name().unwrap_or("material").to_owned(),
             base_color_factor: base,
@@ -325,11 +335,61 @@ impl Loader<'_> {
             occlusion,
             base_color_wrap: pbr.base_color_texture().map_or_else(Default::default, |i| wrap(&i.texture().sampler())),
             detail_wrap: detail_sampler.map_or_else(Default::default, |s| wrap(&s)),
+            emissive_factor: Vec3::from(material.emissive_factor()) * emissive_strength,
+            emissive_texture,
+            clearcoat,
             ..Material::default()
         });
         let index = self.scene.materials.len() - 1;
         self.materials.insert(material.index(), index);
         Ok(index)
+    }
+
+    /// `KHR_materials_clearcoat` of `material` from its JSON: factors, the strength (red),
+    /// roughness (green) and normal textures, and the transform from the mesh's texture
+    /// coordinates to the layer's (its textures' `KHR_texture_transform`; the first texture's
+    /// stands for all three).
+    fn clearcoat(&mut self, material: &gltf::Material, json: &gltf::json::Value) -> Result<Clearcoat, LoadError> {
+        use gltf::json::Value;
+        let number = |key: &str, default: f64| json.get(key).and_then(Value::as_f64).unwrap_or(default) as f32;
+        let name = material.name().unwrap_or("material").to_owned();
+        let stream = uv_choice(material);
+        let mut layer_uv = None;
+        let mut slot = |loader: &mut Self, key: &str, kind: TextureKind| -> Result<Option<(usize, f32)>, LoadError> {
+            let Some(info) = json.get(key) else { return Ok(None) };
+            let index = info.get("index").and_then(Value::as_u64).and_then(|i| usize::try_from(i).ok());
+            let Some(texture) = index.and_then(|i| loader.document.textures().nth(i)) else {
+                let problem = format!("material {name:?}: {key} names no texture");
+                return Err(LoadError::new(loader.path, problem));
+            };
+            let tex_coord = info.get("texCoord").and_then(Value::as_u64).unwrap_or(0).min(u32::MAX as u64) as u32;
+            let choice = UvChoice::from_json(tex_coord, info.pointer("/extensions/KHR_texture_transform"));
+            if choice.set != stream.set {
+                let warning = LoadWarning::TextureCoordinates {
+                    material: name.clone(),
+                    texture: key.to_owned(),
+                    wanted: choice.set,
+                    drawn: stream.set,
+                };
+                loader.scene.warnings.push(warning);
+            }
+            layer_uv.get_or_insert(choice.matrix() * stream.matrix().inverse());
+            let scale = info.get("scale").and_then(Value::as_f64).unwrap_or(1.0) as f32;
+            Ok(loader.texture(texture, kind)?.map(|t| (t, scale)))
+        };
+        let texture = slot(self, "clearcoatTexture", TextureKind::Data)?.map(|(t, _)| t);
+        let roughness_texture = slot(self, "clearcoatRoughnessTexture", TextureKind::Data)?.map(|(t, _)| t);
+        let normal_map =
+            slot(self, "clearcoatNormalTexture", TextureKind::NormalMap)?.map(|(t, scale)| NormalMap::new(t, scale));
+        let layer_uv = layer_uv.unwrap_or(glam::Mat3::IDENTITY);
+        Ok(Clearcoat {
+            factor: number("clearcoatFactor", 0.0).clamp(0.0, 1.0),
+            texture,
+            roughness: number("clearcoatRoughnessFactor", 0.0).clamp(0.0, 1.0),
+            roughness_texture,
+            normal_map,
+            uv_transform: [layer_uv.row(0), layer_uv.row(1)],
+        })
     }
 
     /// The scene texture for a glTF texture's image read as `kind`, decoded once; `None`

@@ -33,6 +33,17 @@ impl Default for UvChoice {
 }
 
 impl UvChoice {
+    /// The transform as an affine matrix on `(u, v, 1)` ([`super::mesh_ops::transform_uvs`]).
+    pub fn matrix(&self) -> glam::Mat3 {
+        let (sin, cos) = self.rotation.sin_cos();
+        let (sx, sy) = (self.scale.x, self.scale.y);
+        glam::Mat3::from_cols(
+            glam::Vec3::new(cos * sx, -sin * sx, 0.0),
+            glam::Vec3::new(sin * sy, cos * sy, 0.0),
+            self.offset.extend(1.0),
+        )
+    }
+
     /// From a texture reference's `texCoord` and its `KHR_texture_transform` object, if any
     /// (whose own `texCoord` overrides the reference's).
     pub fn from_json(tex_coord: u32, transform: Option<&Value>) -> UvChoice {
