@@ -1,6 +1,7 @@
-//! Loading real files: every third-party test asset loads and renders; the glTF normal-map
-//! conformance models shade like their real-geometry twins; geometry without normals,
-//! mirrored or seen from behind shows normals facing the camera.
+//! Loading real files: every third-party model loads and renders, every picture decodes and
+//! three texture sets are drawn on the built-in scene; the glTF normal-map conformance models
+//! shade like their real-geometry twins; geometry without normals, mirrored or seen from
+//! behind shows normals facing the camera.
 //!
 //! The assets are found through `BUMPVIEW_TEST_ASSETS` (../shared/assets, set by .ci/run):
 //! unset, these tests print a notice and pass; set, a missing file fails them.
