@@ -163,7 +163,8 @@ fn the_sanity_check_rejects_insane_scenes() {
     let mut good = bumpview::scene::builtin::teaching_scene();
     good.meshes[0].tangents = good.meshes[0].analytic_tangents.clone();
     common::assert_sane(&good, "the built-in scene");
-    let breaks: [(&str, fn(&mut Mesh)); 4] = [
+    type Spoil = fn(&mut Mesh);
+    let breaks: [(&str, Spoil); 4] = [
         ("NaN tangent", |m| m.tangents.as_mut().unwrap()[3].x = f32::NAN),
         ("index out of range", |m| m.indices[5] = m.positions.len() as u32),
         ("infinite UV", |m| m.uvs[2].y = f32::INFINITY),
