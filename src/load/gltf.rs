@@ -83,6 +83,15 @@ fn parse(bytes: &[u8], path: &Path) -> Result<(gltf::Document, Option<Vec<u8>>),
         }
         e => format!("invalid glTF: {e}"),
     };
+    // A GLB's header states the file's length; the gltf crate checks only that the file is not
+    // shorter (and underflows on a stated length under 12): a length that differs is corrupt.
+    if let Some(stated) = bytes.strip_prefix(b"glTF").and_then(|rest| rest.get(4..8)) {
+        let stated = u32::from_le_bytes(stated.try_into().expect("4 bytes"));
+        if stated as usize != bytes.len() {
+            let problem = format!("the GLB header gives a length of {stated} bytes, but the file has {}", bytes.len());
+            return Err(LoadError::new(path, format!("truncated or invalid GLB container: {problem}")));
+        }
+    }
     let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| LoadError::new(path, describe(e)))?;
     if let Some(missing) = gltf.extensions_required().find(|e| !SUPPORTED_REQUIRED.contains(e)) {
         return Err(LoadError::new(path, format!("requires the glTF extension {missing}, which is not supported")));

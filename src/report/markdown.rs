@@ -247,7 +247,9 @@ fn stability(page: &Page, out: &mut String) {
         "## Stability (stiff and extreme cases)\n\n\
          Non-finite: frames with a NaN or infinite component. Invalid: frames not unit or not orthogonal to \
          their normal (beyond 1e-4). Max error: the largest angle of T or B to the exact frame, where one \
-         exists (— where none does: degenerate UVs have no frame, a valid fallback is all that is asked).\n\n\
+         exists (— where none does: degenerate UVs have no frame, a valid fallback is all that is asked); \
+         measured away from a sphere's poles and seams, a zero-area triangle's corners and the triangles that \
+         touch non-finite data.\n\n\
          | case | method | non-finite | invalid | max error |\n| --- | --- | --- | --- | --- |\n",
     );
     for row in page.stability {
