@@ -36,6 +36,7 @@
 //!   to a valid vector; degenerate UV triangles fall back to a valid orthonormal frame.
 
 pub mod atomic;
+pub mod bake;
 pub mod chain;
 pub mod check;
 pub mod counters;
