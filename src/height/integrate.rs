@@ -35,19 +35,37 @@ pub enum Derivative {
     Kernel(Kernel),
 }
 
+/// One axis's frequency: the angle `θ` (radians per texel) and `e^{iθo}` for the offsets
+/// `o = −2..=2` the kernels reach.
+struct Phase {
+    theta: f32,
+    powers: [Complex32; 5],
+}
+
+impl Phase {
+    fn new(theta: f32) -> Phase {
+        Phase { theta, powers: [-2.0f32, -1.0, 0.0, 1.0, 2.0].map(|o| Complex32::from_polar(1.0, theta * o)) }
+    }
+
+    /// `e^{iθ·offset}`, `offset` in −2..=2.
+    fn power(&self, offset: i64) -> Complex32 {
+        self.powers[(offset + 2) as usize]
+    }
+}
+
 impl Derivative {
     /// Fourier symbols `(D̂x, D̂y_up)` at angular frequencies `(θx, θy)` radians per texel,
     /// `θy` along rows (down the image), for a field sampled as `Σ Ĥ e^{i(θx·x + θy·row)}`.
-    fn symbols(self, theta_x: f32, theta_y: f32) -> (Complex32, Complex32) {
+    fn symbols(self, x: &Phase, y: &Phase) -> (Complex32, Complex32) {
         match self {
             // Rows run down, y_up runs up: ∂/∂y_up = −∂/∂row.
-            Derivative::Spectral => (Complex32::new(0.0, theta_x), Complex32::new(0.0, -theta_y)),
+            Derivative::Spectral => (Complex32::new(0.0, x.theta), Complex32::new(0.0, -y.theta)),
             Derivative::Kernel(kernel) => {
-                let (mut dx, mut dy) = (Complex32::new(0.0, 0.0), Complex32::new(0.0, 0.0));
+                let (mut dx, mut dy) = (Complex32::ZERO, Complex32::ZERO);
                 for &Tap { along, across, weight } in kernel.taps() {
                     // ∂/∂x reads (x + along, row + across); ∂/∂y_up reads (x + across, row − along).
-                    dx += Complex32::from_polar(weight, theta_x * along as f32 + theta_y * across as f32);
-                    dy += Complex32::from_polar(weight, theta_x * across as f32 - theta_y * along as f32);
+                    dx += x.power(along) * y.power(across) * weight;
+                    dy += x.power(across) * y.power(-along) * weight;
                 }
                 (dx, dy)
             }
@@ -120,16 +138,18 @@ fn integrate_tiled(slopes: &Slopes, derivative: Derivative) -> Vec<f32> {
     let mut t = transpose(&z, w, h);
     fft_rows(&mut t, &*column_forward);
     // t[kx][ky] = Z(kx, ky); P = (Z(k) + conj Z(−k)) / 2, Q = (Z(k) − conj Z(−k)) / 2i.
-    let mut solved = vec![Complex32::new(0.0, 0.0); w * h];
+    let phases = |n: usize| -> Vec<Phase> {
+        (0..n).map(|k| Phase::new(TAU * signed_frequency(k, n) as f32 / n as f32)).collect()
+    };
+    let (phases_y, mut solved) = (phases(h), vec![Complex32::ZERO; w * h]);
     solved.par_chunks_mut(h).enumerate().for_each(|(kx, out)| {
-        let theta_x = TAU * signed_frequency(kx, w) as f32 / w as f32;
+        let phase_x = Phase::new(TAU * signed_frequency(kx, w) as f32 / w as f32);
         let mirror_x = (w - kx) % w;
-        for (ky, out) in out.iter_mut().enumerate() {
-            let theta_y = TAU * signed_frequency(ky, h) as f32 / h as f32;
+        for ((ky, out), phase_y) in out.iter_mut().enumerate().zip(&phases_y) {
             let (a, b) = (t[kx * h + ky], t[mirror_x * h + (h - ky) % h].conj());
             let p = (a + b) * 0.5;
             let q = (a - b) * Complex32::new(0.0, -0.5);
-            let (dx, dy) = derivative.symbols(theta_x, theta_y);
+            let (dx, dy) = derivative.symbols(&phase_x, phase_y);
             let denominator = dx.norm_sqr() + dy.norm_sqr();
             *out = if denominator > BLIND { (dx.conj() * p + dy.conj() * q) / denominator } else { Complex32::ZERO };
         }
