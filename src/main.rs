@@ -10,13 +10,14 @@ use std::process::ExitCode;
 use bumpview::frame::BumpSource;
 use bumpview::frame::ViewMode;
 use bumpview::height::{Border, Kernel};
+use bumpview::names::{Named, parse_or_auto};
 use bumpview::render::capture::{
     CaptureOptions, MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically,
 };
 use bumpview::render::export::{TileGrid, caption, render_grid};
 use bumpview::render::{Background, Gpu, Renderer};
 use bumpview::scene::{GreenAxis, MaterialOverrides, Scene, ShadingModel};
-use bumpview::state::preset::{self, CapturePreset, Preset, PresetFiles};
+use bumpview::state::preset::{CapturePreset, Preset, PresetFiles};
 use bumpview::state::{SplitDifference, ViewerState};
 use bumpview::tangent::TangentMethod;
 use clap::{Parser, Subcommand};
@@ -177,7 +178,7 @@ struct RenderArgs {
 }
 
 fn parse_split(text: &str) -> Result<SplitDifference, String> {
-    args::parse_named(text, &SplitDifference::ALL, SplitDifference::name)
+    args::parse_named(text)
 }
 
 /// The numerical methods behind the picture (shared by the viewer and `render`).
@@ -249,13 +250,11 @@ impl MaterialArgs {
 struct ShadingChoice(Option<ShadingModel>);
 
 fn parse_shading(text: &str) -> Result<ShadingChoice, String> {
-    preset::shading_model_from_name(text)
-        .map(ShadingChoice)
-        .ok_or_else(|| format!("{text:?}: expected blinn-phong, pbr or auto"))
+    parse_or_auto(text).map(ShadingChoice).map_err(|e| e.to_string())
 }
 
 fn parse_green(text: &str) -> Result<GreenAxis, String> {
-    preset::green_from_name(text).ok_or_else(|| format!("{text:?}: expected opengl or directx"))
+    args::parse_named(text)
 }
 
 impl MethodArgs {
@@ -289,11 +288,11 @@ impl MethodArgs {
 }
 
 fn parse_bump_source(text: &str) -> Result<BumpSource, String> {
-    args::parse_named(text, &BumpSource::ALL, BumpSource::name)
+    args::parse_named(text)
 }
 
 fn parse_view(text: &str) -> Result<ViewMode, String> {
-    args::parse_named(text, &ViewMode::ALL, ViewMode::name)
+    args::parse_named(text)
 }
 
 /// A tangent method, or `None` for auto (clap reads a bare `Option` as "flag may be absent").
@@ -302,20 +301,15 @@ struct TangentChoice(Option<TangentMethod>);
 
 /// `auto` or a [`TangentMethod`] name.
 fn parse_tangents(text: &str) -> Result<TangentChoice, String> {
-    if text == "auto" {
-        return Ok(TangentChoice(None));
-    }
-    args::parse_named(text, &TangentMethod::ALL, TangentMethod::name)
-        .map(|m| TangentChoice(Some(m)))
-        .map_err(|e| format!("{e} or auto"))
+    parse_or_auto(text).map(TangentChoice).map_err(|e| e.to_string())
 }
 
 fn parse_kernel(text: &str) -> Result<Kernel, String> {
-    args::parse_named(text, &Kernel::ALL, Kernel::name)
+    args::parse_named(text)
 }
 
 fn parse_border(text: &str) -> Result<Border, String> {
-    preset::border_from_name(text).ok_or_else(|| format!("{text:?}: expected wrap or clamp"))
+    args::parse_named(text)
 }
 
 /// The preset, the scene it names and its state, with the command line's files and method

@@ -7,13 +7,14 @@ mod common;
 use bumpview::frame::FrameParams;
 use bumpview::frame::ViewMode;
 use bumpview::height::{Border, HeightField, Kernel};
+use bumpview::names::Named;
 use bumpview::render::capture::{render_float, render_image};
 use bumpview::scene::{Scene, TextureImage};
 use common::*;
 
 fn assert_finite_everywhere(scene: &Scene, params: &FrameParams, case: &str) {
     let mut renderer = renderer_for(scene);
-    for view in ViewMode::ALL {
+    for &view in ViewMode::all() {
         let mut params = *params;
         params.shading.view = view;
         let image = render_float(&mut renderer, [96, 72], &params).unwrap();
@@ -67,7 +68,7 @@ fn a_cliff_in_8_and_16_bit_heights_stays_finite_and_bounded() {
     let samples = (0..height).flat_map(|_| (0..width).map(|x| if x < width / 2 { 0.0 } else { 1.0 })).collect();
     let field = HeightField { width, height, samples, range_m: 0.01, texel_size_m: 0.001 };
     let (eight, sixteen) = (field.quantized(8), field.quantized(16));
-    for kernel in Kernel::ALL {
+    for &kernel in Kernel::all() {
         for border in [Border::Wrap, Border::Clamp] {
             for y in 0..height as i64 {
                 for x in 0..width as i64 {

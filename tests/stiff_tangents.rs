@@ -2,6 +2,7 @@
 //! expected behaviour in its doc comment. Common to all: every frame is finite, `T` is unit
 //! and orthogonal to the vertex normal, `w = ±1` — never NaN.
 
+use bumpview::names::Named;
 use bumpview::report::stiff::{cases, grid, merged, mirrored_halves, plain_uv};
 use bumpview::report::surfaces::uv_sphere;
 use bumpview::scene::Mesh;
@@ -10,7 +11,7 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 
 /// Methods that compute frames (supplied and analytic frames come from the mesh).
 fn generated_methods() -> impl Iterator<Item = TangentMethod> {
-    TangentMethod::ALL.into_iter().filter(|m| m.is_generated())
+    TangentMethod::all().iter().copied().filter(|m| m.is_generated())
 }
 
 /// Frames of `mesh` by `method` (per-face on the unwelded mesh, as drawn), with the normals
@@ -70,7 +71,7 @@ fn a_single_degenerate_uv_triangle_does_not_spoil_its_neighbours() {
     let n = mesh.positions.len() as u32;
     mesh.indices[0..3].copy_from_slice(&[n - 3, n - 2, n - 1]);
     assert_valid(&mesh, "one degenerate triangle");
-    for method in [TangentMethod::MikkTSpace, TangentMethod::Averaged(bumpview::tangent::Weighting::Area)] {
+    for method in [TangentMethod::MikkTSpace, TangentMethod::AveragedArea] {
         let (_, frames) = frames(&mesh, method);
         let far = (mesh.positions.len() - 4).min(20);
         assert!(

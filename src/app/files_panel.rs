@@ -2,6 +2,7 @@
 //! buttons (click for a dialog, or drop a texture on one), the recent files, and per material
 //! and mesh which maps and tangent frames are in use. Everything it does is an [`Action`].
 
+use bumpview::names::Named;
 use bumpview::scene::Scene;
 use bumpview::tangent::TangentMethod;
 

@@ -24,6 +24,7 @@ use bumpview::frame::SceneUploads;
 use bumpview::frame::SplitFrame;
 use bumpview::frame::ViewMode;
 use bumpview::height::Kernel;
+use bumpview::names::Named;
 use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
 use bumpview::render::export::{self, TileGrid};
 use bumpview::render::{Background, RenderTarget, Renderer};

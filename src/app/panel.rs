@@ -7,6 +7,7 @@ use bumpview::frame::BumpSource;
 use bumpview::frame::STRENGTH_RANGE;
 use bumpview::frame::{ShadingMode, ViewMode};
 use bumpview::height::{Border, Kernel};
+use bumpview::names::Named;
 use bumpview::render::glyphs::MAX_GLYPHS_PER_MESH;
 use bumpview::scene::{GreenAxis, Material, MaterialOverrides, ShadingModel};
 use bumpview::shading::OVER_TILT_LIMIT_DEG;
@@ -114,7 +115,7 @@ fn view_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action
     ui.separator();
     ui.strong("View (V cycles)");
     let mut view = state.shading.view;
-    for mode in ViewMode::ALL {
+    for &mode in ViewMode::all() {
         if ui.radio_value(&mut view, mode, view_radio_label(mode)).changed() {
             actions.push(Command::SetView(view).into());
         }
@@ -174,7 +175,7 @@ fn methods_section(
     let tangent_name = |m: Option<TangentMethod>| m.map_or("auto (file, else mikktspace)", TangentMethod::name);
     let mut tangent_method = state.scene_options.tangent_method;
     egui::ComboBox::from_label("tangent frames").selected_text(tangent_name(tangent_method)).show_ui(ui, |ui| {
-        for choice in std::iter::once(None).chain(TangentMethod::ALL.map(Some)) {
+        for choice in std::iter::once(None).chain(TangentMethod::all().iter().copied().map(Some)) {
             ui.selectable_value(&mut tangent_method, choice, tangent_name(choice));
         }
     });
@@ -183,7 +184,7 @@ fn methods_section(
     }
     let mut bump_source = state.scene_options.bump_source;
     egui::ComboBox::from_label("bump source").selected_text(bump_source.name()).show_ui(ui, |ui| {
-        for choice in BumpSource::ALL {
+        for &choice in BumpSource::all() {
             ui.selectable_value(&mut bump_source, choice, choice.name());
         }
     });
@@ -192,7 +193,7 @@ fn methods_section(
     }
     let mut kernel = state.kernel;
     egui::ComboBox::from_label("height-to-normal kernel").selected_text(kernel.name()).show_ui(ui, |ui| {
-        for choice in Kernel::ALL {
+        for &choice in Kernel::all() {
             ui.selectable_value(&mut kernel, choice, choice.name());
         }
     });
@@ -253,7 +254,7 @@ fn conventions_section(ui: &mut egui::Ui, state: &ViewerState, materials: &[Mate
     }
     let kernel_name = |k: Option<Kernel>| k.map_or(unset, Kernel::name);
     egui::ComboBox::from_label("height map kernel").selected_text(kernel_name(new.kernel)).show_ui(ui, |ui| {
-        for choice in std::iter::once(None).chain(Kernel::ALL.map(Some)) {
+        for choice in std::iter::once(None).chain(Kernel::all().iter().copied().map(Some)) {
             ui.selectable_value(&mut new.kernel, choice, kernel_name(choice));
         }
     });
@@ -409,7 +410,7 @@ fn split_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Actio
         return;
     }
     egui::ComboBox::from_label("differs in").selected_text(split.difference.name()).show_ui(ui, |ui| {
-        for d in SplitDifference::ALL {
+        for &d in SplitDifference::all() {
             if ui.selectable_label(split.difference == d, d.name()).clicked() && d != split.difference {
                 actions.push(Command::SetSplitDifference(d).into());
             }
@@ -424,7 +425,7 @@ fn split_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Actio
             None
         }
         SplitDifference::View => {
-            pair_combos(ui, "view", split.views, &ViewMode::ALL, ViewMode::label).map(Command::SetSplitViews)
+            pair_combos(ui, "view", split.views, ViewMode::all(), ViewMode::label).map(Command::SetSplitViews)
         }
         SplitDifference::Strength => {
             let mut strengths = split.strengths;
@@ -434,16 +435,16 @@ fn split_section(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Actio
             (strengths != split.strengths).then_some(Command::SetSplitStrengths(strengths))
         }
         SplitDifference::Mode => {
-            pair_combos(ui, "mode", split.modes, &ShadingMode::ALL, ShadingMode::label).map(Command::SetSplitModes)
+            pair_combos(ui, "mode", split.modes, ShadingMode::all(), ShadingMode::label).map(Command::SetSplitModes)
         }
         SplitDifference::Tangents => {
-            pair_combos(ui, "tangents", split.tangent_methods, &TangentMethod::ALL, TangentMethod::name)
+            pair_combos(ui, "tangents", split.tangent_methods, TangentMethod::all(), TangentMethod::name)
                 .map(Command::SetSplitTangentMethods)
         }
-        SplitDifference::Convention => pair_combos(ui, "green", split.conventions, &GreenAxis::ALL, GreenAxis::label)
+        SplitDifference::Convention => pair_combos(ui, "green", split.conventions, GreenAxis::all(), GreenAxis::label)
             .map(Command::SetSplitConventions),
         SplitDifference::BumpSource => {
-            pair_combos(ui, "bump source", split.bump_sources, &BumpSource::ALL, BumpSource::label)
+            pair_combos(ui, "bump source", split.bump_sources, BumpSource::all(), BumpSource::label)
                 .map(Command::SetSplitBumpSources)
         }
     };

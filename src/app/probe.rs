@@ -5,6 +5,7 @@
 
 use bumpview::frame::BumpKind;
 use bumpview::frame::{FrameParams, SceneOptions};
+use bumpview::names::Named;
 use bumpview::probe::{ProbePoint, ProbeReadout, ProbeScene, project_to_pixel};
 use bumpview::scene::{OrbitCamera, Scene};
 use egui::Key;

@@ -1,11 +1,7 @@
 //! Parsers for command-line and panel values: sizes, vectors, camera, on/off.
 
-use bumpview::frame::BumpSource;
-use bumpview::frame::{ShadingMode, ViewMode};
-use bumpview::scene::GreenAxis;
-use bumpview::state::preset::green_name;
+use bumpview::names::Named;
 use bumpview::state::{Command, SplitDifference};
-use bumpview::tangent::TangentMethod;
 use glam::Vec3;
 
 /// `"WxH"` → `[W, H]` in pixels (each at least 1).
@@ -44,12 +40,9 @@ pub fn parse_on_off(text: &str) -> Result<bool, String> {
     }
 }
 
-/// The item of `all` whose `name` is `text`, else an error listing the names.
-pub fn parse_named<T: Copy>(text: &str, all: &[T], name: fn(T) -> &'static str) -> Result<T, String> {
-    all.iter().copied().find(|&item| name(item) == text).ok_or_else(|| {
-        let names: Vec<_> = all.iter().map(|&item| name(item)).collect();
-        format!("{text:?}: expected one of {}", names.join(", "))
-    })
+/// The value named `text` ([`Named`]), else an error listing the names.
+pub fn parse_named<T: Named>(text: &str) -> Result<T, String> {
+    T::parse_name(text).map_err(|e| e.to_string())
 }
 
 /// `"LEFT,RIGHT"` → the command that sets the split view's pair for `difference`: two views,
@@ -62,22 +55,12 @@ pub fn parse_split_sides(difference: SplitDifference, text: &str) -> Result<Comm
     let sides = [left, right];
     Ok(match difference {
         SplitDifference::Bump => return Err("--split bump has fixed sides (off │ on)".into()),
-        SplitDifference::View => {
-            Command::SetSplitViews(pair(sides, |t| parse_named(t, &ViewMode::ALL, ViewMode::name))?)
-        }
+        SplitDifference::View => Command::SetSplitViews(pair(sides, parse_named)?),
         SplitDifference::Strength => Command::SetSplitStrengths(pair(sides, parse_finite)?),
-        SplitDifference::Mode => {
-            Command::SetSplitModes(pair(sides, |t| parse_named(t, &ShadingMode::ALL, ShadingMode::name))?)
-        }
-        SplitDifference::Tangents => {
-            Command::SetSplitTangentMethods(pair(sides, |t| parse_named(t, &TangentMethod::ALL, TangentMethod::name))?)
-        }
-        SplitDifference::Convention => {
-            Command::SetSplitConventions(pair(sides, |t| parse_named(t, &GreenAxis::ALL, green_name))?)
-        }
-        SplitDifference::BumpSource => {
-            Command::SetSplitBumpSources(pair(sides, |t| parse_named(t, &BumpSource::ALL, BumpSource::name))?)
-        }
+        SplitDifference::Mode => Command::SetSplitModes(pair(sides, parse_named)?),
+        SplitDifference::Tangents => Command::SetSplitTangentMethods(pair(sides, parse_named)?),
+        SplitDifference::Convention => Command::SetSplitConventions(pair(sides, parse_named)?),
+        SplitDifference::BumpSource => Command::SetSplitBumpSources(pair(sides, parse_named)?),
     })
 }
 
@@ -96,6 +79,9 @@ pub fn parse_finite(text: &str) -> Result<f32, String> {
 
 #[cfg(test)]
 mod tests {
+    use bumpview::scene::GreenAxis;
+    use bumpview::tangent::TangentMethod;
+
     use super::*;
 
     #[test]

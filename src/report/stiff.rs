@@ -4,6 +4,7 @@
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use super::surfaces::uv_sphere;
+use crate::names::Named;
 use crate::scene::Mesh;
 use crate::tangent::{TangentMethod, angle_degrees, tangents};
 
@@ -132,7 +133,7 @@ pub struct StabilityRow {
 pub fn stability_rows() -> Vec<StabilityRow> {
     let mut rows = vec![];
     for case in cases() {
-        for method in TangentMethod::ALL.into_iter().filter(|m| m.is_generated()) {
+        for &method in TangentMethod::all().iter().filter(|m| m.is_generated()) {
             let mesh = if method == TangentMethod::PerFace { case.mesh.unwelded() } else { case.mesh.clone() };
             let frames = tangents(&mesh, method).expect("generated methods always answer");
             let non_finite = frames.iter().filter(|t| !t.is_finite()).count();
