@@ -2,12 +2,13 @@
 //! buttons (click for a dialog, or drop a texture on one), the recent files, and per material
 //! and mesh which maps and tangent frames are in use. Everything it does is an [`Action`].
 
+use bumpview::load::TextureSlot;
 use bumpview::names::Named;
 use bumpview::scene::Scene;
 use bumpview::tangent::TangentMethod;
 
 use super::Action;
-use super::files::{Files, Slot, Status, file_name};
+use super::files::{Files, Status, file_name};
 
 /// What the files section shows.
 pub(super) struct FilesView<'a> {
@@ -22,7 +23,7 @@ pub(super) struct FilesView<'a> {
 }
 
 /// Shows the section and returns where each slot button is, for files dropped on them.
-pub(super) fn show(ui: &mut egui::Ui, view: &FilesView, actions: &mut Vec<Action>) -> Vec<(Slot, egui::Rect)> {
+pub(super) fn show(ui: &mut egui::Ui, view: &FilesView, actions: &mut Vec<Action>) -> Vec<(TextureSlot, egui::Rect)> {
     ui.separator();
     ui.strong("Files");
     ui.horizontal(|ui| {
@@ -55,13 +56,13 @@ pub(super) fn show(ui: &mut egui::Ui, view: &FilesView, actions: &mut Vec<Action
 
 /// One button per texture slot with the file in it: a click opens a dialog for the slot, a
 /// texture dropped on it goes into it.
-fn slot_buttons(ui: &mut egui::Ui, view: &FilesView, actions: &mut Vec<Action>) -> Vec<(Slot, egui::Rect)> {
+fn slot_buttons(ui: &mut egui::Ui, view: &FilesView, actions: &mut Vec<Action>) -> Vec<(TextureSlot, egui::Rect)> {
     ui.weak("Texture slots: click to choose, or drop a texture on one");
     let mut targets = Vec::new();
     egui::Grid::new("slots").num_columns(2).show(ui, |ui| {
-        for slot in Slot::ALL {
+        for &slot in TextureSlot::all() {
             ui.label(slot.label());
-            let file = slot.get(&view.files.source.slots);
+            let file = view.files.scene_files.texture(slot);
             let text = file.map_or_else(|| "— choose…".to_owned(), file_name);
             let button = ui.add_enabled(!view.dialog_open, egui::Button::new(text).truncate());
             targets.push((slot, button.rect));

@@ -24,18 +24,17 @@ use bumpview::frame::SceneUploads;
 use bumpview::frame::SplitFrame;
 use bumpview::frame::ViewMode;
 use bumpview::height::Kernel;
+use bumpview::load::{SceneFiles, TextureSlot};
 use bumpview::names::Named;
 use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
 use bumpview::render::export::{self, TileGrid};
 use bumpview::render::{Background, RenderTarget, Renderer};
 use bumpview::scene::Scene;
-use bumpview::state::preset::{CapturePreset, Preset, PresetFiles};
+use bumpview::state::preset::{CapturePreset, Preset};
 use bumpview::state::{Command, RedrawTracker, ViewerState};
 use bumpview::tangent::{MethodMeasurement, TangentMethod, measure};
 use eframe::egui_wgpu::RenderState;
-use files::{Files, Finished, Purpose, Slot, Source, Status};
-
-use crate::cli::inputs::InputArgs;
+use files::{Files, Finished, Purpose, Status};
 
 /// How the viewer is started; see `--exit-after` and `--capture-window`.
 pub struct Options {
@@ -46,7 +45,7 @@ pub struct Options {
     /// The scene to start with (the built-in one, or made from `inputs`).
     pub scene: Scene,
     /// The files `scene` was made from, watched for changes.
-    pub inputs: InputArgs,
+    pub files: SceneFiles,
     /// Camera, light, settings and scene options to start with.
     pub state: ViewerState,
     /// Screenshot size, background and supersampling to start with.
@@ -74,11 +73,11 @@ enum Action {
     /// Open files (dropped, chosen in the dialog or the recent list): a mesh replaces the
     /// scene; images go into `slot` (dropped on it or chosen for it) or the one their name
     /// suggests.
-    Open { paths: Vec<PathBuf>, slot: Option<Slot> },
+    Open { paths: Vec<PathBuf>, slot: Option<TextureSlot> },
     /// Show the file dialog for a mesh or texture (`None`) or for one slot's texture.
-    ShowDialog(Option<Slot>),
+    ShowDialog(Option<TextureSlot>),
     /// The file dialog closed with a file, or without one (`None`).
-    DialogClosed { slot: Option<Slot>, path: Option<PathBuf> },
+    DialogClosed { slot: Option<TextureSlot>, path: Option<PathBuf> },
     /// Files of the scene changed on disk and have settled: re-make it, keeping the view.
     Reload,
     /// A load finished on the worker thread.
@@ -207,7 +206,7 @@ struct ViewerApp {
     /// Why hot reload does not work, when it does not.
     watch_error: Option<String>,
     /// Where the panel's slot buttons were last drawn, for files dropped on them.
-    slot_targets: Vec<(Slot, egui::Rect)>,
+    slot_targets: Vec<(TextureSlot, egui::Rect)>,
     /// To wake the UI from worker threads.
     ctx: egui::Context,
     /// The options the renderer's scene uploads were made with.
@@ -256,15 +255,15 @@ impl ViewerApp {
         renderer.set_scene_uploads(&scene, &state.scene_uploads());
         let adapter_name = renderer.adapter_name();
         let mut files =
-            Files::new(source(&options.inputs, state.kernel), Arc::new(Source::build), files::recent_file());
-        files.remember_source();
+            Files::new(options.files.absolute(), state.kernel, Arc::new(SceneFiles::build), files::recent_file());
+        files.remember_scene_files();
         if let Some(notice) = options.notice {
             files.status = Some(Status::Failed(notice));
         }
         let ctx = cc.egui_ctx.clone();
         let wake = ctx.clone();
         let (mut watcher, watching) = watch::Watcher::new(move || wake.request_repaint());
-        let watch_error = watching.and_then(|()| watcher.watch(&watched_files(&files.source, &scene))).err();
+        let watch_error = watching.and_then(|()| watcher.watch(&watched_files(&files.scene_files, &scene))).err();
         let check = check_scene(&scene);
         Ok(ViewerApp {
             measurements: measure_all(&scene, state.scene_options.tangent_method),
@@ -315,7 +314,7 @@ impl ViewerApp {
                 Action::LoadPreset(path) => self.preset.message = Some(self.load_preset(&path)),
                 Action::Open { paths, slot } => self.files.open(&paths, slot, self.waker()),
                 Action::ShowDialog(slot) => {
-                    let folder = self.files.source.files().first().and_then(|f| f.parent()).map(Path::to_owned);
+                    let folder = self.files.scene_files.paths().first().and_then(|f| f.parent()).map(Path::to_owned);
                     if let Err(message) = self.dialog.show(slot, folder, self.waker()) {
                         self.files.status = Some(Status::Failed(message));
                     }
@@ -330,12 +329,13 @@ impl ViewerApp {
                 Action::Reload => {
                     let name = self
                         .files
-                        .source
-                        .files()
+                        .scene_files
+                        .paths()
                         .first()
                         .map_or_else(|| "built-in scene".into(), |p| files::file_name(p));
                     let done = format!("reloaded {name}");
-                    self.files.reload(self.files.source.clone(), done, self.waker());
+                    let (scene_files, kernel) = (self.files.scene_files.clone(), self.files.kernel);
+                    self.files.reload(scene_files, kernel, done, self.waker());
                 }
                 Action::PinProbe { pixel, size } => {
                     self.probe.pin(pixel, size);
@@ -360,10 +360,9 @@ impl ViewerApp {
     /// Re-makes the built-in scene with a new brick-map kernel (in the background, keeping
     /// the view and any textures in its slots); loaded meshes do not use the kernel.
     fn rebuild_builtin(&mut self, kernel: Kernel) {
-        let source = &self.files.source;
-        if source.mesh.is_none() && source.kernel != kernel {
-            let source = Source { kernel, ..source.clone() };
-            self.files.reload(source, format!("brick normal map made with {}", kernel.name()), self.waker());
+        if self.files.scene_files.mesh.is_none() && self.files.kernel != kernel {
+            let done = format!("brick normal map made with {}", kernel.name());
+            self.files.reload(self.files.scene_files.clone(), kernel, done, self.waker());
         }
     }
 
@@ -388,7 +387,7 @@ impl ViewerApp {
         self.scene = scene;
         self.probe.scene_changed();
         self.tracker.invalidate();
-        self.watch_error = self.watcher.watch(&watched_files(&self.files.source, &self.scene)).err();
+        self.watch_error = self.watcher.watch(&watched_files(&self.files.scene_files, &self.scene)).err();
     }
 
     /// What arrived from other threads this frame: dropped files, the dialog's answer, settled
@@ -411,7 +410,7 @@ impl ViewerApp {
         // watcher reports absolute paths.
         let referred =
             |path: &PathBuf| self.scene.files.iter().any(|f| std::path::absolute(f).is_ok_and(|f| f == *path));
-        if self.watcher.changes().iter().any(|path| self.files.source.is_affected_by(path) || referred(path)) {
+        if self.watcher.changes().iter().any(|path| files::affects(&self.files.scene_files, path) || referred(path)) {
             self.files.debouncer.changed(now);
         }
         if let Some(finished) = self.files.loader.poll() {
@@ -606,7 +605,7 @@ impl ViewerApp {
             text => crate::cli::args::parse_size(text)?,
         };
         let capture = CapturePreset { size: Some(view_size), ..self.screenshot.capture() };
-        let options = crate::capture_options(&capture, view_size);
+        let options = capture.options(view_size);
         let params = self.state.frame_params();
         let image = match self.state.split_frame() {
             Some(split) => render_capture_split(&mut self.renderer, &options, &params, &split),
@@ -627,7 +626,7 @@ impl ViewerApp {
             text => crate::cli::args::parse_size(text)?,
         };
         let capture = CapturePreset { size: Some(tile), ..self.screenshot.capture() };
-        let options = crate::capture_options(&capture, tile);
+        let options = capture.options(tile);
         let grid = match self.screenshot.tiles_text.trim() {
             "" => TileGrid::default_row(&self.state.shading),
             spec => TileGrid::parse(spec, &self.state.shading)?,
@@ -657,15 +656,7 @@ impl ViewerApp {
 
     /// The whole state, the scene's files and the screenshot settings as a preset.
     fn current_preset(&self) -> Preset {
-        let source = &self.files.source;
-        let slots = &source.slots;
-        let files = PresetFiles {
-            mesh: source.mesh.clone(),
-            color: slots.color.clone(),
-            normal: slots.normal.clone(),
-            height: slots.height.clone(),
-            gloss: slots.gloss.clone(),
-        };
+        let files = self.files.scene_files.clone();
         Preset { capture: self.screenshot.capture(), ..Preset::from_state(&self.state, files) }
     }
 
@@ -675,14 +666,14 @@ impl ViewerApp {
         let preset = Preset::load(path).map_err(|e| e.to_string())?;
         let mut state = preset.to_state(&self.scene).map_err(|e| e.to_string())?;
         state.default_camera = self.state.default_camera;
-        let inputs = crate::cli::inputs::InputArgs::from_files(&preset.files);
-        let wanted = source(&inputs, state.kernel);
+        let wanted = preset.files.absolute();
+        let kernel = state.kernel;
         self.state = state;
         self.screenshot = ScreenshotForm::new(&preset.capture);
         self.tracker.invalidate();
-        if wanted != self.files.source {
+        if (&wanted, kernel) != (&self.files.scene_files, self.files.kernel) {
             let done = format!("opened the files of {}", path.display());
-            self.files.reload(wanted, done, self.waker());
+            self.files.reload(wanted, kernel, done, self.waker());
         }
         Ok(format!("loaded {}", path.display()))
     }
@@ -761,22 +752,10 @@ impl eframe::App for ViewerApp {
     }
 }
 
-/// The source of the scene given on the command line (paths made absolute).
-fn source(inputs: &InputArgs, kernel: Kernel) -> Source {
-    let absolute = |path: &Option<PathBuf>| path.as_ref().map(|p| std::path::absolute(p).unwrap_or_else(|_| p.clone()));
-    let slots = bumpview::load::TextureSlots {
-        color: absolute(&inputs.color),
-        normal: absolute(&inputs.normal),
-        height: absolute(&inputs.height),
-        gloss: absolute(&inputs.gloss),
-    };
-    Source { mesh: absolute(&inputs.mesh), slots, kernel }
-}
-
-/// The files hot reload watches: the source's (mesh, slot textures) and those the mesh file
+/// The files hot reload watches: the scene's (mesh, slot textures) and those the mesh file
 /// referred to (buffers, material libraries, textures, also in other folders).
-fn watched_files<'a>(source: &'a Source, scene: &'a Scene) -> Vec<&'a Path> {
-    let mut files = source.files();
+fn watched_files<'a>(scene_files: &'a SceneFiles, scene: &'a Scene) -> Vec<&'a Path> {
+    let mut files = scene_files.paths();
     files.extend(scene.files.iter().map(PathBuf::as_path));
     files
 }

@@ -1,6 +1,12 @@
-//! Parsers for command-line and panel values: sizes, vectors, camera, on/off.
+//! Parsers for command-line and panel values: sizes, vectors, camera, on/off, and the names
+//! of enum values ([`Named`], [`AutoOr`]), whose `--help` lists the names from the enum.
 
-use bumpview::names::Named;
+use std::ffi::OsStr;
+use std::marker::PhantomData;
+
+use clap::builder::{PossibleValue, TypedValueParser};
+
+use bumpview::names::{AUTO, Named, parse_or_auto};
 use bumpview::state::{Command, SplitDifference};
 use glam::Vec3;
 
@@ -43,6 +49,69 @@ pub fn parse_on_off(text: &str) -> Result<bool, String> {
 /// The value named `text` ([`Named`]), else an error listing the names.
 pub fn parse_named<T: Named>(text: &str) -> Result<T, String> {
     T::parse_name(text).map_err(|e| e.to_string())
+}
+
+/// A value of `T` or `auto` (each mesh's or material's own choice: `None`). A newtype because
+/// clap reads a bare `Option<Option<T>>` as "a flag whose value may be missing".
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AutoOr<T>(pub Option<T>);
+
+/// clap's value parser for a [`Named`] enum: the value's name, listed in `--help` as the
+/// flag's possible values (from the enum, so the help cannot go stale) and in the error for
+/// any other text.
+#[derive(Clone)]
+pub struct NameParser<T>(PhantomData<T>);
+
+/// [`NameParser`] for the flags that also take `auto` ([`AutoOr`]).
+#[derive(Clone)]
+pub struct NameOrAutoParser<T>(PhantomData<T>);
+
+/// The value parser of a flag naming a `T`.
+pub fn named<T>() -> NameParser<T> {
+    NameParser(PhantomData)
+}
+
+/// The value parser of a flag naming a `T` or `auto`.
+pub fn named_or_auto<T>() -> NameOrAutoParser<T> {
+    NameOrAutoParser(PhantomData)
+}
+
+impl<T: Named + Send + Sync + 'static> TypedValueParser for NameParser<T> {
+    type Value = T;
+
+    fn parse_ref(&self, cmd: &clap::Command, arg: Option<&clap::Arg>, value: &OsStr) -> Result<T, clap::Error> {
+        let text = value.to_string_lossy();
+        T::parse_name(&text).map_err(|e| invalid_value(cmd, arg, &text, e))
+    }
+
+    fn possible_values(&self) -> Option<Box<dyn Iterator<Item = PossibleValue> + '_>> {
+        Some(Box::new(T::names().into_iter().map(PossibleValue::new)))
+    }
+}
+
+impl<T: Named + Send + Sync + 'static> TypedValueParser for NameOrAutoParser<T> {
+    type Value = AutoOr<T>;
+
+    fn parse_ref(&self, cmd: &clap::Command, arg: Option<&clap::Arg>, value: &OsStr) -> Result<AutoOr<T>, clap::Error> {
+        let text = value.to_string_lossy();
+        parse_or_auto(&text).map(AutoOr).map_err(|e| invalid_value(cmd, arg, &text, e))
+    }
+
+    fn possible_values(&self) -> Option<Box<dyn Iterator<Item = PossibleValue> + '_>> {
+        Some(Box::new(std::iter::once(AUTO).chain(T::names()).map(PossibleValue::new)))
+    }
+}
+
+/// clap's error for a bad value, on one line: the flag, the text and the names expected.
+fn invalid_value(
+    cmd: &clap::Command,
+    arg: Option<&clap::Arg>,
+    text: &str,
+    reason: impl std::fmt::Display,
+) -> clap::Error {
+    let flag = arg.map_or_else(|| "the argument".to_owned(), |a| format!("'{a}'"));
+    let message = format!("invalid value '{text}' for {flag}: {reason}\n");
+    clap::Error::raw(clap::error::ErrorKind::ValueValidation, message).with_cmd(cmd)
 }
 
 /// `"LEFT,RIGHT"` → the command that sets the split view's pair for `difference`: two views,

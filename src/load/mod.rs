@@ -3,6 +3,7 @@
 //! image, CCW front faces, unit normals) and returns a [`LoadError`] naming the file and the
 //! problem; none panics on any input.
 
+mod files;
 mod framing;
 pub mod gltf;
 mod gltf_mesh;
@@ -10,7 +11,6 @@ pub mod image;
 mod mesh_ops;
 mod mtl;
 pub mod obj;
-mod slots;
 
 use std::path::Path;
 
@@ -18,8 +18,8 @@ pub use crate::error::LoadError;
 use glam::Vec3;
 
 use crate::scene::Scene;
+pub use files::{SceneFiles, TextureSlot, replace_textures};
 pub use framing::frame_scene;
-pub use slots::{TextureSlots, replace_textures};
 
 /// Loads a mesh file into a [`Scene`] with a camera framing it and a light above and in
 /// front, choosing the loader by the extension (`.gltf`, `.glb`, `.obj`; any case).

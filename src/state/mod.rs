@@ -51,6 +51,13 @@ pub enum Command {
         viewport_height: f32,
     },
     ResetCamera,
+    /// Points the camera ([`OrbitCamera::point`]): yaw and pitch in radians (pitch clamped
+    /// to ±89°), distance in metres (clamped to the zoom range), about the same target.
+    PointCamera {
+        yaw: f32,
+        pitch: f32,
+        distance: f32,
+    },
     /// Advances animations by `seconds`.
     Tick(f32),
     /// Tangent frames by this method (`None`: the mesh's own, else MikkTSpace).
@@ -316,6 +323,7 @@ impl ViewerState {
             Command::Zoom(factor) => self.camera.zoom(factor),
             Command::PanCamera { pixels, viewport_height } => self.camera.pan(pixels, viewport_height),
             Command::ResetCamera => self.camera = self.default_camera,
+            Command::PointCamera { yaw, pitch, distance } => self.camera.point(yaw, pitch, distance),
             Command::Tick(seconds) if self.light_orbit && seconds.is_finite() => {
                 // Rotate the light about the vertical axis through the camera target.
                 let rotation = glam::Quat::from_rotation_y(LIGHT_ORBIT_SPEED * seconds);

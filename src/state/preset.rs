@@ -15,28 +15,24 @@
 //! the same pixels again.
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
 use crate::frame::{SceneOptions, ShadingSettings};
 use crate::height::Kernel;
-use crate::load::{TextureSlots, load_scene, replace_textures};
+use crate::load::SceneFiles;
 use crate::names::{Named, name_or_auto, parse_or_auto};
-use crate::render::capture::MAX_SUPERSAMPLE;
-use crate::scene::builtin::teaching_scene_with_kernel;
+use crate::render::Background;
+use crate::render::capture::{CaptureOptions, MAX_SUPERSAMPLE};
 use crate::scene::{MaterialOverrides, Scene};
 use crate::state::{SplitDifference, SplitView, ViewerState};
 
 /// The preset format this code writes and reads.
 pub const FORMAT_VERSION: u32 = 1;
 
-/// A preset could not be read, parsed, understood or written; the message says which key or
-/// file and why, on one line.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{0}")]
-pub struct PresetError(pub String);
+pub use crate::error::{PresetError, PresetSceneError};
 
 /// The whole preset file.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
@@ -44,7 +40,8 @@ pub struct PresetError(pub String);
 pub struct Preset {
     /// [`FORMAT_VERSION`]; missing means the current one.
     pub version: Option<u32>,
-    pub files: PresetFiles,
+    /// Relative paths are relative to the preset file's folder.
+    pub files: SceneFiles,
     pub camera: CameraPreset,
     pub light: LightPreset,
     pub shading: ShadingPreset,
@@ -119,42 +116,6 @@ impl SplitPreset {
             conventions: named_pair("split.conventions", &self.conventions)?,
             bump_sources: named_pair("split.bump_sources", &self.bump_sources)?,
         })
-    }
-}
-
-/// The mesh and the textures put in every material's slots; `None`: none (the built-in scene
-/// without a mesh). Relative paths are relative to the preset file's folder.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct PresetFiles {
-    pub mesh: Option<PathBuf>,
-    pub color: Option<PathBuf>,
-    pub normal: Option<PathBuf>,
-    pub height: Option<PathBuf>,
-    pub gloss: Option<PathBuf>,
-}
-
-impl PresetFiles {
-    /// The texture slots of these files.
-    pub fn slots(&self) -> TextureSlots {
-        TextureSlots {
-            color: self.color.clone(),
-            normal: self.normal.clone(),
-            height: self.height.clone(),
-            gloss: self.gloss.clone(),
-        }
-    }
-
-    /// These files with relative paths joined to `folder`.
-    pub fn resolved(&self, folder: &Path) -> PresetFiles {
-        let resolve = |p: &Option<PathBuf>| p.as_ref().map(|p| folder.join(p));
-        PresetFiles {
-            mesh: resolve(&self.mesh),
-            color: resolve(&self.color),
-            normal: resolve(&self.normal),
-            height: resolve(&self.height),
-            gloss: resolve(&self.gloss),
-        }
     }
 }
 
@@ -305,6 +266,14 @@ impl Default for CapturePreset {
     }
 }
 
+impl CapturePreset {
+    /// The capture these settings describe, `size` pixels when they give none.
+    pub fn options(&self, size: [u32; 2]) -> CaptureOptions {
+        let background = if self.transparent { Background::Transparent } else { Background::Opaque };
+        CaptureOptions { size: self.size.unwrap_or(size), background, supersample: self.supersample }
+    }
+}
+
 impl From<&MaterialOverrides> for OverridesPreset {
     fn from(o: &MaterialOverrides) -> Self {
         OverridesPreset {
@@ -352,7 +321,7 @@ struct Settings {
 
 impl Preset {
     /// The preset of `state` showing `files`; no capture settings.
-    pub fn from_state(state: &ViewerState, files: PresetFiles) -> Preset {
+    pub fn from_state(state: &ViewerState, files: SceneFiles) -> Preset {
         let camera = state.camera;
         Preset {
             version: Some(FORMAT_VERSION),
@@ -403,16 +372,10 @@ impl Preset {
         named("scene.kernel", &self.scene.kernel)
     }
 
-    /// Loads the preset's files (the built-in scene made with its kernel when there is no
-    /// mesh); the error is the loader's one-line message.
-    pub fn build_scene(&self) -> Result<Scene, String> {
-        let kernel = self.kernel().map_err(|e| e.to_string())?;
-        let mut scene = match &self.files.mesh {
-            Some(path) => load_scene(path).map_err(|e| e.to_string())?,
-            None => teaching_scene_with_kernel(kernel),
-        };
-        replace_textures(&mut scene, &self.files.slots()).map_err(|e| e.to_string())?;
-        Ok(scene)
+    /// Loads the preset's files ([`SceneFiles::build`]; the built-in scene made with the
+    /// preset's kernel when there is no mesh).
+    pub fn build_scene(&self) -> Result<Scene, PresetSceneError> {
+        Ok(self.files.build(self.kernel()?)?)
     }
 
     /// The preset as TOML, with a comment line on top.
@@ -592,7 +555,7 @@ mod tests {
         state.apply(Command::SetSplitTangentMethods([TangentMethod::Analytic, TangentMethod::PerFace]));
         state.apply(Command::SetSplitConventions([GreenAxis::DirectX, GreenAxis::OpenGl]));
         state.apply(Command::SetSplitBumpSources([BumpSource::HeightInShader, BumpSource::NormalMap]));
-        let files = PresetFiles { height: Some("/x/h.png".into()), ..Default::default() };
+        let files = SceneFiles { height: Some("/x/h.png".into()), ..Default::default() };
         let text = Preset::from_state(&state, files.clone()).to_toml();
         let back = Preset::from_toml(&text).unwrap();
         assert_eq!(back.files, files);
