@@ -21,6 +21,15 @@ pub fn parse_size(text: &str) -> Result<[u32; 2], String> {
     }
 }
 
+/// `"X,Y"` → a pixel position, whole pixels from the top-left corner.
+pub fn parse_pixel(text: &str) -> Result<[u32; 2], String> {
+    let coordinate = |s: &str| s.trim().parse::<u32>().ok();
+    match text.split_once(',').map(|(x, y)| (coordinate(x), coordinate(y))) {
+        Some((Some(x), Some(y))) => Ok([x, y]),
+        _ => Err(format!("{text:?}: expected X,Y in whole pixels, e.g. 400,300")),
+    }
+}
+
 /// `"a,b,c"` → three finite numbers.
 pub fn parse_triple(text: &str) -> Result<[f32; 3], String> {
     let values: Vec<f32> = text
@@ -160,6 +169,8 @@ mod tests {
         assert_eq!(parse_vec3("1, -2,3.5"), Ok(Vec3::new(1.0, -2.0, 3.5)));
         assert!(parse_vec3("1,2").is_err() && parse_vec3("1,2,nan").is_err());
         assert!(parse_finite("inf").is_err());
+        assert_eq!(parse_pixel("400, 300"), Ok([400, 300]));
+        assert!(parse_pixel("400").is_err() && parse_pixel("-1,2").is_err());
     }
 
     #[test]

@@ -30,6 +30,10 @@ pub struct Cli {
     /// Viewer: with --exit-after, save a screenshot of the whole window (UI included) here first.
     #[arg(long, value_name = "PATH", requires = "exit_after")]
     capture_window: Option<PathBuf>,
+    /// Viewer: pin the pixel probe at this pixel of the 3D view (from its top-left corner) as
+    /// soon as the view is laid out, as P + click there would.
+    #[arg(long, value_name = "X,Y", value_parser = args::parse_pixel)]
+    probe: Option<[u32; 2]>,
     /// Viewer: start from this preset (files and flags given as well override it). Without
     /// it, files or flags, the viewer restores the state it had when it last closed.
     #[arg(long, value_name = "FILE")]

@@ -31,6 +31,7 @@ pub fn run(cli: &Cli) -> Result<(), Failure> {
     app::run(app::Options {
         exit_after: cli.exit_after,
         capture_window: cli.capture_window.clone(),
+        probe: cli.probe,
         files: started.files,
         capture: started.capture,
         scene: started.scene,
