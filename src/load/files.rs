@@ -30,7 +30,7 @@ pub struct SceneFiles {
     pub color: Option<PathBuf>,
     /// Tangent-space normal map, OpenGL convention (+Y up the image).
     pub normal: Option<PathBuf>,
-    /// Height map (white = high, [`HEIGHT_RANGE_M`] per full range); also becomes the normal
+    /// Height map (white = high, 1 cm per full range); also becomes the normal
     /// map unless `normal` is given.
     pub height: Option<PathBuf>,
     /// Gloss (Blinn-Phong specular) map: linear RGB multiplying the material's `k_s`.

@@ -60,16 +60,16 @@ pub struct SplitPreset {
     pub difference: String,
     /// The divider, a fraction of the width (0..1).
     pub divider: f32,
-    /// [`ViewMode`] names, left and right.
+    /// [`ViewMode`](crate::frame::ViewMode) names, left and right.
     pub views: [String; 2],
     pub strengths: [f32; 2],
-    /// [`ShadingMode`] names, left and right.
+    /// [`ShadingMode`](crate::frame::ShadingMode) names, left and right.
     pub modes: [String; 2],
-    /// [`TangentMethod`] names, left and right.
+    /// [`TangentMethod`](crate::tangent::TangentMethod) names, left and right.
     pub tangents: [String; 2],
     /// Green conventions (`opengl`, `directx`), left and right.
     pub conventions: [String; 2],
-    /// [`BumpSource`] names, left and right.
+    /// [`BumpSource`](crate::frame::BumpSource) names, left and right.
     pub bump_sources: [String; 2],
 }
 
@@ -162,12 +162,12 @@ impl Default for LightPreset {
 pub struct ShadingPreset {
     pub bump: bool,
     pub strength: f32,
-    /// A [`ViewMode`] name.
+    /// A [`ViewMode`](crate::frame::ViewMode) name.
     pub view: String,
     pub difference_range_deg: f32,
     /// `auto`, `blinn-phong` or `pbr`.
     pub model: String,
-    /// A [`ShadingMode`] name: `bump-colour`, `bump-only` or `colour-only`.
+    /// A [`ShadingMode`](crate::frame::ShadingMode) name: `bump-colour`, `bump-only` or `colour-only`.
     pub mode: String,
     /// The wireframe overlay.
     pub wireframe: bool,
@@ -179,9 +179,9 @@ pub struct ShadingPreset {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct ScenePreset {
-    /// `auto` or a [`TangentMethod`] name.
+    /// `auto` or a [`TangentMethod`](crate::tangent::TangentMethod) name.
     pub tangents: String,
-    /// A [`BumpSource`] name.
+    /// A [`BumpSource`](crate::frame::BumpSource) name.
     pub bump_source: String,
     /// The built-in brick map's [`Kernel`] name.
     pub kernel: String,
