@@ -9,6 +9,7 @@ use std::path::PathBuf;
 
 use bumpview::frame::{FrameParams, SceneOptions, ShadingMode, ViewMode};
 use bumpview::load::load_scene;
+use bumpview::names::Named;
 use bumpview::probe::ProbeScene;
 use bumpview::render::Background;
 use bumpview::render::capture::{CaptureOptions, render_capture, render_image};
@@ -164,7 +165,7 @@ fn emission_adds_to_the_lit_picture() {
     let mut dark = scene.clone();
     dark.materials[0].emissive_factor = Vec3::ZERO;
     let mut dark_renderer = renderer_for(&dark);
-    for mode in ShadingMode::ALL {
+    for &mode in ShadingMode::all() {
         params.shading.mode = mode;
         let lit = render_image(&mut renderer, size, &params).unwrap();
         let unlit = render_image(&mut dark_renderer, size, &params).unwrap();

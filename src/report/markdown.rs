@@ -82,7 +82,7 @@ fn intro(page: &Page, out: &mut String) {
          - *Sine-bump plane* `h = A·sin(2πx/λ)·sin(2πy/λ)`, `A = λ/2π` so the maximum slope |∇h| is 1, \
          {} periods square, samples (and exact normals) at texel centres `x = (i + ½)Δ`. Texels per period: {}; \
          8-bit, 16-bit and clamped-border variants at {} texels per period (*border* = within two texels of the edge).\n\n\
-         Every method of `TangentMethod::ALL` is measured except **supplied**, which needs tangents from a mesh \
+         Every tangent method is measured except **supplied**, which needs tangents from a mesh \
          file (the references have none). **per-face** is measured on the unwelded mesh, where it is exact per \
          triangle; **analytic** is the reference itself (error ≈ 0, its time is the cost of copying and \
          re-orthogonalising). Convergence orders are least-squares slopes of ln(mean error) against \

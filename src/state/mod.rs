@@ -11,6 +11,7 @@ use crate::frame::{
     ViewMode,
 };
 use crate::height::Kernel;
+use crate::names::Named;
 use crate::scene::{GreenAxis, Light, MaterialOverrides, OrbitCamera, Scene, ShadingModel};
 use crate::tangent::TangentMethod;
 
@@ -50,6 +51,13 @@ pub enum Command {
         viewport_height: f32,
     },
     ResetCamera,
+    /// Points the camera ([`OrbitCamera::point`]): yaw and pitch in radians (pitch clamped
+    /// to ±89°), distance in metres (clamped to the zoom range), about the same target.
+    PointCamera {
+        yaw: f32,
+        pitch: f32,
+        distance: f32,
+    },
     /// Advances animations by `seconds`.
     Tick(f32),
     /// Tangent frames by this method (`None`: the mesh's own, else MikkTSpace).
@@ -99,8 +107,10 @@ pub enum Command {
 
 /// What the split view's two halves differ in. The first four are uniforms, so both halves
 /// share one scene upload; the others change GPU data ([`SplitDifference::changes_gpu_data`]),
-/// so the right half is drawn from a second upload of the scene.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+/// so the right half is drawn from a second upload of the scene. Named `bump`, `view`,
+/// `strength`, `mode`, `tangents`, `convention`, `bump-source`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "kebab-case")]
 pub enum SplitDifference {
     /// Bump off │ bump on.
     #[default]
@@ -120,33 +130,6 @@ pub enum SplitDifference {
 }
 
 impl SplitDifference {
-    pub const ALL: [SplitDifference; 7] = [
-        SplitDifference::Bump,
-        SplitDifference::View,
-        SplitDifference::Strength,
-        SplitDifference::Mode,
-        SplitDifference::Tangents,
-        SplitDifference::Convention,
-        SplitDifference::BumpSource,
-    ];
-
-    /// Name as used on the command line and in presets.
-    pub fn name(self) -> &'static str {
-        match self {
-            SplitDifference::Bump => "bump",
-            SplitDifference::View => "view",
-            SplitDifference::Strength => "strength",
-            SplitDifference::Mode => "mode",
-            SplitDifference::Tangents => "tangents",
-            SplitDifference::Convention => "convention",
-            SplitDifference::BumpSource => "bump-source",
-        }
-    }
-
-    pub fn from_name(name: &str) -> Option<SplitDifference> {
-        SplitDifference::ALL.into_iter().find(|d| d.name() == name)
-    }
-
     /// Whether the halves need different GPU data (tangent streams, material flags, pipeline
     /// variants), not only different uniforms.
     pub fn changes_gpu_data(self) -> bool {
@@ -179,7 +162,7 @@ impl Default for SplitView {
             strengths: [1.0, 3.0],
             modes: [ShadingMode::ColourOnly, ShadingMode::BumpTimesColour],
             tangent_methods: [TangentMethod::PerFace, TangentMethod::MikkTSpace],
-            conventions: GreenAxis::ALL,
+            conventions: [GreenAxis::OpenGl, GreenAxis::DirectX],
             bump_sources: [BumpSource::NormalMap, BumpSource::HeightInShader],
         }
     }
@@ -340,6 +323,7 @@ impl ViewerState {
             Command::Zoom(factor) => self.camera.zoom(factor),
             Command::PanCamera { pixels, viewport_height } => self.camera.pan(pixels, viewport_height),
             Command::ResetCamera => self.camera = self.default_camera,
+            Command::PointCamera { yaw, pitch, distance } => self.camera.point(yaw, pitch, distance),
             Command::Tick(seconds) if self.light_orbit && seconds.is_finite() => {
                 // Rotate the light about the vertical axis through the camera target.
                 let rotation = glam::Quat::from_rotation_y(LIGHT_ORBIT_SPEED * seconds);
@@ -468,7 +452,7 @@ mod tests {
         state.apply(Command::SetSplitDifference(SplitDifference::Tangents));
         assert_eq!(state.scene_uploads(), single, "split off");
         state.apply(Command::SetSplit(true));
-        for difference in SplitDifference::ALL {
+        for &difference in SplitDifference::all() {
             state.apply(Command::SetSplitDifference(difference));
             let uploads = state.scene_uploads();
             assert_eq!(uploads.split_right.is_some(), difference.changes_gpu_data(), "{difference:?}");

@@ -15,28 +15,24 @@
 //! the same pixels again.
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
-use crate::frame::{BumpSource, SceneOptions, ShadingMode, ShadingSettings, ViewMode};
-use crate::height::{Border, Kernel};
-use crate::load::{TextureSlots, load_scene, replace_textures};
-use crate::render::capture::MAX_SUPERSAMPLE;
-use crate::scene::builtin::teaching_scene_with_kernel;
-use crate::scene::{GreenAxis, MaterialOverrides, Scene, ShadingModel};
+use crate::frame::{SceneOptions, ShadingSettings};
+use crate::height::Kernel;
+use crate::load::SceneFiles;
+use crate::names::{Named, name_or_auto, parse_or_auto};
+use crate::render::Background;
+use crate::render::capture::{CaptureOptions, MAX_SUPERSAMPLE};
+use crate::scene::{MaterialOverrides, Scene};
 use crate::state::{SplitDifference, SplitView, ViewerState};
-use crate::tangent::TangentMethod;
 
 /// The preset format this code writes and reads.
 pub const FORMAT_VERSION: u32 = 1;
 
-/// A preset could not be read, parsed, understood or written; the message says which key or
-/// file and why, on one line.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{0}")]
-pub struct PresetError(pub String);
+pub use crate::error::{PresetError, PresetSceneError};
 
 /// The whole preset file.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
@@ -44,7 +40,8 @@ pub struct PresetError(pub String);
 pub struct Preset {
     /// [`FORMAT_VERSION`]; missing means the current one.
     pub version: Option<u32>,
-    pub files: PresetFiles,
+    /// Relative paths are relative to the preset file's folder.
+    pub files: SceneFiles,
     pub camera: CameraPreset,
     pub light: LightPreset,
     pub shading: ShadingPreset,
@@ -63,16 +60,16 @@ pub struct SplitPreset {
     pub difference: String,
     /// The divider, a fraction of the width (0..1).
     pub divider: f32,
-    /// [`ViewMode`] names, left and right.
+    /// [`ViewMode`](crate::frame::ViewMode) names, left and right.
     pub views: [String; 2],
     pub strengths: [f32; 2],
-    /// [`ShadingMode`] names, left and right.
+    /// [`ShadingMode`](crate::frame::ShadingMode) names, left and right.
     pub modes: [String; 2],
-    /// [`TangentMethod`] names, left and right.
+    /// [`TangentMethod`](crate::tangent::TangentMethod) names, left and right.
     pub tangents: [String; 2],
     /// Green conventions (`opengl`, `directx`), left and right.
     pub conventions: [String; 2],
-    /// [`BumpSource`] names, left and right.
+    /// [`BumpSource`](crate::frame::BumpSource) names, left and right.
     pub bump_sources: [String; 2],
 }
 
@@ -88,19 +85,19 @@ impl From<&SplitView> for SplitPreset {
             enabled: s.enabled,
             difference: s.difference.name().to_owned(),
             divider: s.divider,
-            views: s.views.map(|v| v.name().to_owned()),
+            views: names(s.views),
             strengths: s.strengths,
-            modes: s.modes.map(|m| m.name().to_owned()),
-            tangents: s.tangent_methods.map(|m| m.name().to_owned()),
-            conventions: s.conventions.map(|g| green_name(g).to_owned()),
-            bump_sources: s.bump_sources.map(|b| b.name().to_owned()),
+            modes: names(s.modes),
+            tangents: names(s.tangent_methods),
+            conventions: names(s.conventions),
+            bump_sources: names(s.bump_sources),
         }
     }
 }
 
 impl SplitPreset {
     fn to_split(&self) -> Result<SplitView, PresetError> {
-        let difference = named("split.difference", &self.difference, &SplitDifference::ALL, SplitDifference::name)?;
+        let difference: SplitDifference = named("split.difference", &self.difference)?;
         if !(self.divider.is_finite() && (0.0..=1.0).contains(&self.divider)) {
             return Err(bad("split.divider", &self.divider.to_string(), "a fraction of the width, 0 to 1"));
         }
@@ -112,49 +109,13 @@ impl SplitPreset {
             enabled: self.enabled,
             difference,
             divider: self.divider,
-            views: named_pair("split.views", &self.views, &ViewMode::ALL, ViewMode::name)?,
+            views: named_pair("split.views", &self.views)?,
             strengths: self.strengths,
-            modes: named_pair("split.modes", &self.modes, &ShadingMode::ALL, ShadingMode::name)?,
-            tangent_methods: named_pair("split.tangents", &self.tangents, &TangentMethod::ALL, TangentMethod::name)?,
-            conventions: named_pair("split.conventions", &self.conventions, &GreenAxis::ALL, green_name)?,
-            bump_sources: named_pair("split.bump_sources", &self.bump_sources, &BumpSource::ALL, BumpSource::name)?,
+            modes: named_pair("split.modes", &self.modes)?,
+            tangent_methods: named_pair("split.tangents", &self.tangents)?,
+            conventions: named_pair("split.conventions", &self.conventions)?,
+            bump_sources: named_pair("split.bump_sources", &self.bump_sources)?,
         })
-    }
-}
-
-/// The mesh and the textures put in every material's slots; `None`: none (the built-in scene
-/// without a mesh). Relative paths are relative to the preset file's folder.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct PresetFiles {
-    pub mesh: Option<PathBuf>,
-    pub color: Option<PathBuf>,
-    pub normal: Option<PathBuf>,
-    pub height: Option<PathBuf>,
-    pub gloss: Option<PathBuf>,
-}
-
-impl PresetFiles {
-    /// The texture slots of these files.
-    pub fn slots(&self) -> TextureSlots {
-        TextureSlots {
-            color: self.color.clone(),
-            normal: self.normal.clone(),
-            height: self.height.clone(),
-            gloss: self.gloss.clone(),
-        }
-    }
-
-    /// These files with relative paths joined to `folder`.
-    pub fn resolved(&self, folder: &Path) -> PresetFiles {
-        let resolve = |p: &Option<PathBuf>| p.as_ref().map(|p| folder.join(p));
-        PresetFiles {
-            mesh: resolve(&self.mesh),
-            color: resolve(&self.color),
-            normal: resolve(&self.normal),
-            height: resolve(&self.height),
-            gloss: resolve(&self.gloss),
-        }
     }
 }
 
@@ -201,12 +162,12 @@ impl Default for LightPreset {
 pub struct ShadingPreset {
     pub bump: bool,
     pub strength: f32,
-    /// A [`ViewMode`] name.
+    /// A [`ViewMode`](crate::frame::ViewMode) name.
     pub view: String,
     pub difference_range_deg: f32,
     /// `auto`, `blinn-phong` or `pbr`.
     pub model: String,
-    /// A [`ShadingMode`] name: `bump-colour`, `bump-only` or `colour-only`.
+    /// A [`ShadingMode`](crate::frame::ShadingMode) name: `bump-colour`, `bump-only` or `colour-only`.
     pub mode: String,
     /// The wireframe overlay.
     pub wireframe: bool,
@@ -218,9 +179,9 @@ pub struct ShadingPreset {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct ScenePreset {
-    /// `auto` or a [`TangentMethod`] name.
+    /// `auto` or a [`TangentMethod`](crate::tangent::TangentMethod) name.
     pub tangents: String,
-    /// A [`BumpSource`] name.
+    /// A [`BumpSource`](crate::frame::BumpSource) name.
     pub bump_source: String,
     /// The built-in brick map's [`Kernel`] name.
     pub kernel: String,
@@ -273,7 +234,7 @@ impl From<&ShadingSettings> for ShadingPreset {
             strength: s.strength,
             view: s.view.name().to_owned(),
             difference_range_deg: s.difference_range_deg,
-            model: shading_model_name(s.shading_override).to_owned(),
+            model: name_or_auto(s.shading_override).to_owned(),
             mode: s.mode.name().to_owned(),
             wireframe: s.wireframe,
             tbn_glyphs: s.tbn_glyphs,
@@ -290,7 +251,7 @@ impl Default for ScenePreset {
 impl ScenePreset {
     fn new(options: &SceneOptions, kernel: Kernel) -> ScenePreset {
         ScenePreset {
-            tangents: options.tangent_method.map_or("auto", TangentMethod::name).to_owned(),
+            tangents: name_or_auto(options.tangent_method).to_owned(),
             bump_source: options.bump_source.name().to_owned(),
             kernel: kernel.name().to_owned(),
             materials: OverridesPreset::from(&options.materials),
@@ -305,16 +266,24 @@ impl Default for CapturePreset {
     }
 }
 
+impl CapturePreset {
+    /// The capture these settings describe, `size` pixels when they give none.
+    pub fn options(&self, size: [u32; 2]) -> CaptureOptions {
+        let background = if self.transparent { Background::Transparent } else { Background::Opaque };
+        CaptureOptions { size: self.size.unwrap_or(size), background, supersample: self.supersample }
+    }
+}
+
 impl From<&MaterialOverrides> for OverridesPreset {
     fn from(o: &MaterialOverrides) -> Self {
         OverridesPreset {
-            normal_convention: o.green.map(|g| green_name(g).to_owned()),
+            normal_convention: o.green.map(|g| g.name().to_owned()),
             two_channel: o.two_channel,
             object_space: o.object_space,
             depth_map: o.depth_map,
             height_range_m: o.height_range_m,
             height_kernel: o.kernel.map(|k| k.name().to_owned()),
-            height_border: o.border.map(|b| border_name(b).to_owned()),
+            height_border: o.border.map(|b| b.name().to_owned()),
         }
     }
 }
@@ -330,21 +299,13 @@ impl OverridesPreset {
             r => r,
         };
         Ok(MaterialOverrides {
-            green: self
-                .normal_convention
-                .as_deref()
-                .map(|n| green_from_name(n).ok_or_else(|| bad(&key("normal_convention"), n, "opengl or directx")))
-                .transpose()?,
+            green: self.normal_convention.as_deref().map(|n| named(&key("normal_convention"), n)).transpose()?,
             two_channel: self.two_channel,
             object_space: self.object_space,
             depth_map: self.depth_map,
             height_range_m,
-            kernel: self.height_kernel.as_deref().map(|n| kernel(&key("height_kernel"), n)).transpose()?,
-            border: self
-                .height_border
-                .as_deref()
-                .map(|n| border_from_name(n).ok_or_else(|| bad(&key("height_border"), n, "wrap or clamp")))
-                .transpose()?,
+            kernel: self.height_kernel.as_deref().map(|n| named(&key("height_kernel"), n)).transpose()?,
+            border: self.height_border.as_deref().map(|n| named(&key("height_border"), n)).transpose()?,
         })
     }
 }
@@ -360,7 +321,7 @@ struct Settings {
 
 impl Preset {
     /// The preset of `state` showing `files`; no capture settings.
-    pub fn from_state(state: &ViewerState, files: PresetFiles) -> Preset {
+    pub fn from_state(state: &ViewerState, files: SceneFiles) -> Preset {
         let camera = state.camera;
         Preset {
             version: Some(FORMAT_VERSION),
@@ -408,19 +369,13 @@ impl Preset {
 
     /// The brick-map kernel the scene is made with.
     pub fn kernel(&self) -> Result<Kernel, PresetError> {
-        kernel("scene.kernel", &self.scene.kernel)
+        named("scene.kernel", &self.scene.kernel)
     }
 
-    /// Loads the preset's files (the built-in scene made with its kernel when there is no
-    /// mesh); the error is the loader's one-line message.
-    pub fn build_scene(&self) -> Result<Scene, String> {
-        let kernel = self.kernel().map_err(|e| e.to_string())?;
-        let mut scene = match &self.files.mesh {
-            Some(path) => load_scene(path).map_err(|e| e.to_string())?,
-            None => teaching_scene_with_kernel(kernel),
-        };
-        replace_textures(&mut scene, &self.files.slots()).map_err(|e| e.to_string())?;
-        Ok(scene)
+    /// Loads the preset's files ([`SceneFiles::build`]; the built-in scene made with the
+    /// preset's kernel when there is no mesh).
+    pub fn build_scene(&self) -> Result<Scene, PresetSceneError> {
+        Ok(self.files.build(self.kernel()?)?)
     }
 
     /// The preset as TOML, with a comment line on top.
@@ -473,18 +428,11 @@ impl Preset {
         if !s.strength.is_finite() {
             return Err(bad("shading.strength", &s.strength.to_string(), "a finite number"));
         }
-        let view = named("shading.view", &s.view, &ViewMode::ALL, ViewMode::name)?;
-        let model = shading_model_from_name(&s.model)
-            .ok_or_else(|| bad("shading.model", &s.model, "auto, blinn-phong or pbr"))?;
+        let view = named("shading.view", &s.view)?;
+        let model = named_or_auto("shading.model", &s.model)?;
         let scene = &self.scene;
-        let tangent_method = match scene.tangents.as_str() {
-            "auto" => None,
-            name => Some(TangentMethod::from_name(name).ok_or_else(|| {
-                let names: Vec<_> = TangentMethod::ALL.iter().map(|m| m.name()).collect();
-                bad("scene.tangents", name, &format!("auto or one of {}", names.join(", ")))
-            })?),
-        };
-        let bump_source = named("scene.bump_source", &scene.bump_source, &BumpSource::ALL, BumpSource::name)?;
+        let tangent_method = named_or_auto("scene.tangents", &scene.tangents)?;
+        let bump_source = named("scene.bump_source", &scene.bump_source)?;
         let mut per_material = BTreeMap::new();
         for (index, overrides) in &scene.per_material {
             let section = format!("scene.per_material.{index}");
@@ -499,7 +447,7 @@ impl Preset {
         if let Some([w, h]) = capture.size.filter(|[w, h]| *w == 0 || *h == 0) {
             return Err(bad("capture.size", &format!("[{w}, {h}]"), "[width, height], each at least 1"));
         }
-        let mode = named("shading.mode", &s.mode, &ShadingMode::ALL, ShadingMode::name)?;
+        let mode = named("shading.mode", &s.mode)?;
         Ok(Settings {
             // Every field: a new setting must get a place in the preset format too.
             shading: ShadingSettings {
@@ -526,66 +474,24 @@ impl Preset {
     }
 }
 
-/// Name of a shading model override, as on the command line (`None`: `auto`).
-pub fn shading_model_name(model: Option<ShadingModel>) -> &'static str {
-    match model {
-        None => "auto",
-        Some(ShadingModel::BlinnPhong) => "blinn-phong",
-        Some(ShadingModel::MetallicRoughness) => "pbr",
-    }
+/// The names of a left and a right value.
+fn names<T: Named>(pair: [T; 2]) -> [String; 2] {
+    pair.map(|value| value.name().to_owned())
 }
 
-/// The override named `name` (`Some(None)` for `auto`); `None` for an unknown name.
-pub fn shading_model_from_name(name: &str) -> Option<Option<ShadingModel>> {
-    [None, Some(ShadingModel::BlinnPhong), Some(ShadingModel::MetallicRoughness)]
-        .into_iter()
-        .find(|&m| shading_model_name(m) == name)
+/// The value named `text` ([`Named`]), else an error for `key` listing the names.
+fn named<T: Named>(key: &str, text: &str) -> Result<T, PresetError> {
+    T::parse_name(text).map_err(|e| bad(key, text, &format!("one of {}", e.expected.join(", "))))
 }
 
-/// `opengl` or `directx`.
-pub fn green_name(green: GreenAxis) -> &'static str {
-    match green {
-        GreenAxis::OpenGl => "opengl",
-        GreenAxis::DirectX => "directx",
-    }
-}
-
-pub fn green_from_name(name: &str) -> Option<GreenAxis> {
-    GreenAxis::ALL.into_iter().find(|&g| green_name(g) == name)
-}
-
-/// `wrap` or `clamp`.
-pub fn border_name(border: Border) -> &'static str {
-    match border {
-        Border::Wrap => "wrap",
-        Border::Clamp => "clamp",
-    }
-}
-
-pub fn border_from_name(name: &str) -> Option<Border> {
-    [Border::Wrap, Border::Clamp].into_iter().find(|&b| border_name(b) == name)
-}
-
-fn kernel(key: &str, name: &str) -> Result<Kernel, PresetError> {
-    named(key, name, &Kernel::ALL, Kernel::name)
-}
-
-/// The item of `all` whose `name` is `text`, else an error for `key` listing the names.
-fn named<T: Copy>(key: &str, text: &str, all: &[T], name: fn(T) -> &'static str) -> Result<T, PresetError> {
-    all.iter().copied().find(|&item| name(item) == text).ok_or_else(|| {
-        let names: Vec<_> = all.iter().map(|&item| name(item)).collect();
-        bad(key, text, &format!("one of {}", names.join(", ")))
-    })
+/// `auto` (`None`) or the value named `text`, else an error for `key` listing the names.
+fn named_or_auto<T: Named>(key: &str, text: &str) -> Result<Option<T>, PresetError> {
+    parse_or_auto(text).map_err(|e| bad(key, text, &format!("one of {}", e.expected.join(", "))))
 }
 
 /// [`named`] for a left and a right value.
-fn named_pair<T: Copy>(
-    key: &str,
-    pair: &[String; 2],
-    all: &[T],
-    name: fn(T) -> &'static str,
-) -> Result<[T; 2], PresetError> {
-    Ok([named(key, &pair[0], all, name)?, named(key, &pair[1], all, name)?])
+fn named_pair<T: Named>(key: &str, pair: &[String; 2]) -> Result<[T; 2], PresetError> {
+    Ok([named(key, &pair[0])?, named(key, &pair[1])?])
 }
 
 /// "`key` = "value": expected …".
@@ -612,8 +518,12 @@ fn degrees(radians: f32) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::frame::{BumpSource, ShadingMode, ViewMode};
+    use crate::height::Border;
     use crate::scene::builtin::teaching_scene;
+    use crate::scene::{GreenAxis, ShadingModel};
     use crate::state::Command;
+    use crate::tangent::TangentMethod;
 
     #[test]
     fn a_changed_state_round_trips_exactly() {
@@ -645,7 +555,7 @@ mod tests {
         state.apply(Command::SetSplitTangentMethods([TangentMethod::Analytic, TangentMethod::PerFace]));
         state.apply(Command::SetSplitConventions([GreenAxis::DirectX, GreenAxis::OpenGl]));
         state.apply(Command::SetSplitBumpSources([BumpSource::HeightInShader, BumpSource::NormalMap]));
-        let files = PresetFiles { height: Some("/x/h.png".into()), ..Default::default() };
+        let files = SceneFiles { height: Some("/x/h.png".into()), ..Default::default() };
         let text = Preset::from_state(&state, files.clone()).to_toml();
         let back = Preset::from_toml(&text).unwrap();
         assert_eq!(back.files, files);
