@@ -296,6 +296,33 @@ fn a_model_with_a_missing_and_a_corrupt_texture_opens_without_both() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// `render` draws a model with an unreadable texture (exit 0, the warning on stderr naming
+/// the file), and with `--strict` refuses it (exit 1, no PNG).
+#[test]
+fn render_warns_about_an_unreadable_texture_and_strict_refuses_it() {
+    let dir = temp_dir("strict");
+    std::fs::write(dir.join("tri.bin"), triangle_bin()).unwrap();
+    std::fs::write(dir.join("m.gltf"), triangle_gltf(Some("tri.bin"), Some("gone.png"), "")).unwrap();
+    let render = |strict: bool, out: &str| {
+        let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_bumpview"));
+        command.args(["render", "--size", "32x24", "--out"]).arg(dir.join(out)).arg(dir.join("m.gltf"));
+        if strict {
+            command.arg("--strict");
+        }
+        command.output().unwrap()
+    };
+    let lenient = render(false, "lenient.png");
+    let stderr = String::from_utf8_lossy(&lenient.stderr);
+    assert_eq!(lenient.status.code(), Some(0), "{stderr}");
+    assert!(stderr.contains("warning") && stderr.contains("gone.png"), "{stderr}");
+    assert!(dir.join("lenient.png").is_file());
+    let strict = render(true, "strict.png");
+    let stderr = String::from_utf8_lossy(&strict.stderr);
+    assert_eq!(strict.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("--strict") && !dir.join("strict.png").exists(), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// Files outside the model's folder — an absolute path, a `file:` URI, a path through `..` —
 /// still open, and `check` warns that the model is not portable; a file next to it does not.
 #[test]

@@ -4,6 +4,7 @@
 
 use std::path::PathBuf;
 
+use bumpview::error::LoadWarning;
 use bumpview::frame::ViewMode;
 use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
 use bumpview::render::export::{TileGrid, caption, render_grid};
@@ -90,6 +91,10 @@ pub struct RenderArgs {
     /// normal-map convention, tangent source).
     #[arg(long, requires = "tiles")]
     captions: bool,
+    /// Fail (exit 1, no PNG) when the model opened without a texture it names, instead of
+    /// drawing it without and warning on stderr.
+    #[arg(long)]
+    strict: bool,
     #[command(flatten)]
     methods: MethodArgs,
     #[command(flatten)]
@@ -166,6 +171,13 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         None => Preset::default(),
     };
     let Started { files, capture, scene, mut state } = start(preset, args.inputs.files(), &args.methods)?;
+    for warning in &scene.warnings {
+        eprintln!("bumpview: warning: {warning}");
+    }
+    let unreadable = scene.warnings.iter().filter(|w| matches!(w, LoadWarning::UnreadableTexture { .. })).count();
+    if args.strict && unreadable > 0 {
+        return Err(Failure::Failed(format!("--strict: the model opened without {unreadable} texture(s)")));
+    }
     for command in args.commands()? {
         state.apply(command);
     }
