@@ -13,6 +13,7 @@ pub mod image;
 mod mesh_ops;
 mod mtl;
 pub mod obj;
+mod uri;
 
 use std::path::Path;
 
