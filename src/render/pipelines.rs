@@ -87,10 +87,7 @@ impl Layouts {
 
     /// The group-1 layout a mesh variant binds.
     pub fn material(&self, variant: Variant) -> &wgpu::BindGroupLayout {
-        match variant {
-            Variant::Plain | Variant::Tangent => &self.plain_material,
-            Variant::NormalMapped | Variant::ObjectSpace | Variant::HeightBump => &self.normal_mapped_material,
-        }
+        if variant.has_bump_texture() { &self.normal_mapped_material } else { &self.plain_material }
     }
 }
 
