@@ -141,7 +141,7 @@ impl ProbeScene {
         ProbeScene::wrap(Arc::new(PreparedScene::new(scene, options)))
     }
 
-    /// Probes the scene a renderer draws (e.g. [`crate::render::Renderer::prepared`]).
+    /// Probes the scene a renderer draws (the render module's `Renderer::prepared` hands it out).
     pub fn wrap(prepared: Arc<PreparedScene>) -> ProbeScene {
         let used = |index: &usize| prepared.uses_texture(*index);
         let mips = (0..prepared.scene.textures.len())
