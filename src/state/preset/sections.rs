@@ -136,6 +136,14 @@ pub struct ShadingPreset {
     pub wireframe: bool,
     /// T/B/N glyphs at vertices.
     pub tbn_glyphs: bool,
+    /// A [`Parallax`](crate::frame::Parallax) technique name: `off`, `offset`, `steep`, ….
+    pub parallax: String,
+    /// The search's layers `[min, max]` (each 1 to 256).
+    pub parallax_layers: [u32; 2],
+    /// Relief mapping's binary-search steps (0 to 16).
+    pub parallax_steps: u32,
+    /// The relief's depth, metres; missing: each material's height range.
+    pub parallax_depth_m: Option<f32>,
 }
 
 /// How the scene is prepared: tangents, bump source, kernel and material conventions.
@@ -201,6 +209,10 @@ impl From<&ShadingSettings> for ShadingPreset {
             mode: s.mode.name().to_owned(),
             wireframe: s.wireframe,
             tbn_glyphs: s.tbn_glyphs,
+            parallax: s.parallax.technique.name().to_owned(),
+            parallax_layers: [s.parallax.layers_min, s.parallax.layers_max],
+            parallax_steps: s.parallax.steps,
+            parallax_depth_m: s.parallax.depth_m,
         }
     }
 }
