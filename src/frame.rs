@@ -386,3 +386,23 @@ pub struct SceneUploads {
     pub main: SceneOptions,
     pub split_right: Option<SceneOptions>,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Tatarchuk's count: `max` face-on, `min` grazing, clamped to 1..=256 in either order;
+    /// captions name the technique and its layers.
+    #[test]
+    fn parallax_layers_follow_the_view_angle_and_captions_name_them() {
+        let settings =
+            ParallaxSettings { technique: Parallax::Occlusion, layers_min: 8, layers_max: 32, ..Default::default() };
+        assert_eq!([1.0, 0.5, 0.0, f32::NAN].map(|c| settings.layers(c)), [8, 20, 32, 32]);
+        let swapped = ParallaxSettings { layers_min: 999, layers_max: 0, ..settings };
+        assert_eq!(swapped.layer_range(), (1, 256));
+        assert_eq!(settings.caption(), "parallax occlusion, 8–32 layers");
+        let relief = ParallaxSettings { technique: Parallax::Relief, layers_min: 16, layers_max: 16, ..settings };
+        assert_eq!(relief.caption(), "relief mapping, 16 layers + 5 steps");
+        assert_eq!(ParallaxSettings { technique: Parallax::Offset, ..settings }.caption(), "parallax offset");
+    }
+}

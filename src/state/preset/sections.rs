@@ -34,6 +34,8 @@ pub struct SplitPreset {
     pub conventions: [String; 2],
     /// [`BumpSource`](crate::frame::BumpSource) names, left and right.
     pub bump_sources: [String; 2],
+    /// [`Parallax`](crate::frame::Parallax) technique names, left and right.
+    pub parallax: [String; 2],
 }
 
 impl Default for SplitPreset {
@@ -54,6 +56,7 @@ impl From<&SplitView> for SplitPreset {
             tangents: names(s.tangent_methods),
             conventions: names(s.conventions),
             bump_sources: names(s.bump_sources),
+            parallax: names(s.parallax),
         }
     }
 }
@@ -78,6 +81,7 @@ impl SplitPreset {
             tangent_methods: named_pair("split.tangents", &self.tangents)?,
             conventions: named_pair("split.conventions", &self.conventions)?,
             bump_sources: named_pair("split.bump_sources", &self.bump_sources)?,
+            parallax: named_pair("split.parallax", &self.parallax)?,
         })
     }
 }
