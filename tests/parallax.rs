@@ -6,9 +6,9 @@
 
 mod common;
 
-use bumpview::frame::{FrameParams, Parallax, ParallaxSettings, SceneOptions};
+use bumpview::frame::{FrameParams, Parallax, ParallaxSettings, SceneOptions, ViewMode};
 use bumpview::probe::ProbeScene;
-use bumpview::render::capture::render_image;
+use bumpview::render::capture::{render_float, render_image};
 use bumpview::scene::{SamplerWrap, Scene, Wrap};
 use common::*;
 use glam::Vec2;
@@ -150,12 +150,13 @@ fn more_layers_converge_and_occlusion_and_relief_beat_steep() {
     }
 }
 
-/// Grazing (88°), from below the wall's centre (pitch −80°, 85° yaw), with 1 and 256 layers,
+/// Grazing (88°), from below the wall's centre (pitch −80°, 85° yaw), straight up along it,
+/// from behind it (150°: the double-sided wall's back face, N flipped), with 1 and 256 layers,
 /// and on a clamped texture: every readout is finite and, clamped, every marched UV in 0..1.
 #[test]
 fn grazing_views_few_and_many_layers_and_clamped_borders_stay_finite() {
     let mut scene = scene();
-    let views = [(88.0, 0.0), (85.0, -80.0), (0.0, -89.0)];
+    let views = [(88.0, 0.0), (85.0, -80.0), (0.0, -89.0), (150.0, -30.0)];
     for clamped in [false, true] {
         if clamped {
             for material in &mut scene.materials {
@@ -166,6 +167,7 @@ fn grazing_views_few_and_many_layers_and_clamped_borders_stay_finite() {
         for (yaw, pitch) in views {
             let mut base = oblique(&scene, yaw);
             base.camera.pitch = f32::to_radians(pitch);
+            let mut marched = 0;
             for technique in ALL {
                 for layers in [1, 256] {
                     let params = with(&base, technique, layers, 16, None);
@@ -174,6 +176,7 @@ fn grazing_views_few_and_many_layers_and_clamped_borders_stay_finite() {
                             let Some(r) = probe.probe(&params, SIZE, [x, y]) else { continue };
                             assert!(r.color_linear.is_finite() && r.shading_normal.is_finite(), "{r:?}");
                             let Some(m) = r.march else { continue };
+                            marched += 1;
                             assert!(m.uv.is_finite() && m.depth.is_finite() && m.height.is_finite(), "{m:?}");
                             if clamped {
                                 assert!(m.uv.cmpge(Vec2::ZERO).all() && m.uv.cmple(Vec2::ONE).all());
@@ -181,6 +184,33 @@ fn grazing_views_few_and_many_layers_and_clamped_borders_stay_finite() {
                             assert!(m.view_tangent.is_none_or(|v| v.is_finite() && (v.length() - 1.0).abs() < 1e-3));
                         }
                     }
+                }
+            }
+            println!("{yaw}° {pitch}° clamped {clamped}: {marched} marches");
+            assert!(marched > 0, "{yaw}° {pitch}°: the view meets the wall");
+        }
+    }
+}
+
+/// The GPU side of the stability cases: on a float target no pixel is NaN or infinite for any
+/// technique, with 1 and 256 layers and a 1 m deep relief, at a grazing view (88°), from below
+/// the wall's centre, straight up along it and from behind it (the double-sided wall's back
+/// face), in the Lit and Shading-normal views.
+#[test]
+fn grazing_views_render_finite_pixels() {
+    let scene = scene();
+    let mut renderer = renderer_for(&scene);
+    for (yaw, pitch) in [(88.0, 0.0), (85.0, -80.0), (0.0, -89.0), (150.0, -30.0)] {
+        let mut base = oblique(&scene, yaw);
+        base.camera.pitch = f32::to_radians(pitch);
+        for technique in ALL {
+            for (layers, depth) in [(1, None), (256, Some(1.0))] {
+                for view in [ViewMode::Lit, ViewMode::ShadingNormal] {
+                    let mut params = with(&base, technique, layers, 16, depth);
+                    params.shading.view = view;
+                    let image = render_float(&mut renderer, [96, 96], &params).unwrap();
+                    let bad = image.pixels.iter().filter(|p| p.iter().any(|c| !c.is_finite())).count();
+                    assert_eq!(bad, 0, "{yaw}° {pitch}° {technique:?} {layers} {view:?}: {bad} non-finite pixels");
                 }
             }
         }
