@@ -9,7 +9,9 @@
 //! with the same scene options and material overrides), samples the textures as the GPU's
 //! trilinear sampler does (level of detail from the UV footprint of the pixel's 2×2 quad,
 //! [`sample_bilinear`] on the mip levels around it) and runs the CPU twin of `shaders/mesh.wgsl`
-//! ([`crate::shading`]). The pinned point stays where it is when the camera or light moves;
+//! ([`crate::shading`]). With a parallax technique on, it first marches the height map as
+//! `shaders/parallax.wgsl` does ([`crate::chain::parallax`], [`MarchReadout`]) and reads the
+//! other textures at the shifted UV. The pinned point stays where it is when the camera or light moves;
 //! only the readout is recomputed.
 //!
 //! Spaces and units follow the crate conventions: positions in metres, world space; vectors
