@@ -206,4 +206,15 @@ mod tests {
         expected.insert("PARALLAX_CLAMP_V".into(), PARALLAX_CLAMP_V);
         assert_eq!(constants, expected, "u32 constants of shaders/mesh.wgsl against the Rust side");
     }
+
+    /// The parallax march's grazing floor is one number on both sides (shaders/parallax.wgsl,
+    /// chain::parallax).
+    #[test]
+    fn the_wgsl_grazing_floor_is_the_rust_one() {
+        let module = module(MESH_WGSL);
+        let floor = module.constants.iter().map(|(_, c)| c).find(|c| c.name.as_deref() == Some("GRAZING_N_DOT_V"));
+        let value = floor.map(|c| &module.global_expressions[c.init]);
+        let expected = crate::chain::parallax::GRAZING_N_DOT_V;
+        assert!(matches!(value, Some(naga::Expression::Literal(naga::Literal::F32(v))) if *v == expected), "{value:?}");
+    }
 }
