@@ -7,6 +7,7 @@
 use bumpview::height::integrate::{Derivative, Slopes, integrate};
 use bumpview::height::rows::{Channels, HeightGrid, MapFormat, Samples, encode_normal_map, normals};
 use bumpview::height::{Border, HeightField, Kernel};
+use bumpview::names::Named;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 
 /// A `side²` 8-bit height map of overlapping sine bumps (no constant runs, like real relief).

@@ -3,6 +3,7 @@
 //! tangents gets, [`resolve`] with no choice). Run: `cargo bench --no-default-features --bench
 //! tangents`; compare the ratio within one run (the machine is shared).
 
+use bumpview::names::Named;
 use bumpview::scene::builtin::torus_mesh;
 use bumpview::tangent::{TangentMethod, resolve, tangents};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};

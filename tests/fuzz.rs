@@ -13,6 +13,7 @@ use std::path::{Path, PathBuf};
 
 use base64::Engine;
 use bumpview::load::{image::decode_texture, load_scene};
+use bumpview::names::Named;
 use bumpview::scene::{Mesh, Scene, TextureKind};
 use bumpview::tangent::{TangentMethod, tangents};
 use glam::{Vec2, Vec3};
@@ -224,7 +225,7 @@ proptest! {
         }
         let count = vertices.len();
         mesh.indices = triangles.iter().flat_map(|(a, b, c)| [a.index(count), b.index(count), c.index(count)].map(|i| i as u32)).collect();
-        for method in TangentMethod::ALL.into_iter().filter(|m| m.is_generated()) {
+        for method in TangentMethod::all().iter().copied().filter(|m| m.is_generated()) {
             let mesh = if method == TangentMethod::PerFace { mesh.unwelded() } else { mesh.clone() };
             let frames = tangents(&mesh, method).unwrap();
             prop_assert_eq!(frames.len(), mesh.positions.len());

@@ -11,7 +11,7 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use bumpview::frame::ViewMode;
-use bumpview::load::{TextureSlots, load_scene, replace_textures};
+use bumpview::load::{SceneFiles, load_scene, replace_textures};
 use bumpview::render::capture::{render_float, render_image};
 use bumpview::render::{Gpu, Renderer};
 use bumpview::scene::Scene;
@@ -99,7 +99,8 @@ fn every_model_and_texture_loads_and_renders_without_nan() {
     ];
     for (color, normal, height) in sets {
         let mut scene = teaching_scene();
-        let slots = TextureSlots {
+        let slots = SceneFiles {
+            mesh: None,
             color: Some(asset(&base, color)),
             normal: Some(asset(&base, normal)),
             height: height.map(|h| asset(&base, h)),

@@ -269,6 +269,60 @@ fn an_unreadable_texture_leaves_its_slot_empty_with_a_warning() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// One missing and one corrupt texture in the same model: both slots stay empty, two
+/// warnings, and the rest of the material (its factors) is kept.
+#[test]
+fn a_model_with_a_missing_and_a_corrupt_texture_opens_without_both() {
+    let dir = temp_dir("two-unreadable");
+    std::fs::write(dir.join("tri.bin"), triangle_bin()).unwrap();
+    std::fs::write(dir.join("corrupt.png"), b"\x89PNG\r\n\x1a\n but then nothing a decoder wants").unwrap();
+    let json = triangle_gltf(Some("tri.bin"), Some("missing.png"), "").replace(
+        r#""materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]"#,
+        r#""materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "baseColorFactor": [0.5, 0.25, 1, 1]},
+            "normalTexture": {"index": 1}}]"#,
+    );
+    let json = json.replace(
+        r#""textures": [{"source": 0}], "images": [{"uri": "missing.png"}]"#,
+        r#""textures": [{"source": 0}, {"source": 1}], "images": [{"uri": "missing.png"}, {"uri": "corrupt.png"}]"#,
+    );
+    std::fs::write(dir.join("two.gltf"), json).unwrap();
+    let scene = load_scene(&dir.join("two.gltf")).unwrap_or_else(|e| panic!("{e}"));
+    let material = &scene.materials[0];
+    assert_eq!((material.base_color_texture.is_none(), material.normal_map.is_none()), (true, true));
+    assert_eq!(material.base_color_factor, glam::Vec4::new(0.5, 0.25, 1.0, 1.0));
+    let warnings: Vec<String> = scene.warnings.iter().map(ToString::to_string).collect();
+    assert_eq!(warnings.len(), 2, "{warnings:?}");
+    assert!(warnings[0].contains("missing.png") && warnings[1].contains("corrupt.png"), "{warnings:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `render` draws a model with an unreadable texture (exit 0, the warning on stderr naming
+/// the file), and with `--strict` refuses it (exit 1, no PNG).
+#[test]
+fn render_warns_about_an_unreadable_texture_and_strict_refuses_it() {
+    let dir = temp_dir("strict");
+    std::fs::write(dir.join("tri.bin"), triangle_bin()).unwrap();
+    std::fs::write(dir.join("m.gltf"), triangle_gltf(Some("tri.bin"), Some("gone.png"), "")).unwrap();
+    let render = |strict: bool, out: &str| {
+        let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_bumpview"));
+        command.args(["render", "--size", "32x24", "--out"]).arg(dir.join(out)).arg(dir.join("m.gltf"));
+        if strict {
+            command.arg("--strict");
+        }
+        command.output().unwrap()
+    };
+    let lenient = render(false, "lenient.png");
+    let stderr = String::from_utf8_lossy(&lenient.stderr);
+    assert_eq!(lenient.status.code(), Some(0), "{stderr}");
+    assert!(stderr.contains("warning") && stderr.contains("gone.png"), "{stderr}");
+    assert!(dir.join("lenient.png").is_file());
+    let strict = render(true, "strict.png");
+    let stderr = String::from_utf8_lossy(&strict.stderr);
+    assert_eq!(strict.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("--strict") && !dir.join("strict.png").exists(), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// Files outside the model's folder — an absolute path, a `file:` URI, a path through `..` —
 /// still open, and `check` warns that the model is not portable; a file next to it does not.
 #[test]

@@ -6,10 +6,11 @@ use std::process::Command;
 
 use bumpview::frame::SceneOptions;
 use bumpview::frame::ViewMode;
+use bumpview::load::SceneFiles;
 use bumpview::render::capture::{CaptureOptions, render_capture};
 use bumpview::render::{Background, Gpu, Renderer};
 use bumpview::scene::builtin::teaching_scene;
-use bumpview::state::preset::{Preset, PresetFiles};
+use bumpview::state::preset::Preset;
 use bumpview::state::{Command as ViewerCommand, ViewerState};
 use bumpview::tangent::TangentMethod;
 use glam::Vec3;
@@ -50,7 +51,7 @@ fn a_saved_state_renders_the_same_pixels_as_the_flags_and_again() {
     state.apply(ViewerCommand::SetLightMarker(false));
     state.scene_options = SceneOptions { tangent_method: Some(TangentMethod::PerFace), ..Default::default() };
     let preset = dir.join("slide.toml");
-    Preset::from_state(&state, PresetFiles::default()).save(&preset).unwrap();
+    Preset::from_state(&state, SceneFiles::default()).save(&preset).unwrap();
 
     let flags = dir.join("flags.png");
     render_ok(&[
@@ -129,6 +130,61 @@ fn a_gpu_data_split_with_glyphs_round_trips_through_a_preset() {
     assert!(text.contains("tbn_glyphs = true") && text.contains("difference = \"tangents\""), "{text}");
     render_ok(&["render", "--preset", &s(&preset), "--out", &s(&again)]);
     assert_eq!(std::fs::read(&flags).unwrap(), std::fs::read(&again).unwrap(), "identical PNG bytes");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The parallax settings and a parallax split round-trip through a preset: the preset
+/// `--save-preset` wrote renders the flags' picture byte for byte; out-of-range layers, steps
+/// or depth in a preset are one line naming the key.
+#[test]
+fn parallax_settings_round_trip_through_a_preset() {
+    let dir = temp_dir("preset-parallax");
+    let s = |p: &Path| p.to_str().unwrap().to_owned();
+    let (flags, preset, again) = (dir.join("flags.png"), dir.join("parallax.toml"), dir.join("again.png"));
+    render_ok(&[
+        "render",
+        "--out",
+        &s(&flags),
+        "--size",
+        "160x96",
+        "--camera",
+        "60,5,0.6",
+        "--parallax",
+        "relief",
+        "--parallax-layers",
+        "6,48",
+        "--parallax-steps",
+        "4",
+        "--parallax-depth",
+        "0.015",
+        "--split",
+        "parallax",
+        "--split-sides",
+        "offset-limited,relief",
+        "--save-preset",
+        &s(&preset),
+    ]);
+    let text = std::fs::read_to_string(&preset).unwrap();
+    for line in ["parallax_layers = [6, 48]", "parallax_depth_m = 0.015", "parallax = [\"offset-limited\", \"relief\"]"]
+    {
+        assert!(text.contains(line), "{line} in {text}");
+    }
+    render_ok(&["render", "--preset", &s(&preset), "--out", &s(&again)]);
+    assert_eq!(std::fs::read(&flags).unwrap(), std::fs::read(&again).unwrap(), "identical PNG bytes");
+    for (bad, key) in [
+        ("parallax_layers = [0, 8]", "parallax_layers"),
+        ("parallax_steps = 17", "parallax_steps"),
+        ("parallax_depth_m = -1.0", "parallax_depth_m"),
+        ("parallax = \"bumpy\"", "shading.parallax"),
+    ] {
+        let broken = dir.join("broken.toml");
+        std::fs::write(&broken, format!("[shading]\n{bad}\n")).unwrap();
+        let output = bumpview(&["render", "--preset", &s(&broken)]);
+        assert_eq!(output.status.code(), Some(1), "{bad}");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        let ours: Vec<_> = stderr.lines().filter(|l| l.starts_with("bumpview:")).collect();
+        assert!(ours.len() == 1 && ours[0].contains(key), "{bad}: {stderr}");
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

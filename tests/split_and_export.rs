@@ -12,6 +12,7 @@ mod common;
 
 use bumpview::frame::ViewMode;
 use bumpview::frame::{FrameParams, SplitFrame};
+use bumpview::names::Named;
 use bumpview::render::capture::{CaptureOptions, render_capture, render_capture_split, render_float_split};
 use bumpview::render::export::{CAPTION_BACKGROUND, TileGrid, caption, caption_strip_height, render_grid};
 use bumpview::state::{Command, SplitDifference, ViewerState};
@@ -164,7 +165,7 @@ fn supersampled_split_captures_have_the_divider_on_a_block_boundary() {
     let scene = common::scene();
     let mut renderer = common::renderer_for(&scene);
     let options = CaptureOptions { supersample: 2, ..CaptureOptions::plain(SIZE) };
-    for difference in SplitDifference::ALL {
+    for &difference in SplitDifference::all() {
         let mut state = ViewerState::new(&scene);
         state.shading.view = match difference {
             SplitDifference::Tangents => ViewMode::Tangent,

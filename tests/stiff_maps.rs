@@ -6,6 +6,7 @@ mod common;
 
 use bumpview::frame::{BumpSource, FrameParams, SceneOptions, ViewMode};
 use bumpview::height::{Border, HeightField, Kernel};
+use bumpview::names::Named;
 use bumpview::render::capture::{FloatImage, render_float, render_image};
 use bumpview::scene::{Scene, TextureImage};
 use common::*;
@@ -18,7 +19,7 @@ fn assert_finite_everywhere(scene: &Scene, params: &FrameParams, case: &str) {
 fn assert_finite_everywhere_with(scene: &Scene, options: SceneOptions, params: &FrameParams, case: &str) {
     let mut renderer = renderer_for(scene);
     renderer.set_scene(scene, options);
-    for view in ViewMode::ALL {
+    for &view in ViewMode::all() {
         let mut params = *params;
         params.shading.view = view;
         let image = render_float(&mut renderer, [96, 72], &params).unwrap();
@@ -102,7 +103,7 @@ fn a_cliff_in_8_and_16_bit_heights_stays_finite_and_bounded() {
     let (width, height) = (field.width as i64, field.height as i64);
     let (eight, sixteen) = (field.quantized(8), field.quantized(16));
     let mut cliff_differences = vec![];
-    for kernel in Kernel::ALL {
+    for &kernel in Kernel::all() {
         for border in [Border::Wrap, Border::Clamp] {
             let mut at_cliff = 0.0f32;
             for y in 0..height {

@@ -4,6 +4,7 @@
 //! methods sanitise it), `w = ±1` — never NaN.
 
 use bumpview::math::normalize_or;
+use bumpview::names::Named;
 use bumpview::report::stiff::{
     NON_FINITE_VERTICES, away_from, cases, duplicate_positions, grid, mirrored_halves, non_finite_grid, plain_uv,
 };
@@ -14,7 +15,7 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 
 /// Methods that compute frames (supplied and analytic frames come from the mesh).
 fn generated_methods() -> impl Iterator<Item = TangentMethod> {
-    TangentMethod::ALL.into_iter().filter(|m| m.is_generated())
+    TangentMethod::all().iter().copied().filter(|m| m.is_generated())
 }
 
 /// Frames of `mesh` by `method` (per-face on the unwelded mesh, as drawn), with the normals

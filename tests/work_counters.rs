@@ -37,7 +37,7 @@ fn built_in_scene_generates_tangents_only_where_missing_and_caches_pipelines() {
     assert!(scene.meshes.iter().all(|m| m.tangents.is_none()));
     let generated: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
     assert_eq!(renderer.counters().tangent_frames_generated, generated as u64);
-    assert_eq!(renderer.counters().textures_uploaded, 2, "colour and normal map, once each");
+    assert_eq!(renderer.counters().textures_uploaded, 3, "colour, normal and height map (for parallax), once each");
 
     let params = default_params(&scene);
     render_image(&mut renderer, [64, 48], &params).unwrap();
@@ -48,6 +48,7 @@ fn built_in_scene_generates_tangents_only_where_missing_and_caches_pipelines() {
     toggled.shading.bump_enabled = false;
     toggled.shading.view = bumpview::frame::ViewMode::Tangent;
     toggled.shading.strength = -2.0;
+    toggled.shading.parallax.technique = bumpview::frame::Parallax::Relief;
     render_image(&mut renderer, [64, 48], &toggled).unwrap();
     let after_second = renderer.counters();
     assert_eq!(after_second.pipelines_built, after_first.pipelines_built, "toggles are uniforms");

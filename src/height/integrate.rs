@@ -198,6 +198,7 @@ fn transpose(data: &[Complex32], width: usize, height: usize) -> Vec<Complex32> 
 mod tests {
     use super::*;
     use crate::height::HeightField;
+    use crate::names::Named;
 
     /// Slopes of `field` by `kernel` in samples per texel (scale 1).
     fn kernel_slopes(field: &HeightField, kernel: Kernel, border: Border) -> Slopes {
@@ -233,7 +234,7 @@ mod tests {
     fn the_kernel_symbol_inverts_the_kernel() {
         for (w, h) in [(32, 24), (27, 15)] {
             let field = field(w, h);
-            for kernel in Kernel::ALL {
+            for &kernel in Kernel::all() {
                 let heights =
                     integrate(&kernel_slopes(&field, kernel, Border::Wrap), Derivative::Kernel(kernel), Border::Wrap);
                 let error = max_error_after_mean(&heights, &field.samples);

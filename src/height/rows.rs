@@ -363,6 +363,7 @@ pub fn encode_row(row: &NormalRow, format: MapFormat, out: &mut [u8]) {
 mod tests {
     use super::*;
     use crate::height::HeightField;
+    use crate::names::Named;
 
     fn bumpy(width: u32, height: u32) -> HeightField {
         let samples = (0..height)
@@ -378,7 +379,7 @@ mod tests {
     fn rows_equal_the_per_texel_normals_exactly() {
         for (w, h) in [(37, 23), (5, 300), (1, 3), (2, 2)] {
             let field = bumpy(w, h);
-            for kernel in Kernel::ALL {
+            for &kernel in Kernel::all() {
                 for border in [Border::Wrap, Border::Clamp] {
                     let fast = normals(&field.grid(), kernel, border);
                     for (i, n) in fast.iter().enumerate() {

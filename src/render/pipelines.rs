@@ -8,10 +8,11 @@ use crate::counters::WorkCounters;
 use crate::prepare::Variant;
 
 /// Shader sources, embedded at build time; frame.wgsl is the shared Frame uniform, pbr.wgsl
-/// the metallic-roughness shading the mesh shader calls.
+/// the metallic-roughness shading the mesh shader calls, parallax.wgsl the parallax family.
 pub const MESH_WGSL: &str = concat!(
     include_str!("../../shaders/frame.wgsl"),
     include_str!("../../shaders/pbr.wgsl"),
+    include_str!("../../shaders/parallax.wgsl"),
     include_str!("../../shaders/mesh.wgsl")
 );
 pub const MARKER_WGSL: &str =
@@ -87,10 +88,7 @@ impl Layouts {
 
     /// The group-1 layout a mesh variant binds.
     pub fn material(&self, variant: Variant) -> &wgpu::BindGroupLayout {
-        match variant {
-            Variant::Plain | Variant::Tangent => &self.plain_material,
-            Variant::NormalMapped | Variant::ObjectSpace | Variant::HeightBump => &self.normal_mapped_material,
-        }
+        if variant.has_bump_texture() { &self.normal_mapped_material } else { &self.plain_material }
     }
 }
 

@@ -205,6 +205,7 @@ pub fn upload(
     prepared: Arc<PreparedScene>,
     counters: &mut WorkCounters,
 ) -> GpuScene {
+    counters.scenes_uploaded += 1;
     counters.tangent_frames_generated += prepared.tangent_frames_generated;
     let scene = &prepared.scene;
     let meshes = prepared.meshes.iter().map(|m| upload_mesh(device, m)).collect();
@@ -237,6 +238,7 @@ pub fn upload(
             let clearcoat = optional(slots.clearcoat);
             let clearcoat_roughness = optional(slots.clearcoat_roughness);
             let clearcoat_normal = optional(slots.clearcoat_normal);
+            let height = optional(slots.height);
             let base_sampler = samplers.get(device, material.base_color_wrap);
             let detail_sampler = samplers.get(device, material.detail_wrap);
             let view = wgpu::BindingResource::TextureView;
@@ -253,6 +255,7 @@ pub fn upload(
                 bindings::CLEARCOAT_TEXTURE.entry(view(&clearcoat)),
                 bindings::CLEARCOAT_ROUGHNESS_TEXTURE.entry(view(&clearcoat_roughness)),
                 bindings::CLEARCOAT_NORMAL_TEXTURE.entry(view(&clearcoat_normal)),
+                bindings::HEIGHT_TEXTURE.entry(view(&height)),
             ];
             // The normal map or the height map, as the variant needs.
             let bump = slots.bump.map(|t| textures.get(&prepared, t, counters));

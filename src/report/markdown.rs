@@ -10,6 +10,7 @@ use super::stiff::StabilityRow;
 use super::surfaces::{POLE_DEGREES, Region};
 use super::{LARGE_PLANE, LARGE_TORUS, MIKKTSPACE_SANITY_SPHERE, Machine, Plan};
 use crate::height::integrate::Derivative;
+use crate::names::Named;
 
 /// Everything the page shows.
 pub struct Page<'a> {
@@ -88,7 +89,7 @@ fn intro(page: &Page, out: &mut String) {
          - *Sine-bump plane* `h = A·sin(2πx/λ)·sin(2πy/λ)`, `A = λ/2π` so the maximum slope |∇h| is 1, \
          {} periods square, samples (and exact normals) at texel centres `x = (i + ½)Δ`. Texels per period: {}; \
          8-bit, 16-bit and clamped-border variants at {} texels per period (*border* = within two texels of the edge).\n\n\
-         Every method of `TangentMethod::ALL` is measured except **supplied**, which needs tangents from a mesh \
+         Every tangent method is measured except **supplied**, which needs tangents from a mesh \
          file (the references have none). **per-face** is measured on the unwelded mesh, where it is exact per \
          triangle; **analytic** is the reference itself (error ≈ 0, its time is the cost of copying and \
          re-orthogonalising). Convergence orders are least-squares slopes of ln(mean error) against \

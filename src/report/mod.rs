@@ -19,6 +19,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use crate::height::{Border, Kernel};
+use crate::names::Named;
 use crate::tangent::TangentMethod;
 use measure::{Row, Sample, kernel_rows, tangent_rows};
 use surfaces::{Region, SineBumps, torus, uv_sphere};
@@ -143,7 +144,7 @@ pub const LARGE_PLANE: &str = "large plane";
 pub fn measure(plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> Vec<Row> {
     let mut rows = vec![];
     let methods: Vec<TangentMethod> =
-        TangentMethod::ALL.into_iter().filter(|&m| m != TangentMethod::Supplied).collect();
+        TangentMethod::all().iter().copied().filter(|&m| m != TangentMethod::Supplied).collect();
     let references = plan
         .spheres
         .iter()
@@ -152,7 +153,7 @@ pub fn measure(plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> Vec<Row> 
         .collect::<Vec<_>>();
     let fast_methods = [TangentMethod::MikkTSpace, TangentMethod::Meshopt];
     let planes_per_kernel = plan.texels_per_period.len() + 4;
-    let total = methods.len() * references.len() + fast_methods.len() + Kernel::ALL.len() * planes_per_kernel;
+    let total = methods.len() * references.len() + fast_methods.len() + Kernel::all().len() * planes_per_kernel;
     let mut done = 0;
     let mut step = |progress: &mut dyn FnMut(usize, usize)| {
         done += 1;
@@ -177,7 +178,7 @@ pub fn measure(plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> Vec<Row> 
         );
         step(progress);
     }
-    for kernel in Kernel::ALL {
+    for &kernel in Kernel::all() {
         for &tpp in &plan.texels_per_period {
             let bumps = SineBumps::new(tpp, plan.periods);
             let label = format!("{tpp} texels/period");

@@ -4,6 +4,7 @@
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use super::surfaces::{Region, uv_sphere};
+use crate::names::Named;
 use crate::scene::Mesh;
 use crate::tangent::{TangentMethod, angle_degrees, tangents};
 
@@ -191,7 +192,7 @@ pub struct StabilityRow {
 pub fn stability_rows() -> Vec<StabilityRow> {
     let mut rows = vec![];
     for case in cases() {
-        for method in TangentMethod::ALL.into_iter().filter(|m| m.is_generated()) {
+        for method in TangentMethod::all().iter().copied().filter(|m| m.is_generated()) {
             // Per-face frames are drawn on the unwelded mesh: its vertex k is the case's vertex indices[k].
             let (mesh, exact_at) = if method == TangentMethod::PerFace {
                 (case.mesh.unwelded(), case.mesh.indices.iter().map(|&v| case.exact[v as usize]).collect())
@@ -242,7 +243,8 @@ mod tests {
         for r in &rows {
             assert_eq!((r.non_finite, r.invalid), (0, 0), "{r:?}");
             let case = cases.iter().find(|c| c.name == r.case).expect("a row names its case");
-            let method = TangentMethod::ALL.into_iter().find(|m| m.name() == r.method).expect("a row names its method");
+            let method =
+                TangentMethod::all().iter().copied().find(|m| m.name() == r.method).expect("a row names its method");
             match r.max_error_deg {
                 Some(error) => assert!(error < case.tolerance_deg(method), "{r:?}"),
                 None => assert!(!case.has_reference(), "{r:?}"),
