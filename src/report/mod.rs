@@ -222,18 +222,10 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), ReportError> {
     result
 }
 
-/// Measures `plan` and writes the report into `out` (created if missing). Fails before
-/// measuring when `out` cannot be written. Returns the files written.
-pub fn run(out: &Path, plan: &Plan) -> Result<Vec<PathBuf>, ReportError> {
-    run_with_progress(out, plan, &mut |_, _| ())
-}
-
-/// [`run`], telling `progress(done, total)` of each case measured.
-pub fn run_with_progress(
-    out: &Path,
-    plan: &Plan,
-    progress: &mut dyn FnMut(usize, usize),
-) -> Result<Vec<PathBuf>, ReportError> {
+/// Measures `plan` and writes the report into `out` (created if missing), telling
+/// `progress(done, total)` of each case measured. Fails before measuring when `out` cannot be
+/// written. Returns the files written.
+pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> Result<Vec<PathBuf>, ReportError> {
     let started = Instant::now();
     std::fs::create_dir_all(out).map_err(|e| ReportError::Write { path: out.to_owned(), reason: e.to_string() })?;
     write_atomically(&out.join(".write-test"), b"")?;
