@@ -348,6 +348,10 @@ pub struct SceneOptions {
     /// Per material (index into the scene's materials): conventions that win over
     /// `materials` field by field.
     pub per_material: PerMaterialOverrides,
+    /// Bind each normal-mapped material's height map for the parallax family: on while a
+    /// technique is chosen (`ViewerState::scene_uploads` sets it), so the height maps are
+    /// uploaded only then.
+    pub parallax: bool,
 }
 
 impl SceneOptions {

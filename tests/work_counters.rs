@@ -37,7 +37,14 @@ fn built_in_scene_generates_tangents_only_where_missing_and_caches_pipelines() {
     assert!(scene.meshes.iter().all(|m| m.tangents.is_none()));
     let generated: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
     assert_eq!(renderer.counters().tangent_frames_generated, generated as u64);
-    assert_eq!(renderer.counters().textures_uploaded, 3, "colour, normal and height map (for parallax), once each");
+    assert_eq!(
+        renderer.counters().textures_uploaded,
+        2,
+        "colour and normal map, once each: no height map without parallax"
+    );
+    let mut parallax = renderer_for(&scene);
+    parallax.set_scene(&scene, bumpview::frame::SceneOptions { parallax: true, ..Default::default() });
+    assert_eq!(parallax.counters().textures_uploaded, 2 + 3, "a second upload, with the height map for parallax");
 
     let params = default_params(&scene);
     render_image(&mut renderer, [64, 48], &params).unwrap();

@@ -161,11 +161,15 @@ impl ViewerState {
     /// in GPU data, the left half's options for the main upload and the right half's for a
     /// second one; else the current options alone.
     pub fn scene_uploads(&self) -> SceneUploads {
+        // Height maps are bound for parallax while either picture marches.
+        let shown = self.split_frame().map_or(vec![self.shading], |s| vec![s.left, s.right]);
+        let parallax = shown.iter().any(|s| s.parallax.technique != Parallax::Off);
+        let options = SceneOptions { parallax, ..self.scene_options.clone() };
         if self.split.enabled && self.split.difference.changes_gpu_data() {
-            let [left, right] = self.split.scene_options(&self.scene_options);
+            let [left, right] = self.split.scene_options(&options);
             SceneUploads { main: left, split_right: Some(right) }
         } else {
-            SceneUploads { main: self.scene_options.clone(), split_right: None }
+            SceneUploads { main: options, split_right: None }
         }
     }
 
@@ -372,7 +376,11 @@ mod tests {
             let uploads = state.scene_uploads();
             assert_eq!(uploads.split_right.is_some(), difference.changes_gpu_data(), "{difference:?}");
             if !difference.changes_gpu_data() {
-                assert_eq!(uploads, single, "{difference:?}");
+                // A parallax split marches in both halves: one upload, with the height maps.
+                let parallax = difference == SplitDifference::Parallax;
+                let expected =
+                    SceneUploads { main: SceneOptions { parallax, ..Default::default() }, split_right: None };
+                assert_eq!(uploads, expected, "{difference:?}");
             }
         }
         state.apply(Command::SetSplitDifference(SplitDifference::Tangents));
