@@ -340,7 +340,7 @@ pub fn bump_kind(scene: &Scene, mesh: usize, material: usize, bump_source: BumpS
 /// How a scene is prepared for drawing: changing these re-makes GPU data.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct SceneOptions {
-    /// Tangent frames by this method; `None`: the mesh's own, else MikkTSpace.
+    /// Tangent frames by this method; `None`: the mesh's own, else MikkTSpace (by meshoptimizer).
     pub tangent_method: Option<TangentMethod>,
     pub bump_source: BumpSource,
     /// Normal- and height-map conventions that replace every material's own.

@@ -15,7 +15,8 @@
 //! - **Tangents** are MikkTSpace `vec4`: `xyz` is the direction of ∂P/∂u, `w = ±1` is the
 //!   handedness, and the bitangent is `B = w · cross(N, T)` (the glTF 2.0 rule). `B` points
 //!   *up* the image (towards −v), which is where a tangent-space normal map's green (+Y)
-//!   points. MikkTSpace is therefore fed `(u, 1 − v)`; see [`tangent`].
+//!   points. MikkTSpace is therefore fed `(u, 1 − v)`; see [`tangent`]. Tangents a file supplies
+//!   are used; missing ones are made MikkTSpace-compatible by meshoptimizer ([`tangent::resolve`]).
 //! - **Normal maps** are tangent-space, OpenGL convention (+Y = green = up the image),
 //!   linear (never sampled through an sRGB view), decoded as `n = normalize(2·rgb − 1)`,
 //!   unless the material's [`scene::NormalConvention`] says DirectX (green negated),
@@ -36,6 +37,7 @@
 //!   to a valid vector; degenerate UV triangles fall back to a valid orthonormal frame.
 
 pub mod atomic;
+pub mod bake;
 pub mod chain;
 pub mod check;
 pub mod counters;

@@ -1,5 +1,5 @@
 //! The `bumpview` command: the viewer ([`app`], the default) and the command line ([`cli`]:
-//! `render`, `report`, `check`).
+//! `render`, `report`, `bake`, `check`).
 
 #[cfg(feature = "ui")]
 mod app;

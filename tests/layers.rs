@@ -12,7 +12,7 @@ const LAYERS: &[&[&str]] = &[
     &["texture"],
     &["height"],
     &["scene"],
-    &["load"],
+    &["load", "bake"],
     &["tangent", "shading"],
     &["frame"],
     &["chain"],

@@ -137,7 +137,7 @@ fn every_method_gives_unit_orthogonal_frames_with_the_right_handedness_on_mirror
     let (mesh, mirrored) = mirrored_grid(4);
     // The generated methods only: supplied and analytic frames come from the mesh itself.
     let methods: Vec<TangentMethod> = TangentMethod::all().iter().copied().filter(|m| m.is_generated()).collect();
-    assert_eq!(methods.len(), 5, "{methods:?}");
+    assert_eq!(methods.len(), 6, "{methods:?}");
     for method in methods {
         // Per-face frames are exact on the unwelded mesh, which is how they are drawn.
         let (mesh, mirrored): (Mesh, Vec<bool>) = if method == TangentMethod::PerFace {

@@ -12,7 +12,7 @@ use super::args::{self, AutoOr};
 /// The numerical methods behind the picture (shared by the viewer and `render`).
 #[derive(clap::Args, Clone, Copy)]
 pub struct MethodArgs {
-    /// Tangent frames: auto (the mesh's own, else MikkTSpace) or a method [default: auto].
+    /// Tangent frames: auto (the mesh's own, else MikkTSpace by meshoptimizer) or a method [default: auto].
     #[arg(long, value_parser = args::named_or_auto::<TangentMethod>())]
     pub tangents: Option<AutoOr<TangentMethod>>,
     /// Height→normal kernel for the built-in brick normal map [default: central].

@@ -1,12 +1,14 @@
-//! The command line: `bumpview [MESH] [flags]` opens the viewer; `render`, `report` and `check`
-//! work without a window. Flags are read once into the library's values: files into a
+//! The command line: `bumpview [MESH] [flags]` opens the viewer; `render`, `report`, `bake`
+//! and `check` work without a window. Flags are read once into the library's values: files into a
 //! [`bumpview::load::SceneFiles`], picture and method flags into viewer
 //! [`bumpview::state::Command`]s, enum values by their derived names ([`args::named`]).
 
 pub mod args;
+mod bake;
 mod check;
 mod inputs;
 mod methods;
+mod progress;
 mod render;
 mod report;
 mod start;
@@ -51,6 +53,9 @@ enum Command {
     /// Measure error against run time of every tangent method and height kernel and write
     /// report.md, report.csv and PNG charts.
     Report(report::ReportArgs),
+    /// Height maps to tangent-space normal map PNGs, or normal maps back to height maps
+    /// (--to-height), files in parallel. Exit 1 when a file failed, 2 for a bad flag or value.
+    Bake(Box<bake::BakeArgs>),
     /// Check mesh files for what breaks bump mapping (degenerate or mirrored UVs, seams, bad
     /// tangents, normal-map sanity and green convention). Exit 0 clean, 1 warnings, 2 errors.
     Check(check::CheckArgs),
@@ -87,6 +92,7 @@ pub fn run(mut cli: Cli) -> ExitCode {
     let result = match cli.command.take() {
         Some(Command::Render(args)) => render::run(&args),
         Some(Command::Report(args)) => report::run(&args),
+        Some(Command::Bake(args)) => bake::run(&args),
         Some(Command::Check(args)) => return check::run(&args),
         None => viewer(&cli),
     };

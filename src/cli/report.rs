@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use super::Failure;
+use super::{Failure, progress};
 
 #[derive(clap::Args)]
 pub struct ReportArgs {
@@ -14,11 +14,18 @@ pub struct ReportArgs {
     quick: bool,
 }
 
-/// Runs the measurements and writes the report; says what it wrote and how long it took.
+/// Runs the measurements (a progress bar on a terminal) and writes the report; says what it
+/// wrote and how long it took.
 pub fn run(args: &ReportArgs) -> Result<(), Failure> {
     let started = std::time::Instant::now();
     let plan = if args.quick { bumpview::report::Plan::quick() } else { bumpview::report::Plan::full() };
-    let files = bumpview::report::run(&args.out, &plan).map_err(|e| Failure::Failed(e.to_string()))?;
+    let bar = progress::bar(0, "report");
+    let files = bumpview::report::run(&args.out, &plan, &mut |done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    });
+    bar.finish_and_clear();
+    let files = files.map_err(|e| Failure::Failed(e.to_string()))?;
     let names: Vec<_> = files.iter().map(|f| f.display().to_string()).collect();
     println!("wrote {} in {:.1} s", names.join(", "), started.elapsed().as_secs_f64());
     Ok(())

@@ -5,9 +5,12 @@ use std::fmt::Write;
 
 use super::convergence::{NOISE_FLOOR_DEGREES, Order};
 use super::measure::{Row, Study, Vector};
+use super::roundtrip::{Agreement, RoundTrip};
 use super::stiff::StabilityRow;
 use super::surfaces::{POLE_DEGREES, Region};
-use super::{MIKKTSPACE_SANITY_SPHERE, Machine, Plan};
+use super::{LARGE_PLANE, LARGE_TORUS, MIKKTSPACE_SANITY_SPHERE, Machine, Plan};
+use crate::height::integrate::Derivative;
+use crate::names::Named;
 
 /// Everything the page shows.
 pub struct Page<'a> {
@@ -24,6 +27,10 @@ pub struct Page<'a> {
     /// MikkTSpace's mean interior (T, B) errors on the sanity sphere as the library's
     /// a naive f32 `acos` measures them, when that sphere was measured.
     pub acos_f32: Option<(f32, f32)>,
+    /// Heights → normals → heights on the sine plane.
+    pub round_trips: &'a [RoundTrip],
+    /// meshoptimizer's frames against MikkTSpace's per reference surface.
+    pub agreements: &'a [Agreement],
 }
 
 /// Degrees with three significant digits (scientific below 10⁻⁴).
@@ -235,6 +242,8 @@ pub fn render(page: &Page) -> String {
          resolution; errors below 1e-6° (the analytic frame) are drawn at 1e-6°.\n\n\
          ![tangent methods]({tangent_chart})\n\n![height kernels]({kernel_chart})\n\n"
     );
+    speed(page, &mut out);
+    round_trips(page, &mut out);
     orders(page, &mut out);
     stability(page, &mut out);
     tables(page, &mut out);
@@ -257,6 +266,82 @@ fn stability(page: &Page, out: &mut String) {
             .max_error_deg
             .map_or("—".to_owned(), |e| if e.is_finite() { format!("{}°", degrees(e)) } else { "NaN".into() });
         let _ = writeln!(out, "| {} | {} | {} | {} | {error} |", row.case, row.method, row.non_finite, row.invalid);
+    }
+    out.push('\n');
+}
+
+/// Whole-image and large-mesh throughput: the rows the speed goals are about.
+fn speed(page: &Page, out: &mut String) {
+    out.push_str(
+        "## Throughput on large inputs\n\n\
+         The kernels on the large sine plane (rows in parallel on every CPU, into a buffer allocated once), and \
+         MikkTSpace (bevy_mikktspace) against meshoptimizer's MikkTSpace-compatible generator (what \"auto\" uses \
+         for meshes without tangents) on the large torus, with their mean error against the exact frame or \
+         normal.\n\n| method | surface | resolution | mean error | median time | throughput |\n\
+         | --- | --- | --- | --- | --- | --- |\n",
+    );
+    let large =
+        page.rows.iter().filter(|r| (r.surface == LARGE_TORUS || r.surface == LARGE_PLANE) && r.region == Region::All);
+    for row in large {
+        let vector = if row.study == Study::Kernels { Vector::Normal } else { Vector::Tangent };
+        let error = row.error(vector).map_or("".into(), |s| format!("{}°", degrees(s.mean)));
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {error} | {} | {} |",
+            row.method,
+            row.surface,
+            row.resolution_label,
+            duration(row.seconds),
+            throughput(row)
+        );
+    }
+    out.push_str(
+        "\n**meshoptimizer against MikkTSpace** (the same frames, as meshoptimizer's option promises): angles \
+         between the two methods' T and B at every vertex.\n\n\
+         | surface | T mean° | T max° | B mean° | B max° |\n| --- | --- | --- | --- | --- |\n",
+    );
+    for a in page.agreements {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {} | {} |",
+            a.surface,
+            degrees(a.tangent.mean),
+            degrees(a.tangent.max),
+            degrees(a.bitangent.mean),
+            degrees(a.bitangent.max)
+        );
+    }
+    out.push('\n');
+}
+
+/// Heights → normals → heights (`bumpview bake --to-height`).
+fn round_trips(page: &Page, out: &mut String) {
+    let Some(first) = page.round_trips.first() else { return };
+    let side = (first.texels as f64).sqrt().round();
+    let _ = write!(
+        out,
+        "## Round trip: height → normal → height\n\n\
+         The sine plane ({side}×{side} texels, float heights, slope 1) made into central-difference normals, stored \
+         as float, 16-bit or 8-bit, then integrated back by least squares in the Fourier domain (Frankot & \
+         Chellappa 1988) with the central difference's own symbol or the continuous derivative `iω` they used. \
+         Errors are in full height ranges (1 = the whole range), mean removed (slopes do not fix it). The kernel's \
+         symbol undoes the kernel; `iω` leaves its gain `sinc(kΔ)` in the amplitude.\n\n\
+         | normals | derivative | RMS | max | solve time | throughput |\n| --- | --- | --- | --- | --- | --- |\n"
+    );
+    for trip in page.round_trips {
+        let derivative = match trip.derivative {
+            Derivative::Spectral => "spectral (iω)".to_owned(),
+            Derivative::Kernel(k) => format!("{} (its symbol)", k.name()),
+        };
+        let _ = writeln!(
+            out,
+            "| {} | {derivative} | {:.2e} | {:.2e} | {} | {:.1} M texels/s |",
+            trip.normals,
+            trip.rms,
+            trip.max,
+            duration(trip.seconds),
+            trip.texels as f64 / trip.seconds.max(1e-12) / 1e6
+        );
     }
     out.push('\n');
 }

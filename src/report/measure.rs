@@ -5,7 +5,7 @@ use glam::{DVec3, Vec3};
 
 use super::surfaces::{Reference, Region, SineBumps};
 use super::timing::{Repeats, median_seconds};
-use crate::height::{Border, HeightField, Kernel};
+use crate::height::{Border, HeightField, Kernel, rows};
 use crate::names::Named;
 use crate::scene::Mesh;
 use crate::tangent::{AngleStats, TangentMethod, bitangent, tangents};
@@ -162,14 +162,15 @@ pub fn tangent_rows(method: TangentMethod, reference: &Reference, sample: Sample
         .collect()
 }
 
-/// Every texel's normal by `kernel`, rows top to bottom.
+/// Every texel's normal by `kernel`, rows top to bottom (the row kernels, [`rows::normals`]).
 pub fn kernel_normals(field: &HeightField, kernel: Kernel, border: Border) -> Vec<Vec3> {
-    let (width, height) = (field.width as i64, field.height as i64);
-    (0..height).flat_map(|y| (0..width).map(move |x| field.normal(kernel, border, x, y))).collect()
+    rows::normals(&field.grid(), kernel, border)
 }
 
 /// Normals of `kernel` on `field` (made from `bumps`) against the exact normals, timed; with a
-/// clamped border also split into interior and border texels.
+/// clamped border also split into interior and border texels. The time is the row kernels'
+/// (rows in parallel) writing into a buffer allocated once, so it counts the kernel, not the
+/// operating system mapping fresh pages.
 pub fn kernel_rows(
     kernel: Kernel,
     bumps: &SineBumps,
@@ -178,7 +179,15 @@ pub fn kernel_rows(
     sample: Sample,
     repeats: Repeats,
 ) -> Vec<Row> {
-    let (seconds, normals) = median_seconds(repeats, || kernel_normals(field, kernel, border));
+    let grid = field.grid();
+    let mut normals = vec![Vec3::ZERO; grid.width * grid.height];
+    let (seconds, ()) = median_seconds(repeats, || {
+        rows::for_each_normal_row(&grid, kernel, border, 0..grid.height, &mut normals, grid.width, |row, out| {
+            for (((o, &x), &y), &z) in out.iter_mut().zip(row.x).zip(row.y).zip(row.z) {
+                *o = Vec3::new(x, y, z);
+            }
+        })
+    });
     let side = bumps.side();
     let texels = || (0..side).flat_map(|j| (0..side).map(move |i| (i, j)));
     let angles: Vec<f64> =

@@ -10,6 +10,7 @@ mod convergence;
 mod csv;
 mod markdown;
 pub mod measure;
+pub mod roundtrip;
 pub mod stiff;
 pub mod surfaces;
 pub mod timing;
@@ -21,7 +22,7 @@ use crate::height::{Border, Kernel};
 use crate::names::Named;
 use crate::tangent::TangentMethod;
 use measure::{Row, Sample, kernel_rows, tangent_rows};
-use surfaces::{SineBumps, torus, uv_sphere};
+use surfaces::{Region, SineBumps, torus, uv_sphere};
 use timing::Repeats;
 
 /// File names inside the output directory.
@@ -55,6 +56,14 @@ pub struct Plan {
     pub periods: u32,
     /// Texels per period of the 8-bit, 16-bit and clamped-border planes.
     pub quantised_at: u32,
+    /// The large plane every kernel is timed on, as (texels per period, periods): the
+    /// throughput of whole images.
+    pub large_plane: (u32, u32),
+    /// The torus (segments, sides) MikkTSpace and meshoptimizer are timed on: 2 · segments ·
+    /// sides triangles.
+    pub large_torus: (u32, u32),
+    /// The sine plane of the round trips, as (texels per period, periods).
+    pub round_trip_plane: (u32, u32),
     pub repeats: Repeats,
     /// The reduced plan of `--quick`.
     pub quick: bool,
@@ -68,6 +77,9 @@ impl Plan {
             texels_per_period: vec![8, 16, 32, 64],
             periods: 4,
             quantised_at: 32,
+            large_plane: (64, 32),
+            large_torus: (1000, 500),
+            round_trip_plane: (32, 16),
             repeats: Repeats { runs: 21, budget: Duration::from_secs(2) },
             quick: false,
         }
@@ -81,6 +93,9 @@ impl Plan {
             texels_per_period: vec![8, 16, 32],
             periods: 2,
             quantised_at: 32,
+            large_plane: (32, 8),
+            large_torus: (96, 32),
+            round_trip_plane: (32, 2),
             repeats: Repeats { runs: 3, budget: Duration::from_millis(50) },
             quick: true,
         }
@@ -118,21 +133,50 @@ impl Machine {
     }
 }
 
-/// Every row of `plan`: tangent methods on spheres then tori, kernels on the planes.
-pub fn measure(plan: &Plan) -> Vec<Row> {
+/// The surface name of the large torus's rows.
+pub const LARGE_TORUS: &str = "large torus";
+/// The surface name of the large plane's rows.
+pub const LARGE_PLANE: &str = "large plane";
+
+/// Every row of `plan`: tangent methods on spheres then tori, MikkTSpace and meshoptimizer on
+/// the large torus, kernels on the planes and the large plane. `progress(done, total)` hears
+/// of each case measured.
+pub fn measure(plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> Vec<Row> {
     let mut rows = vec![];
-    let methods = TangentMethod::all().iter().copied().filter(|&m| m != TangentMethod::Supplied);
+    let methods: Vec<TangentMethod> =
+        TangentMethod::all().iter().copied().filter(|&m| m != TangentMethod::Supplied).collect();
     let references = plan
         .spheres
         .iter()
         .map(|&(s, r)| ("sphere", s, format!("{s}x{r}"), uv_sphere(s, r)))
         .chain(plan.tori.iter().map(|&(s, r)| ("torus", s, format!("{s}x{r}"), torus(s, r))))
         .collect::<Vec<_>>();
-    for method in methods {
+    let fast_methods = [TangentMethod::MikkTSpace, TangentMethod::Meshopt];
+    let planes_per_kernel = plan.texels_per_period.len() + 4;
+    let total = methods.len() * references.len() + fast_methods.len() + Kernel::all().len() * planes_per_kernel;
+    let mut done = 0;
+    let mut step = |progress: &mut dyn FnMut(usize, usize)| {
+        done += 1;
+        progress(done, total);
+    };
+    for &method in &methods {
         for (surface, resolution, label, reference) in &references {
             let sample = Sample { surface, resolution: *resolution, resolution_label: label };
             rows.extend(tangent_rows(method, reference, sample, plan.repeats));
+            step(progress);
         }
+    }
+    let (segments, sides) = plan.large_torus;
+    let large_torus = torus(segments, sides);
+    let label = format!("{segments}x{sides} ({} triangles)", large_torus.mesh.indices.len() / 3);
+    for method in fast_methods {
+        let sample = Sample { surface: LARGE_TORUS, resolution: segments, resolution_label: &label };
+        // One run of MikkTSpace here takes seconds: the fastest of three is enough.
+        let repeats = Repeats { runs: plan.repeats.runs.min(3), ..plan.repeats };
+        rows.extend(
+            tangent_rows(method, &large_torus, sample, repeats).into_iter().filter(|r| r.region == Region::All),
+        );
+        step(progress);
     }
     for &kernel in Kernel::all() {
         for &tpp in &plan.texels_per_period {
@@ -140,6 +184,7 @@ pub fn measure(plan: &Plan) -> Vec<Row> {
             let label = format!("{tpp} texels/period");
             let sample = Sample { surface: "plane", resolution: tpp, resolution_label: &label };
             rows.extend(kernel_rows(kernel, &bumps, &bumps.field(), Border::Wrap, sample, plan.repeats));
+            step(progress);
         }
         let bumps = SineBumps::new(plan.quantised_at, plan.periods);
         let label = format!("{} texels/period", plan.quantised_at);
@@ -152,7 +197,14 @@ pub fn measure(plan: &Plan) -> Vec<Row> {
         for (surface, field, border) in variants {
             let sample = Sample { surface, resolution: plan.quantised_at, resolution_label: &label };
             rows.extend(kernel_rows(kernel, &bumps, &field, border, sample, plan.repeats));
+            step(progress);
         }
+        let (tpp, periods) = plan.large_plane;
+        let bumps = SineBumps::new(tpp, periods);
+        let label = format!("{0}x{0} ({tpp} texels/period)", bumps.side());
+        let sample = Sample { surface: LARGE_PLANE, resolution: tpp, resolution_label: &label };
+        rows.extend(kernel_rows(kernel, &bumps, &bumps.field(), Border::Wrap, sample, plan.repeats));
+        step(progress);
     }
     rows
 }
@@ -170,14 +222,23 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), ReportError> {
     result
 }
 
-/// Measures `plan` and writes the report into `out` (created if missing). Fails before
-/// measuring when `out` cannot be written. Returns the files written.
-pub fn run(out: &Path, plan: &Plan) -> Result<Vec<PathBuf>, ReportError> {
+/// Measures `plan` and writes the report into `out` (created if missing), telling
+/// `progress(done, total)` of each case measured. Fails before measuring when `out` cannot be
+/// written. Returns the files written.
+pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> Result<Vec<PathBuf>, ReportError> {
     let started = Instant::now();
     std::fs::create_dir_all(out).map_err(|e| ReportError::Write { path: out.to_owned(), reason: e.to_string() })?;
     write_atomically(&out.join(".write-test"), b"")?;
     let _ = std::fs::remove_file(out.join(".write-test"));
-    let rows = measure(plan);
+    let rows = measure(plan, progress);
+    let (tpp, periods) = plan.round_trip_plane;
+    let round_trips = roundtrip::round_trips(&SineBumps::new(tpp, periods), plan.repeats);
+    let agreements: Vec<_> = plan
+        .spheres
+        .iter()
+        .map(|&(s, r)| roundtrip::agreement(format!("sphere {s}x{r}"), &uv_sphere(s, r)))
+        .chain(plan.tori.iter().map(|&(s, r)| roundtrip::agreement(format!("torus {s}x{r}"), &torus(s, r))))
+        .collect();
     let orders = convergence::orders(&rows);
     let tangent_png = chart::tangent_chart(&rows).map_err(ReportError::Chart)?;
     let kernel_png = chart::kernel_chart(&rows).map_err(ReportError::Chart)?;
@@ -195,6 +256,8 @@ pub fn run(out: &Path, plan: &Plan) -> Result<Vec<PathBuf>, ReportError> {
         charts: [TANGENT_CHART, KERNEL_CHART],
         acos_f32: acos_f32.flatten(),
         stability: &stiff::stability_rows(),
+        round_trips: &round_trips,
+        agreements: &agreements,
     };
     let files = [
         (MARKDOWN, markdown::render(&page).into_bytes()),

@@ -62,7 +62,7 @@ pub enum Command {
     },
     /// Advances animations by `seconds`.
     Tick(f32),
-    /// Tangent frames by this method (`None`: the mesh's own, else MikkTSpace).
+    /// Tangent frames by this method (`None`: the mesh's own, else MikkTSpace by meshoptimizer).
     SetTangentMethod(Option<TangentMethod>),
     SetBumpSource(BumpSource),
     /// Height→normal kernel of the built-in brick normal map.

@@ -5,6 +5,7 @@
 //! conventions). None returns NaN: degenerate input falls back to a valid orthonormal frame.
 
 mod compare;
+mod meshopt;
 mod mikktspace;
 mod uv_delta;
 
@@ -13,10 +14,11 @@ use glam::{Vec3, Vec4};
 use crate::math::orthonormalize_tangent;
 use crate::scene::Mesh;
 pub use compare::{AngleStats, FrameAngles, MethodMeasurement, angle_degrees, frame_angles, measure};
+pub use meshopt::generate_meshopt;
 pub use mikktspace::generate_mikktspace;
 pub use uv_delta::{Weighting, averaged_face_frames, face_frame, per_face_frames};
 
-/// How tangent frames are made. Named `mikktspace`, `per-face`, `averaged-uniform`,
+/// How tangent frames are made. Named `mikktspace`, `meshopt`, `per-face`, `averaged-uniform`,
 /// `averaged-area`, `averaged-angle`, `supplied`, `analytic`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
 #[strum(serialize_all = "kebab-case")]
@@ -25,6 +27,9 @@ pub enum TangentMethod {
     #[default]
     #[strum(serialize = "mikktspace")]
     MikkTSpace,
+    /// meshoptimizer's MikkTSpace-compatible generator: the same frames (within 0.05° on the
+    /// test models) about ten times faster; what "auto" generates ([`resolve`]).
+    Meshopt,
     /// Each triangle's own frame from its edge and UV deltas; a vertex takes the frame of
     /// the last triangle that uses it, so this is exact only on an unwelded mesh
     /// ([`Mesh::unwelded`]), which is how the renderer draws it.
@@ -60,22 +65,27 @@ impl TangentMethod {
     }
 }
 
-/// The frames to draw `mesh` with. `choice = None` is the default rule: the mesh's supplied
-/// tangents if it has them, else MikkTSpace. A chosen method with nothing to offer for this
-/// mesh (no supplied or analytic frames) also falls back to MikkTSpace. Returns the frames
-/// and the method actually used.
+/// The frames to draw `mesh` with. `choice = None` is the default rule ("auto"): the mesh's
+/// supplied tangents if it has them, else MikkTSpace frames made by meshoptimizer
+/// ([`TangentMethod::Meshopt`]). A chosen method with nothing to offer for this mesh (no
+/// supplied or analytic frames) falls back the same way. Returns the frames and the method
+/// actually used.
 pub fn resolve(mesh: &Mesh, choice: Option<TangentMethod>) -> (Vec<Vec4>, TangentMethod) {
     let wanted = choice.unwrap_or(TangentMethod::Supplied);
     match tangents(mesh, wanted) {
         Some(frames) => (frames, wanted),
-        None => (generate_mikktspace(mesh), TangentMethod::MikkTSpace),
+        None => (generate_meshopt(mesh), TangentMethod::Meshopt),
     }
 }
 
 /// The reference frames a method is compared with: the analytic frame where the mesh has
-/// one (built-in surfaces), else MikkTSpace. Returns the frames and which reference it is.
+/// one (built-in surfaces), else MikkTSpace (bevy_mikktspace, the reference implementation).
+/// Returns the frames and which reference it is.
 pub fn reference(mesh: &Mesh) -> (Vec<Vec4>, TangentMethod) {
-    resolve(mesh, Some(TangentMethod::Analytic))
+    match tangents(mesh, TangentMethod::Analytic) {
+        Some(frames) => (frames, TangentMethod::Analytic),
+        None => (generate_mikktspace(mesh), TangentMethod::MikkTSpace),
+    }
 }
 
 /// Per-vertex frames of `mesh` by `method`; `None` when the mesh has no supplied or
@@ -90,6 +100,7 @@ pub fn tangents(mesh: &Mesh, method: TangentMethod) -> Option<Vec<Vec4>> {
     };
     match method {
         TangentMethod::MikkTSpace => Some(generate_mikktspace(mesh)),
+        TangentMethod::Meshopt => Some(generate_meshopt(mesh)),
         TangentMethod::PerFace => {
             let mut frames = vec![Vec4::ZERO; mesh.positions.len()];
             for (triangle, frame) in mesh.indices.chunks_exact(3).zip(per_face_frames(mesh)) {

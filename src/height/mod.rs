@@ -4,6 +4,13 @@
 //! the full range spans and `texel_size_m` how many metres one texel covers on the surface,
 //! so the slope `∂h/∂x` in world units is `Δsample · range_m / texel_size_m`. Derivatives
 //! come from one of several finite-difference [`Kernel`]s.
+//!
+//! [`HeightField::slope`] and [`HeightField::normal`] compute one texel, as written in the
+//! formulas; [`rows`] computes whole images the same way, rows in parallel, and [`integrate`]
+//! goes back from slopes to heights.
+
+pub mod integrate;
+pub mod rows;
 
 use glam::Vec3;
 
@@ -62,18 +69,27 @@ impl HeightField {
         normalize_or(Vec3::new(-d_dx, -d_dy_up, 1.0), Vec3::Z)
     }
 
-    /// The tangent-space normal map of this field by `kernel`, OpenGL convention, encoded
-    /// `rgb = round(255 · (0.5·n + 0.5))`.
-    pub fn to_normal_map(&self, kernel: Kernel, border: Border, name: &str) -> TextureImage {
-        let taps = kernel.taps();
-        let mut rgba = Vec::with_capacity(self.samples.len() * 4);
-        for y in 0..self.height as i64 {
-            for x in 0..self.width as i64 {
-                let (d_dx, d_dy_up) = self.slope_with_taps(taps, border, x, y);
-                rgba.extend(encode_unit_vector(normalize_or(Vec3::new(-d_dx, -d_dy_up, 1.0), Vec3::Z)));
-                rgba.push(255);
-            }
+    /// The field as a [`rows::HeightGrid`] (float samples, `slope_scale = range_m / texel_size_m`).
+    pub fn grid(&self) -> rows::HeightGrid<'_> {
+        rows::HeightGrid {
+            width: self.width as usize,
+            height: self.height as usize,
+            samples: rows::Samples::F32(&self.samples),
+            slope_scale: self.range_m / self.texel_size_m,
+            depth: false,
         }
+    }
+
+    /// The tangent-space normal map of this field by `kernel`, OpenGL convention, encoded
+    /// `rgb = round(255 · (0.5·n + 0.5))`, alpha 255 (rows in parallel, [`rows`]).
+    pub fn to_normal_map(&self, kernel: Kernel, border: Border, name: &str) -> TextureImage {
+        let mut rgba = vec![0u8; self.samples.len() * 4];
+        let (grid, row_len) = (self.grid(), self.width as usize * 4);
+        rows::for_each_normal_row(&grid, kernel, border, 0..grid.height, &mut rgba, row_len, |row, out| {
+            for (((texel, &x), &y), &z) in out.chunks_exact_mut(4).zip(row.x).zip(row.y).zip(row.z) {
+                texel.copy_from_slice(&[rows::unorm8(x), rows::unorm8(y), rows::unorm8(z), 255]);
+            }
+        });
         TextureImage {
             name: name.to_owned(),
             width: self.width,

@@ -1,0 +1,149 @@
+//! `bumpview bake`: height maps to tangent-space normal map PNGs, or normal maps back to
+//! height maps (`--to-height`), many files in parallel ([`bumpview::bake`]).
+
+use std::path::PathBuf;
+
+use bumpview::bake::{BakeOptions, Direction, TexelSize, Units, bake_all, plan_outputs};
+use bumpview::height::rows::Channels;
+use bumpview::height::{Border, Kernel};
+use bumpview::scene::GreenAxis;
+
+use super::{Failure, args, progress};
+
+#[derive(clap::Args)]
+pub struct BakeArgs {
+    /// Height maps (PNG, JPEG, TGA or BMP; grey or colour by luminance; 8 or 16 bits), or
+    /// normal maps with --to-height.
+    #[arg(required = true, value_name = "FILE")]
+    inputs: Vec<PathBuf>,
+    /// The output PNG, or a directory (needed for several inputs) that receives
+    /// `<input name>_normal.png` (or `_height.png`).
+    #[arg(long, value_name = "FILE|DIR")]
+    out: PathBuf,
+    /// Normal maps → 16-bit height maps: the least-squares integral of their slopes
+    /// (Frankot–Chellappa), in the same units.
+    #[arg(long)]
+    to_height: bool,
+    /// Finite-difference kernel [default: central]; with --to-height, the derivative whose
+    /// Fourier symbol is inverted.
+    #[arg(long, value_parser = args::named::<Kernel>())]
+    kernel: Option<Kernel>,
+    /// With --to-height: integrate with the continuous derivative iω (Frankot and Chellappa's)
+    /// instead of the kernel's symbol.
+    #[arg(long, requires = "to_height")]
+    spectral: bool,
+    /// Metres spanned by the height map's full range [default: 0.01].
+    #[arg(long, value_name = "METRES", value_parser = parse_positive)]
+    height_range: Option<f32>,
+    /// Metres one texel covers on the surface [default: the texture's width / its texels].
+    #[arg(long, value_name = "METRES", value_parser = parse_positive, conflicts_with = "texture_width")]
+    texel_size: Option<f32>,
+    /// The texture's width in metres [default: 1].
+    #[arg(long, value_name = "METRES", value_parser = parse_positive)]
+    texture_width: Option<f32>,
+    /// A plain strength instead of units: a rise of the full range over one texel is a slope
+    /// of STRENGTH.
+    #[arg(long, value_parser = parse_positive, conflicts_with_all = ["height_range", "texel_size", "texture_width"])]
+    strength: Option<f32>,
+    /// The height map stores depth (white = deep); with --to-height, write depth.
+    #[arg(long)]
+    depth_map: bool,
+    /// Differences at the image border: wrap (tiling) or clamp [default: wrap].
+    #[arg(long, value_parser = args::named::<Border>())]
+    border: Option<Border>,
+    /// Green convention of the normal map written (or read with --to-height): opengl (+Y up
+    /// the image) or directx (green inverted) [default: opengl].
+    #[arg(long, value_parser = args::named::<GreenAxis>())]
+    normal_convention: Option<GreenAxis>,
+    /// Bits per channel of the normal map: 8 or 16 [default: 8].
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(["8", "16"]), conflicts_with = "to_height")]
+    bits: Option<String>,
+    /// RGB = the normal, A = the height (white = high).
+    #[arg(long, conflicts_with_all = ["two_channel", "to_height"])]
+    height_in_alpha: bool,
+    /// Only the normal's x and y (red, green; blue 0); with --to-height, rebuild z from them.
+    #[arg(long)]
+    two_channel: bool,
+}
+
+/// A finite number above zero.
+fn parse_positive(text: &str) -> Result<f32, String> {
+    text.trim()
+        .parse::<f32>()
+        .ok()
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .ok_or_else(|| format!("{text:?}: expected a number above 0"))
+}
+
+impl BakeArgs {
+    fn options(&self) -> BakeOptions {
+        let defaults = BakeOptions::default();
+        let units = match (self.strength, self.texel_size, self.texture_width) {
+            (Some(strength), _, _) => Units::Strength(strength),
+            (None, texel_size, texture_width) => Units::Physical {
+                range_m: self.height_range.unwrap_or(0.01),
+                texel: match texel_size {
+                    Some(m) => TexelSize::Metres(m),
+                    None => TexelSize::TextureWidth(texture_width.unwrap_or(1.0)),
+                },
+            },
+        };
+        let channels = if self.height_in_alpha {
+            Channels::RgbHeight
+        } else if self.two_channel {
+            Channels::TwoChannel
+        } else {
+            Channels::Rgb
+        };
+        BakeOptions {
+            kernel: self.kernel.unwrap_or(defaults.kernel),
+            spectral: self.spectral,
+            border: self.border.unwrap_or(defaults.border),
+            units,
+            depth: self.depth_map,
+            green: self.normal_convention.unwrap_or(defaults.green),
+            sixteen_bit: self.bits.as_deref() == Some("16"),
+            channels,
+        }
+    }
+}
+
+/// Bakes every input, files in parallel, with a progress bar on a terminal; one line per
+/// file written (stdout) or failed (stderr; a single input's failure is the one line).
+/// Fails (exit 1) when any file failed.
+pub fn run(args: &BakeArgs) -> Result<(), Failure> {
+    let direction = if args.to_height { Direction::ToHeight } else { Direction::ToNormal };
+    let outputs = plan_outputs(&args.inputs, &args.out, direction).map_err(|e| Failure::Failed(e.to_string()))?;
+    let pairs: Vec<_> = args.inputs.iter().cloned().zip(outputs).collect();
+    let bar = progress::bar(pairs.len() as u64, "bake");
+    let results = bake_all(&pairs, direction, &args.options(), &|result| {
+        if let Ok(baked) = result {
+            bar.set_message(baked.output.display().to_string());
+        }
+        bar.inc(1);
+    });
+    bar.finish_and_clear();
+    if let [Err(error)] = &results[..] {
+        return Err(Failure::Failed(error.to_string()));
+    }
+    let mut failed = 0;
+    for result in &results {
+        match result {
+            Ok(baked) => {
+                let relief = baked.relief.map_or(String::new(), |(relief, clipped)| {
+                    let clipped = if clipped > 0 { format!(", {clipped} texels clipped") } else { String::new() };
+                    format!(", relief {relief:.3} of the full range{clipped}")
+                });
+                println!("wrote {} ({}x{}{relief})", baked.output.display(), baked.width, baked.height);
+            }
+            Err(error) => {
+                eprintln!("bumpview: {error}");
+                failed += 1;
+            }
+        }
+    }
+    match failed {
+        0 => Ok(()),
+        n => Err(Failure::Failed(format!("{n} of {} files failed", results.len()))),
+    }
+}
