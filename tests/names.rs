@@ -28,8 +28,16 @@ fn every_enum_keeps_its_names_in_order() {
     assert_eq!(BumpSource::names(), ["normal-map", "height-in-shader"]);
     let differences = ["bump", "view", "strength", "mode", "tangents", "convention", "bump-source", "parallax"];
     assert_eq!(SplitDifference::names(), differences);
-    let methods =
-        ["mikktspace", "per-face", "averaged-uniform", "averaged-area", "averaged-angle", "supplied", "analytic"];
+    let methods = [
+        "mikktspace",
+        "meshopt",
+        "per-face",
+        "averaged-uniform",
+        "averaged-area",
+        "averaged-angle",
+        "supplied",
+        "analytic",
+    ];
     assert_eq!(TangentMethod::names(), methods);
     assert_eq!(Kernel::names(), ["forward", "central", "sobel3", "scharr3", "sobel5", "central4"]);
     assert_eq!(GreenAxis::names(), ["opengl", "directx"]);
