@@ -77,10 +77,7 @@ fn parse_tile(text: &str, current: &ShadingSettings) -> Result<ShadingSettings, 
     let (name, strength) = match text.split_once('@') {
         Some((name, s)) => {
             let strength = s.trim().parse::<f32>().ok().filter(|s| s.is_finite());
-            (
-                name.trim(),
-                Some(strength.ok_or_else(|| TileSpecError::Strength { tile: text.to_owned() })?),
-            )
+            (name.trim(), Some(strength.ok_or_else(|| TileSpecError::Strength { tile: text.to_owned() })?))
         }
         None => (text, None),
     };
@@ -251,7 +248,12 @@ mod tests {
     #[test]
     fn bad_specs_say_what_is_wrong() {
         let current = ShadingSettings::default();
-        assert!(TileGrid::parse("flat,bumped;tangent", &current).unwrap_err().to_string().contains("every row needs 2 tiles"));
+        assert!(
+            TileGrid::parse("flat,bumped;tangent", &current)
+                .unwrap_err()
+                .to_string()
+                .contains("every row needs 2 tiles")
+        );
         assert!(TileGrid::parse("flat,shiny", &current).unwrap_err().to_string().contains("shading-normal"));
         assert!(TileGrid::parse("bumped@lots", &current).unwrap_err().to_string().contains("NAME@STRENGTH"));
         assert!(TileGrid::parse("", &current).is_err());
