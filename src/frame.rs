@@ -205,6 +205,46 @@ impl SplitFrame {
     }
 }
 
+/// Multisampling of a frame: full quality or the cheaper interactive frames.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Msaa {
+    /// 4 samples per pixel where the adapter can render and resolve them in the target's
+    /// format, else 1: screenshots, exports and the frame shown once input stops.
+    #[default]
+    X4,
+    /// 1 sample per pixel: frames drawn while the user drags or the light orbits.
+    Off,
+}
+
+/// How much a frame may cost: its multisampling and the share of the view's pixels drawn.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameQuality {
+    pub msaa: Msaa,
+    /// Pixels drawn per view pixel along each side, in (0, 1]: 0.5 draws a quarter of the
+    /// pixels, shown enlarged. 1 draws every pixel.
+    pub render_scale: f32,
+}
+
+impl FrameQuality {
+    /// Every pixel with 4× MSAA: what screenshots and exports are drawn with.
+    pub const FULL: FrameQuality = FrameQuality { msaa: Msaa::X4, render_scale: 1.0 };
+
+    /// The size in pixels to draw a view of `view_size` pixels at: each side times
+    /// [`Self::render_scale`], rounded, at least 1 and at most the side (a non-finite or
+    /// non-positive scale draws every pixel).
+    pub fn render_size(&self, view_size: [u32; 2]) -> [u32; 2] {
+        let scale =
+            if self.render_scale.is_finite() && self.render_scale > 0.0 { self.render_scale.min(1.0) } else { 1.0 };
+        view_size.map(|side| ((side as f32 * scale).round() as u32).max(1).min(side))
+    }
+}
+
+impl Default for FrameQuality {
+    fn default() -> Self {
+        FrameQuality::FULL
+    }
+}
+
 /// Where the bump comes from. It decides pipelines and uploads, so it is a scene option, not
 /// a uniform.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -320,4 +360,20 @@ impl SceneOptions {
 pub struct SceneUploads {
     pub main: SceneOptions,
     pub split_right: Option<SceneOptions>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn render_size_scales_each_side_and_keeps_at_least_a_pixel() {
+        let half = FrameQuality { msaa: Msaa::Off, render_scale: 0.5 };
+        assert_eq!(half.render_size([1280, 720]), [640, 360]);
+        assert_eq!(half.render_size([3, 1]), [2, 1]);
+        assert_eq!(FrameQuality::FULL.render_size([1280, 720]), [1280, 720]);
+        for scale in [0.0, -1.0, f32::NAN, 7.0] {
+            assert_eq!(FrameQuality { render_scale: scale, ..half }.render_size([1280, 720]), [1280, 720]);
+        }
+    }
 }

@@ -1,14 +1,18 @@
 //! The wgpu renderer. It draws into any texture view it is given, so the window, screenshots
-//! and tests share one code path: [`Renderer::render`]. Depth-tested, with 4× MSAA where the
-//! adapter supports it for the target format.
+//! and tests share one code path: [`Renderer::draw`]. Depth-tested, with 4× MSAA where the
+//! adapter supports it for the target format ([`Msaa::X4`]) or 1 sample ([`Msaa::Off`], the
+//! interactive frames). [`Renderer::draw_floor`] draws the adapter's floor, what any frame of
+//! that size and MSAA costs at least; [`timing`] measures frames against it.
 
 mod bindings;
 pub mod capture;
 pub mod export;
+mod floor;
 pub mod glyphs;
 pub mod gpu;
 pub mod pipelines;
 mod scene_gpu;
+pub mod timing;
 mod uniforms;
 
 use std::sync::Arc;
@@ -17,7 +21,7 @@ use glam::Mat4;
 
 use crate::counters::WorkCounters;
 use crate::error::RenderError;
-use crate::frame::{FrameParams, SceneOptions, SceneUploads, ShadingSettings, SplitFrame, ViewMode};
+use crate::frame::{FrameParams, Msaa, SceneOptions, SceneUploads, ShadingSettings, SplitFrame, ViewMode};
 use crate::prepare::{PreparedScene, Variant};
 use crate::scene::Scene;
 use crate::tangent::TangentMethod;
@@ -57,7 +61,14 @@ impl Background {
     }
 }
 
-/// Multisampled colour and depth attachments for one target size and format.
+/// How a frame is drawn, besides what it shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct DrawOptions {
+    pub background: Background,
+    pub msaa: Msaa,
+}
+
+/// Multisampled colour and depth attachments for one target size, format and sample count.
 struct FrameTargets {
     size: [u32; 2],
     format: wgpu::TextureFormat,
@@ -77,11 +88,15 @@ pub struct Renderer {
     /// both are written before the encoder is submitted, so each half needs its own.
     split_uniform: wgpu::Buffer,
     split_bind_group: wgpu::BindGroup,
+    /// The floor's pipelines ([`Self::draw_floor`]), by format and sample count.
+    floor: floor::FloorPipelines,
     scene: Option<GpuScene>,
     /// The split view's right half, when it differs from the left in GPU data
     /// ([`Self::set_split_scene`]); else the right half is drawn from `scene` too.
     split_scene: Option<GpuScene>,
-    targets: Option<FrameTargets>,
+    /// The attachments of the last frame drawn with each sample count, so frames that switch
+    /// between 1 and 4 samples (interactive and full quality) keep both.
+    targets: Vec<FrameTargets>,
     counters: WorkCounters,
     /// The scene's notices, plus one while the wireframe is asked for but unsupported.
     notices: Vec<String>,
@@ -111,6 +126,7 @@ impl Renderer {
         let (frame_uniform, frame_bind_group) = uniform("frame");
         let (split_uniform, split_bind_group) = uniform("frame (split, right half)");
         Renderer {
+            floor: floor::FloorPipelines::new(&device),
             device,
             queue,
             adapter,
@@ -121,7 +137,7 @@ impl Renderer {
             split_bind_group,
             scene: None,
             split_scene: None,
-            targets: None,
+            targets: Vec::new(),
             counters: WorkCounters::default(),
             notices: Vec::new(),
         }
@@ -237,6 +253,15 @@ impl Renderer {
         }
     }
 
+    /// The samples per pixel a frame of `format` is drawn with: 1 for [`Msaa::Off`], else
+    /// [`Self::sample_count`].
+    pub fn samples(&self, format: wgpu::TextureFormat, msaa: Msaa) -> u32 {
+        match msaa {
+            Msaa::X4 => self.sample_count(format),
+            Msaa::Off => 1,
+        }
+    }
+
     /// 4 when the device can render and resolve 4× MSAA in `format`, else 1. Adapter-specific
     /// format features count only when the device enabled them.
     pub fn sample_count(&self, format: wgpu::TextureFormat) -> u32 {
@@ -250,11 +275,14 @@ impl Renderer {
         if resolvable && features.flags.sample_count_supported(4) { 4 } else { 1 }
     }
 
-    fn ensure_targets(&mut self, size: [u32; 2], format: wgpu::TextureFormat) {
-        let samples = self.sample_count(format);
-        if self.targets.as_ref().is_some_and(|t| t.size == size && t.format == format && t.samples == samples) {
-            return;
+    /// The attachments for `samples` at `size` and `format`, made unless the last frame with
+    /// that sample count had them.
+    fn ensure_targets(&mut self, size: [u32; 2], format: wgpu::TextureFormat, samples: u32) -> &FrameTargets {
+        let index = self.targets.iter().position(|t| t.samples == samples);
+        if let Some(i) = index.filter(|&i| self.targets[i].size == size && self.targets[i].format == format) {
+            return &self.targets[i];
         }
+        self.targets.retain(|t| t.samples != samples);
         let texture = |label: &str, format| {
             self.device
                 .create_texture(&wgpu::TextureDescriptor {
@@ -271,18 +299,47 @@ impl Renderer {
         };
         let msaa_color = (samples > 1).then(|| texture("msaa colour", format));
         let depth = texture("depth", DEPTH_FORMAT);
-        self.targets = Some(FrameTargets { size, format, samples, msaa_color, depth });
+        self.targets.push(FrameTargets { size, format, samples, msaa_color, depth });
+        self.targets.last().expect("pushed above")
     }
 
-    /// Records one frame of the current scene into `encoder`, drawing into `target`.
-    /// Uniforms are written to the queue now; the frame appears when `encoder` is submitted.
+    /// Records one frame of the current scene into `encoder`, drawing into `target`: the split
+    /// view when `split` is given ([`Self::render_split`]), else the whole picture. Uniforms
+    /// are written to the queue now; the frame appears when `encoder` is submitted.
+    pub fn draw(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &RenderTarget,
+        params: &FrameParams,
+        split: Option<&SplitFrame>,
+        options: DrawOptions,
+    ) -> Result<(), RenderError> {
+        match split {
+            None => {
+                let whole = Half { shading: params.shading, scissor: None, scene: SceneSlot::Main };
+                self.record(encoder, target, params, &[whole], options)
+            }
+            Some(split) => {
+                let [width, height] = target.size;
+                let x = split.divider_pixels(width);
+                let right_scene = if self.split_scene.is_some() { SceneSlot::Split } else { SceneSlot::Main };
+                let halves = [
+                    Half { shading: split.left, scissor: Some([0, 0, x, height]), scene: SceneSlot::Main },
+                    Half { shading: split.right, scissor: Some([x, 0, width - x, height]), scene: right_scene },
+                ];
+                self.record(encoder, target, params, &halves, options)
+            }
+        }
+    }
+
+    /// One full-quality frame ([`Self::draw`] with default options).
     pub fn render(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
         target: &RenderTarget,
         params: &FrameParams,
     ) -> Result<(), RenderError> {
-        self.render_with_background(encoder, target, params, Background::Opaque)
+        self.draw(encoder, target, params, None, DrawOptions::default())
     }
 
     /// [`Self::render`] over the given background.
@@ -293,15 +350,14 @@ impl Renderer {
         params: &FrameParams,
         background: Background,
     ) -> Result<(), RenderError> {
-        let whole = Half { shading: params.shading, scissor: None, scene: SceneSlot::Main };
-        self.record(encoder, target, params, &[whole], background)
+        self.draw(encoder, target, params, None, DrawOptions { background, ..Default::default() })
     }
 
     /// The split view: one frame of the same camera and light whose columns left of the
     /// divider are drawn with `split.left` and the others with `split.right`, in one pass with
     /// a scissor rectangle per half. The right half is drawn from the split scene when one is
     /// set ([`Self::set_split_scene`]). Each half holds exactly the pixels a full
-    /// [`Self::render`] with its settings (and scene upload) would.
+    /// [`Self::render`] with its settings (and scene upload) would. Full quality.
     pub fn render_split(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
@@ -310,14 +366,26 @@ impl Renderer {
         split: &SplitFrame,
         background: Background,
     ) -> Result<(), RenderError> {
-        let [width, height] = target.size;
-        let x = split.divider_pixels(width);
-        let right_scene = if self.split_scene.is_some() { SceneSlot::Split } else { SceneSlot::Main };
-        let halves = [
-            Half { shading: split.left, scissor: Some([0, 0, x, height]), scene: SceneSlot::Main },
-            Half { shading: split.right, scissor: Some([x, 0, width - x, height]), scene: right_scene },
-        ];
-        self.record(encoder, target, params, &halves, background)
+        self.draw(encoder, target, params, Some(split), DrawOptions { background, ..Default::default() })
+    }
+
+    /// Records the adapter's floor into `encoder`: the clear and one full-screen triangle of
+    /// one colour, depth-tested and written, into `target` with the attachments, sample count
+    /// and resolve a frame drawn with `msaa` has. No frame of that size can cost less.
+    pub fn draw_floor(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &RenderTarget,
+        msaa: Msaa,
+    ) -> Result<(), RenderError> {
+        self.check_target_size(target.size)?;
+        let samples = self.samples(target.format, msaa);
+        self.floor.ensure(&self.device, target.format, samples, &mut self.counters);
+        let targets = self.ensure_targets(target.size, target.format, samples);
+        let mut pass = begin_scene_pass(encoder, targets, target.view, Background::Opaque);
+        pass.set_pipeline(self.floor.get(target.format, samples));
+        pass.draw(0..3, 0..1);
+        Ok(())
     }
 
     /// The upload a half is drawn from.
@@ -336,11 +404,11 @@ impl Renderer {
         target: &RenderTarget,
         params: &FrameParams,
         halves: &[Half],
-        background: Background,
+        options: DrawOptions,
     ) -> Result<(), RenderError> {
         assert!(halves.len() <= 2, "one uniform buffer per half, two in all");
         self.check_target_size(target.size)?;
-        let samples = self.sample_count(target.format);
+        let samples = self.samples(target.format, options.msaa);
         // Here and for the pipelines below the scene is borrowed field by field ([`Self::scene_in`]
         // would borrow all of `self`), as the counters and the pipeline cache change meanwhile.
         for half in halves {
@@ -394,33 +462,9 @@ impl Renderer {
                 self.pipelines.ensure(&self.device, key(pass), &mut self.counters);
             }
         }
-        self.ensure_targets(target.size, target.format);
-        let Some(targets) = self.targets.as_ref() else { unreachable!("targets made above") };
-
-        let (view, resolve_target) = match &targets.msaa_color {
-            Some(msaa) => (msaa, Some(target.view)),
-            None => (target.view, None),
-        };
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("scene"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view,
-                depth_slice: None,
-                resolve_target,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(background.clear_color()),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &targets.depth,
-                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Discard }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        self.ensure_targets(target.size, target.format, samples);
+        let targets = self.targets.iter().find(|t| t.samples == samples).expect("made above");
+        let mut pass = begin_scene_pass(encoder, targets, target.view, options.background);
         for (half, bind_group) in halves.iter().zip([&self.frame_bind_group, &self.split_bind_group]) {
             if let Some([x, y, width, height]) = half.scissor {
                 if width == 0 || height == 0 {
@@ -481,6 +525,37 @@ impl Renderer {
         self.counters.frames_drawn += 1;
         Ok(())
     }
+}
+
+/// Begins the one render pass of a frame (or of the floor): `targets`' multisampled colour
+/// resolved into `view` (or `view` itself at 1 sample) and their depth, both cleared.
+fn begin_scene_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    targets: &FrameTargets,
+    view: &wgpu::TextureView,
+    background: Background,
+) -> wgpu::RenderPass<'e> {
+    let (view, resolve_target) = match &targets.msaa_color {
+        Some(msaa) => (msaa, Some(view)),
+        None => (view, None),
+    };
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("scene"),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view,
+            depth_slice: None,
+            resolve_target,
+            ops: wgpu::Operations { load: wgpu::LoadOp::Clear(background.clear_color()), store: wgpu::StoreOp::Store },
+        })],
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: &targets.depth,
+            depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Discard }),
+            stencil_ops: None,
+        }),
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    })
 }
 
 /// Which scene upload a half of the frame is drawn from.

@@ -284,7 +284,7 @@ mod tests {
     /// the pipeline variants name.
     #[test]
     fn shaders_validate_and_have_every_entry_point() {
-        let cases: [(&str, &[&str]); 2] = [
+        let cases: [(&str, &[&str]); 3] = [
             (
                 MESH_WGSL,
                 &[
@@ -304,6 +304,7 @@ mod tests {
                 ],
             ),
             (MARKER_WGSL, &["vs_marker", "fs_marker"]),
+            (super::super::floor::FLOOR_WGSL, &["vs_floor", "fs_floor"]),
         ];
         for (source, entry_points) in cases {
             let module =
