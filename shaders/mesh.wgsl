@@ -3,7 +3,9 @@
 // Conventions: see the crate docs (src/lib.rs). The CPU reference of every function here is
 // src/shading.rs; keep the two in step.
 //
-// Entry points form the pipeline variants (src/render/pipelines.rs):
+// Entry points form the pipeline variants (src/render/pipelines.rs), and each mesh variant is
+// specialised by two pipeline constants, VIEW and SHADING_MODEL, so it compiles only the view
+// and the shading model it draws:
 //   vs_plain  + fs_plain          mesh without tangents, material without normal map
 //   vs_tangent + fs_tangent       mesh with tangents, material without normal map
 //   vs_tangent + fs_normal_mapped mesh with tangents and a tangent-space normal map
@@ -27,7 +29,6 @@ struct Object {
     metallic: f32,              // metallic-roughness factors
     roughness: f32,
     occlusion_strength: f32,
-    shading_model: u32,         // ShadingModel::shader_index()
 };
 
 @group(1) @binding(0) var<uniform> object: Object;
@@ -49,6 +50,12 @@ const SHADING_METALLIC_ROUGHNESS: u32 = 1u;
 // True when the target stores sRGB-encoded values (Rgba8UnormSrgb): debug colours are then
 // decoded first so the stored bytes equal 0.5·v + 0.5.
 override TARGET_ENCODES_SRGB: bool = true;
+// The view the pipeline draws: ViewMode::shader_index(), one of the VIEW_ constants below
+// (0 is Lit).
+override VIEW: u32 = 0u;
+// The shading model of the lit views (Lit, Over-tilt): ShadingModel::shader_index(), the
+// frame's override or else the material's own.
+override SHADING_MODEL: u32 = 0u;
 
 const VIEW_TANGENT: u32 = 1u;
 const VIEW_BITANGENT: u32 = 2u;
@@ -189,7 +196,7 @@ fn stored(c: vec3<f32>) -> vec4<f32> {
     return vec4<f32>(c, 1.0);
 }
 
-// The lit colour: the material's shading model unless the frame overrides it.
+// The lit colour in the pipeline's shading model.
 fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>) -> vec3<f32> {
     var albedo = textureSample(base_color_texture, base_color_sampler, in.uv).rgb * object.base_color.rgb;
     // shading::shade_in_mode
@@ -199,11 +206,7 @@ fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>) -> vec3<f
     if frame.shading_mode == MODE_BUMP_ONLY {
         albedo = vec3<f32>(1.0);
     }
-    var model = object.shading_model;
-    if frame.shading_override != 0u {
-        model = frame.shading_override - 1u;
-    }
-    if model != SHADING_METALLIC_ROUGHNESS {
+    if SHADING_MODEL != SHADING_METALLIC_ROUGHNESS {
         var k_s = object.specular.rgb;
         if (object.flags & HAS_GLOSS) != 0u {
             k_s *= textureSample(gloss_texture, detail_sampler, in.uv).rgb;
@@ -263,7 +266,7 @@ fn handedness_color(in: VertexOutput, n_geo: vec3<f32>, w: f32) -> vec3<f32> {
 }
 
 fn surface_color(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_shading: vec3<f32>) -> vec4<f32> {
-    switch frame.view_mode {
+    switch VIEW {
         case VIEW_TANGENT: { return stored(0.5 * frame_tb.t + 0.5); }
         case VIEW_BITANGENT: { return stored(0.5 * frame_tb.b + 0.5); }
         case VIEW_NORMAL: { return stored(0.5 * n_geo + 0.5); }

@@ -72,9 +72,15 @@ impl ViewMode {
         ViewMode::ALL[(i + 1) % ViewMode::ALL.len()]
     }
 
-    /// The index the shader switches on (`frame.view_mode`).
+    /// The index the mesh shader's `VIEW` pipeline constant takes.
     pub fn shader_index(self) -> u32 {
         self as u32
+    }
+
+    /// Whether the view shows the lit picture (Lit, Over-tilt), so its pipeline depends on
+    /// the shading model.
+    pub fn is_lit(self) -> bool {
+        matches!(self, ViewMode::Lit | ViewMode::OverTilt)
     }
 
     /// Name as used on the command line and in the panel.
@@ -140,18 +146,21 @@ impl ShadingMode {
     }
 }
 
-/// The cheap toggles: they are shader uniforms, never a pipeline change.
+/// The toggles that keep the scene's GPU data: uniforms, except the view and the shading
+/// model, which pick pipeline variants (each built on first use, then cached).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShadingSettings {
     pub bump_enabled: bool,
     /// Bump strength `s`, glTF `normalTexture.scale` semantics, multiplied with the
     /// material's own scale. 0 is flat, negative inverts.
     pub strength: f32,
+    /// A pipeline variant: each pipeline draws one view.
     pub view: ViewMode,
     pub show_light_marker: bool,
     /// The Difference view's colour scale spans 0 to this many degrees.
     pub difference_range_deg: f32,
-    /// Shade every material with this model (`None`: each material's own).
+    /// Shade every material with this model (`None`: each material's own). A pipeline
+    /// variant in the lit views.
     pub shading_override: Option<ShadingModel>,
     /// Bump × colour, bump only or colour only (a uniform).
     pub mode: ShadingMode,

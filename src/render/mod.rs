@@ -22,7 +22,7 @@ use glam::Mat4;
 use crate::counters::WorkCounters;
 use crate::error::RenderError;
 use crate::frame::{FrameParams, Msaa, SceneOptions, SceneUploads, ShadingSettings, SplitFrame, ViewMode};
-use crate::prepare::{PreparedScene, Variant};
+use crate::prepare::PreparedScene;
 use crate::scene::Scene;
 use crate::tangent::TangentMethod;
 pub use gpu::Gpu;
@@ -451,13 +451,12 @@ impl Renderer {
             }
             .ok_or(RenderError::NoScene)?;
             let shading = &half.shading;
-            let difference = shading.view == ViewMode::Difference;
             let marker = shading.show_light_marker.then_some(Pass::LightMarker);
             let wireframe = shading.wireframe && line_mode;
             let wireframe_passes = scene.instances.iter().filter(|_| wireframe).map(wireframe_pass);
             let glyph_passes =
                 scene.instances.iter().filter(|i| shading.tbn_glyphs && has_glyphs(i, scene)).map(glyph_pass);
-            let drawn = scene.instances.iter().map(|i| drawn_pass(i, scene, difference));
+            let drawn = scene.instances.iter().map(|i| drawn_pass(i, scene, shading));
             for pass in drawn.chain(marker).chain(wireframe_passes).chain(glyph_passes) {
                 self.pipelines.ensure(&self.device, key(pass), &mut self.counters);
             }
@@ -474,10 +473,9 @@ impl Renderer {
             }
             let scene = self.scene_in(half.scene).expect("checked above");
             let shading = &half.shading;
-            let difference = shading.view == ViewMode::Difference;
             pass.set_bind_group(0, bind_group, &[]);
             for instance in &scene.instances {
-                let instance_pass = drawn_pass(instance, scene, difference);
+                let instance_pass = drawn_pass(instance, scene, shading);
                 let mesh = &scene.meshes[instance.mesh];
                 pass.set_pipeline(self.pipelines.get(&key(instance_pass)));
                 pass.set_bind_group(1, &instance.bind_group, &[]);
@@ -574,23 +572,14 @@ struct Half {
     scene: SceneSlot,
 }
 
-/// The variant whose group-1 layout an instance's overlays (wireframe, glyphs) bind.
-fn overlay_variant(instance: &scene_gpu::GpuInstance) -> Variant {
-    match instance.pass {
-        Pass::Mesh { variant, .. }
-        | Pass::Difference { variant, .. }
-        | Pass::Wireframe { variant }
-        | Pass::Glyphs { variant } => variant,
-        Pass::LightMarker => Variant::Plain,
-    }
-}
-
+/// The wireframe of an instance binds its variant's group-1 layout.
 fn wireframe_pass(instance: &scene_gpu::GpuInstance) -> Pass {
-    Pass::Wireframe { variant: overlay_variant(instance) }
+    Pass::Wireframe { variant: instance.variant }
 }
 
+/// The glyphs of an instance bind its variant's group-1 layout.
 fn glyph_pass(instance: &scene_gpu::GpuInstance) -> Pass {
-    Pass::Glyphs { variant: overlay_variant(instance) }
+    Pass::Glyphs { variant: instance.variant }
 }
 
 /// Whether an instance's mesh has glyph lines to draw (made for meshes with tangent frames).
@@ -598,15 +587,14 @@ fn has_glyphs(instance: &scene_gpu::GpuInstance, scene: &GpuScene) -> bool {
     scene.meshes[instance.mesh].glyphs.as_ref().is_some_and(|(_, count)| *count > 0)
 }
 
-/// The pass an instance is drawn with: the Difference view swaps in its own pass for meshes
-/// that have tangent frames.
-fn drawn_pass(instance: &scene_gpu::GpuInstance, scene: &GpuScene, difference: bool) -> Pass {
-    match instance.pass {
-        Pass::Mesh { variant, cull_back_faces, mirrored }
-            if difference && scene.prepared.meshes[instance.mesh].frames.is_some() =>
-        {
-            Pass::Difference { variant, cull_back_faces, mirrored }
-        }
-        pass => pass,
+/// The pass an instance is drawn with in `shading`'s view: the Difference view has its own
+/// pass for meshes that have tangent frames; else the mesh pass specialised to the view and,
+/// in a lit view, to the shading model (the frame's override, else the material's).
+fn drawn_pass(instance: &scene_gpu::GpuInstance, scene: &GpuScene, shading: &ShadingSettings) -> Pass {
+    let scene_gpu::GpuInstance { variant, cull_back_faces, mirrored, .. } = *instance;
+    if shading.view == ViewMode::Difference && scene.prepared.meshes[instance.mesh].frames.is_some() {
+        return Pass::Difference { variant, cull_back_faces, mirrored };
     }
+    let lighting = shading.view.is_lit().then(|| shading.shading_override.unwrap_or(instance.shading_model));
+    Pass::Mesh { variant, cull_back_faces, mirrored, view: shading.view, lighting }
 }

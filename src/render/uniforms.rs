@@ -19,12 +19,12 @@ pub struct FrameUniform {
     ambient: [f32; 4],
     strength: f32,
     bump_enabled: u32,
-    view_mode: u32,
     self_shadow_fade: f32,
     difference_range_deg: f32,
-    shading_override: u32,
     shading_mode: u32,
     over_tilt_cos: f32,
+    /// The WGSL struct's size is a multiple of 16 bytes.
+    _padding: [u32; 2],
 }
 
 impl FrameUniform {
@@ -37,12 +37,11 @@ impl FrameUniform {
             ambient: ambient.extend(1.0).to_array(),
             strength: params.shading.strength,
             bump_enabled: params.shading.bump_enabled as u32,
-            view_mode: params.shading.view.shader_index(),
             self_shadow_fade: SELF_SHADOW_FADE,
             difference_range_deg: params.shading.difference_range_deg,
-            shading_override: params.shading.shading_override.map_or(0, |m| 1 + m.shader_index()),
             shading_mode: params.shading.mode.shader_index(),
             over_tilt_cos: crate::shading::over_tilt_cos(),
+            _padding: [0; 2],
         }
     }
 }
@@ -62,7 +61,8 @@ pub struct ObjectUniform {
     metallic: f32,
     roughness: f32,
     occlusion_strength: f32,
-    shading_model: u32,
+    /// The WGSL struct's size is a multiple of 16 bytes.
+    _padding: u32,
 }
 
 /// Bit of `flags` beside [`crate::scene::NormalConvention::flags`]: the height map stores
@@ -94,7 +94,7 @@ impl ObjectUniform {
             metallic: material.metallic,
             roughness: material.roughness,
             occlusion_strength: material.occlusion.as_ref().map_or(0.0, |o| o.strength),
-            shading_model: material.shading_model.shader_index(),
+            _padding: 0,
         }
     }
 }
