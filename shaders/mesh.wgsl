@@ -29,6 +29,9 @@ struct Object {
     metallic: f32,              // metallic-roughness factors
     roughness: f32,
     occlusion_strength: f32,
+    emissive: vec4<f32>,        // rgb: linear emitted light (times the texture at 8 if HAS_EMISSIVE_TEXTURE)
+    clearcoat: vec4<f32>,       // factor, perceptual roughness, normal-map scale (HAS_CLEARCOAT)
+    clearcoat_uv: array<vec4<f32>, 2>, // rows of the 2x3 affine: mesh UV -> the coat's textures
 };
 
 @group(1) @binding(0) var<uniform> object: Object;
@@ -39,12 +42,21 @@ struct Object {
 @group(1) @binding(5) var metallic_roughness_texture: texture_2d<f32>; // linear: B metal, G rough
 @group(1) @binding(6) var occlusion_texture: texture_2d<f32>;  // linear: R occlusion
 @group(1) @binding(7) var gloss_texture: texture_2d<f32>;      // linear: RGB scales k_s
+@group(1) @binding(8) var emissive_texture: texture_2d<f32>;   // sRGB view; base colour sampler
+@group(1) @binding(9) var clearcoat_texture: texture_2d<f32>;  // linear: R coat strength
+@group(1) @binding(10) var clearcoat_roughness_texture: texture_2d<f32>; // linear: G coat roughness
+@group(1) @binding(11) var clearcoat_normal_texture: texture_2d<f32>;    // linear: the coat's normal map
 
 const FLIP_GREEN: u32 = 1u;
 const TWO_CHANNEL: u32 = 2u;
 const DEPTH_MAP: u32 = 8u;
 const HAS_METALLIC_ROUGHNESS: u32 = 16u;
 const HAS_GLOSS: u32 = 32u;
+const HAS_EMISSIVE_TEXTURE: u32 = 64u;
+const HAS_CLEARCOAT: u32 = 128u;
+const HAS_CLEARCOAT_TEXTURE: u32 = 256u;
+const HAS_CLEARCOAT_ROUGHNESS_TEXTURE: u32 = 512u;
+const HAS_CLEARCOAT_NORMAL: u32 = 1024u;
 const SHADING_METALLIC_ROUGHNESS: u32 = 1u;
 
 // True when the target stores sRGB-encoded values (Rgba8UnormSrgb): debug colours are then
@@ -65,6 +77,7 @@ const VIEW_DIFFERENCE: u32 = 5u;
 const VIEW_UV_CHECK: u32 = 6u;
 const VIEW_HANDEDNESS: u32 = 7u;
 const VIEW_OVER_TILT: u32 = 8u;
+const VIEW_CLEARCOAT_NORMAL: u32 = 9u;
 
 const MODE_BUMP_ONLY: u32 = 1u;
 const MODE_COLOUR_ONLY: u32 = 2u;
@@ -159,9 +172,9 @@ fn decode_normal(texel: vec3<f32>, flags: u32) -> vec3<f32> {
     return normalize_or(v, vec3<f32>(0.0, 0.0, 1.0));
 }
 
-// shading::perturbed_normal
-fn perturbed_normal(n: vec3<f32>, frame_tb: TangentFrame, texel: vec3<f32>, strength: f32) -> vec3<f32> {
-    let decoded = decode_normal(texel, object.flags);
+// shading::perturbed_normal; `flags` carries the map's convention bits.
+fn perturbed_normal(n: vec3<f32>, frame_tb: TangentFrame, texel: vec3<f32>, strength: f32, flags: u32) -> vec3<f32> {
+    let decoded = decode_normal(texel, flags);
     let scaled = vec3<f32>(decoded.xy * strength, max(decoded.z, 0.0));
     let nt = normalize_or(scaled, vec3<f32>(0.0, 0.0, 1.0));
     return normalize_or(frame_tb.t * nt.x + frame_tb.b * nt.y + n * nt.z, n);
@@ -196,28 +209,63 @@ fn stored(c: vec3<f32>) -> vec4<f32> {
     return vec4<f32>(c, 1.0);
 }
 
-// The lit colour in the pipeline's shading model.
-fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>) -> vec3<f32> {
+// The clear coat's texture coordinates (Object.clearcoat_uv).
+fn clearcoat_uv(uv: vec2<f32>) -> vec2<f32> {
+    let p = vec3<f32>(uv, 1.0);
+    return vec2<f32>(dot(object.clearcoat_uv[0].xyz, p), dot(object.clearcoat_uv[1].xyz, p));
+}
+
+// chain::shade's clear-coat normal: the coat's normal map through the frame (OpenGL
+// convention, bump strength times its scale), else the geometric normal.
+fn clearcoat_normal(in: VertexOutput, n: vec3<f32>, frame_tb: TangentFrame) -> vec3<f32> {
+    let texel = textureSample(clearcoat_normal_texture, detail_sampler, clearcoat_uv(in.uv)).rgb;
+    if (object.flags & HAS_CLEARCOAT_NORMAL) == 0u || frame.bump_enabled == 0u {
+        return n;
+    }
+    return perturbed_normal(n, frame_tb, texel, frame.strength * object.clearcoat.z, 0u);
+}
+
+// The lit colour (chain::shade) in the pipeline's shading model, plus emitted light in the
+// bump × colour picture.
+fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>, n_coat: vec3<f32>) -> vec3<f32> {
     var albedo = textureSample(base_color_texture, base_color_sampler, in.uv).rgb * object.base_color.rgb;
-    // shading::shade_in_mode
+    var emission = object.emissive.rgb;
+    let emissive_texel = textureSample(emissive_texture, base_color_sampler, in.uv).rgb;
+    if (object.flags & HAS_EMISSIVE_TEXTURE) != 0u {
+        emission *= emissive_texel;
+    }
     if frame.shading_mode == MODE_COLOUR_ONLY {
         return albedo;
     }
     if frame.shading_mode == MODE_BUMP_ONLY {
         albedo = vec3<f32>(1.0);
+        emission = vec3<f32>(0.0);
     }
     if SHADING_MODEL != SHADING_METALLIC_ROUGHNESS {
         var k_s = object.specular.rgb;
         if (object.flags & HAS_GLOSS) != 0u {
             k_s *= textureSample(gloss_texture, detail_sampler, in.uv).rgb;
         }
-        return blinn_phong(albedo, k_s, n_geo, n_shading, in.world_position);
+        return blinn_phong(albedo, k_s, n_geo, n_shading, in.world_position) + emission;
     }
     var metal_rough = textureSample(metallic_roughness_texture, detail_sampler, in.uv);
     if (object.flags & HAS_METALLIC_ROUGHNESS) == 0u {
         metal_rough = vec4<f32>(1.0); // the binding holds a placeholder: factors alone
     }
     let occlusion = 1.0 + object.occlusion_strength * (textureSample(occlusion_texture, detail_sampler, in.uv).r - 1.0);
+    var coat = vec2<f32>(0.0); // factor, roughness; 0: no coat
+    if (object.flags & HAS_CLEARCOAT) != 0u {
+        coat = object.clearcoat.xy;
+    }
+    let coat_uv = clearcoat_uv(in.uv);
+    let coat_strength = textureSample(clearcoat_texture, detail_sampler, coat_uv).r;
+    let coat_roughness = textureSample(clearcoat_roughness_texture, detail_sampler, coat_uv).g;
+    if (object.flags & HAS_CLEARCOAT_TEXTURE) != 0u {
+        coat.x *= coat_strength;
+    }
+    if (object.flags & HAS_CLEARCOAT_ROUGHNESS_TEXTURE) != 0u {
+        coat.y *= coat_roughness;
+    }
     let inputs = PbrInputs(
         albedo,
         object.metallic * metal_rough.b,
@@ -226,8 +274,12 @@ fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>) -> vec3<f
         n_geo,
         n_shading,
         in.world_position,
+        (object.flags & HAS_CLEARCOAT) != 0u,
+        coat.x,
+        coat.y,
+        n_coat,
     );
-    return metallic_roughness(inputs);
+    return metallic_roughness(inputs) + emission;
 }
 
 // The UV check view, from screen-space derivatives of the UVs and the position: red where the
@@ -265,7 +317,13 @@ fn handedness_color(in: VertexOutput, n_geo: vec3<f32>, w: f32) -> vec3<f32> {
     return base * (0.35 + 0.65 * abs(dot(n_geo, to_eye)));
 }
 
-fn surface_color(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_shading: vec3<f32>) -> vec4<f32> {
+fn surface_color(
+    in: VertexOutput,
+    n_geo: vec3<f32>,
+    frame_tb: TangentFrame,
+    n_shading: vec3<f32>,
+    n_coat: vec3<f32>,
+) -> vec4<f32> {
     switch VIEW {
         case VIEW_TANGENT: { return stored(0.5 * frame_tb.t + 0.5); }
         case VIEW_BITANGENT: { return stored(0.5 * frame_tb.b + 0.5); }
@@ -275,14 +333,15 @@ fn surface_color(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_s
         case VIEW_DIFFERENCE: { return stored(vec3<f32>(0.5)); }
         case VIEW_UV_CHECK: { return stored(uv_check_color(in, n_geo)); }
         case VIEW_HANDEDNESS: { return stored(handedness_color(in, n_geo, frame_tb.w)); }
+        case VIEW_CLEARCOAT_NORMAL: { return stored(0.5 * n_coat + 0.5); }
         // shading::over_tilted: saturated red where N·N_geo < cos(OVER_TILT_LIMIT_DEG).
         case VIEW_OVER_TILT: {
             if dot(n_shading, n_geo) < frame.over_tilt_cos {
                 return stored(vec3<f32>(1.0, 0.0, 0.0));
             }
-            return vec4<f32>(lit_color(in, n_geo, n_shading), 1.0);
+            return vec4<f32>(lit_color(in, n_geo, n_shading, n_coat), 1.0);
         }
-        default: { return vec4<f32>(lit_color(in, n_geo, n_shading), 1.0); }
+        default: { return vec4<f32>(lit_color(in, n_geo, n_shading, n_coat), 1.0); }
     }
 }
 
@@ -290,13 +349,14 @@ fn surface_color(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_s
 fn fs_plain(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
     // No tangents: the T and B views show the zero vector (mid grey).
-    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0), 0.0), n);
+    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0), 0.0), n, n);
 }
 
 @fragment
 fn fs_tangent(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
-    return surface_color(in, n, tangent_frame(in.world_tangent, n), n);
+    let frame_tb = tangent_frame(in.world_tangent, n);
+    return surface_color(in, n, frame_tb, n, clearcoat_normal(in, n, frame_tb));
 }
 
 @fragment
@@ -306,9 +366,9 @@ fn fs_normal_mapped(in: VertexOutput, @builtin(front_facing) front_facing: bool)
     let texel = textureSample(bump_texture, detail_sampler, in.uv).rgb;
     var n_shading = n;
     if frame.bump_enabled != 0u {
-        n_shading = perturbed_normal(n, frame_tb, texel, frame.strength * object.normal_scale);
+        n_shading = perturbed_normal(n, frame_tb, texel, frame.strength * object.normal_scale, object.flags);
     }
-    return surface_color(in, n, frame_tb, n_shading);
+    return surface_color(in, n, frame_tb, n_shading, clearcoat_normal(in, n, frame_tb));
 }
 
 // shading::object_space_normal: the map holds model-space normals; no tangents.
@@ -323,8 +383,8 @@ fn fs_object_space(in: VertexOutput, @builtin(front_facing) front_facing: bool) 
         let n_map = facing * normalize_or((object.normal_matrix * vec4<f32>(model_normal, 0.0)).xyz, n);
         n_shading = normalize_or(n + frame.strength * object.normal_scale * (n_map - n), n);
     }
-    // No tangents: the T and B views show the zero vector (mid grey).
-    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0), 0.0), n_shading);
+    // No tangents: the T and B views show the zero vector (mid grey), and no coat normal map.
+    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0), 0.0), n_shading, n);
 }
 
 // Blinn's bump from a height field without tangents: Mikkelsen's surface gradient from
@@ -351,8 +411,8 @@ fn fs_height_bump(in: VertexOutput, @builtin(front_facing) front_facing: bool) -
         let surface_gradient = sign(det) * (dh_dx * r1 + dh_dy * r2);
         n_shading = normalize_or(abs(det) * n - surface_gradient, n);
     }
-    // No tangents: the T and B views show the zero vector (mid grey).
-    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0), 0.0), n_shading);
+    // No tangents: the T and B views show the zero vector (mid grey), and no coat normal map.
+    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0), 0.0), n_shading, n);
 }
 
 // ---- Difference view (shading::difference_color is the CPU twin of the colour scale) ----

@@ -60,7 +60,13 @@ struct PbrInputs {
     n_geo: vec3<f32>,
     n: vec3<f32>,
     position: vec3<f32>,
+    has_clearcoat: bool,
+    clearcoat: f32,           // factor × texture red
+    clearcoat_roughness: f32, // factor × texture green
+    n_coat: vec3<f32>,
 };
+
+const CLEARCOAT_F0: f32 = 0.04;
 
 // pbr::metallic_roughness; normalize_or and the self-shadow fade come from mesh.wgsl.
 fn metallic_roughness(p: PbrInputs) -> vec3<f32> {
@@ -83,5 +89,26 @@ fn metallic_roughness(p: PbrInputs) -> vec3<f32> {
     let r = normalize_or(2.0 * dot(p.n, v) * p.n - v, p.n);
     let ab = environment_brdf(n_dot_v, roughness);
     let ambient = c_diff * sky_average(p.n) + reflected_sky(r, roughness) * (f0 * ab.x + ab.y);
-    return direct + clamp(p.occlusion, 0.0, 1.0) * ambient;
+    let occlusion = clamp(p.occlusion, 0.0, 1.0);
+    let base = direct + occlusion * ambient;
+    if !p.has_clearcoat {
+        return base;
+    }
+    // pbr::metallic_roughness's clear coat: its own highlight and sky reflection, over the
+    // base dimmed by what the layer reflects towards the eye.
+    let nc = p.n_coat;
+    let coat_roughness = clamp(p.clearcoat_roughness, MIN_ROUGHNESS, 1.0);
+    let coat_alpha = coat_roughness * coat_roughness;
+    let nc_dot_l = max(dot(nc, l), 0.0);
+    let nc_dot_v = max(dot(nc, v), 1e-4);
+    let f0_coat = vec3<f32>(CLEARCOAT_F0);
+    let highlight = fresnel_schlick(f0_coat, dot(v, h))
+        * ggx_distribution(max(dot(nc, h), 0.0), coat_alpha)
+        * smith_visibility(nc_dot_l, nc_dot_v, coat_alpha);
+    let coat_direct = PI * highlight * frame.light_color.rgb * nc_dot_l * self_shadow;
+    let rc = normalize_or(2.0 * dot(nc, v) * nc - v, nc);
+    let coat_ab = environment_brdf(nc_dot_v, coat_roughness);
+    let coat_sky = reflected_sky(rc, coat_roughness) * (CLEARCOAT_F0 * coat_ab.x + coat_ab.y);
+    let through = fresnel_schlick(f0_coat, nc_dot_v);
+    return base * (vec3<f32>(1.0) - p.clearcoat * through) + p.clearcoat * (coat_direct + occlusion * coat_sky);
 }

@@ -17,7 +17,7 @@ use glam::{Mat3, Vec3, Vec4};
 use crate::frame::{BumpKind, FrameParams, ShadingMode, ViewMode};
 use crate::math::{handedness, linear_to_srgb, normalize_or, orthonormalize_tangent, smoothstep};
 use crate::scene::{Material, ShadingModel};
-use crate::shading::pbr::{PbrInputs, metallic_roughness};
+use crate::shading::pbr::{ClearcoatInputs, PbrInputs, metallic_roughness};
 use crate::shading::{
     LightingInputs, OVER_TILT_COLOR, SELF_SHADOW_FADE, blinn_phong, debug_color, decode_normal, handedness_color,
     object_space_normal, over_tilted, surface_gradient_normal,
@@ -47,6 +47,13 @@ pub struct SurfaceSample {
     pub occlusion: Option<f32>,
     /// The filtered gloss (specular) map; `None` without one.
     pub gloss: Option<Vec3>,
+    /// The filtered emissive texture, linear; `None` without one.
+    pub emissive: Option<Vec3>,
+    /// The clear-coat textures at the layer's coordinates: strength (red), roughness
+    /// (green), the normal map's RGB; `None` where the material has none.
+    pub clearcoat: Option<f32>,
+    pub clearcoat_roughness: Option<f32>,
+    pub clearcoat_normal: Option<Vec3>,
 }
 
 /// What the bump texture gives at a point.
@@ -81,6 +88,8 @@ pub struct ChainValues {
     pub normal: Vec3,
     /// The normal used for lighting.
     pub shading_normal: Vec3,
+    /// The clear-coat layer's normal (its normal map through T, B, N; else `normal`).
+    pub clearcoat_normal: Vec3,
     /// Unit directions from the point to the light and the eye, and their half vector.
     pub light_dir: Vec3,
     pub view_dir: Vec3,
@@ -145,6 +154,18 @@ pub fn shade(
         _ => n,
     };
 
+    let coat = material.visible_clearcoat();
+    let coat_map = coat.and_then(|c| c.normal_map.as_ref());
+    let clearcoat_normal = match (shading.bump_enabled, tangent_frame, coat_map, point.clearcoat_normal) {
+        (true, Some((t, b, _)), Some(map), Some(texel)) => {
+            let decoded = decode_normal(texel, map.convention);
+            let s = shading.strength * map.scale;
+            let nt = normalize_or(Vec3::new(decoded.x * s, decoded.y * s, decoded.z.max(0.0)), Vec3::Z);
+            normalize_or(t * nt.x + b * nt.y + n * nt.z, n)
+        }
+        _ => n,
+    };
+
     let eye = frame.camera.eye();
     let light_dir = normalize_or(frame.light.position - point.position, n);
     let view_dir = normalize_or(eye - point.position, n);
@@ -152,7 +173,12 @@ pub fn shade(
     let albedo = point.base_color.unwrap_or(Vec3::ONE) * material.base_color_factor.truncate();
     let shading_model = shading.shading_override.unwrap_or(material.shading_model);
     let lit_albedo = if shading.mode == ShadingMode::BumpOnly { Vec3::ONE } else { albedo };
-    let color_linear = match (shading.mode, shading_model) {
+    // Emitted light shows in the bump × colour picture only.
+    let emission = match shading.mode {
+        ShadingMode::BumpTimesColour => material.emissive_factor * point.emissive.unwrap_or(Vec3::ONE),
+        ShadingMode::BumpOnly | ShadingMode::ColourOnly => Vec3::ZERO,
+    };
+    let lit_color = match (shading.mode, shading_model) {
         (ShadingMode::ColourOnly, _) => albedo,
         (_, ShadingModel::BlinnPhong) => blinn_phong(&LightingInputs {
             albedo: lit_albedo,
@@ -178,9 +204,15 @@ pub fn shade(
                 position: point.position,
                 eye,
                 light: frame.light,
+                clearcoat: coat.map(|c| ClearcoatInputs {
+                    factor: c.factor * point.clearcoat.unwrap_or(1.0),
+                    roughness: c.roughness * point.clearcoat_roughness.unwrap_or(1.0),
+                    normal: clearcoat_normal,
+                }),
             })
         }
     };
+    let color_linear = lit_color + emission;
     let lit = color_linear.map(linear_to_srgb);
     let zero = Vec3::ZERO;
     let shown = match shading.view {
@@ -192,6 +224,7 @@ pub fn shade(
         ViewMode::Normal => Some(debug_color(n)),
         ViewMode::ShadingNormal => Some(debug_color(shading_normal)),
         ViewMode::Handedness => Some(handedness_color(tangent_frame.map(|f| f.2), n, eye - point.position)),
+        ViewMode::ClearcoatNormal => Some(debug_color(clearcoat_normal)),
         ViewMode::Difference | ViewMode::UvCheck => None,
     };
     ChainValues {
@@ -203,6 +236,7 @@ pub fn shade(
         w: tangent_frame.map(|f| f.2),
         normal: n,
         shading_normal,
+        clearcoat_normal,
         light_dir,
         view_dir,
         half,

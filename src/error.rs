@@ -49,3 +49,20 @@ impl LoadError {
         LoadError { path: path.to_owned(), problem: problem.into() }
     }
 }
+
+/// Something a loader could not read or honour; the scene opened without it. Shown in the
+/// viewer, printed by `render` (an error with `--strict`), reported by `check`.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum LoadWarning {
+    /// A texture that could not be read (missing, corrupt, unsupported, remote): its slot
+    /// stays empty.
+    #[error("{}: {problem}; opened without this texture", file.display())]
+    UnreadableTexture { file: PathBuf, problem: String },
+    /// A file the model refers to by an absolute path or a path that leaves the model's
+    /// folder: it opens here, but not where the model is copied without it.
+    #[error("{uri:?} ({}) lies outside the model's folder: the model is not portable", file.display())]
+    NotPortable { uri: String, file: PathBuf },
+    /// A texture that reads another set of texture coordinates than the mesh's one stream.
+    #[error("material {material:?}: {texture} reads TEXCOORD_{wanted}; drawn with TEXCOORD_{drawn}")]
+    TextureCoordinates { material: String, texture: String, wanted: u32, drawn: u32 },
+}

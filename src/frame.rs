@@ -36,6 +36,9 @@ pub enum ViewMode {
     /// The lit picture with pixels in [`OVER_TILT_COLOR`] where the shading normal tilts
     /// past [`OVER_TILT_LIMIT_DEG`] from the geometric normal ([`over_tilted`]).
     OverTilt,
+    /// The clear-coat layer's normal (`KHR_materials_clearcoat`, after its normal map) where
+    /// a material has a clear coat, else the geometric normal.
+    ClearcoatNormal,
 }
 
 impl ViewMode {
@@ -51,10 +54,11 @@ impl ViewMode {
             ViewMode::UvCheck => "UV check",
             ViewMode::Handedness => "Handedness",
             ViewMode::OverTilt => "Over-tilt",
+            ViewMode::ClearcoatNormal => "Clear-coat normal",
         }
     }
 
-    pub const ALL: [ViewMode; 9] = [
+    pub const ALL: [ViewMode; 10] = [
         ViewMode::Lit,
         ViewMode::Tangent,
         ViewMode::Bitangent,
@@ -64,6 +68,7 @@ impl ViewMode {
         ViewMode::UvCheck,
         ViewMode::Handedness,
         ViewMode::OverTilt,
+        ViewMode::ClearcoatNormal,
     ];
 
     /// The next mode in [`ViewMode::ALL`], wrapping around.
@@ -95,6 +100,7 @@ impl ViewMode {
             ViewMode::UvCheck => "uv-check",
             ViewMode::Handedness => "handedness",
             ViewMode::OverTilt => "over-tilt",
+            ViewMode::ClearcoatNormal => "clearcoat-normal",
         }
     }
 

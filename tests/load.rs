@@ -193,8 +193,12 @@ fn twin_angles(scene: &Scene, group: usize, name: &str) -> Vec<f32> {
     renderer.set_scene(scene, Default::default());
     let mut params = default_params(scene);
     params.shading.view = ViewMode::ShadingNormal;
-    // Straight from the front, as the models' reference screenshots.
+    // Straight from the front, as the models' reference screenshots, and as far as the model's
+    // bounding sphere needs (farther than the default framing): perspective then distorts
+    // the cells across the picture alike, so relative points of two cells meet.
     params.camera.pitch = 0.0;
+    let (lo, hi) = bumpview::load::bounds(scene).unwrap();
+    params.camera.distance = 1.1 * (hi - lo).length() * 0.5 / (params.camera.fov_y * 0.5).sin();
     let image = render_image(&mut renderer, [768, 768], &params).unwrap();
     image.save(std::env::temp_dir().join(format!("bumpview-{name}.png"))).unwrap();
     let rows = cell_rows(&image);

@@ -46,6 +46,7 @@ fn differences(metallic: f32, roughness: f32, cpu_roughness: f32, by_override: b
                 position,
                 eye: params.camera.eye(),
                 light: params.light,
+                clearcoat: None,
             });
             let cpu = linear.map(|c| linear_to_srgb(c) * 255.0);
             let gpu = image.get_pixel(x, y);

@@ -10,6 +10,7 @@ use std::fmt::Write;
 
 use glam::{Vec2, Vec3};
 
+use crate::error::LoadWarning;
 use crate::scene::{Mesh, Scene};
 use crate::tangent::face_frame;
 pub use normal_map::{GreenConvention, NormalMapFindings, check_normal_map};
@@ -67,7 +68,18 @@ pub struct MapFindings {
 pub struct CheckReport {
     pub meshes: Vec<MeshFindings>,
     pub normal_maps: Vec<MapFindings>,
+    /// What the loader could not read or honour ([`Scene::warnings`]).
+    pub load_warnings: Vec<LoadWarning>,
 }
+
+/// Warn about texels that decode more than 10% off unit length when more than this share of
+/// a normal map's texels do.
+pub const NON_UNIT_WARN_SHARE: f32 = 0.05;
+/// Warn about texels with `z < 0` (pointing into the surface) from this share on: 0.01%, the
+/// smallest share the report prints as non-zero.
+pub const NEGATIVE_Z_WARN_SHARE: f32 = 1e-4;
+/// Warn that green looks DirectX above this confidence of the curl test.
+pub const DIRECTX_WARN_CONFIDENCE: f32 = 0.5;
 
 /// A position snapped to a grid of `cell` metres, for finding positions shared by several
 /// vertices (parametric seams are equal only up to rounding).
@@ -146,13 +158,21 @@ pub fn check_scene(scene: &Scene) -> CheckReport {
             })
         })
         .collect();
-    CheckReport { meshes, normal_maps }
+    CheckReport { meshes, normal_maps, load_warnings: scene.warnings.clone() }
 }
 
 impl CheckReport {
-    /// The warnings, one line each (there are no errors in a scene that loaded).
+    /// The errors, one line each: textures the scene opened without.
+    pub fn errors(&self) -> Vec<String> {
+        let unreadable = self.load_warnings.iter().filter(|w| matches!(w, LoadWarning::UnreadableTexture { .. }));
+        unreadable.map(ToString::to_string).collect()
+    }
+
+    /// The warnings, one line each.
     pub fn warnings(&self) -> Vec<String> {
-        let mut warnings = vec![];
+        let unreadable = |w: &&LoadWarning| matches!(w, LoadWarning::UnreadableTexture { .. });
+        let mut warnings: Vec<String> =
+            self.load_warnings.iter().filter(|w| !unreadable(w)).map(ToString::to_string).collect();
         for mesh in &self.meshes {
             if mesh.degenerate_uv > 0 {
                 warnings.push(format!("mesh {:?}: {} triangles with degenerate UVs", mesh.name, mesh.degenerate_uv));
@@ -169,11 +189,11 @@ impl CheckReport {
         for map in &self.normal_maps {
             let f = &map.findings;
             let name = format!("material {:?}, normal map {:?}", map.material, map.texture);
-            if f.non_unit_share > 0.05 {
+            if f.non_unit_share > NON_UNIT_WARN_SHARE {
                 warnings
                     .push(format!("{name}: {:.1}% of texels decode far from unit length", f.non_unit_share * 100.0));
             }
-            if f.negative_z_share > 0.0 {
+            if f.negative_z_share >= NEGATIVE_Z_WARN_SHARE {
                 warnings.push(format!(
                     "{name}: {:.2}% of texels point into the surface (z < 0)",
                     f.negative_z_share * 100.0
@@ -183,7 +203,7 @@ impl CheckReport {
                 warnings.push(format!("{name}: looks sRGB-encoded (flat texels near 188 instead of 128)"));
             }
             if let Some((GreenConvention::DirectX, confidence)) = f.convention
-                && confidence > 0.5
+                && confidence > DIRECTX_WARN_CONFIDENCE
             {
                 warnings.push(format!("{name}: green looks DirectX (−Y), confidence {confidence:.2}"));
             }
@@ -192,7 +212,13 @@ impl CheckReport {
     }
 
     pub fn severity(&self) -> Severity {
-        if self.warnings().is_empty() { Severity::Clean } else { Severity::Warning }
+        if !self.errors().is_empty() {
+            Severity::Error
+        } else if !self.warnings().is_empty() {
+            Severity::Warning
+        } else {
+            Severity::Clean
+        }
     }
 
     /// The human-readable report.
@@ -230,6 +256,9 @@ impl CheckReport {
                 if f.looks_srgb { "looks sRGB-encoded" } else { "linear" },
                 if f.two_channel { "two-channel" } else { "three-channel" },
             );
+        }
+        for error in self.errors() {
+            let _ = writeln!(out, "  error: {error}");
         }
         for warning in self.warnings() {
             let _ = writeln!(out, "  warning: {warning}");
@@ -280,5 +309,27 @@ mod tests {
         assert_eq!(t.non_unit, 1);
         assert_eq!(t.non_orthogonal, 1);
         assert!(t.mixed_w_triangles >= 1);
+    }
+
+    /// A share of texels pointing into the surface too small to print (it would read 0.00%)
+    /// is no warning; from 0.01% on it is.
+    #[test]
+    fn texels_below_the_surface_warn_from_the_printed_share_on() {
+        let with_inward = |count: usize| {
+            let mut scene = teaching_scene();
+            let texture = scene.materials[0].normal_map.as_ref().unwrap().texture;
+            let map = &mut scene.textures[texture];
+            for texel in map.rgba.chunks_exact_mut(4).take(count) {
+                texel.copy_from_slice(&[128, 128, 60, 255]);
+            }
+            let share = count as f32 / (map.width * map.height) as f32;
+            (share, check_scene(&scene).warnings())
+        };
+        let (share, warnings) = with_inward(1);
+        assert!(share < NEGATIVE_Z_WARN_SHARE, "{share}");
+        assert!(warnings.is_empty(), "{warnings:?}");
+        let (share, warnings) = with_inward(100);
+        assert!(share >= NEGATIVE_Z_WARN_SHARE, "{share}");
+        assert!(warnings.iter().any(|w| w.contains("0.04% of texels point into the surface")), "{warnings:?}");
     }
 }

@@ -17,13 +17,14 @@ use glam::{Mat4, Vec3, Vec4};
 
 use super::gltf_mesh::{UvChoice, primitive_mesh};
 use super::image::decode_texture;
-use crate::error::LoadError;
+use crate::error::{LoadError, LoadWarning};
 use crate::scene::{
-    Instance, Material, NormalMap, Occlusion, SamplerWrap, Scene, ShadingModel, TextureImage, TextureKind, Wrap,
+    Clearcoat, Instance, Material, NormalMap, Occlusion, SamplerWrap, Scene, ShadingModel, TextureImage, TextureKind,
+    Wrap,
 };
 
 /// Extensions a file may list in `extensionsRequired`.
-const SUPPORTED_REQUIRED: [&str; 1] = ["KHR_texture_transform"];
+const SUPPORTED_REQUIRED: [&str; 3] = ["KHR_texture_transform", "KHR_mesh_quantization", "KHR_draco_mesh_compression"];
 /// Blinn-Phong exponents a glTF roughness maps to.
 const SHININESS: std::ops::RangeInclusive<f32> = 1.0..=1024.0;
 
@@ -32,6 +33,7 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
     let bytes = super::read_file(path, "glTF")?;
     let (document, blob) = parse(&bytes, path)?;
     let base = path.parent().unwrap_or(Path::new("."));
+    let mut warnings = vec![];
     let buffers = document
         .buffers()
         .map(|buffer| {
@@ -45,7 +47,7 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
                     })?;
                     (blob, path.to_owned())
                 }
-                gltf::buffer::Source::Uri(uri) => read_uri(uri, base, path, "buffer")?,
+                gltf::buffer::Source::Uri(uri) => read_uri(uri, base, path, "buffer", &mut warnings)?,
             };
             if data.len() < buffer.length() {
                 let problem =
@@ -61,7 +63,7 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
         base,
         document: &document,
         buffers,
-        scene: Scene { files: sources.into_iter().filter(|s| s != path).collect(), ..super::empty_scene() },
+        scene: Scene { files: sources.into_iter().filter(|s| s != path).collect(), warnings, ..super::empty_scene() },
         textures: HashMap::new(),
         materials: HashMap::new(),
         meshes: HashMap::new(),
@@ -93,27 +95,113 @@ fn parse(bytes: &[u8], path: &Path) -> Result<(gltf::Document, Option<Vec<u8>>),
         let count = root.accessors.len();
         return Err(LoadError::new(path, format!("a primitive attribute names accessor {bad}, but there are {count}")));
     }
-    let document = gltf::Document::from_json(root).map_err(|e| LoadError::new(path, describe(e)))?;
+    let document = match gltf::Document::from_json(root.clone()) {
+        Ok(document) => document,
+        Err(gltf::Error::Validation(errors)) => {
+            // The gltf crate does not know two extensions this loader reads: it calls them
+            // unsupported, and Draco's accessors (which have no bufferView) incomplete.
+            let draco_accessors = draco_accessors(&root);
+            let known = |(at, error): &(gltf::json::Path, gltf::json::validation::Error)| {
+                // e.g. `extensionsRequired[0] = "KHR_mesh_quantization"`, `accessors[2].bufferView`.
+                let at = at.to_string();
+                let extension = at.starts_with("extensionsRequired[").then(|| at.rsplit('"').nth(1)).flatten();
+                let accessor = at.strip_prefix("accessors[").and_then(|rest| rest.strip_suffix("].bufferView"));
+                let accessor = accessor.and_then(|i| i.parse::<usize>().ok());
+                match error {
+                    gltf::json::validation::Error::Unsupported => {
+                        extension.is_some_and(|e| SUPPORTED_REQUIRED.contains(&e))
+                    }
+                    gltf::json::validation::Error::Missing => accessor.is_some_and(|a| draco_accessors.contains(&a)),
+                    _ => false,
+                }
+            };
+            let remaining: Vec<_> = errors.into_iter().filter(|e| !known(e)).collect();
+            if !remaining.is_empty() {
+                return Err(LoadError::new(path, describe(gltf::Error::Validation(remaining))));
+            }
+            gltf::Document::from_json_without_validation(root)
+        }
+        Err(e) => return Err(LoadError::new(path, describe(e))),
+    };
     Ok((document, gltf.blob))
 }
 
-/// The bytes a buffer or image URI points to (a base64 `data:` URI or a file relative to the
-/// glTF file, `%20` and other escapes decoded) and the file to name in errors.
-fn read_uri(uri: &str, base: &Path, gltf_path: &Path, what: &str) -> Result<(Vec<u8>, PathBuf), LoadError> {
+/// The accessors of Draco-compressed primitives (their data comes from the Draco stream).
+fn draco_accessors(root: &gltf::json::Root) -> Vec<usize> {
+    let compressed = root
+        .meshes
+        .iter()
+        .flat_map(|m| &m.primitives)
+        .filter(|p| p.extensions.as_ref().is_some_and(|e| e.others.contains_key("KHR_draco_mesh_compression")));
+    compressed.flat_map(|p| p.attributes.values().map(|a| a.value()).chain(p.indices.map(|i| i.value()))).collect()
+}
+
+/// Where a buffer or image URI points.
+enum UriTarget {
+    /// A base64 `data:` URI's bytes.
+    Data(Vec<u8>),
+    /// A file (a relative path from the glTF's folder, `%20` and other escapes decoded; an
+    /// absolute path; or a `file:` URI), and whether it lies outside the glTF's folder.
+    File { path: PathBuf, outside: bool },
+}
+
+/// Where `uri` points, or why it cannot be read here: a remote (`http:`, `https:`) or other
+/// non-file URI is never fetched.
+fn resolve_uri(uri: &str, base: &Path, gltf_path: &Path, what: &str) -> Result<UriTarget, LoadError> {
     if let Some(data) = uri.strip_prefix("data:") {
         let payload = data.split_once(";base64,").map(|(_, p)| p);
         let decoded = payload.and_then(|p| base64::engine::general_purpose::STANDARD.decode(p).ok());
         let bytes =
             decoded.ok_or_else(|| LoadError::new(gltf_path, format!("a {what} data URI is not valid base64")))?;
-        return Ok((bytes, gltf_path.to_owned()));
+        return Ok(UriTarget::Data(bytes));
     }
-    let decoded = percent_encoding::percent_decode_str(uri).decode_utf8_lossy();
-    let file = [base.join(&*decoded), base.join(uri)].into_iter().find(|p| p.is_file()).unwrap_or(base.join(&*decoded));
-    let bytes = std::fs::read(&file).map_err(|e| {
+    // A scheme is letters, digits, `+`, `-`, `.` before a colon; one letter is a Windows drive.
+    let scheme = uri.split_once(':').map(|(s, _)| s).filter(|s| {
+        s.len() > 1
+            && s.starts_with(|c: char| c.is_ascii_alphabetic())
+            && s.chars().all(|c| c.is_ascii_alphanumeric() || "+-.".contains(c))
+    });
+    let relative = match scheme.map(str::to_ascii_lowercase).as_deref() {
+        None => uri,
+        Some("file") => uri["file:".len()..].strip_prefix("//").unwrap_or(&uri["file:".len()..]),
+        Some(remote @ ("http" | "https")) => {
+            let problem = format!("the {what} {uri:?} is remote ({remote}): remote files are not fetched");
+            return Err(LoadError::new(gltf_path, problem));
+        }
+        Some(other) => {
+            let problem = format!("the {what} {uri:?} has the URI scheme {other:?}: only files and data URIs are read");
+            return Err(LoadError::new(gltf_path, problem));
+        }
+    };
+    let decoded = percent_encoding::percent_decode_str(relative).decode_utf8_lossy();
+    let path =
+        [base.join(&*decoded), base.join(relative)].into_iter().find(|p| p.is_file()).unwrap_or(base.join(&*decoded));
+    let leaves = Path::new(&*decoded).components().any(|c| c == std::path::Component::ParentDir);
+    let outside = Path::new(&*decoded).is_absolute() || leaves;
+    Ok(UriTarget::File { path, outside })
+}
+
+/// The bytes a buffer or image URI points to and the file to name in errors; a file outside
+/// the glTF's folder adds a [`LoadWarning::NotPortable`] to `warnings`.
+fn read_uri(
+    uri: &str,
+    base: &Path,
+    gltf_path: &Path,
+    what: &str,
+    warnings: &mut Vec<LoadWarning>,
+) -> Result<(Vec<u8>, PathBuf), LoadError> {
+    let (path, outside) = match resolve_uri(uri, base, gltf_path, what)? {
+        UriTarget::Data(bytes) => return Ok((bytes, gltf_path.to_owned())),
+        UriTarget::File { path, outside } => (path, outside),
+    };
+    let bytes = std::fs::read(&path).map_err(|e| {
         let referrer = gltf_path.file_name().unwrap_or_default().to_string_lossy();
-        LoadError::new(&file, format!("could not read the {what} file that {referrer} refers to: {e}"))
+        LoadError::new(&path, format!("could not read the {what} file that {referrer} refers to: {e}"))
     })?;
-    Ok((bytes, file))
+    if outside {
+        warnings.push(LoadWarning::NotPortable { uri: uri.to_owned(), file: path.clone() });
+    }
+    Ok((bytes, path))
 }
 
 struct Loader<'a> {
@@ -122,8 +210,8 @@ struct Loader<'a> {
     document: &'a gltf::Document,
     buffers: Vec<Vec<u8>>,
     scene: Scene,
-    /// (glTF image, kind) → index in `scene.textures`.
-    textures: HashMap<(usize, TextureKind), usize>,
+    /// (glTF image, kind) → index in `scene.textures`; `None` for an image that could not be read.
+    textures: HashMap<(usize, TextureKind), Option<usize>>,
     /// glTF material (`None`: the default material) → index in `scene.materials`.
     materials: HashMap<Option<usize>, usize>,
     /// (glTF mesh, primitive) → index in `scene.meshes`; `None` for primitives without
@@ -169,7 +257,7 @@ impl Loader<'_> {
                 let name = format!("{} #{}", mesh.name().unwrap_or("mesh"), primitive.index());
                 let uv = uv_choice(&primitive.material());
                 let buffers = &self.buffers;
-                let loaded = primitive_mesh(primitive, &name, uv, buffers, self.path)?;
+                let loaded = primitive_mesh(self.document, primitive, &name, uv, buffers, self.path)?;
                 let index = loaded.map(|m| {
                     self.scene.meshes.push(m);
                     self.scene.meshes.len() - 1
@@ -197,32 +285,41 @@ impl Loader<'_> {
         let pbr = material.pbr_metallic_roughness();
         let base = Vec4::from(pbr.base_color_factor());
         let metallic_roughness_texture = match pbr.metallic_roughness_texture() {
-            Some(info) => Some(self.texture(info.texture(), TextureKind::Data)?),
+            Some(info) => self.texture(info.texture(), TextureKind::Data)?,
             None => None,
         };
         let texture_mean = metallic_roughness_texture.map_or(Vec3::ONE, |t| mean_rgb(&self.scene.textures[t]));
         let metallic = (pbr.metallic_factor() * texture_mean.z).clamp(0.0, 1.0);
         let alpha = (pbr.roughness_factor() * texture_mean.y).clamp(0.0, 1.0).powi(2).max(1e-3);
         let base_color_texture = match pbr.base_color_texture() {
-            Some(info) => Some(self.texture(info.texture(), TextureKind::Color)?),
+            Some(info) => self.texture(info.texture(), TextureKind::Color)?,
             None => None,
         };
         let normal_map = match material.normal_texture() {
             Some(normal) => {
-                Some(NormalMap::new(self.texture(normal.texture(), TextureKind::NormalMap)?, normal.scale()))
+                self.texture(normal.texture(), TextureKind::NormalMap)?.map(|t| NormalMap::new(t, normal.scale()))
             }
             None => None,
         };
         let occlusion = match material.occlusion_texture() {
-            Some(info) => {
-                Some(Occlusion { texture: self.texture(info.texture(), TextureKind::Data)?, strength: info.strength() })
-            }
+            Some(info) => self
+                .texture(info.texture(), TextureKind::Data)?
+                .map(|texture| Occlusion { texture, strength: info.strength() }),
             None => None,
         };
         let detail_sampler = material
             .normal_texture()
             .map(|n| n.texture().sampler())
             .or_else(|| pbr.metallic_roughness_texture().map(|i| i.texture().sampler()));
+        let emissive_texture = match material.emissive_texture() {
+            Some(info) => self.texture(info.texture(), TextureKind::Color)?,
+            None => None,
+        };
+        let emissive_strength = material.emissive_strength().unwrap_or(1.0);
+        let clearcoat = match material.extension_value("KHR_materials_clearcoat") {
+            Some(json) => Some(self.clearcoat(&material, json)?),
+            None => None,
+        };
         self.scene.materials.push(Material {
             name: material.name().unwrap_or("material").to_owned(),
             base_color_factor: base,
@@ -238,6 +335,9 @@ impl Loader<'_> {
             occlusion,
             base_color_wrap: pbr.base_color_texture().map_or_else(Default::default, |i| wrap(&i.texture().sampler())),
             detail_wrap: detail_sampler.map_or_else(Default::default, |s| wrap(&s)),
+            emissive_factor: Vec3::from(material.emissive_factor()) * emissive_strength,
+            emissive_texture,
+            clearcoat,
             ..Material::default()
         });
         let index = self.scene.materials.len() - 1;
@@ -245,22 +345,86 @@ impl Loader<'_> {
         Ok(index)
     }
 
-    /// The scene texture for a glTF texture's image read as `kind`, decoded once.
-    fn texture(&mut self, texture: gltf::Texture, kind: TextureKind) -> Result<usize, LoadError> {
+    /// `KHR_materials_clearcoat` of `material` from its JSON: factors, the strength (red),
+    /// roughness (green) and normal textures, and the transform from the mesh's texture
+    /// coordinates to the layer's (its textures' `KHR_texture_transform`; the first texture's
+    /// stands for all three).
+    fn clearcoat(&mut self, material: &gltf::Material, json: &gltf::json::Value) -> Result<Clearcoat, LoadError> {
+        use gltf::json::Value;
+        let number = |key: &str, default: f64| json.get(key).and_then(Value::as_f64).unwrap_or(default) as f32;
+        let name = material.name().unwrap_or("material").to_owned();
+        let stream = uv_choice(material);
+        let mut layer_uv = None;
+        let mut slot = |loader: &mut Self, key: &str, kind: TextureKind| -> Result<Option<(usize, f32)>, LoadError> {
+            let Some(info) = json.get(key) else { return Ok(None) };
+            let index = info.get("index").and_then(Value::as_u64).and_then(|i| usize::try_from(i).ok());
+            let Some(texture) = index.and_then(|i| loader.document.textures().nth(i)) else {
+                let problem = format!("material {name:?}: {key} names no texture");
+                return Err(LoadError::new(loader.path, problem));
+            };
+            let tex_coord = info.get("texCoord").and_then(Value::as_u64).unwrap_or(0).min(u32::MAX as u64) as u32;
+            let choice = UvChoice::from_json(tex_coord, info.pointer("/extensions/KHR_texture_transform"));
+            if choice.set != stream.set {
+                let warning = LoadWarning::TextureCoordinates {
+                    material: name.clone(),
+                    texture: key.to_owned(),
+                    wanted: choice.set,
+                    drawn: stream.set,
+                };
+                loader.scene.warnings.push(warning);
+            }
+            layer_uv.get_or_insert(choice.matrix() * stream.matrix().inverse());
+            let scale = info.get("scale").and_then(Value::as_f64).unwrap_or(1.0) as f32;
+            Ok(loader.texture(texture, kind)?.map(|t| (t, scale)))
+        };
+        let texture = slot(self, "clearcoatTexture", TextureKind::Data)?.map(|(t, _)| t);
+        let roughness_texture = slot(self, "clearcoatRoughnessTexture", TextureKind::Data)?.map(|(t, _)| t);
+        let normal_map =
+            slot(self, "clearcoatNormalTexture", TextureKind::NormalMap)?.map(|(t, scale)| NormalMap::new(t, scale));
+        let layer_uv = layer_uv.unwrap_or(glam::Mat3::IDENTITY);
+        Ok(Clearcoat {
+            factor: number("clearcoatFactor", 0.0).clamp(0.0, 1.0),
+            texture,
+            roughness: number("clearcoatRoughnessFactor", 0.0).clamp(0.0, 1.0),
+            roughness_texture,
+            normal_map,
+            uv_transform: [layer_uv.row(0), layer_uv.row(1)],
+        })
+    }
+
+    /// The scene texture for a glTF texture's image read as `kind`, decoded once; `None`
+    /// (with a [`LoadWarning`]) when the image file cannot be read or decoded. An image the
+    /// document describes wrongly (no uri or mimeType, outside its buffer) is an error.
+    fn texture(&mut self, texture: gltf::Texture, kind: TextureKind) -> Result<Option<usize>, LoadError> {
         let image = texture.source().index();
         if let Some(&index) = self.textures.get(&(image, kind)) {
             return Ok(index);
         }
-        let decoded = self.decode(texture, kind)?;
-        self.scene.textures.push(decoded);
-        let index = self.scene.textures.len() - 1;
+        let index = match self.decode(texture, kind)? {
+            Ok(decoded) => {
+                self.scene.textures.push(decoded);
+                Some(self.scene.textures.len() - 1)
+            }
+            Err(unreadable) => {
+                let warning = LoadWarning::UnreadableTexture { file: unreadable.path, problem: unreadable.problem };
+                if !self.scene.warnings.contains(&warning) {
+                    self.scene.warnings.push(warning);
+                }
+                None
+            }
+        };
         self.textures.insert((image, kind), index);
         Ok(index)
     }
 
-    /// A glTF texture's image, read and decoded as `kind`; an image file is remembered in
-    /// [`Scene::files`].
-    fn decode(&mut self, texture: gltf::Texture, kind: TextureKind) -> Result<TextureImage, LoadError> {
+    /// A glTF texture's image, read and decoded as `kind` (inner `Err`: the image cannot be
+    /// read or decoded); an image file is remembered in [`Scene::files`], readable or not, so
+    /// that hot reload picks it up once it is fixed.
+    fn decode(
+        &mut self,
+        texture: gltf::Texture,
+        kind: TextureKind,
+    ) -> Result<Result<TextureImage, LoadError>, LoadError> {
         let image = texture.source();
         // gltf's `Image::source` unwraps the uri, or the mimeType of a bufferView image, and
         // validation does not always catch their absence (found by tests/fuzz.rs).
@@ -275,11 +439,18 @@ impl Loader<'_> {
         }
         let (bytes, file) = match image.source() {
             gltf::image::Source::Uri { uri, .. } => {
-                let (bytes, file) = read_uri(uri, self.base, self.path, "image")?;
-                if file != self.path && !self.scene.files.contains(&file) {
-                    self.scene.files.push(file.clone());
+                let target = match resolve_uri(uri, self.base, self.path, "image") {
+                    Ok(UriTarget::File { path, .. }) => Some(path),
+                    Ok(UriTarget::Data(_)) => None,
+                    Err(unfetched) => return Ok(Err(unfetched)),
+                };
+                if let Some(file) = target.filter(|f| f != self.path && !self.scene.files.contains(f)) {
+                    self.scene.files.push(file);
                 }
-                (bytes, file)
+                match read_uri(uri, self.base, self.path, "image", &mut self.scene.warnings) {
+                    Ok(read) => read,
+                    Err(unreadable) => return Ok(Err(unreadable)),
+                }
             }
             gltf::image::Source::View { view, .. } => {
                 let range = view.offset()..view.offset() + view.length();
@@ -290,7 +461,7 @@ impl Loader<'_> {
                 (bytes.to_vec(), PathBuf::from(format!("{} (image {})", self.path.display(), image.index())))
             }
         };
-        decode_texture(&bytes, &file, kind)
+        Ok(decode_texture(&bytes, &file, kind))
     }
 }
 

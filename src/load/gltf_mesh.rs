@@ -1,5 +1,7 @@
 //! One glTF mesh primitive → [`Mesh`]: triangles (lists, strips and fans), the chosen UV set
-//! with its `KHR_texture_transform` applied, flat normals when the file has none.
+//! with its `KHR_texture_transform` applied, flat normals when the file has none. Attributes
+//! may be quantized (`KHR_mesh_quantization`, [`super::accessor`]) or Draco-compressed
+//! (`KHR_draco_mesh_compression`, [`super::draco`]).
 
 use std::path::Path;
 
@@ -7,6 +9,8 @@ use glam::{Vec2, Vec3, Vec4};
 use gltf::json::Value;
 use gltf::mesh::{Mode, Semantic};
 
+use super::accessor::read_vectors;
+use super::draco;
 use super::mesh_ops::{check, transform_uvs, with_flat_normals};
 use crate::error::LoadError;
 use crate::math::normalize_or;
@@ -29,6 +33,17 @@ impl Default for UvChoice {
 }
 
 impl UvChoice {
+    /// The transform as an affine matrix on `(u, v, 1)` ([`super::mesh_ops::transform_uvs`]).
+    pub fn matrix(&self) -> glam::Mat3 {
+        let (sin, cos) = self.rotation.sin_cos();
+        let (sx, sy) = (self.scale.x, self.scale.y);
+        glam::Mat3::from_cols(
+            glam::Vec3::new(cos * sx, -sin * sx, 0.0),
+            glam::Vec3::new(sin * sy, cos * sy, 0.0),
+            self.offset.extend(1.0),
+        )
+    }
+
     /// From a texture reference's `texCoord` and its `KHR_texture_transform` object, if any
     /// (whose own `texCoord` overrides the reference's).
     pub fn from_json(tex_coord: u32, transform: Option<&Value>) -> UvChoice {
@@ -48,6 +63,7 @@ impl UvChoice {
 
 /// The primitive as a triangle mesh, or `None` for points and lines.
 pub fn primitive_mesh(
+    document: &gltf::Document,
     primitive: &gltf::Primitive,
     name: &str,
     uv: UvChoice,
@@ -58,40 +74,51 @@ pub fn primitive_mesh(
         return Ok(None);
     }
     let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
-    // An attribute the primitive names but whose data cannot be read is an error.
-    let unreadable = |semantic: Semantic| {
-        let accessor = primitive.get(&semantic).map_or(0, |a| a.index());
-        LoadError::new(path, format!("{name}: accessor {accessor} ({semantic:?}) lies outside its buffer"))
-    };
     let mut mesh = Mesh::empty(name);
-    mesh.positions = match reader.read_positions() {
-        Some(p) => p.map(Vec3::from).collect(),
-        None if primitive.get(&Semantic::Positions).is_some() => return Err(unreadable(Semantic::Positions)),
-        None => return Err(LoadError::new(path, format!("{name}: a primitive has no POSITION attribute"))),
-    };
-    let has = |semantic: Semantic| primitive.get(&semantic).is_some();
-    mesh.normals = match reader.read_normals() {
-        Some(n) => n.map(Vec3::from).collect(),
-        None if has(Semantic::Normals) => return Err(unreadable(Semantic::Normals)),
-        None => vec![],
-    };
-    mesh.uvs = match reader.read_tex_coords(uv.set) {
-        Some(t) => t.into_f32().map(Vec2::from).collect(),
-        None if has(Semantic::TexCoords(uv.set)) => return Err(unreadable(Semantic::TexCoords(uv.set))),
-        None => vec![],
-    };
-    transform_uvs(&mut mesh.uvs, uv.offset, uv.rotation, uv.scale);
-    mesh.tangents = match reader.read_tangents() {
-        Some(t) => Some(t.map(Vec4::from).collect()),
-        None if has(Semantic::Tangents) => return Err(unreadable(Semantic::Tangents)),
+    let draco = match primitive.extension_value("KHR_draco_mesh_compression") {
+        Some(extension) => Some(
+            draco::decode(document, extension, buffers)
+                .map_err(|p| LoadError::new(path, format!("{name}: KHR_draco_mesh_compression: {p}")))?,
+        ),
         None => None,
     };
-    let list: Vec<u32> = match reader.read_indices() {
-        Some(i) => i.into_u32().collect(),
-        None if primitive.indices().is_some() => {
-            return Err(LoadError::new(path, format!("{name}: the index accessor lies outside its buffer")));
-        }
-        None => (0..mesh.positions.len() as u32).collect(),
+    // Each attribute: from the Draco stream when the primitive is compressed, else its accessor.
+    macro_rules! attribute {
+        ($semantic:expr, $n:literal) => {{
+            let semantic = $semantic;
+            match (&draco, primitive.get(&semantic)) {
+                (Some(decoded), Some(_)) => decoded.attribute::<$n>(&semantic).map(Some).map_err(|p| {
+                    LoadError::new(path, format!("{name}: KHR_draco_mesh_compression: {semantic:?}: {p}"))
+                })?,
+                (None, Some(accessor)) => {
+                    let index = accessor.index();
+                    Some(
+                        read_vectors::<$n>(accessor, buffers).map_err(|p| {
+                            LoadError::new(path, format!("{name}: accessor {index} ({semantic:?}) {p}"))
+                        })?,
+                    )
+                }
+                (_, None) => None,
+            }
+        }};
+    }
+    mesh.positions = match attribute!(Semantic::Positions, 3) {
+        Some(p) => p.into_iter().map(Vec3::from).collect(),
+        None => return Err(LoadError::new(path, format!("{name}: a primitive has no POSITION attribute"))),
+    };
+    mesh.normals = attribute!(Semantic::Normals, 3).unwrap_or_default().into_iter().map(Vec3::from).collect();
+    mesh.uvs = attribute!(Semantic::TexCoords(uv.set), 2).unwrap_or_default().into_iter().map(Vec2::from).collect();
+    transform_uvs(&mut mesh.uvs, uv.offset, uv.rotation, uv.scale);
+    mesh.tangents = attribute!(Semantic::Tangents, 4).map(|t| t.into_iter().map(Vec4::from).collect());
+    let list: Vec<u32> = match &draco {
+        Some(decoded) => decoded.indices.clone(),
+        None => match reader.read_indices() {
+            Some(i) => i.into_u32().collect(),
+            None if primitive.indices().is_some() => {
+                return Err(LoadError::new(path, format!("{name}: the index accessor lies outside its buffer")));
+            }
+            None => (0..mesh.positions.len() as u32).collect(),
+        },
     };
     mesh.indices = triangle_list(primitive.mode(), &list);
     let count = mesh.positions.len();

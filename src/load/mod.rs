@@ -3,6 +3,8 @@
 //! image, CCW front faces, unit normals) and returns a [`LoadError`] naming the file and the
 //! problem; none panics on any input.
 
+mod accessor;
+mod draco;
 mod framing;
 pub mod gltf;
 mod gltf_mesh;
@@ -18,7 +20,7 @@ pub use crate::error::LoadError;
 use glam::Vec3;
 
 use crate::scene::Scene;
-pub use framing::frame_scene;
+pub use framing::{bounds, frame_scene};
 pub use slots::{TextureSlots, replace_textures};
 
 /// Loads a mesh file into a [`Scene`] with a camera framing it and a light above and in
@@ -53,5 +55,6 @@ fn empty_scene() -> Scene {
         default_light: crate::scene::builtin::default_light(),
         default_camera: crate::scene::builtin::default_camera(),
         files: vec![],
+        warnings: vec![],
     }
 }

@@ -12,7 +12,7 @@ use glam::{Vec3, Vec4};
 
 use super::image::load_texture;
 use super::slots::add_height_map;
-use crate::error::LoadError;
+use crate::error::{LoadError, LoadWarning};
 use crate::scene::{Material, NormalMap, Scene, TextureImage, TextureKind};
 
 /// Blinn-Phong exponents `Ns` is clamped to.
@@ -63,13 +63,22 @@ pub fn material_index(name: Option<&str>, materials: &HashMap<String, usize>, sc
     scene.materials.len() - 1
 }
 
-/// [`load_texture`], and `path` remembered in [`Scene::files`].
-fn load_referenced(scene: &mut Scene, path: &Path, kind: TextureKind) -> Result<TextureImage, LoadError> {
-    let image = load_texture(path, kind)?;
+/// [`load_texture`], and `path` remembered in [`Scene::files`] (readable or not, so that hot
+/// reload picks it up once it is fixed); `None` with a [`LoadWarning`] when it cannot be read.
+fn load_referenced(scene: &mut Scene, path: &Path, kind: TextureKind) -> Option<TextureImage> {
     if !scene.files.iter().any(|f| f == path) {
         scene.files.push(path.to_owned());
     }
-    Ok(image)
+    match load_texture(path, kind) {
+        Ok(image) => Some(image),
+        Err(e) => {
+            let warning = LoadWarning::UnreadableTexture { file: e.path, problem: e.problem };
+            if !scene.warnings.contains(&warning) {
+                scene.warnings.push(warning);
+            }
+            None
+        }
+    }
 }
 
 fn parse(text: &str, path: &Path, scene: &mut Scene, names: &mut HashMap<String, usize>) -> Result<(), LoadError> {
@@ -110,24 +119,25 @@ fn parse(text: &str, path: &Path, scene: &mut Scene, names: &mut HashMap<String,
                 scene.materials[material_index].shininess = ns.clamp(*SHININESS.start(), *SHININESS.end());
             }
             "map_kd" => {
-                let image = load_referenced(scene, &map()?.path, TextureKind::Color)?;
-                let texture = add(scene, image);
-                scene.materials[material_index].base_color_texture = Some(texture);
+                if let Some(image) = load_referenced(scene, &map()?.path, TextureKind::Color) {
+                    let texture = add(scene, image);
+                    scene.materials[material_index].base_color_texture = Some(texture);
+                }
             }
             "map_ks" | "map_ns" => {
-                let image = load_referenced(scene, &map()?.path, TextureKind::Data)?;
-                let texture = add(scene, image);
-                scene.materials[material_index].gloss_texture = Some(texture);
+                if let Some(image) = load_referenced(scene, &map()?.path, TextureKind::Data) {
+                    let texture = add(scene, image);
+                    scene.materials[material_index].gloss_texture = Some(texture);
+                }
             }
             "norm" | "map_bump" | "bump" => {
                 let reference = map()?;
-                let image = load_referenced(scene, &reference.path, TextureKind::NormalMap)?;
+                let Some(image) = load_referenced(scene, &reference.path, TextureKind::NormalMap) else { continue };
                 if lower == "norm" || looks_like_normal_map(&image) {
                     let texture = add(scene, image);
                     scene.materials[material_index].normal_map =
                         Some(NormalMap::new(texture, reference.bump_multiplier));
-                } else {
-                    let heights = load_referenced(scene, &reference.path, TextureKind::Height)?;
+                } else if let Some(heights) = load_referenced(scene, &reference.path, TextureKind::Height) {
                     add_height_map(scene, &[material_index], heights, reference.bump_multiplier);
                 }
             }

@@ -52,6 +52,13 @@ pub struct InstanceTextures {
     pub metallic_roughness: Option<usize>,
     pub occlusion: Option<usize>,
     pub gloss: Option<usize>,
+    /// Only for a material that emits (a non-zero factor).
+    pub emissive: Option<usize>,
+    /// The clear coat's strength, roughness and normal textures, only for a visible coat; the
+    /// normal map only for variants with a tangent stream.
+    pub clearcoat: Option<usize>,
+    pub clearcoat_roughness: Option<usize>,
+    pub clearcoat_normal: Option<usize>,
 }
 
 impl InstanceTextures {
@@ -61,17 +68,27 @@ impl InstanceTextures {
             Variant::HeightBump => material.height_map.as_ref().map(|m| m.texture),
             Variant::Plain | Variant::Tangent => None,
         };
+        let coat = material.visible_clearcoat();
         InstanceTextures {
             base_color: material.base_color_texture,
             bump,
             metallic_roughness: material.metallic_roughness_texture,
             occlusion: material.occlusion.as_ref().map(|o| o.texture),
             gloss: material.gloss_texture,
+            emissive: material.emissive_texture.filter(|_| material.emits()),
+            clearcoat: coat.and_then(|c| c.texture),
+            clearcoat_roughness: coat.and_then(|c| c.roughness_texture),
+            clearcoat_normal: coat
+                .and_then(|c| c.normal_map.as_ref())
+                .map(|m| m.texture)
+                .filter(|_| variant.has_tangents()),
         }
     }
 
     fn all(&self) -> impl Iterator<Item = usize> {
-        [self.base_color, self.bump, self.metallic_roughness, self.occlusion, self.gloss].into_iter().flatten()
+        let slots = [self.base_color, self.bump, self.metallic_roughness, self.occlusion, self.gloss, self.emissive];
+        let coat = [self.clearcoat, self.clearcoat_roughness, self.clearcoat_normal];
+        slots.into_iter().chain(coat).flatten()
     }
 }
 
@@ -126,8 +143,8 @@ pub struct PreparedScene {
     pub meshes: Vec<PreparedMesh>,
     /// Per instance of `scene`, in its order.
     pub instances: Vec<PreparedInstance>,
-    /// What the scene asked for but cannot get (a bump map on a mesh without texture
-    /// coordinates, non-finite vertex data repaired), one line each, for the user.
+    /// What the scene asked for but cannot get (the loader's warnings, a bump map on a mesh
+    /// without texture coordinates, non-finite vertex data repaired), one line each, for the user.
     pub notices: Vec<String>,
     /// Tangent frames made by a generator (not read from the file) for this preparation.
     pub tangent_frames_generated: u64,
@@ -143,7 +160,7 @@ impl PreparedScene {
             .map(|instance| {
                 let material = &scene.materials[instance.material];
                 let bump = bump_kind(&scene, instance.mesh, instance.material, options.bump_source);
-                let variant = variant_of(bump, &scene.meshes[instance.mesh]);
+                let variant = variant_of(bump, &scene.meshes[instance.mesh], material);
                 PreparedInstance {
                     mesh: instance.mesh,
                     material: instance.material,
@@ -154,7 +171,8 @@ impl PreparedScene {
                 }
             })
             .collect();
-        let mut notices = missing_uv_notices(&scene);
+        let mut notices: Vec<String> = scene.warnings.iter().map(ToString::to_string).collect();
+        notices.extend(missing_uv_notices(&scene));
         let mut tangent_frames_generated = 0;
         let meshes = scene
             .meshes
@@ -198,13 +216,18 @@ impl PreparedScene {
 }
 
 /// The variant an instance is drawn with: by its [`BumpKind`]; without a bump, with the
-/// tangent stream when the mesh supplies tangents (for the T/B views), else plain.
-fn variant_of(bump: BumpKind, mesh: &Mesh) -> Variant {
+/// tangent stream when the mesh supplies tangents (for the T/B views) or its material's clear
+/// coat has a normal map (drawn through its own frame), else plain.
+fn variant_of(bump: BumpKind, mesh: &Mesh, material: &Material) -> Variant {
+    let vertices = mesh.positions.len();
+    let supplied = mesh.tangents.as_ref().is_some_and(|t| t.len() == vertices);
+    let coat_normal =
+        material.visible_clearcoat().is_some_and(|c| c.normal_map.is_some()) && mesh.uvs.len() == vertices;
     match bump {
         BumpKind::HeightInShader => Variant::HeightBump,
         BumpKind::TangentSpace => Variant::NormalMapped,
         BumpKind::ObjectSpace => Variant::ObjectSpace,
-        BumpKind::None if mesh.tangents.as_ref().is_some_and(|t| t.len() == mesh.positions.len()) => Variant::Tangent,
+        BumpKind::None if supplied || coat_normal => Variant::Tangent,
         BumpKind::None => Variant::Plain,
     }
 }

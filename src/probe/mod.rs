@@ -225,6 +225,15 @@ impl ProbeScene {
 
         let slots = &instance.textures;
         let detail = material.detail_wrap;
+        // The clear coat's textures at the layer's coordinates; the footprint through the
+        // linear part of its transform.
+        let coat_sample = |texture: Option<usize>| {
+            let coat = material.clearcoat.as_ref()?;
+            let linear =
+                |d: Vec2| Vec2::new(coat.uv_transform[0].truncate().dot(d), coat.uv_transform[1].truncate().dot(d));
+            let coat_footprint = footprint.map(|(dx, dy)| (linear(dx), linear(dy)));
+            Some(sample_trilinear(&self.mips[texture?], coat.layer_uv(uv), detail, coat_footprint))
+        };
         let normal_map = slots.bump.filter(|_| matches!(instance.bump, BumpKind::TangentSpace | BumpKind::ObjectSpace));
         let nearest = normal_map.map(|t| {
             let texture = &self.scene().textures[t];
@@ -252,6 +261,10 @@ impl ProbeScene {
             metallic_roughness: slots.metallic_roughness.map(|t| sample(t, detail)),
             occlusion: slots.occlusion.map(|t| sample(t, detail).x),
             gloss: slots.gloss.map(|t| sample(t, detail)),
+            emissive: slots.emissive.map(|t| sample(t, material.base_color_wrap)),
+            clearcoat: coat_sample(slots.clearcoat).map(|t| t.x),
+            clearcoat_roughness: coat_sample(slots.clearcoat_roughness).map(|t| t.y),
+            clearcoat_normal: coat_sample(slots.clearcoat_normal),
         };
         let chain = shade(instance.bump, material, self.scene().ambient, &surface, params);
         ProbeReadout {

@@ -48,8 +48,15 @@ pub const OCCLUSION_TEXTURE: Slot = slot(6, "occlusion_texture", Resource::Textu
 /// Gloss (specular) map, linear: RGB scales k_s.
 pub const GLOSS_TEXTURE: Slot = slot(7, "gloss_texture", Resource::Texture);
 
+/// Emissive, sRGB (samples are linear), through the base colour sampler.
+pub const EMISSIVE_TEXTURE: Slot = slot(8, "emissive_texture", Resource::Texture);
+/// The clear coat's strength (R), roughness (G) and normal map, linear, at the coat's coordinates.
+pub const CLEARCOAT_TEXTURE: Slot = slot(9, "clearcoat_texture", Resource::Texture);
+pub const CLEARCOAT_ROUGHNESS_TEXTURE: Slot = slot(10, "clearcoat_roughness_texture", Resource::Texture);
+pub const CLEARCOAT_NORMAL_TEXTURE: Slot = slot(11, "clearcoat_normal_texture", Resource::Texture);
+
 /// Group 1 of the mesh shader, in binding order.
-pub const MATERIAL: [Slot; 8] = [
+pub const MATERIAL: [Slot; 12] = [
     OBJECT,
     BASE_COLOR_TEXTURE,
     BASE_COLOR_SAMPLER,
@@ -58,6 +65,10 @@ pub const MATERIAL: [Slot; 8] = [
     METALLIC_ROUGHNESS_TEXTURE,
     OCCLUSION_TEXTURE,
     GLOSS_TEXTURE,
+    EMISSIVE_TEXTURE,
+    CLEARCOAT_TEXTURE,
+    CLEARCOAT_ROUGHNESS_TEXTURE,
+    CLEARCOAT_NORMAL_TEXTURE,
 ];
 
 /// Group 1 of the marker shader: the marker's model matrix.
@@ -105,7 +116,10 @@ mod tests {
     use super::*;
     use crate::frame::{ShadingMode, ViewMode};
     use crate::render::pipelines::{MARKER_WGSL, MESH_WGSL};
-    use crate::render::uniforms::{DEPTH_MAP, HAS_GLOSS, HAS_METALLIC_ROUGHNESS};
+    use crate::render::uniforms::{
+        DEPTH_MAP, HAS_CLEARCOAT, HAS_CLEARCOAT_NORMAL, HAS_CLEARCOAT_ROUGHNESS_TEXTURE, HAS_CLEARCOAT_TEXTURE,
+        HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS,
+    };
     use crate::scene::{NormalConvention, ShadingModel};
 
     fn module(source: &str) -> naga::Module {
@@ -169,6 +183,11 @@ mod tests {
         expected.insert("DEPTH_MAP".into(), DEPTH_MAP);
         expected.insert("HAS_METALLIC_ROUGHNESS".into(), HAS_METALLIC_ROUGHNESS);
         expected.insert("HAS_GLOSS".into(), HAS_GLOSS);
+        expected.insert("HAS_EMISSIVE_TEXTURE".into(), HAS_EMISSIVE_TEXTURE);
+        expected.insert("HAS_CLEARCOAT".into(), HAS_CLEARCOAT);
+        expected.insert("HAS_CLEARCOAT_TEXTURE".into(), HAS_CLEARCOAT_TEXTURE);
+        expected.insert("HAS_CLEARCOAT_ROUGHNESS_TEXTURE".into(), HAS_CLEARCOAT_ROUGHNESS_TEXTURE);
+        expected.insert("HAS_CLEARCOAT_NORMAL".into(), HAS_CLEARCOAT_NORMAL);
         expected.insert("SHADING_METALLIC_ROUGHNESS".into(), ShadingModel::MetallicRoughness.shader_index());
         assert_eq!(constants, expected, "u32 constants of shaders/mesh.wgsl against the Rust side");
     }

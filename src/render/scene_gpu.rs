@@ -222,19 +222,16 @@ pub fn upload(
         .iter()
         .map(|instance| {
             let material = &scene.materials[instance.material];
-            let uniform = buffer(
-                device,
-                "object",
-                &[ObjectUniform::new(instance.transform, material)],
-                wgpu::BufferUsages::UNIFORM,
-            );
+            let uniform =
+                buffer(device, "object", &[ObjectUniform::new(instance, material)], wgpu::BufferUsages::UNIFORM);
             let slots = &instance.textures;
             let base_color = match slots.base_color {
                 Some(t) => textures.get(&prepared, t, counters),
                 None => textures.white(counters),
             };
-            // Without a metallic-roughness, occlusion or gloss texture the base colour view stands
-            // in (no upload); the shader then ignores it (flags, occlusion strength 0).
+            // Without a metallic-roughness, occlusion, gloss, emissive or clear-coat texture the
+            // base colour view stands in (no upload); the shader then ignores it (flags,
+            // occlusion strength 0).
             let mut optional = |slot: Option<usize>| match slot {
                 Some(t) => textures.get(&prepared, t, counters),
                 None => base_color.clone(),
@@ -242,6 +239,10 @@ pub fn upload(
             let metallic_roughness = optional(slots.metallic_roughness);
             let occlusion = optional(slots.occlusion);
             let gloss = optional(slots.gloss);
+            let emissive = optional(slots.emissive);
+            let clearcoat = optional(slots.clearcoat);
+            let clearcoat_roughness = optional(slots.clearcoat_roughness);
+            let clearcoat_normal = optional(slots.clearcoat_normal);
             let base_sampler = samplers.get(device, material.base_color_wrap);
             let detail_sampler = samplers.get(device, material.detail_wrap);
             let view = wgpu::BindingResource::TextureView;
@@ -254,6 +255,10 @@ pub fn upload(
                 bindings::METALLIC_ROUGHNESS_TEXTURE.entry(view(&metallic_roughness)),
                 bindings::OCCLUSION_TEXTURE.entry(view(&occlusion)),
                 bindings::GLOSS_TEXTURE.entry(view(&gloss)),
+                bindings::EMISSIVE_TEXTURE.entry(view(&emissive)),
+                bindings::CLEARCOAT_TEXTURE.entry(view(&clearcoat)),
+                bindings::CLEARCOAT_ROUGHNESS_TEXTURE.entry(view(&clearcoat_roughness)),
+                bindings::CLEARCOAT_NORMAL_TEXTURE.entry(view(&clearcoat_normal)),
             ];
             // The normal map or the height map, as the variant needs.
             let bump = slots.bump.map(|t| textures.get(&prepared, t, counters));

@@ -1,11 +1,12 @@
 //! Uniform blocks, laid out exactly as the WGSL structs in `shaders/frame.wgsl` and `shaders/mesh.wgsl`.
 
 use bytemuck::{Pod, Zeroable};
-use glam::{Mat4, Vec3};
+use glam::Vec3;
 
 use crate::frame::FrameParams;
 use crate::math::normal_matrix;
-use crate::scene::Material;
+use crate::prepare::PreparedInstance;
+use crate::scene::{Clearcoat, Material};
 use crate::shading::SELF_SHADOW_FADE;
 
 /// WGSL `Frame`.
@@ -61,8 +62,14 @@ pub struct ObjectUniform {
     metallic: f32,
     roughness: f32,
     occlusion_strength: f32,
-    /// The WGSL struct's size is a multiple of 16 bytes.
+    /// WGSL aligns `emissive` (a vec4) to 16 bytes.
     _padding: u32,
+    /// Linear emitted light (rgb); a texture at binding 8 multiplies it where flagged.
+    emissive: [f32; 4],
+    /// The clear coat: factor, perceptual roughness, its normal map's scale, unused.
+    clearcoat: [f32; 4],
+    /// Rows of the 2×3 affine from the mesh's texture coordinates to the coat's (xyz each).
+    clearcoat_uv: [[f32; 4]; 2],
 }
 
 /// Bit of `flags` beside [`crate::scene::NormalConvention::flags`]: the height map stores
@@ -73,12 +80,25 @@ pub(crate) const DEPTH_MAP: u32 = 8;
 pub(crate) const HAS_METALLIC_ROUGHNESS: u32 = 16;
 /// Bit of `flags`: binding 7 holds the material's gloss (specular) map, which scales k_s.
 pub(crate) const HAS_GLOSS: u32 = 32;
+/// Bit of `flags`: binding 8 holds the emissive texture, which multiplies `emissive`.
+pub(crate) const HAS_EMISSIVE_TEXTURE: u32 = 64;
+/// Bit of `flags`: a clear coat lies over the metallic-roughness base.
+pub(crate) const HAS_CLEARCOAT: u32 = 128;
+/// Bits of `flags`: bindings 9, 10, 11 hold the coat's strength, roughness and normal textures.
+pub(crate) const HAS_CLEARCOAT_TEXTURE: u32 = 256;
+pub(crate) const HAS_CLEARCOAT_ROUGHNESS_TEXTURE: u32 = 512;
+pub(crate) const HAS_CLEARCOAT_NORMAL: u32 = 1024;
 
 impl ObjectUniform {
     /// Normals go through the inverse-transpose of the model matrix; tangent `w` is
     /// multiplied by `sign(det(model))` (crate conventions).
-    pub fn new(model: Mat4, material: &Material) -> Self {
+    pub fn new(instance: &PreparedInstance, material: &Material) -> Self {
+        let model = instance.transform;
         let determinant = model.determinant();
+        let slots = &instance.textures;
+        let bit = |on: bool, flag: u32| if on { flag } else { 0 };
+        let coat = material.visible_clearcoat();
+        let coat_uv = coat.map_or(Clearcoat::SAME_UV, |c| c.uv_transform).map(|row| row.extend(0.0).to_array());
         ObjectUniform {
             model: model.to_cols_array_2d(),
             normal_matrix: normal_matrix(model).to_cols_array_2d(),
@@ -90,11 +110,20 @@ impl ObjectUniform {
             flags: material.normal_map.as_ref().map_or(0, |n| n.convention.flags())
                 | if material.height_map.as_ref().is_some_and(|h| h.depth) { DEPTH_MAP } else { 0 }
                 | if material.metallic_roughness_texture.is_some() { HAS_METALLIC_ROUGHNESS } else { 0 }
-                | if material.gloss_texture.is_some() { HAS_GLOSS } else { 0 },
+                | if material.gloss_texture.is_some() { HAS_GLOSS } else { 0 }
+                | bit(slots.emissive.is_some(), HAS_EMISSIVE_TEXTURE)
+                | bit(coat.is_some(), HAS_CLEARCOAT)
+                | bit(slots.clearcoat.is_some(), HAS_CLEARCOAT_TEXTURE)
+                | bit(slots.clearcoat_roughness.is_some(), HAS_CLEARCOAT_ROUGHNESS_TEXTURE)
+                | bit(slots.clearcoat_normal.is_some(), HAS_CLEARCOAT_NORMAL),
             metallic: material.metallic,
             roughness: material.roughness,
             occlusion_strength: material.occlusion.as_ref().map_or(0.0, |o| o.strength),
             _padding: 0,
+            emissive: material.emissive_factor.extend(0.0).to_array(),
+            clearcoat: coat
+                .map_or([0.0; 4], |c| [c.factor, c.roughness, c.normal_map.as_ref().map_or(1.0, |m| m.scale), 0.0]),
+            clearcoat_uv: coat_uv,
         }
     }
 }

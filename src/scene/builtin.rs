@@ -164,6 +164,7 @@ pub fn teaching_scene_with_kernel(kernel: Kernel) -> Scene {
         default_light: default_light(),
         default_camera: default_camera(),
         files: vec![],
+        warnings: vec![],
     }
 }
 

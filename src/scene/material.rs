@@ -215,6 +215,42 @@ pub struct Material {
     pub base_color_wrap: SamplerWrap,
     /// Sampler of the normal or height map, the metallic-roughness and occlusion textures.
     pub detail_wrap: SamplerWrap,
+    /// Light the surface emits, linear RGB (glTF `emissiveFactor`, times
+    /// `KHR_materials_emissive_strength`); zero: none.
+    pub emissive_factor: Vec3,
+    /// sRGB emissive texture, multiplied by the factor (base colour sampler).
+    pub emissive_texture: Option<usize>,
+    /// `KHR_materials_clearcoat`: a clear layer over the metallic-roughness base.
+    pub clearcoat: Option<Clearcoat>,
+}
+
+/// A clear coat (`KHR_materials_clearcoat`): a dielectric layer (F0 = 0.04) with its own
+/// roughness and normal over the base. Its textures are linear and sampled with the detail
+/// sampler at the layer's texture coordinates ([`Clearcoat::uv_transform`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Clearcoat {
+    /// Layer strength 0..1, times the texture's red.
+    pub factor: f32,
+    pub texture: Option<usize>,
+    /// Perceptual roughness 0..1, times the texture's green; GGX `α = roughness²`.
+    pub roughness: f32,
+    pub roughness_texture: Option<usize>,
+    /// The layer's own tangent-space normal map (OpenGL convention, its `scale`).
+    pub normal_map: Option<NormalMap>,
+    /// From the mesh's texture coordinates to the layer's (its `KHR_texture_transform`
+    /// relative to the one the mesh's coordinates carry): `uv' = (row0 · (u, v, 1), row1 · (u, v, 1))`.
+    pub uv_transform: [Vec3; 2],
+}
+
+impl Clearcoat {
+    /// The identity of [`Clearcoat::uv_transform`].
+    pub const SAME_UV: [Vec3; 2] = [Vec3::X, Vec3::Y];
+
+    /// `uv` on the layer's textures.
+    pub fn layer_uv(&self, uv: glam::Vec2) -> glam::Vec2 {
+        let p = uv.extend(1.0);
+        glam::Vec2::new(self.uv_transform[0].dot(p), self.uv_transform[1].dot(p))
+    }
 }
 
 impl Default for Material {
@@ -238,13 +274,21 @@ impl Default for Material {
             occlusion: None,
             base_color_wrap: SamplerWrap::default(),
             detail_wrap: SamplerWrap::default(),
+            emissive_factor: Vec3::ZERO,
+            emissive_texture: None,
+            clearcoat: None,
         }
     }
 }
 
 impl Material {
-    /// Whether drawing this material needs per-vertex tangents: a tangent-space normal map.
-    pub fn needs_tangents(&self) -> bool {
-        self.normal_map.as_ref().is_some_and(|n| n.convention.space == NormalSpace::Tangent)
+    /// The clear coat when it shows (a layer with a factor above 0).
+    pub fn visible_clearcoat(&self) -> Option<&Clearcoat> {
+        self.clearcoat.as_ref().filter(|c| c.factor > 0.0)
+    }
+
+    /// Whether the material emits light.
+    pub fn emits(&self) -> bool {
+        self.emissive_factor != Vec3::ZERO
     }
 }

@@ -9,10 +9,12 @@ pub mod overrides;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
+use crate::error::LoadWarning;
+
 pub use camera::OrbitCamera;
 pub use material::{
-    GreenAxis, HeightMap, Material, NormalConvention, NormalMap, NormalSpace, Occlusion, SamplerWrap, ShadingModel,
-    Wrap,
+    Clearcoat, GreenAxis, HeightMap, Material, NormalConvention, NormalMap, NormalSpace, Occlusion, SamplerWrap,
+    ShadingModel, Wrap,
 };
 pub use overrides::{MaterialOverrides, PerMaterialOverrides};
 // Images are plain data below scene and height (see [`crate::texture`]); scenes hold them.
@@ -72,6 +74,8 @@ pub struct Scene {
     /// The files the mesh file referred to and that were read (buffers, material libraries,
     /// textures; wherever they are), for hot reload. Empty for the built-in scene.
     pub files: Vec<std::path::PathBuf>,
+    /// What the loader could not read or honour (the scene opened without it).
+    pub warnings: Vec<LoadWarning>,
 }
 
 impl Mesh {

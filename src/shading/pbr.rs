@@ -97,12 +97,30 @@ pub struct PbrInputs {
     pub position: Vec3,
     pub eye: Vec3,
     pub light: Light,
+    /// The clear-coat layer over the base, if any.
+    pub clearcoat: Option<ClearcoatInputs>,
 }
+
+/// A clear coat at one point (`KHR_materials_clearcoat`): a dielectric layer, F0 = 0.04.
+#[derive(Debug, Clone, Copy)]
+pub struct ClearcoatInputs {
+    /// Layer strength 0..1 (factor × texture red).
+    pub factor: f32,
+    /// Perceptual roughness 0..1 (factor × texture green), clamped to [`MIN_ROUGHNESS`].
+    pub roughness: f32,
+    /// Unit normal of the layer (its own normal map, else the geometric normal).
+    pub normal: Vec3,
+}
+
+/// Reflectance of the clear coat at normal incidence (index of refraction 1.5).
+pub const CLEARCOAT_F0: f32 = 0.04;
 
 /// Outgoing linear radiance: the point light through the glTF BRDF
 /// `π · ((1 − F) · c_diff/π + F · D · V) · light · max(n·l, 0)`, faded by the same geometric
 /// self-shadow as Blinn-Phong, plus the sky: `occlusion · (c_diff · sky_average(n) +
 /// reflected_sky(r, roughness) · (F0 · A + B))` with `(A, B)` from [`environment_brdf`].
+/// A clear coat (`KHR_materials_clearcoat`) adds its own highlight and sky reflection with its
+/// roughness and normal, F0 = 0.04, and dims the base by `1 − factor · F(N_c·V)`.
 pub fn metallic_roughness(p: &PbrInputs) -> Vec3 {
     let n_geo = p.geometric_normal;
     let n = p.shading_normal;
@@ -125,7 +143,26 @@ pub fn metallic_roughness(p: &PbrInputs) -> Vec3 {
     let r = normalize_or(2.0 * n.dot(v) * n - v, n);
     let ab = environment_brdf(n_dot_v, roughness);
     let ambient = c_diff * sky_average(n) + reflected_sky(r, roughness) * (f0 * ab.x + ab.y);
-    direct + p.occlusion.clamp(0.0, 1.0) * ambient
+    let occlusion = p.occlusion.clamp(0.0, 1.0);
+    let base = direct + occlusion * ambient;
+    let Some(coat) = p.clearcoat else { return base };
+    // The layer as the Khronos sample viewer shades it: its own GGX highlight and sky
+    // reflection, over the base dimmed by what the layer reflects towards the eye.
+    let nc = coat.normal;
+    let roughness = coat.roughness.clamp(MIN_ROUGHNESS, 1.0);
+    let alpha = roughness * roughness;
+    let nc_dot_l = nc.dot(l).max(0.0);
+    let nc_dot_v = nc.dot(v).max(1e-4);
+    let f0 = Vec3::splat(CLEARCOAT_F0);
+    let highlight = fresnel_schlick(f0, v.dot(h))
+        * ggx_distribution(nc.dot(h).max(0.0), alpha)
+        * smith_visibility(nc_dot_l, nc_dot_v, alpha);
+    let coat_direct = PI * highlight * p.light.color * nc_dot_l * self_shadow;
+    let rc = normalize_or(2.0 * nc.dot(v) * nc - v, nc);
+    let ab = environment_brdf(nc_dot_v, roughness);
+    let coat_sky = reflected_sky(rc, roughness) * (CLEARCOAT_F0 * ab.x + ab.y);
+    let through = fresnel_schlick(f0, nc_dot_v);
+    base * (Vec3::ONE - coat.factor * through) + coat.factor * (coat_direct + occlusion * coat_sky)
 }
 
 #[cfg(test)]
@@ -168,6 +205,7 @@ mod tests {
             position: Vec3::ZERO,
             eye: Vec3::new(0.0, 1e-7, 1.0),
             light: Light { position: Vec3::new(1.0, 1e-7, 0.0), color: Vec3::ONE },
+            clearcoat: Some(ClearcoatInputs { factor: 1.0, roughness: 0.0, normal: Vec3::Z }),
         };
         assert!(metallic_roughness(&p).is_finite());
         let eye_on_point = PbrInputs { eye: Vec3::ZERO, ..p };

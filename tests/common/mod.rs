@@ -114,6 +114,10 @@ pub fn wall_chain(scene: &Scene, params: &FrameParams, size: [u32; 2], x: u32, y
         metallic_roughness: None,
         occlusion: None,
         gloss: material.gloss_texture.map(sample),
+        emissive: None,
+        clearcoat: None,
+        clearcoat_roughness: None,
+        clearcoat_normal: None,
     };
     shade(BumpKind::TangentSpace, material, scene.ambient, &surface, params)
 }
