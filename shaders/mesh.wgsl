@@ -218,10 +218,10 @@ fn clearcoat_uv(uv: vec2<f32>) -> vec2<f32> {
 // chain::shade's clear-coat normal: the coat's normal map through the frame (OpenGL
 // convention, bump strength times its scale), else the geometric normal.
 fn clearcoat_normal(in: VertexOutput, n: vec3<f32>, frame_tb: TangentFrame) -> vec3<f32> {
-    let texel = textureSample(clearcoat_normal_texture, detail_sampler, clearcoat_uv(in.uv)).rgb;
     if (object.flags & HAS_CLEARCOAT_NORMAL) == 0u || frame.bump_enabled == 0u {
         return n;
     }
+    let texel = textureSample(clearcoat_normal_texture, detail_sampler, clearcoat_uv(in.uv)).rgb;
     return perturbed_normal(n, frame_tb, texel, frame.strength * object.clearcoat.z, 0u);
 }
 
@@ -230,9 +230,8 @@ fn clearcoat_normal(in: VertexOutput, n: vec3<f32>, frame_tb: TangentFrame) -> v
 fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>, n_coat: vec3<f32>) -> vec3<f32> {
     var albedo = textureSample(base_color_texture, base_color_sampler, in.uv).rgb * object.base_color.rgb;
     var emission = object.emissive.rgb;
-    let emissive_texel = textureSample(emissive_texture, base_color_sampler, in.uv).rgb;
     if (object.flags & HAS_EMISSIVE_TEXTURE) != 0u {
-        emission *= emissive_texel;
+        emission *= textureSample(emissive_texture, base_color_sampler, in.uv).rgb;
     }
     if frame.shading_mode == MODE_COLOUR_ONLY {
         return albedo;
@@ -248,23 +247,26 @@ fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>, n_coat: v
         }
         return blinn_phong(albedo, k_s, n_geo, n_shading, in.world_position) + emission;
     }
-    var metal_rough = textureSample(metallic_roughness_texture, detail_sampler, in.uv);
-    if (object.flags & HAS_METALLIC_ROUGHNESS) == 0u {
-        metal_rough = vec4<f32>(1.0); // the binding holds a placeholder: factors alone
+    // Each texture is sampled only where the material has it (uniform branches): without one
+    // its binding holds a placeholder and the factors stand alone.
+    var metal_rough = vec4<f32>(1.0);
+    if (object.flags & HAS_METALLIC_ROUGHNESS) != 0u {
+        metal_rough = textureSample(metallic_roughness_texture, detail_sampler, in.uv);
     }
-    let occlusion = 1.0 + object.occlusion_strength * (textureSample(occlusion_texture, detail_sampler, in.uv).r - 1.0);
+    // Without an occlusion texture the strength is 0 and the factor exactly 1.
+    var occlusion = 1.0;
+    if object.occlusion_strength != 0.0 {
+        occlusion += object.occlusion_strength * (textureSample(occlusion_texture, detail_sampler, in.uv).r - 1.0);
+    }
     var coat = vec2<f32>(0.0); // factor, roughness; 0: no coat
     if (object.flags & HAS_CLEARCOAT) != 0u {
         coat = object.clearcoat.xy;
     }
-    let coat_uv = clearcoat_uv(in.uv);
-    let coat_strength = textureSample(clearcoat_texture, detail_sampler, coat_uv).r;
-    let coat_roughness = textureSample(clearcoat_roughness_texture, detail_sampler, coat_uv).g;
     if (object.flags & HAS_CLEARCOAT_TEXTURE) != 0u {
-        coat.x *= coat_strength;
+        coat.x *= textureSample(clearcoat_texture, detail_sampler, clearcoat_uv(in.uv)).r;
     }
     if (object.flags & HAS_CLEARCOAT_ROUGHNESS_TEXTURE) != 0u {
-        coat.y *= coat_roughness;
+        coat.y *= textureSample(clearcoat_roughness_texture, detail_sampler, clearcoat_uv(in.uv)).g;
     }
     let inputs = PbrInputs(
         albedo,
