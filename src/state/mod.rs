@@ -2,6 +2,7 @@
 //! [`Command`]s; [`ViewerState::apply`] is the one place they take effect, so the window, the
 //! `render` command and the tests all describe a picture the same way: a [`FrameParams`].
 
+pub mod interactive;
 pub mod preset;
 
 use glam::{Vec2, Vec3};
