@@ -5,6 +5,8 @@
 pub struct WorkCounters {
     /// Vertex tangent frames generated with MikkTSpace (frames supplied by a mesh are not counted).
     pub tangent_frames_generated: u64,
+    /// Prepared scenes uploaded to the GPU (a main scene or a split view's right half).
+    pub scenes_uploaded: u64,
     /// Textures uploaded to the GPU (each mip chain counts once).
     pub textures_uploaded: u64,
     /// Render pipelines compiled (each variant once; later uses hit the cache).

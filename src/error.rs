@@ -66,3 +66,19 @@ pub enum LoadWarning {
     #[error("material {material:?}: {texture} reads TEXCOORD_{wanted}; drawn with TEXCOORD_{drawn}")]
     TextureCoordinates { material: String, texture: String, wanted: u32, drawn: u32 },
 }
+
+/// A preset could not be read, parsed, understood or written; the message says which key or
+/// file and why, on one line.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{0}")]
+pub struct PresetError(pub String);
+
+/// A preset's scene could not be made: a setting it needs is wrong, or one of its files did
+/// not load.
+#[derive(Debug, thiserror::Error)]
+pub enum PresetSceneError {
+    #[error(transparent)]
+    Preset(#[from] PresetError),
+    #[error(transparent)]
+    Load(#[from] LoadError),
+}

@@ -4,6 +4,7 @@
 //! how an instance is bumped ([`bump_kind`]). Everything above this layer — the prepare
 //! stage, the GPU renderer, the CPU probe, the viewer state — describes a picture with these.
 
+use crate::names::Named;
 use crate::scene::{Light, MaterialOverrides, NormalSpace, OrbitCamera, PerMaterialOverrides, Scene, ShadingModel};
 use crate::tangent::TangentMethod;
 
@@ -11,7 +12,10 @@ use crate::tangent::TangentMethod;
 pub const STRENGTH_RANGE: std::ops::RangeInclusive<f32> = -2.0..=4.0;
 
 /// What the view shows. Debug views show a world-space unit vector `v` as `0.5·v + 0.5`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+/// Named ([`crate::names::Named`]) as on the command line and in presets: `lit`,
+/// `shading-normal`, `uv-check`, ….
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "kebab-case")]
 pub enum ViewMode {
     /// Blinn-Phong shading.
     #[default]
@@ -58,23 +62,11 @@ impl ViewMode {
         }
     }
 
-    pub const ALL: [ViewMode; 10] = [
-        ViewMode::Lit,
-        ViewMode::Tangent,
-        ViewMode::Bitangent,
-        ViewMode::Normal,
-        ViewMode::ShadingNormal,
-        ViewMode::Difference,
-        ViewMode::UvCheck,
-        ViewMode::Handedness,
-        ViewMode::OverTilt,
-        ViewMode::ClearcoatNormal,
-    ];
-
-    /// The next mode in [`ViewMode::ALL`], wrapping around.
+    /// The next mode in declaration order ([`Named::all`]), wrapping around.
     pub fn next(self) -> ViewMode {
-        let i = ViewMode::ALL.iter().position(|&m| m == self).unwrap_or(0);
-        ViewMode::ALL[(i + 1) % ViewMode::ALL.len()]
+        let all = ViewMode::all();
+        let i = all.iter().position(|&m| m == self).unwrap_or(0);
+        all[(i + 1) % all.len()]
     }
 
     /// The index the mesh shader's `VIEW` pipeline constant takes.
@@ -87,33 +79,16 @@ impl ViewMode {
     pub fn is_lit(self) -> bool {
         matches!(self, ViewMode::Lit | ViewMode::OverTilt)
     }
-
-    /// Name as used on the command line and in the panel.
-    pub fn name(self) -> &'static str {
-        match self {
-            ViewMode::Lit => "lit",
-            ViewMode::Tangent => "tangent",
-            ViewMode::Bitangent => "bitangent",
-            ViewMode::Normal => "normal",
-            ViewMode::ShadingNormal => "shading-normal",
-            ViewMode::Difference => "difference",
-            ViewMode::UvCheck => "uv-check",
-            ViewMode::Handedness => "handedness",
-            ViewMode::OverTilt => "over-tilt",
-            ViewMode::ClearcoatNormal => "clearcoat-normal",
-        }
-    }
-
-    pub fn from_name(name: &str) -> Option<ViewMode> {
-        ViewMode::ALL.into_iter().find(|m| m.name() == name)
-    }
 }
 
-/// What the lit picture is made of, as in the classic demos (keys 1/2/3). A uniform.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+/// What the lit picture is made of, as in the classic demos (keys 1/2/3). A uniform. Named
+/// `bump-colour`, `bump-only`, `colour-only`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "kebab-case")]
 pub enum ShadingMode {
     /// Lighting with the (bumped) shading normal times the colour texture.
     #[default]
+    #[strum(serialize = "bump-colour")]
     BumpTimesColour,
     /// Lighting with the shading normal and a white albedo: the relief alone.
     BumpOnly,
@@ -131,24 +106,9 @@ impl ShadingMode {
         }
     }
 
-    pub const ALL: [ShadingMode; 3] = [ShadingMode::BumpTimesColour, ShadingMode::BumpOnly, ShadingMode::ColourOnly];
-
     /// The index the shader switches on (`frame.shading_mode`).
     pub fn shader_index(self) -> u32 {
         self as u32
-    }
-
-    /// Name as used on the command line and in presets.
-    pub fn name(self) -> &'static str {
-        match self {
-            ShadingMode::BumpTimesColour => "bump-colour",
-            ShadingMode::BumpOnly => "bump-only",
-            ShadingMode::ColourOnly => "colour-only",
-        }
-    }
-
-    pub fn from_name(name: &str) -> Option<ShadingMode> {
-        ShadingMode::ALL.into_iter().find(|m| m.name() == name)
     }
 }
 
@@ -261,8 +221,9 @@ impl Default for FrameQuality {
 }
 
 /// Where the bump comes from. It decides pipelines and uploads, so it is a scene option, not
-/// a uniform.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+/// a uniform. Named `normal-map`, `height-in-shader`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "kebab-case")]
 pub enum BumpSource {
     /// The material's normal map (the built-in one is made from its height field by a kernel).
     #[default]
@@ -279,19 +240,6 @@ impl BumpSource {
             BumpSource::NormalMap => "normal map",
             BumpSource::HeightInShader => "height in shader",
         }
-    }
-
-    pub const ALL: [BumpSource; 2] = [BumpSource::NormalMap, BumpSource::HeightInShader];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            BumpSource::NormalMap => "normal-map",
-            BumpSource::HeightInShader => "height-in-shader",
-        }
-    }
-
-    pub fn from_name(name: &str) -> Option<BumpSource> {
-        BumpSource::ALL.into_iter().find(|b| b.name() == name)
     }
 }
 

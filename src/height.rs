@@ -105,8 +105,9 @@ impl HeightField {
     }
 }
 
-/// How samples outside the height field are read.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+/// How samples outside the height field are read. Named `wrap`, `clamp`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "kebab-case")]
 pub enum Border {
     /// The field tiles (texture repeat).
     #[default]
@@ -129,13 +130,17 @@ const fn tap(along: i64, across: i64, weight: f32) -> Tap {
 }
 
 /// Finite-difference kernels for height→normal conversion. Each is normalised so that a
-/// linear ramp gives its exact slope.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+/// linear ramp gives its exact slope. Named on the command line, in the panel and in reports
+/// `forward`, `central`, `sobel3`, `scharr3`, `sobel5`, `central4`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "lowercase")]
 pub enum Kernel {
     /// `h[x+1] − h[x]` (the Cg Tutorial's): first order, shifted by half a texel.
+    #[strum(serialize = "forward")]
     ForwardDifference,
     /// `(h[x+1] − h[x−1]) / 2`: second order, gain `sinc(kΔ)` at wavenumber `k`.
     #[default]
+    #[strum(serialize = "central")]
     CentralDifference,
     /// Sobel 3×3: central difference smoothed `[1 2 1] / 4` across.
     Sobel3,
@@ -148,31 +153,6 @@ pub enum Kernel {
 }
 
 impl Kernel {
-    pub const ALL: [Kernel; 6] = [
-        Kernel::ForwardDifference,
-        Kernel::CentralDifference,
-        Kernel::Sobel3,
-        Kernel::Scharr3,
-        Kernel::Sobel5,
-        Kernel::Central4,
-    ];
-
-    /// Name on the command line, in the panel and in reports.
-    pub fn name(self) -> &'static str {
-        match self {
-            Kernel::ForwardDifference => "forward",
-            Kernel::CentralDifference => "central",
-            Kernel::Sobel3 => "sobel3",
-            Kernel::Scharr3 => "scharr3",
-            Kernel::Sobel5 => "sobel5",
-            Kernel::Central4 => "central4",
-        }
-    }
-
-    pub fn from_name(name: &str) -> Option<Kernel> {
-        Kernel::ALL.into_iter().find(|k| k.name() == name)
-    }
-
     fn taps(self) -> &'static [Tap] {
         const FORWARD: [Tap; 2] = [tap(1, 0, 1.0), tap(0, 0, -1.0)];
         const CENTRAL: [Tap; 2] = [tap(1, 0, 0.5), tap(-1, 0, -0.5)];
@@ -230,6 +210,7 @@ pub fn decode_normal(rgb: Vec3) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::names::Named;
 
     /// A ramp rising to the right (and, in a second field, up the image) by one full range
     /// over the field: every kernel gives the exact slope `range_m / (width · texel_size_m)`
@@ -247,7 +228,7 @@ mod tests {
         let rising_right = ramp(&|x, _| x as f32 / n as f32);
         let rising_up = ramp(&|_, y| (n - 1 - y) as f32 / n as f32);
         let expected = 0.02 / (16.0 * 0.01);
-        for kernel in Kernel::ALL {
+        for &kernel in Kernel::all() {
             let (d_dx, d_dy_up) = rising_right.slope(kernel, Border::Wrap, 7, 7);
             assert!((d_dx - expected).abs() < 1e-5 && d_dy_up.abs() < 1e-5, "{kernel:?}: {d_dx} {d_dy_up}");
             let (d_dx, d_dy_up) = rising_up.slope(kernel, Border::Clamp, 7, 7);

@@ -44,6 +44,7 @@ pub mod frame;
 pub mod height;
 pub mod load;
 pub mod math;
+pub mod names;
 pub mod prepare;
 pub mod probe;
 pub mod render;

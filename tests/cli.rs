@@ -104,3 +104,58 @@ fn height_kernel_remakes_the_normal_map_from_the_height_map() {
     assert!(same <= 3 && other >= 8, "{same} {other}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `render`'s picture flags are the viewer's commands, so an out-of-range value is clamped as
+/// the panel clamps it (README, *Headless pictures*): strength 10 draws strength 4's picture and
+/// is saved as 4, a pitch of 100° is 89° and a distance of 10⁶ m is 500 m; a divider outside
+/// the view is still a bad value (exit 2).
+#[test]
+fn out_of_range_values_are_clamped_as_in_the_viewer() {
+    use bumpview::scene::builtin::teaching_scene;
+    use bumpview::state::{Command as ViewerCommand, ViewerState};
+
+    let dir = std::env::temp_dir().join(format!("bumpview-cli-clamp-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = |name: &str| dir.join(name).to_str().unwrap().to_owned();
+    let render = |png: &str, extra: &[&str]| {
+        let (out, saved) = (path(png), path(&format!("{png}.toml")));
+        let mut args = vec!["render", "--out", &out, "--size", "96x64", "--save-preset", &saved];
+        args.extend(extra);
+        let output = bumpview(&args);
+        assert!(output.status.success(), "{args:?}: {}", String::from_utf8_lossy(&output.stderr));
+        (image::open(&out).unwrap().to_rgba8(), std::fs::read_to_string(&saved).unwrap())
+    };
+    let mut viewer = ViewerState::new(&teaching_scene());
+    viewer.apply(ViewerCommand::SetStrength(10.0));
+    let clamped = viewer.shading.strength;
+    assert_eq!(clamped, 4.0);
+
+    let (too_strong, saved) = render("strong.png", &["--strength", "10"]);
+    let (strongest, _) = render("strongest.png", &["--strength", &clamped.to_string()]);
+    assert!(saved.contains(&format!("strength = {clamped:?}")), "{saved}");
+    assert_eq!(too_strong, strongest, "strength 10 draws the clamped strength's picture");
+
+    let (_, saved) = render("far.png", &["--camera", "30,100,1000000"]);
+    assert!(saved.contains("pitch_deg = 89.0") && saved.contains("distance = 500.0"), "{saved}");
+
+    let output = bumpview(&["render", "--out", &path("x.png"), "--split", "bump", "--split-at", "-0.5"]);
+    assert_eq!(output.status.code(), Some(2));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `--help` lists every name an enum flag takes, from the enum itself.
+#[test]
+fn help_lists_every_view_and_method() {
+    use bumpview::frame::ViewMode;
+    use bumpview::names::Named;
+    use bumpview::tangent::TangentMethod;
+
+    let output = bumpview(&["render", "--help"]);
+    assert!(output.status.success());
+    let help = String::from_utf8_lossy(&output.stdout);
+    for name in ViewMode::names().into_iter().chain(TangentMethod::names()) {
+        assert!(help.contains(name), "render --help does not name {name}:\n{help}");
+    }
+    let viewer_help = String::from_utf8_lossy(&bumpview(&["--help"]).stdout).into_owned();
+    assert!(!viewer_help.contains("not yet shaded"), "{viewer_help}");
+}

@@ -6,6 +6,7 @@ mod common;
 
 use bumpview::frame::ViewMode;
 use bumpview::frame::{BumpSource, FrameParams, SceneOptions};
+use bumpview::names::Named;
 use bumpview::render::capture::{render_float, render_image};
 use bumpview::scene::builtin::{WALL_Z, wall_uv};
 use bumpview::scene::{
@@ -208,7 +209,7 @@ fn new_variants_never_produce_nan() {
         (scene(), MaterialOverrides { depth_map: on, height_range_m: Some(0.05), ..Default::default() }),
     ];
     for (scene, materials) in cases {
-        for bump_source in BumpSource::ALL {
+        for &bump_source in BumpSource::all() {
             let options = SceneOptions { materials, bump_source, ..Default::default() };
             let mut renderer = renderer_for(&scene);
             renderer.set_scene(&scene, options);

@@ -1,16 +1,19 @@
 //! Mutation fuzzing on stable Rust (proptest): the glTF, OBJ and image loaders and the
 //! tangent generators get seed files and meshes mutated at random, and must answer with a
-//! scene or an error — never a panic, never a loaded scene with non-finite data, never a
-//! non-finite frame. Failing inputs are kept by proptest in `tests/fuzz.proptest-regressions`
+//! scene or an error — never a panic, never a loaded scene with non-finite data (supplied
+//! tangents included) or an index out of range, never a non-finite frame. Failing inputs are kept by proptest in `tests/fuzz.proptest-regressions`
 //! and replayed first on every run.
 //!
 //! The case count per target is `BUMPVIEW_FUZZ_CASES` (default 256, quick enough for CI);
 //! run long with e.g. `BUMPVIEW_FUZZ_CASES=100000 cargo test --release --test fuzz`.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use base64::Engine;
 use bumpview::load::{image::decode_texture, load_scene};
+use bumpview::names::Named;
 use bumpview::scene::{Mesh, Scene, TextureKind};
 use bumpview::tangent::{TangentMethod, tangents};
 use glam::{Vec2, Vec3};
@@ -148,17 +151,31 @@ fn mutate(mut bytes: Vec<u8>, mutations: &[Mutation]) -> Vec<u8> {
     bytes
 }
 
-/// A loaded scene holds only finite data and indices in range.
+/// A loaded scene is sane ([`common::assert_sane`]: finite positions, normals, UVs and
+/// supplied tangents, consistent attribute counts, indices in range).
 fn assert_sane(scene: &Scene, path: &Path) {
-    for mesh in &scene.meshes {
-        let finite =
-            mesh.positions.iter().chain(&mesh.normals).all(|v| v.is_finite()) && mesh.uvs.iter().all(|v| v.is_finite());
-        assert!(finite, "{}: mesh {:?} has non-finite data", path.display(), mesh.name);
-        assert!(
-            mesh.indices.iter().all(|&i| (i as usize) < mesh.positions.len()),
-            "{}: index out of range",
-            path.display()
-        );
+    common::assert_sane(scene, &path.display().to_string());
+}
+
+/// The sanity check can fail: a NaN supplied tangent, an index past the vertices, an
+/// infinite UV or a UV count that does not match each make it panic.
+#[test]
+fn the_sanity_check_rejects_insane_scenes() {
+    let mut good = bumpview::scene::builtin::teaching_scene();
+    good.meshes[0].tangents = good.meshes[0].analytic_tangents.clone();
+    common::assert_sane(&good, "the built-in scene");
+    type Spoil = fn(&mut Mesh);
+    let breaks: [(&str, Spoil); 4] = [
+        ("NaN tangent", |m| m.tangents.as_mut().unwrap()[3].x = f32::NAN),
+        ("index out of range", |m| m.indices[5] = m.positions.len() as u32),
+        ("infinite UV", |m| m.uvs[2].y = f32::INFINITY),
+        ("a UV short", |m| _ = m.uvs.pop()),
+    ];
+    for (what, spoil) in breaks {
+        let mut scene = good.clone();
+        spoil(&mut scene.meshes[0]);
+        let caught = std::panic::catch_unwind(|| common::assert_sane(&scene, what));
+        assert!(caught.is_err(), "{what} passed the sanity check");
     }
 }
 
@@ -208,7 +225,7 @@ proptest! {
         }
         let count = vertices.len();
         mesh.indices = triangles.iter().flat_map(|(a, b, c)| [a.index(count), b.index(count), c.index(count)].map(|i| i as u32)).collect();
-        for method in TangentMethod::ALL.into_iter().filter(|m| m.is_generated()) {
+        for method in TangentMethod::all().iter().copied().filter(|m| m.is_generated()) {
             let mesh = if method == TangentMethod::PerFace { mesh.unwelded() } else { mesh.clone() };
             let frames = tangents(&mesh, method).unwrap();
             prop_assert_eq!(frames.len(), mesh.positions.len());

@@ -193,3 +193,53 @@ fn collect_models(dir: &Path, out: &mut Vec<PathBuf>) {
         }
     }
 }
+
+/// A clear-coat material written here: its factors, its three textures (one missing: its slot
+/// stays empty with a warning), and its own `KHR_texture_transform` taken relative to the one
+/// the mesh's coordinates carry (the normal map's), so the layer reads its texture where the
+/// file says.
+#[test]
+fn a_clear_coat_written_here_loads_with_its_textures_and_transform() {
+    let dir = std::env::temp_dir().join(format!("bumpview-clearcoat-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    image::RgbaImage::from_pixel(4, 4, image::Rgba([128, 128, 255, 255])).save(dir.join("n.png")).unwrap();
+    image::RgbaImage::from_pixel(4, 4, image::Rgba([200, 60, 0, 255])).save(dir.join("cc.png")).unwrap();
+    let values: [f32; 15] = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0];
+    std::fs::write(dir.join("tri.bin"), values.iter().flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>()).unwrap();
+    let json = r#"{"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_materials_clearcoat", "KHR_texture_transform"],
+        "images": [{"uri": "n.png"}, {"uri": "cc.png"}, {"uri": "gone.png"}],
+        "textures": [{"source": 0}, {"source": 1}, {"source": 2}],
+        "materials": [{"normalTexture": {"index": 0, "extensions": {"KHR_texture_transform": {"offset": [0.5, 0], "scale": [2, 2]}}},
+            "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 0.8, "clearcoatRoughnessFactor": 0.25,
+                "clearcoatTexture": {"index": 1, "extensions": {"KHR_texture_transform": {"offset": [0.1, 0.2], "rotation": 0.5, "scale": [4, 3]}}},
+                "clearcoatRoughnessTexture": {"index": 2},
+                "clearcoatNormalTexture": {"index": 0, "scale": 0.5}}}}],
+        "buffers": [{"uri": "tri.bin", "byteLength": 60}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}"#;
+    std::fs::write(dir.join("cc.gltf"), json).unwrap();
+    let scene = load_scene(&dir.join("cc.gltf")).unwrap_or_else(|e| panic!("{e}"));
+    std::fs::remove_dir_all(&dir).unwrap();
+    let coat = scene.materials[0].clearcoat.as_ref().expect("a clear coat");
+    assert_eq!((coat.factor, coat.roughness), (0.8, 0.25));
+    assert!(coat.texture.is_some() && coat.normal_map.as_ref().is_some_and(|m| m.scale == 0.5));
+    assert_eq!(coat.roughness_texture, None, "gone.png is missing");
+    assert!(scene.warnings.iter().any(|w| w.to_string().contains("gone.png")), "{:?}", scene.warnings);
+    // The file's coordinates r: the mesh holds the normal map's s = 2r + (0.5, 0); the coat
+    // texture reads t = offset + R(rotation) · (scale ∘ r).
+    let (sin, cos) = 0.5f32.sin_cos();
+    for r in [Vec2::ZERO, Vec2::new(1.0, 0.0), Vec2::new(0.3, 0.7)] {
+        let stream = 2.0 * r + Vec2::new(0.5, 0.0);
+        let scaled = r * Vec2::new(4.0, 3.0);
+        let expected =
+            Vec2::new(0.1, 0.2) + Vec2::new(cos * scaled.x + sin * scaled.y, -sin * scaled.x + cos * scaled.y);
+        let got = coat.layer_uv(stream);
+        assert!((got - expected).abs().max_element() < 1e-5, "{r}: {got} vs {expected}");
+    }
+    // The mesh drawn with this coat has the layer's normal map, so it gets a tangent stream.
+    let prepared = bumpview::prepare::PreparedScene::new(&scene, &Default::default());
+    assert!(prepared.instances[0].textures.clearcoat_normal.is_some() && prepared.meshes[0].frames.is_some());
+}

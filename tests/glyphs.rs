@@ -6,6 +6,7 @@
 mod common;
 
 use bumpview::frame::ViewMode;
+use bumpview::names::Named;
 use bumpview::probe::project_to_pixel;
 use bumpview::render::capture::{CaptureOptions, render_capture, render_float};
 use bumpview::render::glyphs::{MAX_GLYPHS_PER_MESH, glyph_length, glyph_vertices};
@@ -141,7 +142,7 @@ fn glyphs_with_every_tangent_method_hold_no_nan_on_a_float_target() {
     let scene = common::scene();
     let mut renderer = common::renderer_for(&scene);
     let mut params = common::default_params(&scene);
-    for method in TangentMethod::ALL {
+    for &method in TangentMethod::all() {
         let options = bumpview::frame::SceneOptions { tangent_method: Some(method), ..Default::default() };
         renderer.set_scene(&scene, options);
         params.shading.tbn_glyphs = false;

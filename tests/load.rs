@@ -1,6 +1,7 @@
-//! Loading real files: every third-party test asset loads and renders; the glTF normal-map
-//! conformance models shade like their real-geometry twins; geometry without normals,
-//! mirrored or seen from behind shows normals facing the camera.
+//! Loading real files: every third-party model loads and renders, every picture decodes and
+//! three texture sets are drawn on the built-in scene; the glTF normal-map conformance models
+//! shade like their real-geometry twins; geometry without normals, mirrored or seen from
+//! behind shows normals facing the camera.
 //!
 //! The assets are found through `BUMPVIEW_TEST_ASSETS` (../shared/assets, set by .ci/run):
 //! unset, these tests print a notice and pass; set, a missing file fails them.
@@ -10,12 +11,12 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use bumpview::frame::ViewMode;
-use bumpview::load::{TextureSlots, load_scene, replace_textures};
+use bumpview::load::{SceneFiles, load_scene, replace_textures};
 use bumpview::render::capture::{render_float, render_image};
 use bumpview::render::{Gpu, Renderer};
 use bumpview::scene::Scene;
 use bumpview::scene::builtin::teaching_scene;
-use common::{asset, assets, decode_debug, default_params};
+use common::{asset, assets, bounding_sphere_distance, decode_debug, default_params};
 use glam::Vec2;
 
 fn load(base: &Path, relative: &str) -> Scene {
@@ -98,7 +99,8 @@ fn every_model_and_texture_loads_and_renders_without_nan() {
     ];
     for (color, normal, height) in sets {
         let mut scene = teaching_scene();
-        let slots = TextureSlots {
+        let slots = SceneFiles {
+            mesh: None,
             color: Some(asset(&base, color)),
             normal: Some(asset(&base, normal)),
             height: height.map(|h| asset(&base, h)),
@@ -197,8 +199,7 @@ fn twin_angles(scene: &Scene, group: usize, name: &str) -> Vec<f32> {
     // bounding sphere needs (farther than the default framing): perspective then distorts
     // the cells across the picture alike, so relative points of two cells meet.
     params.camera.pitch = 0.0;
-    let (lo, hi) = bumpview::load::bounds(scene).unwrap();
-    params.camera.distance = 1.1 * (hi - lo).length() * 0.5 / (params.camera.fov_y * 0.5).sin();
+    params.camera.distance = bounding_sphere_distance(scene, &params.camera);
     let image = render_image(&mut renderer, [768, 768], &params).unwrap();
     image.save(std::env::temp_dir().join(format!("bumpview-{name}.png"))).unwrap();
     let rows = cell_rows(&image);

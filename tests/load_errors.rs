@@ -2,6 +2,8 @@
 //! problem, and nothing panics; good ones list the files they refer to. The files are made
 //! here, in a temporary folder.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use bumpview::load::load_scene;
@@ -108,6 +110,12 @@ fn broken_files_give_one_line_naming_the_file_and_the_problem() {
     };
     let good_glb = glb(&triangle_gltf(None, None, ""), &triangle_bin());
     expect_error(&write("truncated.glb", &good_glb[..good_glb.len() - 20]), "truncated.glb", "glb");
+    // The header's length field disagrees with the file: shorter, and under the header's own 12 bytes.
+    for (name, stated) in [("long.glb", good_glb.len() as u32 - 4), ("tiny-length.glb", 4)] {
+        let mut bytes = good_glb.clone();
+        bytes[8..12].copy_from_slice(&stated.to_le_bytes());
+        expect_error(&write(name, &bytes), name, "length");
+    }
     expect_error(&write("bad.gltf", b"{ \"asset\": { \"version\": \"2.0\" }, oops"), "bad.gltf", "json");
     expect_error(
         &write("no-bin.gltf", triangle_gltf(Some("gone.bin"), None, "").as_bytes()),
@@ -129,22 +137,48 @@ fn broken_files_give_one_line_naming_the_file_and_the_problem() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// Every prefix of a GLB errors. Every single-byte corruption, each byte XOR 0xA5 and each
+/// byte set to 0xFF, errors without panicking or loads a sane scene ([`common::assert_sane`]):
+/// in the 12-byte header, the two 8-byte chunk headers and the JSON chunk it must error (an
+/// ASCII byte XOR 0xA5, and 0xFF, have the high bit set: never valid UTF-8 among ASCII); in
+/// the vertex data it may load (XOR 0xA5 keeps these floats finite), or must error where
+/// 0xFF makes a float's exponent all ones (infinity or NaN).
 #[test]
 fn every_prefix_and_byte_corruption_of_a_glb_errors_without_panicking() {
-    let good = glb(&triangle_gltf(None, None, ""), &triangle_bin());
+    let json = triangle_gltf(None, None, "");
+    let good = glb(&json, &triangle_bin());
+    let json_end = 20 + json.len().div_ceil(4) * 4;
+    let bin_start = json_end + 8;
+    assert_eq!(good.len(), bin_start + triangle_bin().len());
     let dir = temp_dir("fuzz");
     let path = dir.join("fuzz.glb");
     for length in 0..good.len() {
         std::fs::write(&path, &good[..length]).unwrap();
         assert!(load_scene(&path).is_err(), "a {length}-byte prefix loaded");
     }
+    let (mut loaded, mut rejected_data) = (0, 0);
     for position in 0..good.len() {
-        let mut bytes = good.clone();
-        bytes[position] ^= 0xA5;
-        std::fs::write(&path, &bytes).unwrap();
-        // Corrupt bytes in the vertex data may still load; it must not panic.
-        let _ = load_scene(&path);
+        for corrupt in [|b: u8| b ^ 0xA5, |_| 0xFF] {
+            let mut bytes = good.clone();
+            bytes[position] = corrupt(bytes[position]);
+            std::fs::write(&path, &bytes).unwrap();
+            let what = format!("byte {position} {:#04x} → {:#04x}", good[position], bytes[position]);
+            match load_scene(&path) {
+                Ok(scene) if position < bin_start => {
+                    panic!("{what}, in the header or JSON, loaded: {:?}", scene.meshes)
+                }
+                Ok(scene) => {
+                    common::assert_sane(&scene, &what);
+                    loaded += 1;
+                }
+                Err(_) if position >= bin_start => rejected_data += 1,
+                Err(_) => {}
+            }
+        }
     }
+    println!("vertex data corruptions: {loaded} loaded (sane), {rejected_data} rejected");
+    // Both ways happen, so both the sanity checks and the loader's rejection are exercised.
+    assert!(loaded > 50 && rejected_data > 0, "{loaded} loaded, {rejected_data} rejected");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -232,6 +266,60 @@ fn an_unreadable_texture_leaves_its_slot_empty_with_a_warning() {
         let report = bumpview::check::check_scene(&scene);
         assert_eq!(report.severity(), bumpview::check::Severity::Error, "{}", report.to_text());
     }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// One missing and one corrupt texture in the same model: both slots stay empty, two
+/// warnings, and the rest of the material (its factors) is kept.
+#[test]
+fn a_model_with_a_missing_and_a_corrupt_texture_opens_without_both() {
+    let dir = temp_dir("two-unreadable");
+    std::fs::write(dir.join("tri.bin"), triangle_bin()).unwrap();
+    std::fs::write(dir.join("corrupt.png"), b"\x89PNG\r\n\x1a\n but then nothing a decoder wants").unwrap();
+    let json = triangle_gltf(Some("tri.bin"), Some("missing.png"), "").replace(
+        r#""materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]"#,
+        r#""materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "baseColorFactor": [0.5, 0.25, 1, 1]},
+            "normalTexture": {"index": 1}}]"#,
+    );
+    let json = json.replace(
+        r#""textures": [{"source": 0}], "images": [{"uri": "missing.png"}]"#,
+        r#""textures": [{"source": 0}, {"source": 1}], "images": [{"uri": "missing.png"}, {"uri": "corrupt.png"}]"#,
+    );
+    std::fs::write(dir.join("two.gltf"), json).unwrap();
+    let scene = load_scene(&dir.join("two.gltf")).unwrap_or_else(|e| panic!("{e}"));
+    let material = &scene.materials[0];
+    assert_eq!((material.base_color_texture.is_none(), material.normal_map.is_none()), (true, true));
+    assert_eq!(material.base_color_factor, glam::Vec4::new(0.5, 0.25, 1.0, 1.0));
+    let warnings: Vec<String> = scene.warnings.iter().map(ToString::to_string).collect();
+    assert_eq!(warnings.len(), 2, "{warnings:?}");
+    assert!(warnings[0].contains("missing.png") && warnings[1].contains("corrupt.png"), "{warnings:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `render` draws a model with an unreadable texture (exit 0, the warning on stderr naming
+/// the file), and with `--strict` refuses it (exit 1, no PNG).
+#[test]
+fn render_warns_about_an_unreadable_texture_and_strict_refuses_it() {
+    let dir = temp_dir("strict");
+    std::fs::write(dir.join("tri.bin"), triangle_bin()).unwrap();
+    std::fs::write(dir.join("m.gltf"), triangle_gltf(Some("tri.bin"), Some("gone.png"), "")).unwrap();
+    let render = |strict: bool, out: &str| {
+        let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_bumpview"));
+        command.args(["render", "--size", "32x24", "--out"]).arg(dir.join(out)).arg(dir.join("m.gltf"));
+        if strict {
+            command.arg("--strict");
+        }
+        command.output().unwrap()
+    };
+    let lenient = render(false, "lenient.png");
+    let stderr = String::from_utf8_lossy(&lenient.stderr);
+    assert_eq!(lenient.status.code(), Some(0), "{stderr}");
+    assert!(stderr.contains("warning") && stderr.contains("gone.png"), "{stderr}");
+    assert!(dir.join("lenient.png").is_file());
+    let strict = render(true, "strict.png");
+    let stderr = String::from_utf8_lossy(&strict.stderr);
+    assert_eq!(strict.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("--strict") && !dir.join("strict.png").exists(), "{stderr}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -6,10 +6,11 @@ use std::process::Command;
 
 use bumpview::frame::SceneOptions;
 use bumpview::frame::ViewMode;
+use bumpview::load::SceneFiles;
 use bumpview::render::capture::{CaptureOptions, render_capture};
 use bumpview::render::{Background, Gpu, Renderer};
 use bumpview::scene::builtin::teaching_scene;
-use bumpview::state::preset::{Preset, PresetFiles};
+use bumpview::state::preset::Preset;
 use bumpview::state::{Command as ViewerCommand, ViewerState};
 use bumpview::tangent::TangentMethod;
 use glam::Vec3;
@@ -50,7 +51,7 @@ fn a_saved_state_renders_the_same_pixels_as_the_flags_and_again() {
     state.apply(ViewerCommand::SetLightMarker(false));
     state.scene_options = SceneOptions { tangent_method: Some(TangentMethod::PerFace), ..Default::default() };
     let preset = dir.join("slide.toml");
-    Preset::from_state(&state, PresetFiles::default()).save(&preset).unwrap();
+    Preset::from_state(&state, SceneFiles::default()).save(&preset).unwrap();
 
     let flags = dir.join("flags.png");
     render_ok(&[

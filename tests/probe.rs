@@ -1,12 +1,9 @@
-//! The pixel probe (src/probe.rs) against the ray-plane reference of the wall and against
+//! The pixel probe (src/probe/) against the ray-plane reference of the wall and against
 //! rendered pixels: the probe's numbers are the CPU twin of what the GPU draws there.
 
 mod common;
 
-use std::time::Instant;
-
-use bumpview::frame::SceneOptions;
-use bumpview::frame::ViewMode;
+use bumpview::frame::{SceneOptions, ViewMode};
 use bumpview::load::load_scene;
 use bumpview::probe::ProbeScene;
 use bumpview::render::Background;
@@ -126,9 +123,13 @@ fn material_overrides_reach_the_probe() {
     assert!((a.x - b.x).abs() < 1e-6 && (a.y + b.y).abs() < 1e-6, "{a} {b}");
 }
 
-/// Cost of a pick (brute force over every triangle) on the third-party meshes.
+/// The third-party meshes the pick bench times (benches/probe_pick.rs), each through the
+/// asset helper (set, a missing file fails): from the default camera a row of picks across
+/// the middle of the view hits the mesh, and every hit lies on its pixel's ray (it projects
+/// back to the pixel centre within 0.01 px: f32 rounding of a point a few metres away) with
+/// barycentric coordinates inside its triangle (within 1e-5 of rounding).
 #[test]
-fn pick_cost_on_the_asset_meshes() {
+fn picks_on_the_asset_meshes_hit_on_the_ray() {
     let Some(base) = assets() else { return };
     for relative in [
         "obj/spot/spot_triangulated.obj",
@@ -136,34 +137,22 @@ fn pick_cost_on_the_asset_meshes() {
         "gltf/WaterBottle/glTF/WaterBottle.gltf",
         "gltf/Suzanne/glTF/Suzanne.gltf",
     ] {
-        let path = base.join(relative);
-        if !path.is_file() {
-            println!("{relative}: not present");
-            continue;
-        }
-        let scene = load_scene(&path).unwrap();
+        let scene = load_scene(&asset(&base, relative)).unwrap_or_else(|e| panic!("{e}"));
         let probe_scene = ProbeScene::new(&scene, &SceneOptions::default());
         let params = bumpview::state::ViewerState::new(&scene).frame_params();
-        let start = Instant::now();
-        let runs = 20;
         let mut hits = 0;
-        for i in 0..runs {
-            hits += probe_scene.pick(&params.camera, SIZE, [118 + i, 128]).is_some() as u32;
+        for x in (98..158).step_by(3) {
+            let Some(point) = probe_scene.pick(&params.camera, SIZE, [x, 128]) else { continue };
+            hits += 1;
+            let b = point.barycentric;
+            assert!(b.min_element() > -1e-5 && (b.element_sum() - 1.0).abs() < 1e-5, "{relative} at {x}: {b}");
+            let position = probe_scene.readout(&point, &params, SIZE).position;
+            let shown = bumpview::probe::project_to_pixel(&params.camera, SIZE, position).expect("in front");
+            let centre = glam::Vec2::new(x as f32 + 0.5, 128.5);
+            assert!(shown.distance(centre) < 0.01, "{relative} at {x}: the hit {position} shows at {shown}");
         }
-        let pick = start.elapsed() / runs;
-        let point = probe_scene.pick(&params.camera, SIZE, [128, 128]);
-        let start = Instant::now();
-        if let Some(point) = &point {
-            for _ in 0..runs {
-                std::hint::black_box(probe_scene.readout(point, &params, SIZE));
-            }
-        }
-        let readout = start.elapsed() / runs;
-        println!(
-            "{relative}: {} triangles, pick {pick:?}, readout {readout:?}, {hits}/{runs} hits",
-            probe_scene.triangle_count()
-        );
-        assert!(hits > 0, "the default camera frames the mesh");
+        println!("{relative}: {} triangles, {hits} of 20 picks hit", probe_scene.triangle_count());
+        assert!(hits >= 10, "{relative}: the default camera frames the mesh, yet {hits} of 20 picks hit");
     }
 }
 
@@ -191,6 +180,7 @@ fn probe_frames_match_the_rendered_debug_views_on_assets() {
                 let mut params = default_params(&scene);
                 params.camera.yaw += turn;
                 params.camera.pitch *= tilt;
+                params.camera.distance = bounding_sphere_distance(&scene, &params.camera);
                 params.shading.view = view;
                 let options = CaptureOptions { background: Background::Transparent, ..CaptureOptions::plain(size) };
                 let image = render_capture(&mut renderer, &options, &params).unwrap();

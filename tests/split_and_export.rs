@@ -12,6 +12,7 @@ mod common;
 
 use bumpview::frame::ViewMode;
 use bumpview::frame::{FrameParams, SplitFrame};
+use bumpview::names::Named;
 use bumpview::render::capture::{CaptureOptions, render_capture, render_capture_split, render_float_split};
 use bumpview::render::export::{CAPTION_BACKGROUND, TileGrid, caption, caption_strip_height, render_grid};
 use bumpview::state::{Command, SplitDifference, ViewerState};
@@ -153,24 +154,44 @@ fn dropping_the_split_scene_draws_the_right_half_from_the_main_scene() {
     assert_eq!(without, main_only, "equal halves from one upload are the full render");
 }
 
+/// 2× supersampled split captures of every kind: with the divider at column 80 of the PNG
+/// (160 of the 2× frame) every 2×2 block lies in one half, so every column, the divider's
+/// included, equals the supersampled full render of its side exactly. Kinds that differ in GPU
+/// data draw the right half from the second upload and are compared with full renders of
+/// scenes uploaded with each side's options; each kind is shown in a view where its two sides
+/// differ (the tangent views for two tangent methods, the shading normal for two bump sources).
 #[test]
-fn supersampled_split_capture_has_the_divider_on_a_block_boundary() {
+fn supersampled_split_captures_have_the_divider_on_a_block_boundary() {
     let scene = common::scene();
     let mut renderer = common::renderer_for(&scene);
-    let mut state = ViewerState::new(&scene);
-    state.apply(Command::SetSplit(true));
-    state.apply(Command::SetSplitDifference(SplitDifference::Strength));
-    let split = split_of(&state);
-    let params = state.frame_params();
     let options = CaptureOptions { supersample: 2, ..CaptureOptions::plain(SIZE) };
-    let image = render_capture_split(&mut renderer, &options, &params, &split).unwrap();
-    let left = render_capture(&mut renderer, &options, &FrameParams { shading: split.left, ..params }).unwrap();
-    let right = render_capture(&mut renderer, &options, &FrameParams { shading: split.right, ..params }).unwrap();
-    // Divider at column 80 of the PNG = 160 of the 2× frame: every 2×2 block lies in one half.
-    for y in 0..SIZE[1] {
-        for x in 0..SIZE[0] {
-            let expected = if x < 80 { &left } else { &right };
-            assert_eq!(image.get_pixel(x, y), expected.get_pixel(x, y), "pixel ({x}, {y})");
+    for &difference in SplitDifference::all() {
+        let mut state = ViewerState::new(&scene);
+        state.shading.view = match difference {
+            SplitDifference::Tangents => ViewMode::Tangent,
+            SplitDifference::BumpSource => ViewMode::ShadingNormal,
+            _ => ViewMode::Lit,
+        };
+        state.apply(Command::SetSplit(true));
+        state.apply(Command::SetSplitDifference(difference));
+        let uploads = state.scene_uploads();
+        renderer.set_scene_uploads(&scene, &uploads);
+        let split = split_of(&state);
+        assert_eq!(split.divider_pixels(SIZE[0]), 80, "{difference:?}");
+        let params = state.frame_params();
+        let image = render_capture_split(&mut renderer, &options, &params, &split).unwrap();
+        let mut full = |scene_options, shading| {
+            renderer.set_scene(&scene, scene_options);
+            render_capture(&mut renderer, &options, &FrameParams { shading, ..params }).unwrap()
+        };
+        let left = full(uploads.main.clone(), split.left);
+        let right = full(uploads.split_right.clone().unwrap_or(uploads.main), split.right);
+        assert_ne!(left, right, "{difference:?}: the two sides must look different for the test to mean anything");
+        for y in 0..SIZE[1] {
+            for x in 0..SIZE[0] {
+                let expected = if x < 80 { &left } else { &right };
+                assert_eq!(image.get_pixel(x, y), expected.get_pixel(x, y), "{difference:?}: pixel ({x}, {y})");
+            }
         }
     }
 }

@@ -5,6 +5,7 @@ mod common;
 use bumpview::RenderError;
 use bumpview::frame::FrameParams;
 use bumpview::frame::{ShadingMode, ViewMode};
+use bumpview::names::Named;
 use bumpview::render::capture::{render_float, render_image};
 use bumpview::scene::builtin::WALL_Z;
 use common::*;
@@ -13,9 +14,9 @@ use glam::Vec3;
 /// Renders every view of `params` to a float target and asserts all pixels are finite; the
 /// Lit and Over-tilt views in every shading mode, the last view with the wireframe overlay.
 fn assert_finite_in_every_view(renderer: &mut bumpview::render::Renderer, params: FrameParams, case: &str) {
-    for view in ViewMode::ALL {
+    for &view in ViewMode::all() {
         let modes: &[ShadingMode] = if matches!(view, ViewMode::Lit | ViewMode::OverTilt) {
-            &ShadingMode::ALL
+            ShadingMode::all()
         } else {
             &[ShadingMode::BumpTimesColour]
         };

@@ -4,16 +4,22 @@
 
 mod common;
 
-use bumpview::frame::FrameParams;
-use bumpview::frame::ViewMode;
+use bumpview::frame::{BumpSource, FrameParams, SceneOptions, ViewMode};
 use bumpview::height::{Border, HeightField, Kernel};
-use bumpview::render::capture::{render_float, render_image};
+use bumpview::names::Named;
+use bumpview::render::capture::{FloatImage, render_float, render_image};
 use bumpview::scene::{Scene, TextureImage};
 use common::*;
+use glam::Vec3;
 
 fn assert_finite_everywhere(scene: &Scene, params: &FrameParams, case: &str) {
+    assert_finite_everywhere_with(scene, SceneOptions::default(), params, case);
+}
+
+fn assert_finite_everywhere_with(scene: &Scene, options: SceneOptions, params: &FrameParams, case: &str) {
     let mut renderer = renderer_for(scene);
-    for view in ViewMode::ALL {
+    renderer.set_scene(scene, options);
+    for &view in ViewMode::all() {
         let mut params = *params;
         params.shading.view = view;
         let image = render_float(&mut renderer, [96, 72], &params).unwrap();
@@ -58,32 +64,114 @@ fn one_texel_textures_work() {
     assert_finite_everywhere(&scene, &params, "1×1 textures");
 }
 
-/// A cliff (a step from 0 to 1 across one texel) is the stiff case for finite differences:
-/// every kernel gives finite unit normals, steep at the cliff; away from it 8-bit and 16-bit
-/// heights give the same normals (flat there), and at the cliff they differ by under 1°.
+/// A cliff: heights 0.25 left of the middle and 0.75 right of it (32 × 8 texels, 1 mm texels,
+/// 1 cm range). Neither height is a level of 8 bits, and rounding moves them towards each
+/// other (63.75 → 64, 191.25 → 191), so the 8-bit step is 127/255 = 0.498 against the 16-bit
+/// 0.49999. (0.3 → 0.7 would not do: both round up by half a level and the step stays 0.4.)
+fn cliff() -> HeightField {
+    let (width, height) = (32u32, 8u32);
+    let samples = (0..height).flat_map(|_| (0..width).map(move |x| if x < width / 2 { 0.25 } else { 0.75 })).collect();
+    HeightField { width, height, samples, range_m: 0.01, texel_size_m: 0.001 }
+}
+
+/// The angle between two vectors in degrees, from atan2 (acos loses small angles in f32).
+fn degrees_between(a: Vec3, b: Vec3) -> f32 {
+    a.cross(b).length().atan2(a.dot(b)).to_degrees()
+}
+
+/// The angle (degrees) between two debug colours of a float target.
+fn debug_angle(a: &[f32; 4], b: &[f32; 4]) -> f32 {
+    let decode = |p: &[f32; 4]| Vec3::new(p[0], p[1], p[2]) * 2.0 - 1.0;
+    degrees_between(decode(a), decode(b))
+}
+
+/// A cliff is the stiff case for finite differences: every kernel gives finite unit normals,
+/// steep at the cliff; away from it (where every tap reads one height) 8- and 16-bit heights
+/// give the same flat normal, and at the cliff they differ, by more than 0.01° and under 0.5°.
+/// Why: 8-bit rounding moves each sample by at most 0.5/255, the step of 0.5 by at most 1/255
+/// (0.8%), so a slope s changes by 0.8% and its angle by at most 0.008·s/(1 + s²) rad, 0.23°
+/// at s = 1; 16 bits move it 256 times less. Measured: 0.043° to 0.101°, depending on the kernel.
+///
+/// Rendered with the height map in the shader (8- and 16-bit heights uploaded, Blinn's bump
+/// from screen-space derivatives) to a float target: no NaN or infinity in any view, the cliff
+/// tilts the shading normal (576 pixels by over 2°), and the two depths' pictures differ, by
+/// under the same 0.5° (measured at most 0.035°: the shader's bilinear filter spreads the
+/// step over a texel, which lowers the slope).
 #[test]
 fn a_cliff_in_8_and_16_bit_heights_stays_finite_and_bounded() {
-    let (width, height) = (32u32, 8u32);
-    let samples = (0..height).flat_map(|_| (0..width).map(|x| if x < width / 2 { 0.0 } else { 1.0 })).collect();
-    let field = HeightField { width, height, samples, range_m: 0.01, texel_size_m: 0.001 };
+    let field = cliff();
+    let (width, height) = (field.width as i64, field.height as i64);
     let (eight, sixteen) = (field.quantized(8), field.quantized(16));
-    for kernel in Kernel::ALL {
+    let mut cliff_differences = vec![];
+    for &kernel in Kernel::all() {
         for border in [Border::Wrap, Border::Clamp] {
-            for y in 0..height as i64 {
-                for x in 0..width as i64 {
+            let mut at_cliff = 0.0f32;
+            for y in 0..height {
+                for x in 0..width {
                     let (a, b) = (eight.normal(kernel, border, x, y), sixteen.normal(kernel, border, x, y));
-                    assert!(a.is_finite() && (a.length() - 1.0).abs() < 1e-5, "{kernel:?} {border:?} at {x}: {a}");
-                    assert!(a.angle_between(b).to_degrees() < 1.0, "{kernel:?} {border:?} at {x}: {a} vs {b}");
+                    for n in [a, b] {
+                        assert!(n.is_finite() && (n.length() - 1.0).abs() < 1e-5, "{kernel:?} {border:?} at {x}: {n}");
+                    }
+                    let difference = degrees_between(a, b);
+                    // Taps reach at most 2 texels; the wrap puts a second cliff at the field's edge.
+                    let near_cliff =
+                        (x - width / 2).abs() <= 2 || (border == Border::Wrap && (x <= 1 || x >= width - 3));
+                    if near_cliff {
+                        at_cliff = at_cliff.max(difference);
+                    } else {
+                        // Flat: the taps cancel up to float rounding of the non-dyadic 8-bit levels.
+                        for n in [a, b] {
+                            assert!((n - Vec3::Z).length() < 1e-6, "{kernel:?} {border:?} at {x}: {n}, flat");
+                        }
+                    }
                 }
             }
-            let steepest = (width as i64 / 2 - 2..width as i64 / 2 + 2)
+            assert!(
+                at_cliff > 0.01 && at_cliff < 1.0,
+                "{kernel:?} {border:?}: 8 vs 16 bits differ by {at_cliff}° at the cliff"
+            );
+            cliff_differences.push(at_cliff);
+            let steepest = (width / 2 - 2..width / 2 + 2)
                 .map(|x| sixteen.normal(kernel, border, x, 4).z)
                 .fold(f32::INFINITY, f32::min);
-            let far = sixteen.normal(kernel, border, width as i64 / 4, 4);
-            assert!(steepest < 0.5, "{kernel:?}: the cliff must be steep, z = {steepest}");
-            assert!((far - glam::Vec3::Z).length() < 1e-6, "{kernel:?}: flat away from the cliff, {far}");
+            assert!(steepest < 0.6, "{kernel:?}: the cliff must be steep, z = {steepest}");
         }
     }
+    let (low, high) = cliff_differences.iter().fold((f32::INFINITY, 0.0f32), |(l, h), &d| (l.min(d), h.max(d)));
+    println!("8 vs 16 bits at the cliff: {low:.3}° to {high:.3}° over kernels and borders");
+
+    // On the GPU: the close wall, whose centre (x = 0, u = 2) is the tile's wrap, a cliff.
+    let options = SceneOptions { bump_source: BumpSource::HeightInShader, ..Default::default() };
+    let scene_with = |field: &HeightField| {
+        let mut scene = scene();
+        let texture = scene.materials[0].height_map.as_ref().expect("the bricks have a height map").texture;
+        scene.textures[texture] = field.to_height_texture("cliff");
+        scene
+    };
+    let mut params = close_wall_params(&scene(), 0.3);
+    let mut shading_normals: Vec<FloatImage> = vec![];
+    for (bits, field) in [(8, &eight), (16, &sixteen)] {
+        let scene = scene_with(field);
+        assert_finite_everywhere_with(&scene, options.clone(), &params, &format!("{bits}-bit cliff"));
+        let mut renderer = renderer_for(&scene);
+        renderer.set_scene(&scene, options.clone());
+        params.shading.view = ViewMode::Normal;
+        let geometric = render_float(&mut renderer, [96, 72], &params).unwrap();
+        params.shading.view = ViewMode::ShadingNormal;
+        let shading = render_float(&mut renderer, [96, 72], &params).unwrap();
+        let tilted = geometric.pixels.iter().zip(&shading.pixels).filter(|(g, s)| debug_angle(g, s) > 2.0).count();
+        println!("{bits}-bit cliff: {tilted} pixels tilted by over 2°");
+        assert!(tilted > 50, "{bits}-bit: the cliff must tilt the shading normal ({tilted} pixels)");
+        shading_normals.push(shading);
+    }
+    let rendered = shading_normals[0]
+        .pixels
+        .iter()
+        .zip(&shading_normals[1].pixels)
+        .map(|(a, b)| debug_angle(a, b))
+        .fold(0.0f32, f32::max);
+    println!("rendered 8 vs 16 bits: max {rendered:.3}°");
+    assert!(rendered > 0.0 && rendered < 0.5, "rendered 8- and 16-bit cliffs differ by {rendered}°");
 }
 
 /// A mesh without UVs whose material has a normal map is drawn without bump (no tangents are

@@ -6,6 +6,7 @@ mod common;
 
 use bumpview::frame::FrameParams;
 use bumpview::frame::ViewMode;
+use bumpview::names::Named;
 use bumpview::render::Renderer;
 use bumpview::render::capture::{render_float, render_image};
 use bumpview::report::surfaces::uv_sphere;
@@ -25,7 +26,7 @@ fn sphere_scene(transform: Mat4) -> Scene {
 }
 
 fn assert_finite(renderer: &mut Renderer, params: &FrameParams, case: &str) {
-    for view in ViewMode::ALL {
+    for &view in ViewMode::all() {
         let mut params = *params;
         params.shading.view = view;
         let image = render_float(renderer, [96, 72], &params).unwrap();
@@ -196,7 +197,7 @@ fn every_stiff_tangent_case_renders_finite_with_every_method() {
             OrbitCamera { target: Vec3::new(0.5, 0.5, 0.0), yaw: 0.2, pitch: 0.1, distance: 3.0, ..params.camera };
         let gpu = bumpview::render::Gpu::headless().unwrap();
         let mut renderer = Renderer::from_gpu(&gpu);
-        for method in TangentMethod::ALL.into_iter().filter(|m| m.is_generated()) {
+        for method in TangentMethod::all().iter().copied().filter(|m| m.is_generated()) {
             renderer.set_scene(&scene, SceneOptions { tangent_method: Some(method), ..Default::default() });
             if case.name.starts_with("NaN") {
                 assert!(

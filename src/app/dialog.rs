@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 use std::sync::mpsc;
 
-use super::files::Slot;
+use bumpview::load::TextureSlot;
 
 /// Mesh files the dialog offers.
 const MESH_FILTER: [&str; 3] = ["gltf", "glb", "obj"];
@@ -15,7 +15,7 @@ const IMAGE_FILTER: [&str; 5] = ["png", "jpg", "jpeg", "tga", "bmp"];
 #[derive(Default)]
 pub struct Dialog {
     /// The slot the open dialog is for (`None`: any mesh or texture), and its answer.
-    open: Option<(Option<Slot>, mpsc::Receiver<Option<PathBuf>>)>,
+    open: Option<(Option<TextureSlot>, mpsc::Receiver<Option<PathBuf>>)>,
 }
 
 impl Dialog {
@@ -29,7 +29,7 @@ impl Dialog {
     /// error says why no dialog can be shown.
     pub fn show(
         &mut self,
-        slot: Option<Slot>,
+        slot: Option<TextureSlot>,
         folder: Option<PathBuf>,
         wake: impl Fn() + Send + 'static,
     ) -> Result<(), String> {
@@ -64,7 +64,7 @@ impl Dialog {
 
     /// The dialog's answer once it has closed: its slot and the chosen file (`None`:
     /// cancelled, or no dialog could be shown).
-    pub fn poll(&mut self) -> Option<(Option<Slot>, Option<PathBuf>)> {
+    pub fn poll(&mut self) -> Option<(Option<TextureSlot>, Option<PathBuf>)> {
         let (slot, answer) = self.open.as_ref()?;
         let chosen = match answer.try_recv() {
             Ok(chosen) => chosen,

@@ -1,23 +1,26 @@
-//! The pixel probe in the viewer: **P + click** on the 3D view pins the surface point under
-//! the pointer; the panel's Probe section shows the whole chain there ([`bumpview::probe`]),
-//! recomputed whenever the picture's parameters change (the point stays pinned when the
-//! camera or light moves), and a marker is drawn on the view where the point is.
+//! The pixel probe's model: **P + click** on the 3D view (or `--probe X,Y`) pins the surface
+//! point under a pixel; the readout of the whole shading chain there ([`bumpview::probe`]) is
+//! recomputed whenever the picture's parameters change (the point stays pinned when the camera
+//! or light moves). It probes the very prepared scene the renderer draws that picture from
+//! ([`bumpview::render::Renderer::prepared`]), never a copy of its own. No egui here: the view
+//! draws the marker and the readout window ([`super::view::probe_overlay`]).
 
-use bumpview::frame::BumpKind;
-use bumpview::frame::{FrameParams, SceneOptions};
+use std::sync::Arc;
+
+use bumpview::frame::{BumpKind, FrameParams};
+use bumpview::names::Named;
+use bumpview::prepare::PreparedScene;
 use bumpview::probe::{ProbePoint, ProbeReadout, ProbeScene, project_to_pixel};
-use bumpview::scene::{OrbitCamera, Scene};
-use egui::Key;
+use bumpview::scene::OrbitCamera;
 use glam::{Vec2, Vec3};
-
-use super::Action;
 
 /// The pinned probe and what it needs to recompute.
 #[derive(Default)]
-pub(super) struct Probe {
+pub struct Probe {
     pinned: Option<Pinned>,
-    /// The scene as drawn with these options, made on first use after a change.
-    cache: Option<(SceneOptions, ProbeScene)>,
+    /// The renderer's prepared scene the readout comes from, wrapped for probing; re-made when
+    /// the renderer holds another one.
+    probed: Option<ProbeScene>,
 }
 
 struct Pinned {
@@ -35,17 +38,21 @@ struct Pinned {
 
 impl Probe {
     /// Pins the point under `pixel` of a `size` view.
-    pub(super) fn pin(&mut self, pixel: [u32; 2], size: [u32; 2]) {
+    pub fn pin(&mut self, pixel: [u32; 2], size: [u32; 2]) {
         self.pinned = Some(Pinned { pixel, size, point: None, last: None, mesh_name: String::new(), half: None });
     }
 
-    pub(super) fn is_pinned(&self) -> bool {
+    pub fn clear(&mut self) {
+        self.pinned = None;
+    }
+
+    pub fn is_pinned(&self) -> bool {
         self.pinned.is_some()
     }
 
     /// Where the pinned point shows in a `size` view seen by `camera`, pixels from the top-left:
     /// its projection once read out, else the clicked pixel (scaled to `size`).
-    pub(super) fn shown_at(&self, camera: &OrbitCamera, size: [u32; 2]) -> Option<Vec2> {
+    pub fn shown_at(&self, camera: &OrbitCamera, size: [u32; 2]) -> Option<Vec2> {
         let pinned = self.pinned.as_ref()?;
         match &pinned.last {
             Some((_, _, readout)) => project_to_pixel(camera, size, readout.position),
@@ -56,38 +63,40 @@ impl Probe {
         }
     }
 
-    pub(super) fn clear(&mut self) {
-        self.pinned = None;
-    }
-
-    /// The scene was replaced: forget the prepared scene and pick the pinned pixel again.
-    pub(super) fn scene_changed(&mut self) {
-        self.cache = None;
+    /// The scene was replaced: pick the pinned pixel again.
+    pub fn scene_changed(&mut self) {
+        self.probed = None;
         if let Some(pinned) = &mut self.pinned {
             pinned.point = None;
             pinned.last = None;
         }
     }
 
-    /// Recomputes the readout when the options, the point, the parameters or the view's `size`
-    /// changed; `half` names the split view's half they belong to.
-    pub(super) fn update(
+    /// The prepared scene the readout comes from.
+    #[cfg(test)]
+    pub fn prepared(&self) -> Option<&Arc<PreparedScene>> {
+        self.probed.as_ref().map(ProbeScene::prepared)
+    }
+
+    /// Recomputes the readout from `prepared` (the renderer's scene of the picture at the
+    /// point) when it, the point, the parameters or the view's `size` changed; `half` names the
+    /// split view's half the picture is.
+    pub fn update(
         &mut self,
-        scene: &Scene,
-        options: &SceneOptions,
+        prepared: &Arc<PreparedScene>,
         params: &FrameParams,
         size: [u32; 2],
         half: Option<String>,
     ) {
         let Some(pinned) = &mut self.pinned else { return };
         pinned.half = half;
-        if self.cache.as_ref().is_none_or(|(made_with, _)| made_with != options) {
-            // Geometry and triangle order do not depend on the options: the point stays.
-            self.cache = Some((options.clone(), ProbeScene::new(scene, options)));
+        if self.probed.as_ref().is_none_or(|probed| !Arc::ptr_eq(probed.prepared(), prepared)) {
+            // Geometry and triangle order do not depend on the scene options: the point stays.
+            self.probed = Some(ProbeScene::wrap(Arc::clone(prepared)));
             pinned.last = None;
         }
-        let (_, probe_scene) = self.cache.as_ref().expect("made above");
-        let point = *pinned.point.get_or_insert_with(|| probe_scene.pick(&params.camera, pinned.size, pinned.pixel));
+        let probed = self.probed.as_ref().expect("made above");
+        let point = *pinned.point.get_or_insert_with(|| probed.pick(&params.camera, pinned.size, pinned.pixel));
         let Some(point) = point else {
             pinned.last = None;
             return;
@@ -95,69 +104,32 @@ impl Probe {
         if pinned.last.as_ref().is_some_and(|(p, s, _)| p == params && *s == size) {
             return;
         }
-        let readout = probe_scene.readout(&point, params, size);
-        pinned.mesh_name = probe_scene.scene().meshes[readout.mesh].name.clone();
+        let readout = probed.readout(&point, params, size);
+        pinned.mesh_name = probed.scene().meshes[readout.mesh].name.clone();
         pinned.last = Some((*params, size, readout));
     }
 
-    /// Draws the marker at the pinned point in the view `rect` (`size` pixels) seen by `camera`.
-    pub(super) fn paint(&self, painter: &egui::Painter, rect: egui::Rect, size: [u32; 2], params: &FrameParams) {
-        let Some(pixel) = self.shown_at(&params.camera, size) else { return };
-        let centre = rect.min + egui::vec2(pixel.x, pixel.y) * (rect.width() / size[0] as f32);
-        for (width, colour) in [(3.0, egui::Color32::BLACK), (1.5, egui::Color32::from_rgb(255, 220, 0))] {
-            let stroke = egui::Stroke::new(width, colour);
-            painter.circle_stroke(centre, 6.0, stroke);
-            for d in [egui::vec2(1.0, 0.0), egui::vec2(0.0, 1.0)] {
-                painter.line_segment([centre + d * 9.0, centre + d * 14.0], stroke);
-                painter.line_segment([centre - d * 9.0, centre - d * 14.0], stroke);
-            }
-        }
-    }
-
-    /// The panel's Probe section.
-    pub(super) fn section(&self, ui: &mut egui::Ui, actions: &mut Vec<Action>) {
-        ui.separator();
-        ui.strong("Probe");
-        let Some(pinned) = &self.pinned else {
-            ui.weak("P + click on the view pins a pixel: the whole shading chain there");
-            return;
+    /// What the readout window shows: the split half, and the readout as text or why there is
+    /// none; `None` while nothing is pinned.
+    pub fn report(&self) -> Option<ProbeReport> {
+        let pinned = self.pinned.as_ref()?;
+        let text = match (&pinned.point, &pinned.last) {
+            (Some(None), _) => Err("nothing at that pixel (background)"),
+            (_, Some((_, _, readout))) => Ok(lines(readout, &pinned.mesh_name)),
+            _ => Err("picking…"),
         };
-        ui.horizontal(|ui| {
-            ui.label(format!("pixel ({}, {})", pinned.pixel[0], pinned.pixel[1]));
-            if ui.button("Clear probe").clicked() {
-                actions.push(Action::ClearProbe);
-            }
-        });
-        if let Some(half) = &pinned.half {
-            ui.label(format!("split half {half}"));
-        }
-        match (&pinned.point, &pinned.last) {
-            (Some(None), _) => {
-                ui.weak("nothing at that pixel (background)");
-            }
-            (_, Some((_, _, readout))) => {
-                ui.label(egui::RichText::new(lines(readout, &pinned.mesh_name)).monospace().size(11.0));
-            }
-            _ => {}
-        }
+        Some(ProbeReport { pixel: pinned.pixel, half: pinned.half.clone(), text })
     }
 }
 
-/// Whether P is held and the primary button was clicked on the view: the clicked pixel of a
-/// `size` view shown in `rect`.
-pub(super) fn clicked(ctx: &egui::Context, rect: egui::Rect, size: [u32; 2]) -> Option<Action> {
-    if ctx.text_edit_focused() {
-        return None;
-    }
-    let position =
-        ctx.input(|i| (i.key_down(Key::P) && i.pointer.primary_clicked()).then(|| i.pointer.interact_pos()).flatten())?;
-    if !rect.contains(position) {
-        return None;
-    }
-    let scale = size[0] as f32 / rect.width();
-    let local = (position - rect.min) * scale;
-    let pixel = [(local.x.max(0.0) as u32).min(size[0] - 1), (local.y.max(0.0) as u32).min(size[1] - 1)];
-    Some(Action::PinProbe { pixel, size })
+/// The probe's readout for people.
+pub struct ProbeReport {
+    /// The pixel clicked.
+    pub pixel: [u32; 2],
+    /// In the split view: the half the readout follows.
+    pub half: Option<String>,
+    /// One quantity a line ([`lines`]), or why there is no readout.
+    pub text: Result<String, &'static str>,
 }
 
 fn v3(v: Vec3) -> String {

@@ -1,4 +1,5 @@
-//! Hot reload: watches the folders of the scene's files for changes (the `notify` crate).
+//! Hot reload: watches the folders of the scene's files for changes (the `notify` crate) and
+//! waits for a burst of changes to settle ([`Debouncer`]).
 //!
 //! Folders, not the files themselves: editors and exporters often save by writing a new file
 //! and renaming it over the old one, which would end a watch on the old file.
@@ -6,8 +7,13 @@
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::sync::mpsc;
+use std::time::{Duration, Instant};
 
 use notify::{EventKind, RecursiveMode, Watcher as _};
+
+/// Quiet time after the last change on disk before a hot reload: editors and exporters write
+/// a file in several steps (truncate, write, rename), which must not each cause a load.
+pub const RELOAD_DEBOUNCE: Duration = Duration::from_millis(200);
 
 /// Reports files created or modified in the watched folders.
 pub struct Watcher {
@@ -68,5 +74,51 @@ impl Watcher {
     /// The paths that changed since the last call.
     pub fn changes(&self) -> Vec<PathBuf> {
         self.changes.try_iter().collect()
+    }
+}
+
+/// Waits for file changes to settle: each change pushes the deadline [`RELOAD_DEBOUNCE`] on.
+#[derive(Debug, Default)]
+pub struct Debouncer {
+    due: Option<Instant>,
+}
+
+impl Debouncer {
+    /// A change happened at `now`.
+    pub fn changed(&mut self, now: Instant) {
+        self.due = Some(now + RELOAD_DEBOUNCE);
+    }
+
+    /// True once, when the changes have settled by `now`.
+    pub fn fire(&mut self, now: Instant) -> bool {
+        let settled = self.due.is_some_and(|due| now >= due);
+        if settled {
+            self.due = None;
+        }
+        settled
+    }
+
+    /// Time left until the changes settle, while waiting.
+    pub fn remaining(&self, now: Instant) -> Option<Duration> {
+        self.due.map(|due| due.saturating_duration_since(now))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn debouncer_fires_once_after_changes_settle() {
+        let t0 = Instant::now();
+        let mut debouncer = Debouncer::default();
+        assert!(!debouncer.fire(t0));
+        debouncer.changed(t0);
+        debouncer.changed(t0 + Duration::from_millis(150));
+        assert!(!debouncer.fire(t0 + Duration::from_millis(300)), "the second change restarts the wait");
+        assert_eq!(debouncer.remaining(t0 + Duration::from_millis(300)), Some(Duration::from_millis(50)));
+        assert!(debouncer.fire(t0 + Duration::from_millis(350)));
+        assert!(!debouncer.fire(t0 + Duration::from_millis(400)));
+        assert_eq!(debouncer.remaining(t0), None);
     }
 }

@@ -1,11 +1,13 @@
-//! Parsers for command-line and panel values: sizes, vectors, camera, on/off.
+//! Parsers for command-line and panel values: sizes, vectors, camera, on/off, and the names
+//! of enum values ([`Named`], [`AutoOr`]), whose `--help` lists the names from the enum.
 
-use bumpview::frame::BumpSource;
-use bumpview::frame::{ShadingMode, ViewMode};
-use bumpview::scene::GreenAxis;
-use bumpview::state::preset::green_name;
+use std::ffi::OsStr;
+use std::marker::PhantomData;
+
+use clap::builder::{PossibleValue, TypedValueParser};
+
+use bumpview::names::{AUTO, Named, parse_or_auto};
 use bumpview::state::{Command, SplitDifference};
-use bumpview::tangent::TangentMethod;
 use glam::Vec3;
 
 /// `"WxH"` → `[W, H]` in pixels (each at least 1).
@@ -16,6 +18,15 @@ pub fn parse_size(text: &str) -> Result<[u32; 2], String> {
     match (side(w), side(h)) {
         (Some(w), Some(h)) => Ok([w, h]),
         _ => Err(format!("size {text:?}: width and height must be whole numbers of pixels, at least 1")),
+    }
+}
+
+/// `"X,Y"` → a pixel position, whole pixels from the top-left corner.
+pub fn parse_pixel(text: &str) -> Result<[u32; 2], String> {
+    let coordinate = |s: &str| s.trim().parse::<u32>().ok();
+    match text.split_once(',').map(|(x, y)| (coordinate(x), coordinate(y))) {
+        Some((Some(x), Some(y))) => Ok([x, y]),
+        _ => Err(format!("{text:?}: expected X,Y in whole pixels, e.g. 400,300")),
     }
 }
 
@@ -44,12 +55,72 @@ pub fn parse_on_off(text: &str) -> Result<bool, String> {
     }
 }
 
-/// The item of `all` whose `name` is `text`, else an error listing the names.
-pub fn parse_named<T: Copy>(text: &str, all: &[T], name: fn(T) -> &'static str) -> Result<T, String> {
-    all.iter().copied().find(|&item| name(item) == text).ok_or_else(|| {
-        let names: Vec<_> = all.iter().map(|&item| name(item)).collect();
-        format!("{text:?}: expected one of {}", names.join(", "))
-    })
+/// The value named `text` ([`Named`]), else an error listing the names.
+pub fn parse_named<T: Named>(text: &str) -> Result<T, String> {
+    T::parse_name(text).map_err(|e| e.to_string())
+}
+
+/// A value of `T` or `auto` (each mesh's or material's own choice: `None`). A newtype because
+/// clap reads a bare `Option<Option<T>>` as "a flag whose value may be missing".
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AutoOr<T>(pub Option<T>);
+
+/// clap's value parser for a [`Named`] enum: the value's name, listed in `--help` as the
+/// flag's possible values (from the enum, so the help cannot go stale) and in the error for
+/// any other text.
+#[derive(Clone)]
+pub struct NameParser<T>(PhantomData<T>);
+
+/// [`NameParser`] for the flags that also take `auto` ([`AutoOr`]).
+#[derive(Clone)]
+pub struct NameOrAutoParser<T>(PhantomData<T>);
+
+/// The value parser of a flag naming a `T`.
+pub fn named<T>() -> NameParser<T> {
+    NameParser(PhantomData)
+}
+
+/// The value parser of a flag naming a `T` or `auto`.
+pub fn named_or_auto<T>() -> NameOrAutoParser<T> {
+    NameOrAutoParser(PhantomData)
+}
+
+impl<T: Named + Send + Sync + 'static> TypedValueParser for NameParser<T> {
+    type Value = T;
+
+    fn parse_ref(&self, cmd: &clap::Command, arg: Option<&clap::Arg>, value: &OsStr) -> Result<T, clap::Error> {
+        let text = value.to_string_lossy();
+        T::parse_name(&text).map_err(|e| invalid_value(cmd, arg, &text, e))
+    }
+
+    fn possible_values(&self) -> Option<Box<dyn Iterator<Item = PossibleValue> + '_>> {
+        Some(Box::new(T::names().into_iter().map(PossibleValue::new)))
+    }
+}
+
+impl<T: Named + Send + Sync + 'static> TypedValueParser for NameOrAutoParser<T> {
+    type Value = AutoOr<T>;
+
+    fn parse_ref(&self, cmd: &clap::Command, arg: Option<&clap::Arg>, value: &OsStr) -> Result<AutoOr<T>, clap::Error> {
+        let text = value.to_string_lossy();
+        parse_or_auto(&text).map(AutoOr).map_err(|e| invalid_value(cmd, arg, &text, e))
+    }
+
+    fn possible_values(&self) -> Option<Box<dyn Iterator<Item = PossibleValue> + '_>> {
+        Some(Box::new(std::iter::once(AUTO).chain(T::names()).map(PossibleValue::new)))
+    }
+}
+
+/// clap's error for a bad value, on one line: the flag, the text and the names expected.
+fn invalid_value(
+    cmd: &clap::Command,
+    arg: Option<&clap::Arg>,
+    text: &str,
+    reason: impl std::fmt::Display,
+) -> clap::Error {
+    let flag = arg.map_or_else(|| "the argument".to_owned(), |a| format!("'{a}'"));
+    let message = format!("invalid value '{text}' for {flag}: {reason}\n");
+    clap::Error::raw(clap::error::ErrorKind::ValueValidation, message).with_cmd(cmd)
 }
 
 /// `"LEFT,RIGHT"` → the command that sets the split view's pair for `difference`: two views,
@@ -62,22 +133,12 @@ pub fn parse_split_sides(difference: SplitDifference, text: &str) -> Result<Comm
     let sides = [left, right];
     Ok(match difference {
         SplitDifference::Bump => return Err("--split bump has fixed sides (off │ on)".into()),
-        SplitDifference::View => {
-            Command::SetSplitViews(pair(sides, |t| parse_named(t, &ViewMode::ALL, ViewMode::name))?)
-        }
+        SplitDifference::View => Command::SetSplitViews(pair(sides, parse_named)?),
         SplitDifference::Strength => Command::SetSplitStrengths(pair(sides, parse_finite)?),
-        SplitDifference::Mode => {
-            Command::SetSplitModes(pair(sides, |t| parse_named(t, &ShadingMode::ALL, ShadingMode::name))?)
-        }
-        SplitDifference::Tangents => {
-            Command::SetSplitTangentMethods(pair(sides, |t| parse_named(t, &TangentMethod::ALL, TangentMethod::name))?)
-        }
-        SplitDifference::Convention => {
-            Command::SetSplitConventions(pair(sides, |t| parse_named(t, &GreenAxis::ALL, green_name))?)
-        }
-        SplitDifference::BumpSource => {
-            Command::SetSplitBumpSources(pair(sides, |t| parse_named(t, &BumpSource::ALL, BumpSource::name))?)
-        }
+        SplitDifference::Mode => Command::SetSplitModes(pair(sides, parse_named)?),
+        SplitDifference::Tangents => Command::SetSplitTangentMethods(pair(sides, parse_named)?),
+        SplitDifference::Convention => Command::SetSplitConventions(pair(sides, parse_named)?),
+        SplitDifference::BumpSource => Command::SetSplitBumpSources(pair(sides, parse_named)?),
     })
 }
 
@@ -96,6 +157,9 @@ pub fn parse_finite(text: &str) -> Result<f32, String> {
 
 #[cfg(test)]
 mod tests {
+    use bumpview::scene::GreenAxis;
+    use bumpview::tangent::TangentMethod;
+
     use super::*;
 
     #[test]
@@ -105,6 +169,8 @@ mod tests {
         assert_eq!(parse_vec3("1, -2,3.5"), Ok(Vec3::new(1.0, -2.0, 3.5)));
         assert!(parse_vec3("1,2").is_err() && parse_vec3("1,2,nan").is_err());
         assert!(parse_finite("inf").is_err());
+        assert_eq!(parse_pixel("400, 300"), Ok([400, 300]));
+        assert!(parse_pixel("400").is_err() && parse_pixel("-1,2").is_err());
     }
 
     #[test]

@@ -1,10 +1,11 @@
 //! The files to show, given on the command line: a mesh and textures for its material slots
-//! (shared by the viewer and `render`).
+//! (shared by the viewer and `render`), read once into the library's [`SceneFiles`].
 
 use std::path::PathBuf;
 
-use bumpview::state::preset::PresetFiles;
+use bumpview::load::SceneFiles;
 
+/// The command line's face of [`SceneFiles`]: the same five files, with their help.
 #[derive(clap::Args, Clone, Debug, Default)]
 pub struct InputArgs {
     /// A glTF 2.0 (.gltf, .glb) or OBJ (.obj) file; without one, the built-in scene.
@@ -20,42 +21,16 @@ pub struct InputArgs {
     /// --normal is given.
     #[arg(long, value_name = "FILE")]
     pub height: Option<PathBuf>,
-    /// Gloss/specular map for every material (kept with it; not yet shaded).
+    /// Gloss (Blinn-Phong specular) map for every material: linear RGB multiplying the
+    /// highlight, black matte, white full.
     #[arg(long, value_name = "FILE")]
     pub gloss: Option<PathBuf>,
 }
 
 impl InputArgs {
-    /// Whether no file was given.
-    pub fn is_empty(&self) -> bool {
-        self.mesh.is_none()
-            && self.color.is_none()
-            && self.normal.is_none()
-            && self.height.is_none()
-            && self.gloss.is_none()
-    }
-
-    /// The files given here over `files` (a preset's), slot by slot.
-    pub fn over(&self, files: PresetFiles) -> PresetFiles {
-        let pick = |given: &Option<PathBuf>, preset: Option<PathBuf>| given.clone().or(preset);
-        PresetFiles {
-            mesh: pick(&self.mesh, files.mesh),
-            color: pick(&self.color, files.color),
-            normal: pick(&self.normal, files.normal),
-            height: pick(&self.height, files.height),
-            gloss: pick(&self.gloss, files.gloss),
-        }
-    }
-
-    /// The same files as command-line arguments.
-    #[cfg(feature = "ui")]
-    pub fn from_files(files: &PresetFiles) -> InputArgs {
-        InputArgs {
-            mesh: files.mesh.clone(),
-            color: files.color.clone(),
-            normal: files.normal.clone(),
-            height: files.height.clone(),
-            gloss: files.gloss.clone(),
-        }
+    /// The files given.
+    pub fn files(&self) -> SceneFiles {
+        let InputArgs { mesh, color, normal, height, gloss } = self.clone();
+        SceneFiles { mesh, color, normal, height, gloss }
     }
 }

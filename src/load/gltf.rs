@@ -12,11 +12,11 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-use base64::Engine;
 use glam::{Mat4, Vec3, Vec4};
 
 use super::gltf_mesh::{UvChoice, primitive_mesh};
 use super::image::decode_texture;
+use super::uri::{UriTarget, read_uri, resolve_uri};
 use crate::error::{LoadError, LoadWarning};
 use crate::scene::{
     Clearcoat, Instance, Material, NormalMap, Occlusion, SamplerWrap, Scene, ShadingModel, TextureImage, TextureKind,
@@ -83,6 +83,15 @@ fn parse(bytes: &[u8], path: &Path) -> Result<(gltf::Document, Option<Vec<u8>>),
         }
         e => format!("invalid glTF: {e}"),
     };
+    // A GLB's header states the file's length; the gltf crate checks only that the file is not
+    // shorter (and underflows on a stated length under 12): a length that differs is corrupt.
+    if let Some(stated) = bytes.strip_prefix(b"glTF").and_then(|rest| rest.get(4..8)) {
+        let stated = u32::from_le_bytes(stated.try_into().expect("4 bytes"));
+        if stated as usize != bytes.len() {
+            let problem = format!("the GLB header gives a length of {stated} bytes, but the file has {}", bytes.len());
+            return Err(LoadError::new(path, format!("truncated or invalid GLB container: {problem}")));
+        }
+    }
     let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| LoadError::new(path, describe(e)))?;
     if let Some(missing) = gltf.extensions_required().find(|e| !SUPPORTED_REQUIRED.contains(e)) {
         return Err(LoadError::new(path, format!("requires the glTF extension {missing}, which is not supported")));
@@ -134,74 +143,6 @@ fn draco_accessors(root: &gltf::json::Root) -> Vec<usize> {
         .flat_map(|m| &m.primitives)
         .filter(|p| p.extensions.as_ref().is_some_and(|e| e.others.contains_key("KHR_draco_mesh_compression")));
     compressed.flat_map(|p| p.attributes.values().map(|a| a.value()).chain(p.indices.map(|i| i.value()))).collect()
-}
-
-/// Where a buffer or image URI points.
-enum UriTarget {
-    /// A base64 `data:` URI's bytes.
-    Data(Vec<u8>),
-    /// A file (a relative path from the glTF's folder, `%20` and other escapes decoded; an
-    /// absolute path; or a `file:` URI), and whether it lies outside the glTF's folder.
-    File { path: PathBuf, outside: bool },
-}
-
-/// Where `uri` points, or why it cannot be read here: a remote (`http:`, `https:`) or other
-/// non-file URI is never fetched.
-fn resolve_uri(uri: &str, base: &Path, gltf_path: &Path, what: &str) -> Result<UriTarget, LoadError> {
-    if let Some(data) = uri.strip_prefix("data:") {
-        let payload = data.split_once(";base64,").map(|(_, p)| p);
-        let decoded = payload.and_then(|p| base64::engine::general_purpose::STANDARD.decode(p).ok());
-        let bytes =
-            decoded.ok_or_else(|| LoadError::new(gltf_path, format!("a {what} data URI is not valid base64")))?;
-        return Ok(UriTarget::Data(bytes));
-    }
-    // A scheme is letters, digits, `+`, `-`, `.` before a colon; one letter is a Windows drive.
-    let scheme = uri.split_once(':').map(|(s, _)| s).filter(|s| {
-        s.len() > 1
-            && s.starts_with(|c: char| c.is_ascii_alphabetic())
-            && s.chars().all(|c| c.is_ascii_alphanumeric() || "+-.".contains(c))
-    });
-    let relative = match scheme.map(str::to_ascii_lowercase).as_deref() {
-        None => uri,
-        Some("file") => uri["file:".len()..].strip_prefix("//").unwrap_or(&uri["file:".len()..]),
-        Some(remote @ ("http" | "https")) => {
-            let problem = format!("the {what} {uri:?} is remote ({remote}): remote files are not fetched");
-            return Err(LoadError::new(gltf_path, problem));
-        }
-        Some(other) => {
-            let problem = format!("the {what} {uri:?} has the URI scheme {other:?}: only files and data URIs are read");
-            return Err(LoadError::new(gltf_path, problem));
-        }
-    };
-    let decoded = percent_encoding::percent_decode_str(relative).decode_utf8_lossy();
-    let path =
-        [base.join(&*decoded), base.join(relative)].into_iter().find(|p| p.is_file()).unwrap_or(base.join(&*decoded));
-    let leaves = Path::new(&*decoded).components().any(|c| c == std::path::Component::ParentDir);
-    let outside = Path::new(&*decoded).is_absolute() || leaves;
-    Ok(UriTarget::File { path, outside })
-}
-
-/// The bytes a buffer or image URI points to and the file to name in errors; a file outside
-/// the glTF's folder adds a [`LoadWarning::NotPortable`] to `warnings`.
-fn read_uri(
-    uri: &str,
-    base: &Path,
-    gltf_path: &Path,
-    what: &str,
-    warnings: &mut Vec<LoadWarning>,
-) -> Result<(Vec<u8>, PathBuf), LoadError> {
-    let (path, outside) = match resolve_uri(uri, base, gltf_path, what)? {
-        UriTarget::Data(bytes) => return Ok((bytes, gltf_path.to_owned())),
-        UriTarget::File { path, outside } => (path, outside),
-    };
-    let bytes = std::fs::read(&path).map_err(|e| {
-        let referrer = gltf_path.file_name().unwrap_or_default().to_string_lossy();
-        LoadError::new(&path, format!("could not read the {what} file that {referrer} refers to: {e}"))
-    })?;
-    if outside {
-        warnings.push(LoadWarning::NotPortable { uri: uri.to_owned(), file: path.clone() });
-    }
-    Ok((bytes, path))
 }
 
 struct Loader<'a> {

@@ -5,6 +5,7 @@
 
 mod accessor;
 mod draco;
+mod files;
 mod framing;
 pub mod gltf;
 mod gltf_mesh;
@@ -12,7 +13,7 @@ pub mod image;
 mod mesh_ops;
 mod mtl;
 pub mod obj;
-mod slots;
+mod uri;
 
 use std::path::Path;
 
@@ -20,8 +21,8 @@ pub use crate::error::LoadError;
 use glam::Vec3;
 
 use crate::scene::Scene;
+pub use files::{SceneFiles, TextureSlot, replace_textures};
 pub use framing::{bounds, frame_scene};
-pub use slots::{TextureSlots, replace_textures};
 
 /// Loads a mesh file into a [`Scene`] with a camera framing it and a light above and in
 /// front, choosing the loader by the extension (`.gltf`, `.glb`, `.obj`; any case).

@@ -3,15 +3,15 @@
 //!
 //! `map_Bump` is a height map by the MTL spec, but many exporters put a tangent-space normal
 //! map there; the image decides ([`looks_like_normal_map`]). A height map becomes a normal
-//! map (and the height map slot) as `--height` does ([`super::slots`]).
+//! map (and the height map slot) as `--height` does ([`super::files`]).
 
 use std::collections::HashMap;
 use std::path::Path;
 
 use glam::{Vec3, Vec4};
 
+use super::files::add_height_map;
 use super::image::load_texture;
-use super::slots::add_height_map;
 use crate::error::{LoadError, LoadWarning};
 use crate::scene::{Material, NormalMap, Scene, TextureImage, TextureKind};
 

@@ -150,6 +150,11 @@ impl ProbeScene {
         ProbeScene { prepared, mips }
     }
 
+    /// The prepared scene probed.
+    pub fn prepared(&self) -> &Arc<PreparedScene> {
+        &self.prepared
+    }
+
     /// The scene with the material overrides applied.
     pub fn scene(&self) -> &Scene {
         &self.prepared.scene

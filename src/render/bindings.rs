@@ -115,6 +115,7 @@ mod tests {
 
     use super::*;
     use crate::frame::{ShadingMode, ViewMode};
+    use crate::names::Named;
     use crate::render::pipelines::{MARKER_WGSL, MESH_WGSL};
     use crate::render::uniforms::{
         DEPTH_MAP, HAS_CLEARCOAT, HAS_CLEARCOAT_NORMAL, HAS_CLEARCOAT_ROUGHNESS_TEXTURE, HAS_CLEARCOAT_TEXTURE,
@@ -172,10 +173,10 @@ mod tests {
     fn the_wgsl_constants_are_the_rust_values() {
         let constants = wgsl_u32_constants(&module(MESH_WGSL));
         let mut expected = BTreeMap::new();
-        for view in ViewMode::ALL.into_iter().filter(|&v| v != ViewMode::default()) {
+        for view in ViewMode::all().iter().copied().filter(|&v| v != ViewMode::default()) {
             expected.insert(constant_name("VIEW_", view.name()), view.shader_index());
         }
-        for mode in ShadingMode::ALL.into_iter().filter(|&m| m != ShadingMode::default()) {
+        for mode in ShadingMode::all().iter().copied().filter(|&m| m != ShadingMode::default()) {
             expected.insert(constant_name("MODE_", mode.name()), mode.shader_index());
         }
         expected.insert("FLIP_GREEN".into(), NormalConvention::FLIP_GREEN);

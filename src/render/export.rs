@@ -9,6 +9,7 @@ use super::Renderer;
 use super::capture::{CaptureOptions, render_capture};
 use crate::error::RenderError;
 use crate::frame::{BumpSource, FrameParams, STRENGTH_RANGE, SceneOptions, ShadingMode, ShadingSettings, ViewMode};
+use crate::names::Named;
 use crate::scene::Scene;
 
 /// The most pixels a tile export may hold (1 GiB of RGBA8).
@@ -90,8 +91,7 @@ fn parse_tile(text: &str, current: &ShadingSettings) -> Result<ShadingSettings, 
         other => match ViewMode::from_name(other) {
             Some(view) => ShadingSettings { view, ..lit },
             None => {
-                let views = ViewMode::ALL.map(ViewMode::name);
-                let names: Vec<&str> = TILE_NAMES.iter().chain(views.iter()).copied().collect();
+                let names: Vec<&str> = TILE_NAMES.iter().copied().chain(ViewMode::names()).collect();
                 return Err(TileSpecError::Name { tile: other.to_owned(), expected: names.join(", ") });
             }
         },

@@ -192,6 +192,14 @@ impl Renderer {
         self.set_split_scene(scene, uploads.split_right.clone());
     }
 
+    /// The scene options of the uploads the renderer holds, as [`Self::set_scene_uploads`] takes
+    /// them (`None` before the first scene), to compare with what a viewer state asks.
+    pub fn uploads(&self) -> Option<SceneUploads> {
+        let options = |scene: &GpuScene| scene.prepared.options.clone();
+        let main = options(self.scene.as_ref()?);
+        Some(SceneUploads { main, split_right: self.split_scene.as_ref().map(options) })
+    }
+
     /// The prepared scene the main picture (`split_half` false) or the split view's right
     /// half (true; the main one when the right half has no upload of its own) is drawn from:
     /// what the probe of that picture wraps.

@@ -211,6 +211,7 @@ pub fn upload(
     prepared: Arc<PreparedScene>,
     counters: &mut WorkCounters,
 ) -> GpuScene {
+    counters.scenes_uploaded += 1;
     counters.tangent_frames_generated += prepared.tangent_frames_generated;
     let scene = &prepared.scene;
     let meshes = prepared.meshes.iter().map(|m| upload_mesh(device, m)).collect();

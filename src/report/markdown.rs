@@ -82,7 +82,7 @@ fn intro(page: &Page, out: &mut String) {
          - *Sine-bump plane* `h = A·sin(2πx/λ)·sin(2πy/λ)`, `A = λ/2π` so the maximum slope |∇h| is 1, \
          {} periods square, samples (and exact normals) at texel centres `x = (i + ½)Δ`. Texels per period: {}; \
          8-bit, 16-bit and clamped-border variants at {} texels per period (*border* = within two texels of the edge).\n\n\
-         Every method of `TangentMethod::ALL` is measured except **supplied**, which needs tangents from a mesh \
+         Every tangent method is measured except **supplied**, which needs tangents from a mesh \
          file (the references have none). **per-face** is measured on the unwelded mesh, where it is exact per \
          triangle; **analytic** is the reference itself (error ≈ 0, its time is the cost of copying and \
          re-orthogonalising). Convergence orders are least-squares slopes of ln(mean error) against \
@@ -247,7 +247,9 @@ fn stability(page: &Page, out: &mut String) {
         "## Stability (stiff and extreme cases)\n\n\
          Non-finite: frames with a NaN or infinite component. Invalid: frames not unit or not orthogonal to \
          their normal (beyond 1e-4). Max error: the largest angle of T or B to the exact frame, where one \
-         exists (— where none does: degenerate UVs have no frame, a valid fallback is all that is asked).\n\n\
+         exists (— where none does: degenerate UVs have no frame, a valid fallback is all that is asked); \
+         measured away from a sphere's poles and seams, a zero-area triangle's corners and the triangles that \
+         touch non-finite data.\n\n\
          | case | method | non-finite | invalid | max error |\n| --- | --- | --- | --- | --- |\n",
     );
     for row in page.stability {

@@ -6,6 +6,7 @@ use glam::{DVec3, Vec3};
 use super::surfaces::{Reference, Region, SineBumps};
 use super::timing::{Repeats, median_seconds};
 use crate::height::{Border, HeightField, Kernel};
+use crate::names::Named;
 use crate::scene::Mesh;
 use crate::tangent::{AngleStats, TangentMethod, bitangent, tangents};
 

@@ -18,6 +18,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use crate::height::{Border, Kernel};
+use crate::names::Named;
 use crate::tangent::TangentMethod;
 use measure::{Row, Sample, kernel_rows, tangent_rows};
 use surfaces::{SineBumps, torus, uv_sphere};
@@ -120,7 +121,7 @@ impl Machine {
 /// Every row of `plan`: tangent methods on spheres then tori, kernels on the planes.
 pub fn measure(plan: &Plan) -> Vec<Row> {
     let mut rows = vec![];
-    let methods = TangentMethod::ALL.into_iter().filter(|&m| m != TangentMethod::Supplied);
+    let methods = TangentMethod::all().iter().copied().filter(|&m| m != TangentMethod::Supplied);
     let references = plan
         .spheres
         .iter()
@@ -133,7 +134,7 @@ pub fn measure(plan: &Plan) -> Vec<Row> {
             rows.extend(tangent_rows(method, reference, sample, plan.repeats));
         }
     }
-    for kernel in Kernel::ALL {
+    for &kernel in Kernel::all() {
         for &tpp in &plan.texels_per_period {
             let bumps = SineBumps::new(tpp, plan.periods);
             let label = format!("{tpp} texels/period");

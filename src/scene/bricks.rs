@@ -13,9 +13,9 @@ pub const TILE_TEXELS: u32 = 512;
 pub const ROWS: u32 = 8;
 pub const BRICKS_PER_ROW: u32 = 4;
 /// Half the mortar joint width, texels.
-const MORTAR_HALF_WIDTH: f32 = 5.0;
+pub const MORTAR_HALF_WIDTH: f32 = 5.0;
 /// Width of the rounded brick edge, texels.
-const BEVEL_WIDTH: f32 = 6.0;
+pub const BEVEL_WIDTH: f32 = 6.0;
 /// Depth of the mortar below the brick faces, metres per full height range.
 pub const RELIEF_DEPTH_M: f32 = 0.01;
 

@@ -9,6 +9,7 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 use super::bricks::{brick_color_texture, brick_height_field};
 use super::{HeightMap, Instance, Light, Material, Mesh, NormalMap, OrbitCamera, Scene};
 use crate::height::{Border, Kernel};
+use crate::names::Named;
 
 /// Metres covered by one repeat of the brick texture on the wall and floor.
 pub const BRICK_TILE_M: f32 = 1.0;

@@ -49,6 +49,18 @@ impl OrbitCamera {
         self.pitch = (self.pitch + d_pitch).clamp(-PITCH_LIMIT, PITCH_LIMIT);
     }
 
+    /// Points the camera: `yaw` and `pitch` in radians, kept as [`Self::orbit`] keeps them
+    /// (yaw wrapped to 0..2π, pitch clamped to ±89°), `distance` in metres clamped to the
+    /// bounds [`Self::zoom`] keeps. Non-finite values leave the camera as it was.
+    pub fn point(&mut self, yaw: f32, pitch: f32, distance: f32) {
+        if [yaw, pitch, distance].iter().all(|v| v.is_finite()) {
+            self.yaw = yaw;
+            self.pitch = 0.0;
+            self.orbit(0.0, pitch);
+            self.distance = distance.clamp(MIN_DISTANCE, MAX_DISTANCE);
+        }
+    }
+
     /// Multiplies the distance by `factor` (> 1 moves away), within sane bounds.
     pub fn zoom(&mut self, factor: f32) {
         if factor.is_finite() && factor > 0.0 {
@@ -106,5 +118,17 @@ mod tests {
         camera.zoom(f32::NAN);
         camera.zoom(0.0);
         assert_eq!(camera.distance, 2.0);
+    }
+
+    #[test]
+    fn pointing_keeps_the_orbit_bounds() {
+        let mut camera = OrbitCamera { target: Vec3::ZERO, yaw: 0.0, pitch: 0.0, distance: 2.0, fov_y: 0.8 };
+        camera.point(-0.5, 2.0, 1e6);
+        assert_eq!(camera.yaw, (-0.5f32).rem_euclid(std::f32::consts::TAU));
+        assert_eq!((camera.pitch, camera.distance), (PITCH_LIMIT, MAX_DISTANCE));
+        camera.point(0.25, -0.3, 0.0);
+        assert_eq!((camera.yaw, camera.pitch, camera.distance), (0.25, -0.3, MIN_DISTANCE));
+        camera.point(f32::NAN, 0.0, 3.0);
+        assert_eq!(camera.distance, MIN_DISTANCE, "a non-finite value changes nothing");
     }
 }

@@ -10,8 +10,9 @@ use crate::height::{Border, HeightField, Kernel};
 /// bricks use the same, [`super::builtin::BRICK_TILE_M`]).
 pub const TEXTURE_SPAN_M: f32 = 1.0;
 
-/// Which way a tangent-space normal map's green channel points.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+/// Which way a tangent-space normal map's green channel points. Named `opengl`, `directx`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "lowercase")]
 pub enum GreenAxis {
     /// +Y = green = up the image (OpenGL, Blender, glTF): the crate convention.
     #[default]
@@ -21,8 +22,6 @@ pub enum GreenAxis {
 }
 
 impl GreenAxis {
-    pub const ALL: [GreenAxis; 2] = [GreenAxis::OpenGl, GreenAxis::DirectX];
-
     /// Name for people (panel, labels, captions).
     pub fn label(self) -> &'static str {
         match self {
@@ -139,14 +138,16 @@ impl HeightMap {
     }
 }
 
-/// How a material is lit.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+/// How a material is lit. Named `blinn-phong`, `pbr`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "kebab-case")]
 pub enum ShadingModel {
     /// The lecture model: ambient + Lambert + Blinn-Phong specular ([`crate::shading::blinn_phong`]).
     #[default]
     BlinnPhong,
     /// glTF 2.0 metallic-roughness: GGX, Smith height-correlated visibility, Schlick Fresnel,
     /// with the point light and the procedural sky ([`crate::shading::pbr::metallic_roughness`]).
+    #[strum(serialize = "pbr")]
     MetallicRoughness,
 }
 

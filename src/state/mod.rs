@@ -4,6 +4,9 @@
 
 pub mod interactive;
 pub mod preset;
+mod split;
+
+pub use split::{SplitDifference, SplitView};
 
 use glam::{Vec2, Vec3};
 
@@ -51,6 +54,13 @@ pub enum Command {
         viewport_height: f32,
     },
     ResetCamera,
+    /// Points the camera ([`OrbitCamera::point`]): yaw and pitch in radians (pitch clamped
+    /// to ±89°), distance in metres (clamped to the zoom range), about the same target.
+    PointCamera {
+        yaw: f32,
+        pitch: f32,
+        distance: f32,
+    },
     /// Advances animations by `seconds`.
     Tick(f32),
     /// Tangent frames by this method (`None`: the mesh's own, else MikkTSpace).
@@ -96,147 +106,6 @@ pub enum Command {
     SetSplitConventions([GreenAxis; 2]),
     /// The two bump sources of [`SplitDifference::BumpSource`].
     SetSplitBumpSources([BumpSource; 2]),
-}
-
-/// What the split view's two halves differ in. The first four are uniforms, so both halves
-/// share one scene upload; the others change GPU data ([`SplitDifference::changes_gpu_data`]),
-/// so the right half is drawn from a second upload of the scene.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum SplitDifference {
-    /// Bump off │ bump on.
-    #[default]
-    Bump,
-    /// Two views, e.g. Lit │ Shading normal.
-    View,
-    /// Two bump strengths.
-    Strength,
-    /// Two lit-picture modes (bump × colour, bump only, colour only).
-    Mode,
-    /// Two tangent-frame methods.
-    Tangents,
-    /// Two normal-map green conventions (OpenGL │ DirectX) for every material.
-    Convention,
-    /// Two bump sources (normal map │ height in shader).
-    BumpSource,
-}
-
-impl SplitDifference {
-    pub const ALL: [SplitDifference; 7] = [
-        SplitDifference::Bump,
-        SplitDifference::View,
-        SplitDifference::Strength,
-        SplitDifference::Mode,
-        SplitDifference::Tangents,
-        SplitDifference::Convention,
-        SplitDifference::BumpSource,
-    ];
-
-    /// Name as used on the command line and in presets.
-    pub fn name(self) -> &'static str {
-        match self {
-            SplitDifference::Bump => "bump",
-            SplitDifference::View => "view",
-            SplitDifference::Strength => "strength",
-            SplitDifference::Mode => "mode",
-            SplitDifference::Tangents => "tangents",
-            SplitDifference::Convention => "convention",
-            SplitDifference::BumpSource => "bump-source",
-        }
-    }
-
-    pub fn from_name(name: &str) -> Option<SplitDifference> {
-        SplitDifference::ALL.into_iter().find(|d| d.name() == name)
-    }
-
-    /// Whether the halves need different GPU data (tangent streams, material flags, pipeline
-    /// variants), not only different uniforms.
-    pub fn changes_gpu_data(self) -> bool {
-        matches!(self, SplitDifference::Tangents | SplitDifference::Convention | SplitDifference::BumpSource)
-    }
-}
-
-/// The split view's settings: the two halves are the current settings with one thing changed.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SplitView {
-    pub enabled: bool,
-    pub difference: SplitDifference,
-    /// The divider, a fraction of the width.
-    pub divider: f32,
-    pub views: [ViewMode; 2],
-    pub strengths: [f32; 2],
-    pub modes: [ShadingMode; 2],
-    pub tangent_methods: [TangentMethod; 2],
-    pub conventions: [GreenAxis; 2],
-    pub bump_sources: [BumpSource; 2],
-}
-
-impl Default for SplitView {
-    fn default() -> Self {
-        SplitView {
-            enabled: false,
-            difference: SplitDifference::Bump,
-            divider: 0.5,
-            views: [ViewMode::Lit, ViewMode::ShadingNormal],
-            strengths: [1.0, 3.0],
-            modes: [ShadingMode::ColourOnly, ShadingMode::BumpTimesColour],
-            tangent_methods: [TangentMethod::PerFace, TangentMethod::MikkTSpace],
-            conventions: GreenAxis::ALL,
-            bump_sources: [BumpSource::NormalMap, BumpSource::HeightInShader],
-        }
-    }
-}
-
-impl SplitView {
-    /// The left and right shading: `current` with the chosen difference applied.
-    pub fn shading(&self, current: &ShadingSettings) -> [ShadingSettings; 2] {
-        let side = |i: usize| {
-            let mut s = *current;
-            match self.difference {
-                SplitDifference::Bump => s.bump_enabled = i == 1,
-                SplitDifference::View => s.view = self.views[i],
-                SplitDifference::Strength => s.strength = self.strengths[i],
-                SplitDifference::Mode => s.mode = self.modes[i],
-                SplitDifference::Tangents | SplitDifference::Convention | SplitDifference::BumpSource => {}
-            }
-            s
-        };
-        [side(0), side(1)]
-    }
-
-    /// The left and right scene options: `current` with the chosen difference applied (both
-    /// equal to `current` for differences that are only uniforms). A convention applies to
-    /// every material, over per-material choices.
-    pub fn scene_options(&self, current: &SceneOptions) -> [SceneOptions; 2] {
-        std::array::from_fn(|i| {
-            let mut options = current.clone();
-            match self.difference {
-                SplitDifference::Tangents => options.tangent_method = Some(self.tangent_methods[i]),
-                SplitDifference::Convention => {
-                    options.materials.green = Some(self.conventions[i]);
-                    for overrides in options.per_material.values_mut() {
-                        overrides.green = None;
-                    }
-                    options.per_material.retain(|_, o| !o.is_empty());
-                }
-                SplitDifference::BumpSource => options.bump_source = self.bump_sources[i],
-                SplitDifference::Bump | SplitDifference::View | SplitDifference::Strength | SplitDifference::Mode => {}
-            }
-            options
-        })
-    }
-
-    /// The on-screen labels of the left and right halves.
-    pub fn labels(&self) -> [String; 2] {
-        std::array::from_fn(|i| match self.difference {
-            SplitDifference::Bump => ["bump off", "bump on"][i].to_owned(),
-            SplitDifference::View => self.views[i].label().to_owned(),
-            SplitDifference::Strength => format!("strength {:.2}", self.strengths[i]),
-            SplitDifference::Mode => self.modes[i].label().to_owned(),
-            SplitDifference::Tangents => format!("tangents: {}", self.tangent_methods[i].name()),
-            SplitDifference::Convention => format!("normal map: {}", self.conventions[i].label()),
-            SplitDifference::BumpSource => self.bump_sources[i].label().to_owned(),
-        })
-    }
 }
 
 /// Everything the user can change about the picture.
@@ -341,6 +210,7 @@ impl ViewerState {
             Command::Zoom(factor) => self.camera.zoom(factor),
             Command::PanCamera { pixels, viewport_height } => self.camera.pan(pixels, viewport_height),
             Command::ResetCamera => self.camera = self.default_camera,
+            Command::PointCamera { yaw, pitch, distance } => self.camera.point(yaw, pitch, distance),
             Command::Tick(seconds) if self.light_orbit && seconds.is_finite() => {
                 // Rotate the light about the vertical axis through the camera target.
                 let rotation = glam::Quat::from_rotation_y(LIGHT_ORBIT_SPEED * seconds);
@@ -410,6 +280,7 @@ impl RedrawTracker {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::names::Named;
     use crate::scene::builtin::teaching_scene;
 
     #[test]
@@ -469,7 +340,7 @@ mod tests {
         state.apply(Command::SetSplitDifference(SplitDifference::Tangents));
         assert_eq!(state.scene_uploads(), single, "split off");
         state.apply(Command::SetSplit(true));
-        for difference in SplitDifference::ALL {
+        for &difference in SplitDifference::all() {
             state.apply(Command::SetSplitDifference(difference));
             let uploads = state.scene_uploads();
             assert_eq!(uploads.split_right.is_some(), difference.changes_gpu_data(), "{difference:?}");

@@ -16,19 +16,27 @@ pub use compare::{AngleStats, FrameAngles, MethodMeasurement, angle_degrees, fra
 pub use mikktspace::generate_mikktspace;
 pub use uv_delta::{Weighting, averaged_face_frames, face_frame, per_face_frames};
 
-/// How tangent frames are made.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+/// How tangent frames are made. Named `mikktspace`, `per-face`, `averaged-uniform`,
+/// `averaged-area`, `averaged-angle`, `supplied`, `analytic`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "kebab-case")]
 pub enum TangentMethod {
     /// MikkTSpace (bevy_mikktspace): the standard bakers use.
     #[default]
+    #[strum(serialize = "mikktspace")]
     MikkTSpace,
     /// Each triangle's own frame from its edge and UV deltas; a vertex takes the frame of
     /// the last triangle that uses it, so this is exact only on an unwelded mesh
     /// ([`Mesh::unwelded`]), which is how the renderer draws it.
     PerFace,
-    /// Face frames averaged at each vertex with a weighting, then Gram-Schmidt against the
-    /// normal and `w = sign(dot(cross(N, T), B))`.
-    Averaged(Weighting),
+    /// Face frames averaged at each vertex with equal weights ([`Weighting::Uniform`]), then
+    /// Gram-Schmidt against the normal and `w = sign(dot(cross(N, T), B))`.
+    AveragedUniform,
+    /// As [`TangentMethod::AveragedUniform`], each face weighted by its area ([`Weighting::Area`]).
+    AveragedArea,
+    /// As [`TangentMethod::AveragedUniform`], each face weighted by its corner angle at the
+    /// vertex ([`Weighting::Angle`]).
+    AveragedAngle,
     /// The tangents the mesh file supplies, re-orthogonalised against the normal, `w` kept.
     Supplied,
     /// The exact frame of a built-in parametric surface.
@@ -36,31 +44,14 @@ pub enum TangentMethod {
 }
 
 impl TangentMethod {
-    pub const ALL: [TangentMethod; 7] = [
-        TangentMethod::MikkTSpace,
-        TangentMethod::PerFace,
-        TangentMethod::Averaged(Weighting::Uniform),
-        TangentMethod::Averaged(Weighting::Area),
-        TangentMethod::Averaged(Weighting::Angle),
-        TangentMethod::Supplied,
-        TangentMethod::Analytic,
-    ];
-
-    /// Name on the command line, in the panel and in reports.
-    pub fn name(self) -> &'static str {
+    /// The face weighting of an averaging method.
+    pub fn weighting(self) -> Option<Weighting> {
         match self {
-            TangentMethod::MikkTSpace => "mikktspace",
-            TangentMethod::PerFace => "per-face",
-            TangentMethod::Averaged(Weighting::Uniform) => "averaged-uniform",
-            TangentMethod::Averaged(Weighting::Area) => "averaged-area",
-            TangentMethod::Averaged(Weighting::Angle) => "averaged-angle",
-            TangentMethod::Supplied => "supplied",
-            TangentMethod::Analytic => "analytic",
+            TangentMethod::AveragedUniform => Some(Weighting::Uniform),
+            TangentMethod::AveragedArea => Some(Weighting::Area),
+            TangentMethod::AveragedAngle => Some(Weighting::Angle),
+            _ => None,
         }
-    }
-
-    pub fn from_name(name: &str) -> Option<TangentMethod> {
-        TangentMethod::ALL.into_iter().find(|m| m.name() == name)
     }
 
     /// Whether the method computes frames (rather than taking them from the mesh).
@@ -109,7 +100,9 @@ pub fn tangents(mesh: &Mesh, method: TangentMethod) -> Option<Vec<Vec4>> {
             }
             Some(frames)
         }
-        TangentMethod::Averaged(weighting) => Some(averaged_face_frames(mesh, weighting)),
+        TangentMethod::AveragedUniform | TangentMethod::AveragedArea | TangentMethod::AveragedAngle => {
+            method.weighting().map(|weighting| averaged_face_frames(mesh, weighting))
+        }
         TangentMethod::Supplied => {
             mesh.tangents.as_ref().filter(|t| t.len() == mesh.positions.len()).map(reorthogonalised)
         }

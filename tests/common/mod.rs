@@ -29,6 +29,14 @@ pub fn default_params(scene: &Scene) -> FrameParams {
     state.frame_params()
 }
 
+/// The camera distance at which `scene`'s bounding sphere fits the vertical field of view with
+/// a tenth to spare: farther than a loaded scene's default framing (two thirds of the view's
+/// height), for tests whose numbers were measured at that distance.
+pub fn bounding_sphere_distance(scene: &Scene, camera: &OrbitCamera) -> f32 {
+    let (lo, hi) = bumpview::load::bounds(scene).expect("the scene has finite vertices");
+    1.1 * (hi - lo).length() * 0.5 / (camera.fov_y * 0.5).sin()
+}
+
 /// Looking straight at the wall from `distance` metres, centred on (0, 1.5): at 256 pixels
 /// and 0.3 m one pixel covers about 0.56 brick texels, so sampling magnifies and reads mip 0.
 pub fn close_wall_params(scene: &Scene, distance: f32) -> FrameParams {
@@ -120,4 +128,52 @@ pub fn wall_chain(scene: &Scene, params: &FrameParams, size: [u32; 2], x: u32, y
         clearcoat_normal: None,
     };
     shade(BumpKind::TangentSpace, material, scene.ambient, &surface, params)
+}
+
+/// A loaded scene is sane: per mesh, every position, normal, UV and supplied tangent finite,
+/// one normal per position, UVs and tangents absent or one per position (tangents are used as
+/// given, so their `w` is only read for its sign), whole triangles with indices in range; instances name meshes and materials that exist,
+/// materials name textures that exist, and each texture holds its `width · height` texels.
+pub fn assert_sane(scene: &Scene, what: &str) {
+    for mesh in &scene.meshes {
+        let name = format!("{what}: mesh {:?}", mesh.name);
+        let n = mesh.positions.len();
+        assert!(
+            mesh.positions.iter().chain(&mesh.normals).all(|v| v.is_finite()),
+            "{name}: non-finite position or normal"
+        );
+        assert!(mesh.uvs.iter().all(|v| v.is_finite()), "{name}: non-finite UV");
+        assert_eq!(mesh.normals.len(), n, "{name}: one normal per position");
+        assert!(mesh.uvs.is_empty() || mesh.uvs.len() == n, "{name}: {} UVs for {n} positions", mesh.uvs.len());
+        if let Some(tangents) = &mesh.tangents {
+            assert_eq!(tangents.len(), n, "{name}: one tangent per position");
+            assert!(tangents.iter().all(|t| t.is_finite()), "{name}: a non-finite tangent");
+        }
+        assert!(mesh.indices.len() % 3 == 0, "{name}: {} indices", mesh.indices.len());
+        assert!(mesh.indices.iter().all(|&i| (i as usize) < n), "{name}: index out of range");
+    }
+    for instance in &scene.instances {
+        assert!(
+            instance.mesh < scene.meshes.len() && instance.material < scene.materials.len(),
+            "{what}: {instance:?}"
+        );
+        assert!(instance.transform.is_finite(), "{what}: non-finite transform");
+    }
+    for material in &scene.materials {
+        let slots = [material.base_color_texture, material.gloss_texture, material.metallic_roughness_texture]
+            .into_iter()
+            .chain([material.normal_map.as_ref().map(|m| m.texture), material.height_map.as_ref().map(|m| m.texture)])
+            .chain([material.occlusion.as_ref().map(|o| o.texture)]);
+        for texture in slots.flatten() {
+            assert!(texture < scene.textures.len(), "{what}: material {:?} names texture {texture}", material.name);
+        }
+    }
+    for texture in &scene.textures {
+        assert_eq!(
+            texture.rgba.len(),
+            (texture.width * texture.height * 4) as usize,
+            "{what}: texture {:?}",
+            texture.name
+        );
+    }
 }

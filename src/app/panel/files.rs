@@ -1,40 +1,33 @@
-//! The panel's files section: Open…, the loading spinner, the last outcome, the texture slot
-//! buttons (click for a dialog, or drop a texture on one), the recent files, and per material
-//! and mesh which maps and tangent frames are in use. Everything it does is an [`Action`].
+//! The panel's files: the heading with Open…, the loading spinner and the last outcome (always
+//! in sight), and a section with the texture slot buttons (click for a dialog, or drop a
+//! texture on one), the recent files, and per material and mesh which maps and tangent frames
+//! are in use. Everything it does is an [`Action`].
 
+use bumpview::load::TextureSlot;
+use bumpview::names::Named;
 use bumpview::scene::Scene;
 use bumpview::tangent::TangentMethod;
 
-use super::Action;
-use super::files::{Files, Slot, Status, file_name};
+use crate::app::action::Action;
+use crate::app::controller::Controller;
+use crate::app::files::{Files, Status, file_name};
 
-/// What the files section shows.
-pub(super) struct FilesView<'a> {
-    pub files: &'a Files,
-    /// A file dialog is showing (Open… and the slot buttons wait for it).
-    pub dialog_open: bool,
-    /// Why hot reload does not work, when it does not.
-    pub watch_error: Option<&'a str>,
-    pub scene: &'a Scene,
-    /// Per mesh: the tangent method its frames come from (`None`: drawn without tangents).
-    pub tangents: &'a [Option<TangentMethod>],
-}
-
-/// Shows the section and returns where each slot button is, for files dropped on them.
-pub(super) fn show(ui: &mut egui::Ui, view: &FilesView, actions: &mut Vec<Action>) -> Vec<(Slot, egui::Rect)> {
-    ui.separator();
-    ui.strong("Files");
+/// The panel's heading and Open…, what is loading, the last load's outcome and why hot reload
+/// does not work, if it does not.
+pub(super) fn heading(ui: &mut egui::Ui, controller: &Controller, actions: &mut Vec<Action>) {
+    let files = &controller.files;
     ui.horizontal(|ui| {
-        let open = ui.add_enabled(!view.dialog_open, egui::Button::new("Open…"));
+        ui.heading("bumpview");
+        let open = ui.add_enabled(!controller.dialog_open(), egui::Button::new("Open…"));
         if open.on_hover_text("a glTF (.gltf, .glb) or OBJ mesh, or a texture; or drop files on the window").clicked() {
             actions.push(Action::ShowDialog(None));
         }
-        if let Some(label) = view.files.loader.busy() {
+        if let Some(label) = files.loader.busy() {
             ui.add(egui::Spinner::new());
             ui.label(format!("loading {label}…"));
         }
     });
-    match &view.files.status {
+    match &files.status {
         Some(Status::Done(message)) => {
             ui.label(message);
         }
@@ -43,26 +36,39 @@ pub(super) fn show(ui: &mut egui::Ui, view: &FilesView, actions: &mut Vec<Action
         }
         None => {}
     }
-    if let Some(error) = view.watch_error {
+    if let Some(error) = controller.watch_error() {
         ui.colored_label(ui.visuals().warn_fg_color, error);
     }
-    let targets = slot_buttons(ui, view, actions);
-    recent_files(ui, view.files, actions);
-    scene_maps(ui, view.scene, view.tangents);
+}
+
+/// The slot buttons, the recent files and the scene's maps and frames; returns where each slot
+/// button is, for files dropped on them.
+pub(super) fn show(
+    ui: &mut egui::Ui,
+    controller: &Controller,
+    actions: &mut Vec<Action>,
+) -> Vec<(TextureSlot, egui::Rect)> {
+    let targets = slot_buttons(ui, controller, actions);
+    recent_files(ui, &controller.files, actions);
+    scene_maps(ui, controller.scene(), &controller.renderer().tangent_methods());
     targets
 }
 
 /// One button per texture slot with the file in it: a click opens a dialog for the slot, a
 /// texture dropped on it goes into it.
-fn slot_buttons(ui: &mut egui::Ui, view: &FilesView, actions: &mut Vec<Action>) -> Vec<(Slot, egui::Rect)> {
+fn slot_buttons(
+    ui: &mut egui::Ui,
+    controller: &Controller,
+    actions: &mut Vec<Action>,
+) -> Vec<(TextureSlot, egui::Rect)> {
     ui.weak("Texture slots: click to choose, or drop a texture on one");
     let mut targets = Vec::new();
     egui::Grid::new("slots").num_columns(2).show(ui, |ui| {
-        for slot in Slot::ALL {
+        for &slot in TextureSlot::all() {
             ui.label(slot.label());
-            let file = slot.get(&view.files.source.slots);
+            let file = controller.files.scene_files.texture(slot);
             let text = file.map_or_else(|| "— choose…".to_owned(), file_name);
-            let button = ui.add_enabled(!view.dialog_open, egui::Button::new(text).truncate());
+            let button = ui.add_enabled(!controller.dialog_open(), egui::Button::new(text).truncate());
             targets.push((slot, button.rect));
             let hover = file.map_or_else(|| "from the mesh's material".to_owned(), |f| f.display().to_string());
             if button.on_hover_text(hover).clicked() {
@@ -122,7 +128,7 @@ fn scene_maps(ui: &mut egui::Ui, scene: &Scene, tangents: &[Option<TangentMethod
 }
 
 /// While files are dragged over the window, says what dropping them does.
-pub(super) fn drop_hint(ctx: &egui::Context) {
+pub fn drop_hint(ctx: &egui::Context) {
     if ctx.input(|i| i.raw.hovered_files.is_empty()) {
         return;
     }

@@ -1,11 +1,12 @@
-//! Keyboard shortcuts and mouse gestures on the 3D view, turned into [`Action`]s.
+//! Keyboard shortcuts and mouse gestures on the 3D view (P + click pins the probe), turned
+//! into [`Action`]s.
 
 use bumpview::frame::ShadingMode;
 use bumpview::state::Command;
 use egui::{Event, Key, PointerButton};
 use glam::Vec2;
 
-use super::Action;
+use crate::app::action::Action;
 
 /// Camera rotation per pixel dragged, radians.
 const ORBIT_RADIANS_PER_PIXEL: f32 = 0.01;
@@ -16,7 +17,7 @@ const STRENGTH_STEP: f32 = 0.1;
 
 /// The shortcuts pressed this frame: B bump, `[`/`]` strength, 1/2/3 bump × colour, bump
 /// only, colour only, W wireframe, G T/B/N glyphs, S split view, L light orbit, V view, R camera reset, F12 screenshot. None while a text field has keyboard focus.
-pub(super) fn keyboard(ctx: &egui::Context) -> Vec<Action> {
+pub fn keyboard(ctx: &egui::Context) -> Vec<Action> {
     if ctx.text_edit_focused() {
         return Vec::new();
     }
@@ -92,4 +93,21 @@ fn drag_action(
         return None;
     };
     Some(command.into())
+}
+
+/// Whether P is held and the primary button was clicked on the view: the clicked pixel of a
+/// `size` view shown in `rect`, as the action that pins the probe there.
+pub(super) fn probe_click(ctx: &egui::Context, rect: egui::Rect, size: [u32; 2]) -> Option<Action> {
+    if ctx.text_edit_focused() {
+        return None;
+    }
+    let position =
+        ctx.input(|i| (i.key_down(Key::P) && i.pointer.primary_clicked()).then(|| i.pointer.interact_pos()).flatten())?;
+    if !rect.contains(position) {
+        return None;
+    }
+    let scale = size[0] as f32 / rect.width();
+    let local = (position - rect.min) * scale;
+    let pixel = [(local.x.max(0.0) as u32).min(size[0] - 1), (local.y.max(0.0) as u32).min(size[1] - 1)];
+    Some(Action::PinProbe { pixel, size })
 }

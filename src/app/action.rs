@@ -1,0 +1,48 @@
+//! What the user asked for or what arrived from another thread: a viewer [`Command`] or an
+//! action only the app knows. The panel, the keys, the mouse, dropped files, the file dialog,
+//! hot reload and the loader all produce these; the controller
+//! ([`super::controller::Controller::apply`]) is the one place they take effect.
+
+use std::path::PathBuf;
+
+use bumpview::load::TextureSlot;
+use bumpview::state::Command;
+
+use super::files::Finished;
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Action {
+    /// A change to the viewer state.
+    Viewer(Command),
+    /// Save a PNG of the 3D view (F12 or the panel button).
+    Screenshot,
+    /// Save a PNG of the tile export (the form's spec, else flat │ bumped │ Tangent view),
+    /// captions as the form says.
+    ExportTiles,
+    /// Write the whole state as a preset file.
+    SavePreset(PathBuf),
+    /// Read a preset file and show its files and state.
+    LoadPreset(PathBuf),
+    /// Open files (dropped, chosen in the dialog or the recent list): a mesh replaces the
+    /// scene; images go into `slot` (dropped on it or chosen for it) or the one their name
+    /// suggests.
+    Open { paths: Vec<PathBuf>, slot: Option<TextureSlot> },
+    /// Show the file dialog for a mesh or texture (`None`) or for one slot's texture.
+    ShowDialog(Option<TextureSlot>),
+    /// The file dialog closed with a file, or without one (`None`).
+    DialogClosed { slot: Option<TextureSlot>, path: Option<PathBuf> },
+    /// Files of the scene changed on disk and have settled: re-make it, keeping the view.
+    Reload,
+    /// A load finished on the worker thread.
+    Loaded(Box<Finished>),
+    /// Pin the pixel probe at `pixel` of a view `size` pixels (P + click, `--probe`).
+    PinProbe { pixel: [u32; 2], size: [u32; 2] },
+    /// Remove the pixel probe.
+    ClearProbe,
+}
+
+impl From<Command> for Action {
+    fn from(command: Command) -> Self {
+        Action::Viewer(command)
+    }
+}

@@ -1,0 +1,364 @@
+//! The viewer without a window: the state, the scene, the renderer (eframe's device in the
+//! window, a headless one in tests) and the scene's files. [`Controller::apply`] is the one
+//! place [`Action`]s take effect: commands on the state, scenes installed, files opened and
+//! reloaded, exports ([`exports`]) and presets ([`presets`]). After every batch the renderer's
+//! uploads are made to match what the state asks ([`Controller::sync_uploads`]).
+
+mod exports;
+mod presets;
+#[cfg(test)]
+mod tests;
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use bumpview::check::{CheckReport, check_scene};
+use bumpview::error::RenderError;
+use bumpview::height::Kernel;
+use bumpview::load::SceneFiles;
+use bumpview::names::Named;
+use bumpview::render::{Background, RenderTarget, Renderer};
+use bumpview::scene::Scene;
+use bumpview::state::preset::CapturePreset;
+use bumpview::state::{Command, ViewerState};
+use bumpview::tangent::{MethodMeasurement, TangentMethod, measure};
+pub use exports::ScreenshotForm;
+pub use presets::{PresetForm, last_state_file};
+
+use super::action::Action;
+use super::dialog::Dialog;
+use super::files::{self, Files, Purpose, Status};
+use super::probe::Probe;
+use super::watch::Watcher;
+
+/// Called from worker threads (loader, dialog, file watcher) to make the UI run a frame and
+/// pick up what they delivered; a no-op without a window.
+pub type Waker = Arc<dyn Fn() + Send + Sync>;
+
+/// What the controller starts with.
+pub struct Start {
+    pub scene: Scene,
+    pub state: ViewerState,
+    /// The files `scene` was made from (made absolute here), watched for changes.
+    pub files: SceneFiles,
+    /// Screenshot size, background and supersampling.
+    pub capture: CapturePreset,
+    /// Where the state is saved on exit ([`last_state_file`]); `None`: not saved.
+    pub last_state: Option<PathBuf>,
+    /// Where the recent-files list is kept ([`files::recent_file`]); `None`: not kept.
+    pub recent_file: Option<PathBuf>,
+    /// Shown as the files' status at start (e.g. why the last state was not restored).
+    pub notice: Option<String>,
+}
+
+/// Facts about the current scene the panel shows, made once per scene (and per tangent method)
+/// rather than per drawn frame.
+pub struct SceneFacts {
+    /// Per mesh: the chosen tangent method timed and compared with the reference.
+    pub measurements: Vec<(String, MethodMeasurement)>,
+    /// The tangent method `measurements` are of.
+    measured: Option<TangentMethod>,
+    /// What `bumpview check` finds in the scene.
+    pub check: CheckReport,
+    /// `check`'s warnings, one line each.
+    pub check_warnings: Vec<String>,
+}
+
+impl SceneFacts {
+    fn new(scene: &Scene, method: Option<TangentMethod>) -> SceneFacts {
+        let check = check_scene(scene);
+        SceneFacts {
+            measurements: measure_all(scene, method),
+            measured: method,
+            check_warnings: check.warnings(),
+            check,
+        }
+    }
+}
+
+pub struct Controller {
+    pub state: ViewerState,
+    scene: Scene,
+    renderer: Renderer,
+    /// The scene's files, the loader, the recent list and the last outcome.
+    pub files: Files,
+    dialog: Dialog,
+    watcher: Watcher,
+    /// Why hot reload does not work, when it does not.
+    watch_error: Option<String>,
+    wake: Waker,
+    facts: SceneFacts,
+    /// The screenshot and tile-export fields the panel edits, and their last outcome.
+    pub screenshot: ScreenshotForm,
+    /// The preset path field the panel edits, and the last save's or load's outcome.
+    pub preset: PresetForm,
+    probe: Probe,
+    /// The 3D view's size in pixels, as last laid out (`None` before the first frame).
+    view_size: Option<[u32; 2]>,
+    /// Counts changes of the scene or its GPU data: a drawn picture older than this is stale.
+    revision: u64,
+    /// Where the state is saved on exit; `None`: not saved.
+    last_state: Option<PathBuf>,
+    /// The folder screenshots and tile exports go to; empty: the current directory.
+    screenshot_dir: PathBuf,
+}
+
+impl Controller {
+    /// A controller showing `start`'s scene with `renderer` (which gets the scene's uploads);
+    /// `wake` is called from worker threads when they deliver something.
+    pub fn new(start: Start, mut renderer: Renderer, wake: Waker) -> Controller {
+        let Start { scene, state, files: scene_files, capture, last_state, recent_file, notice } = start;
+        renderer.set_scene_uploads(&scene, &state.scene_uploads());
+        let mut files = Files::new(scene_files.absolute(), state.kernel, Arc::new(SceneFiles::build), recent_file);
+        files.remember_scene_files();
+        if let Some(notice) = notice {
+            files.status = Some(Status::Failed(notice));
+        }
+        let watch_wake = Arc::clone(&wake);
+        let (mut watcher, watching) = Watcher::new(move || watch_wake());
+        let watch_error = watching.and_then(|()| watcher.watch(&watched_files(&files.scene_files, &scene))).err();
+        Controller {
+            facts: SceneFacts::new(&scene, state.scene_options.tangent_method),
+            state,
+            scene,
+            renderer,
+            files,
+            dialog: Dialog::default(),
+            watcher,
+            watch_error,
+            wake,
+            screenshot: ScreenshotForm::new(&capture),
+            preset: PresetForm::default(),
+            probe: Probe::default(),
+            view_size: None,
+            revision: 0,
+            last_state,
+            screenshot_dir: PathBuf::new(),
+        }
+    }
+
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    pub fn renderer(&self) -> &Renderer {
+        &self.renderer
+    }
+
+    pub fn facts(&self) -> &SceneFacts {
+        &self.facts
+    }
+
+    pub fn probe(&self) -> &Probe {
+        &self.probe
+    }
+
+    /// Why hot reload does not work, when it does not.
+    pub fn watch_error(&self) -> Option<&str> {
+        self.watch_error.as_deref()
+    }
+
+    /// Whether a file dialog is showing.
+    pub fn dialog_open(&self) -> bool {
+        self.dialog.is_open()
+    }
+
+    /// Counts changes of the scene or its GPU data (not of the frame parameters).
+    pub fn revision(&self) -> u64 {
+        self.revision
+    }
+
+    pub fn view_size(&self) -> Option<[u32; 2]> {
+        self.view_size
+    }
+
+    /// The 3D view was laid out `size` pixels large (screenshots default to it, the probe
+    /// reads the picture at that size).
+    pub fn set_view_size(&mut self, size: Option<[u32; 2]>) {
+        self.view_size = size;
+    }
+
+    /// A function for worker threads that wakes the UI.
+    fn waker(&self) -> impl Fn() + Send + 'static {
+        let wake = Arc::clone(&self.wake);
+        move || wake()
+    }
+
+    /// The one place actions take effect; then the renderer's uploads follow the state.
+    pub fn apply(&mut self, actions: impl IntoIterator<Item = Action>) {
+        for action in actions {
+            self.apply_one(action);
+        }
+        self.sync_uploads();
+    }
+
+    fn apply_one(&mut self, action: Action) {
+        match action {
+            Action::Viewer(command) => {
+                self.state.apply(command);
+                if let Command::SetKernel(kernel) = command {
+                    self.rebuild_builtin(kernel);
+                }
+            }
+            Action::Screenshot => self.screenshot.message = Some(self.save_screenshot()),
+            Action::ExportTiles => self.screenshot.message = Some(self.export_tiles()),
+            Action::SavePreset(path) => self.preset.message = Some(self.save_preset(&path)),
+            Action::LoadPreset(path) => self.preset.message = Some(self.load_preset(&path)),
+            Action::Open { paths, slot } => self.files.open(&paths, slot, self.waker()),
+            Action::ShowDialog(slot) => {
+                let folder = self.files.scene_files.paths().first().and_then(|f| f.parent()).map(Path::to_owned);
+                if let Err(message) = self.dialog.show(slot, folder, self.waker()) {
+                    self.files.status = Some(Status::Failed(message));
+                }
+            }
+            Action::DialogClosed { slot, path: Some(path) } => self.files.open(&[path], slot, self.waker()),
+            Action::DialogClosed { path: None, .. } => {
+                self.files.status = Some(Status::Done(
+                    "no file chosen (if no dialog appeared: this desktop has no file-chooser portal or zenity)".into(),
+                ));
+            }
+            Action::Reload => {
+                let scene_files = self.files.scene_files.clone();
+                let name = scene_files.paths().first().map_or_else(|| "built-in scene".into(), |p| files::file_name(p));
+                let done = format!("reloaded {name}");
+                self.files.reload(scene_files, self.files.kernel, done, self.waker());
+            }
+            Action::PinProbe { pixel, size } => {
+                self.probe.pin(pixel, size);
+                (self.wake)();
+            }
+            Action::ClearProbe => self.probe.clear(),
+            Action::Loaded(finished) => {
+                if let Some((scene, purpose)) = self.files.finish(*finished) {
+                    self.install_scene(scene, purpose);
+                }
+            }
+        }
+    }
+
+    /// Re-makes the built-in scene with a new brick-map kernel (in the background, keeping
+    /// the view and any textures in its slots); loaded meshes do not use the kernel.
+    fn rebuild_builtin(&mut self, kernel: Kernel) {
+        if self.files.scene_files.mesh.is_none() && self.files.kernel != kernel {
+            let done = format!("brick normal map made with {}", kernel.name());
+            self.files.reload(self.files.scene_files.clone(), kernel, done, self.waker());
+        }
+    }
+
+    /// Shows a newly loaded scene. A new mesh is framed by its default camera and light; a
+    /// reload keeps camera, light and settings.
+    fn install_scene(&mut self, scene: Scene, purpose: Purpose) {
+        if purpose == Purpose::Open {
+            // Per-material overrides name materials by index: they belong to the old mesh.
+            self.state.scene_options.per_material.clear();
+            self.state.camera = scene.default_camera;
+            self.state.light = scene.default_light;
+        }
+        self.state.default_camera = scene.default_camera;
+        self.renderer.set_scene_uploads(&scene, &self.state.scene_uploads());
+        self.facts = SceneFacts::new(&scene, self.state.scene_options.tangent_method);
+        self.scene = scene;
+        self.probe.scene_changed();
+        self.revision += 1;
+        self.watch_error = self.watcher.watch(&watched_files(&self.files.scene_files, &self.scene)).err();
+    }
+
+    /// Re-makes the GPU data the state asks for and the renderer does not hold: the tangent
+    /// method, bump source or conventions changed, or the split view's halves. (A kernel
+    /// change re-makes the built-in scene instead: [`Self::rebuild_builtin`].)
+    fn sync_uploads(&mut self) {
+        let wanted = self.state.scene_uploads();
+        let Some(held) = self.renderer.uploads() else { return };
+        if wanted == held {
+            return;
+        }
+        if wanted.main != held.main {
+            self.renderer.set_scene(&self.scene, wanted.main.clone());
+        }
+        if wanted.split_right != held.split_right {
+            self.renderer.set_split_scene(&self.scene, wanted.split_right);
+        }
+        let method = self.state.scene_options.tangent_method;
+        if self.facts.measured != method {
+            self.facts.measurements = measure_all(&self.scene, method);
+            self.facts.measured = method;
+        }
+        self.revision += 1;
+    }
+
+    /// Takes in what arrived from other threads: the dialog's answer, settled file changes and
+    /// finished loads. Returns how soon to look again while file changes are settling.
+    pub fn poll_background(&mut self, now: Instant) -> Option<Duration> {
+        let mut actions = Vec::new();
+        if let Some((slot, path)) = self.dialog.poll() {
+            actions.push(Action::DialogClosed { slot, path });
+        }
+        // Scene files are relative where the mesh path was (a command-line argument); the
+        // watcher reports absolute paths.
+        let referred =
+            |path: &PathBuf| self.scene.files.iter().any(|f| std::path::absolute(f).is_ok_and(|f| f == *path));
+        if self.watcher.changes().iter().any(|path| files::affects(&self.files.scene_files, path) || referred(path)) {
+            self.files.debouncer.changed(now);
+        }
+        if let Some(finished) = self.files.loader.poll() {
+            actions.push(Action::Loaded(Box::new(finished)));
+        }
+        // A reload waits for a load in flight (which wakes the UI when done), so that it does
+        // not replace a mesh the user is opening.
+        let mut wait = None;
+        if self.files.loader.busy().is_none() {
+            if self.files.debouncer.fire(now) {
+                actions.push(Action::Reload);
+            } else {
+                wait = self.files.debouncer.remaining(now);
+            }
+        }
+        self.apply(actions);
+        wait
+    }
+
+    /// Recomputes the probe's readout, if one is pinned, from the renderer's prepared scene of
+    /// the picture where its point shows now (in the split view, that half's).
+    pub fn refresh_probe(&mut self) {
+        let Some(size) = self.view_size.filter(|_| self.probe.is_pinned()) else { return };
+        let column = self.probe.shown_at(&self.state.camera, size).map_or(0, |p| p.x.max(0.0) as u32);
+        let (params, _, half) = self.state.picture_at(column, size[0]);
+        let Some(prepared) = self.renderer.prepared(half == Some(1)) else { return };
+        let half = half.map(|i| format!("{}: {}", ["left", "right"][i], self.state.split.labels()[i]));
+        self.probe.update(prepared, &params, size, half);
+    }
+
+    /// Advances the light orbit by `seconds`; whether it runs (frames must keep coming).
+    pub fn animate(&mut self, seconds: f32) -> bool {
+        if self.state.is_animating() {
+            self.state.apply(Command::Tick(seconds));
+        }
+        self.state.is_animating()
+    }
+
+    /// Draws the current picture (the split view when it is on) into `target` and submits it.
+    pub fn draw(&mut self, target: &RenderTarget) -> Result<(), RenderError> {
+        let mut encoder = self.renderer.device().create_command_encoder(&Default::default());
+        let params = self.state.frame_params();
+        match self.state.split_frame() {
+            Some(split) => self.renderer.render_split(&mut encoder, target, &params, &split, Background::Opaque)?,
+            None => self.renderer.render(&mut encoder, target, &params)?,
+        }
+        self.renderer.queue().submit([encoder.finish()]);
+        Ok(())
+    }
+}
+
+/// The files hot reload watches: the scene's (mesh, slot textures) and those the mesh file
+/// referred to (buffers, material libraries, textures, also in other folders).
+fn watched_files<'a>(scene_files: &'a SceneFiles, scene: &'a Scene) -> Vec<&'a Path> {
+    let mut files = scene_files.paths();
+    files.extend(scene.files.iter().map(PathBuf::as_path));
+    files
+}
+
+/// The chosen tangent method timed and compared with the reference on every mesh.
+fn measure_all(scene: &Scene, method: Option<TangentMethod>) -> Vec<(String, MethodMeasurement)> {
+    scene.meshes.iter().map(|mesh| (mesh.name.clone(), measure(mesh, method))).collect()
+}

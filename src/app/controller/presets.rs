@@ -1,0 +1,68 @@
+//! Presets in the viewer: the whole state, the scene's files and the screenshot settings saved
+//! as TOML, loaded back (state at once, files in the background), and kept between runs as
+//! `last.toml`.
+
+use std::path::{Path, PathBuf};
+
+use bumpview::state::preset::Preset;
+
+use super::{Controller, ScreenshotForm};
+use crate::app::files;
+
+/// The preset path field and the outcome of the last save or load.
+#[derive(Default)]
+pub struct PresetForm {
+    /// The file "Save preset" and "Load preset" use.
+    pub path_text: String,
+    /// What the last save or load did, or why it failed.
+    pub message: Option<Result<String, String>>,
+}
+
+/// Where the viewer keeps its state between runs: `last.toml`, a preset, next to the recent
+/// list ([`files::recent_file`]).
+pub fn last_state_file() -> Option<PathBuf> {
+    files::recent_file().map(|recent| recent.with_file_name("last.toml"))
+}
+
+impl Controller {
+    /// The whole state, the scene's files and the screenshot settings as a preset.
+    pub fn current_preset(&self) -> Preset {
+        let files = self.files.scene_files.clone();
+        Preset { capture: self.screenshot.capture(), ..Preset::from_state(&self.state, files) }
+    }
+
+    /// Writes [`Self::current_preset`] to `path` atomically; says where, or why not.
+    pub(super) fn save_preset(&self, path: &Path) -> Result<String, String> {
+        self.current_preset().save(path).map_err(|e| e.to_string())?;
+        Ok(format!("saved {}", path.display()))
+    }
+
+    /// Shows a preset's state at once and loads its files in the background when they differ
+    /// from the scene's (a reload: the preset's camera and light stay). A preset that does not
+    /// load leaves the state as it was.
+    pub(super) fn load_preset(&mut self, path: &Path) -> Result<String, String> {
+        let preset = Preset::load(path).map_err(|e| e.to_string())?;
+        let mut state = preset.to_state(&self.scene).map_err(|e| e.to_string())?;
+        state.default_camera = self.state.default_camera;
+        let wanted = preset.files.absolute();
+        let kernel = state.kernel;
+        self.state = state;
+        self.screenshot = ScreenshotForm::new(&preset.capture);
+        self.revision += 1;
+        if (&wanted, kernel) != (&self.files.scene_files, self.files.kernel) {
+            let done = format!("opened the files of {}", path.display());
+            self.files.reload(wanted, kernel, done, self.waker());
+        }
+        Ok(format!("loaded {}", path.display()))
+    }
+
+    /// Saves the state for the next start ([`last_state_file`]), if it is kept; a failure is
+    /// reported on stderr (the window is closing).
+    pub fn save_last_state(&self) {
+        let Some(path) = &self.last_state else { return };
+        let folder = path.parent().map_or(Ok(()), std::fs::create_dir_all).map_err(|e| e.to_string());
+        if let Err(e) = folder.and_then(|()| self.current_preset().save(path).map_err(|e| e.to_string())) {
+            eprintln!("bumpview: last state not saved: {e}");
+        }
+    }
+}

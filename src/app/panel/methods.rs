@@ -1,0 +1,210 @@
+//! The numerical methods (tangent frames, bump source, kernels) with their measurements, the
+//! texture conventions and shading model per material, and what `bumpview check` finds.
+
+use bumpview::check::GreenConvention;
+use bumpview::frame::BumpSource;
+use bumpview::frame::ViewMode;
+use bumpview::height::{Border, Kernel};
+use bumpview::names::Named;
+use bumpview::scene::{GreenAxis, Material, MaterialOverrides, ShadingModel};
+use bumpview::state::{Command, ViewerState};
+use bumpview::tangent::{MethodMeasurement, TangentMethod};
+
+use crate::app::action::Action;
+use crate::app::controller::Controller;
+
+/// The tangent method, bump source and brick-map kernel, and the chosen method measured on
+/// each mesh.
+pub(super) fn methods(
+    ui: &mut egui::Ui,
+    state: &ViewerState,
+    measurements: &[(String, MethodMeasurement)],
+    actions: &mut Vec<Action>,
+) {
+    let tangent_name = |m: Option<TangentMethod>| m.map_or("auto (file, else mikktspace)", TangentMethod::name);
+    let mut tangent_method = state.scene_options.tangent_method;
+    egui::ComboBox::from_label("tangent frames").selected_text(tangent_name(tangent_method)).show_ui(ui, |ui| {
+        for choice in std::iter::once(None).chain(TangentMethod::all().iter().copied().map(Some)) {
+            ui.selectable_value(&mut tangent_method, choice, tangent_name(choice));
+        }
+    });
+    if tangent_method != state.scene_options.tangent_method {
+        actions.push(Command::SetTangentMethod(tangent_method).into());
+    }
+    let mut bump_source = state.scene_options.bump_source;
+    egui::ComboBox::from_label("bump source").selected_text(bump_source.name()).show_ui(ui, |ui| {
+        for &choice in BumpSource::all() {
+            ui.selectable_value(&mut bump_source, choice, choice.name());
+        }
+    });
+    if bump_source != state.scene_options.bump_source {
+        actions.push(Command::SetBumpSource(bump_source).into());
+    }
+    let mut kernel = state.kernel;
+    egui::ComboBox::from_label("height-to-normal kernel").selected_text(kernel.name()).show_ui(ui, |ui| {
+        for &choice in Kernel::all() {
+            ui.selectable_value(&mut kernel, choice, choice.name());
+        }
+    });
+    if kernel != state.kernel {
+        actions.push(Command::SetKernel(kernel).into());
+    }
+    ui.weak("time of one run; angle to the reference frame (T / B, mean and max)");
+    egui::Grid::new("measurements").striped(true).show(ui, |ui| {
+        for (mesh, m) in measurements {
+            ui.small(mesh).on_hover_text(format!("{} against {}", m.method.name(), m.reference.name()));
+            ui.small(format!("{:.2} ms", m.seconds * 1e3));
+            ui.small(format!("{:.3}° / {:.3}°", m.tangent.mean, m.bitangent.mean));
+            ui.small(format!("max {:.2}°", m.tangent.max.max(m.bitangent.max)));
+            ui.end_row();
+        }
+    });
+}
+
+/// Normal-map and height-map conventions for every material or one of them, what each
+/// material is drawn with, and the shading model.
+pub(super) fn conventions(ui: &mut egui::Ui, state: &ViewerState, materials: &[Material], actions: &mut Vec<Action>) {
+    let options = &state.scene_options;
+    let target_id = egui::Id::unique("conventions target");
+    let mut target = ui.data(|d| d.get_temp::<Option<usize>>(target_id)).flatten().filter(|&i| i < materials.len());
+    let target_name = |t: Option<usize>| t.map_or_else(|| "all materials".to_owned(), |i| material_label(materials, i));
+    egui::ComboBox::from_label("apply to").selected_text(target_name(target)).show_ui(ui, |ui| {
+        for choice in std::iter::once(None).chain((0..materials.len()).map(Some)) {
+            ui.selectable_value(&mut target, choice, target_name(choice));
+        }
+    });
+    ui.data_mut(|d| d.insert_temp(target_id, target));
+    // A material's own setting where set, else the viewer-wide one is shown (and inherited).
+    let inherited = if target.is_some() { options.materials } else { MaterialOverrides::default() };
+    let old = options.overrides(target);
+    let mut new = old;
+    let unset = if target.is_some() { "as all materials" } else { "as loaded" };
+    let green_name = |g: Option<GreenAxis>| match g {
+        None => unset,
+        Some(GreenAxis::OpenGl) => "OpenGL (+Y)",
+        Some(GreenAxis::DirectX) => "DirectX (−Y, green flipped)",
+    };
+    egui::ComboBox::from_label("normal map green").selected_text(green_name(new.green)).show_ui(ui, |ui| {
+        for choice in [None, Some(GreenAxis::OpenGl), Some(GreenAxis::DirectX)] {
+            ui.selectable_value(&mut new.green, choice, green_name(choice));
+        }
+    });
+    for (flag, base, label) in [
+        (&mut new.two_channel, inherited.two_channel, "two-channel (reconstruct z)"),
+        (&mut new.object_space, inherited.object_space, "object-space normal map (no tangents)"),
+        (&mut new.depth_map, inherited.depth_map, "height map is a depth map (white = deep)"),
+    ] {
+        let mut on = flag.or(base).unwrap_or(false);
+        if ui.checkbox(&mut on, label).changed() {
+            *flag = Some(on);
+        }
+    }
+    let kernel_name = |k: Option<Kernel>| k.map_or(unset, Kernel::name);
+    egui::ComboBox::from_label("height map kernel").selected_text(kernel_name(new.kernel)).show_ui(ui, |ui| {
+        for choice in std::iter::once(None).chain(Kernel::all().iter().copied().map(Some)) {
+            ui.selectable_value(&mut new.kernel, choice, kernel_name(choice));
+        }
+    });
+    let border_name = |b: Option<Border>| b.map_or(unset, border_label);
+    egui::ComboBox::from_label("height map border").selected_text(border_name(new.border)).show_ui(ui, |ui| {
+        for choice in [None, Some(Border::Wrap), Some(Border::Clamp)] {
+            ui.selectable_value(&mut new.border, choice, border_name(choice));
+        }
+    });
+    let mut range_mm = new.height_range_m.or(inherited.height_range_m).map_or(10.0, |m| m * 1e3);
+    let drag = egui::DragValue::new(&mut range_mm).range(0.0..=1000.0).speed(0.1).suffix(" mm");
+    let changed = ui
+        .horizontal(|ui| {
+            let changed = ui.add(drag).changed();
+            ui.label("height map range (metres per full range, shown in mm)");
+            changed
+        })
+        .inner;
+    if changed {
+        new.height_range_m = Some(range_mm * 1e-3);
+    }
+    let reset = if target.is_some() { "Use the settings for all materials" } else { "Use the files' settings" };
+    if ui.add_enabled(!old.is_empty(), egui::Button::new(reset)).clicked() {
+        new = MaterialOverrides::default();
+    }
+    if new != old {
+        actions.push(Command::SetMaterialOverrides { material: target, overrides: new }.into());
+    }
+    ui.weak("in use (after overrides); * marks a material with its own settings");
+    egui::Grid::new("conventions in use").striped(true).num_columns(2).show(ui, |ui| {
+        for (index, material) in materials.iter().enumerate() {
+            let own = if options.per_material.contains_key(&index) { " *" } else { "" };
+            ui.small(format!("{}{own}", material_label(materials, index)));
+            let (drawn, remade) = options.overrides_in_use(index).in_use(material);
+            ui.small(convention_in_use(&drawn, remade));
+            ui.end_row();
+        }
+    });
+    let shading_name = |m: Option<ShadingModel>| match m {
+        None => "auto (glTF: metallic-roughness, else Blinn-Phong)",
+        Some(ShadingModel::BlinnPhong) => "Blinn-Phong",
+        Some(ShadingModel::MetallicRoughness) => "metallic-roughness (GGX + sky)",
+    };
+    let mut shading = state.shading.shading_override;
+    egui::ComboBox::from_label("shading").selected_text(shading_name(shading)).show_ui(ui, |ui| {
+        for choice in [None, Some(ShadingModel::BlinnPhong), Some(ShadingModel::MetallicRoughness)] {
+            ui.selectable_value(&mut shading, choice, shading_name(choice));
+        }
+    });
+    if shading != state.shading.shading_override {
+        actions.push(Command::SetShadingOverride(shading).into());
+    }
+}
+
+/// "index: name" of material `index`.
+fn material_label(materials: &[Material], index: usize) -> String {
+    format!("{index}: {}", materials[index].name)
+}
+
+fn border_label(border: Border) -> &'static str {
+    match border {
+        Border::Wrap => "wrap (tiles)",
+        Border::Clamp => "clamp (edge repeats)",
+    }
+}
+
+/// One material's normal-map convention and height-map settings as drawn.
+fn convention_in_use(material: &Material, remade: bool) -> String {
+    let normal = match &material.normal_map {
+        Some(map) if remade => format!("normals made from height: {}", map.convention.describe()),
+        Some(map) => map.convention.describe(),
+        None => "no normal map".to_owned(),
+    };
+    let Some(height) = &material.height_map else { return normal };
+    let kind = if height.depth { "depth" } else { "height" };
+    let border = border_label(height.border);
+    let kernel = height.kernel.name();
+    format!("{normal}\n{kind} map: {kernel} kernel, {border}, {:.2} mm range", height.range_m * 1e3)
+}
+
+/// The findings of `bumpview check` for the scene, the renderer's notices, and a button for
+/// the view that highlights degenerate and mirrored triangles.
+pub(super) fn check(ui: &mut egui::Ui, controller: &Controller, actions: &mut Vec<Action>) {
+    let facts = controller.facts();
+    for mesh in &facts.check.meshes {
+        ui.small(format!(
+            "{}: {} triangles, {} degenerate-UV, {} mirrored, {} UV-seam positions",
+            mesh.name, mesh.triangles, mesh.degenerate_uv, mesh.mirrored, mesh.seam_positions
+        ));
+    }
+    for map in &facts.check.normal_maps {
+        let convention = match map.findings.convention {
+            Some((GreenConvention::OpenGl, c)) => format!("green looks OpenGL ({c:.2})"),
+            Some((GreenConvention::DirectX, c)) => format!("green looks DirectX ({c:.2})"),
+            None => "green undetermined (flat)".to_owned(),
+        };
+        ui.small(format!("{}: {convention}", map.material));
+    }
+    let warn = ui.visuals().warn_fg_color;
+    for line in facts.check_warnings.iter().chain(&controller.renderer().notices()) {
+        ui.colored_label(warn, egui::RichText::new(line).small());
+    }
+    if ui.button("Highlight degenerate / mirrored UVs").clicked() {
+        actions.push(Command::SetView(ViewMode::UvCheck).into());
+    }
+}

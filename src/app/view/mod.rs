@@ -1,0 +1,202 @@
+//! The 3D view: an offscreen texture the controller draws into ([`View::draw`], only when the
+//! picture would change) and egui shows as an image, with what goes over it — the split
+//! view's divider and labels (dragged with the mouse), the Difference view's legend, the
+//! probe's marker and readout ([`probe_overlay`]) — and the mouse gestures on it ([`input`]).
+
+pub mod input;
+mod legend;
+pub mod probe_overlay;
+
+use bumpview::frame::{SplitFrame, ViewMode};
+use bumpview::render::RenderTarget;
+use bumpview::state::{Command, RedrawTracker};
+use eframe::egui_wgpu::RenderState;
+
+use super::action::Action;
+use super::controller::Controller;
+
+/// Format of the view texture; egui samples it as gamma-encoded colour.
+const VIEW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+/// Format the renderer draws through: the same bytes, sRGB-encoded on write.
+const VIEW_RENDER_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// How close to the split view's divider (points) a drag must begin to move it.
+const DIVIDER_GRAB_POINTS: f32 = 8.0;
+
+/// The offscreen texture the 3D view is drawn into, registered with egui.
+struct ViewTexture {
+    /// The `Rgba8UnormSrgb` view the renderer draws through.
+    render_view: wgpu::TextureView,
+    /// egui's handle of the plain `Rgba8Unorm` view.
+    id: egui::TextureId,
+    /// Width and height in pixels.
+    size: [u32; 2],
+}
+
+pub struct View {
+    /// eframe's device and egui's renderer, which the view texture is registered with.
+    render_state: RenderState,
+    texture: Option<ViewTexture>,
+    tracker: RedrawTracker,
+    /// The split view and the controller's revision the texture was last drawn with.
+    drawn: Option<(Option<SplitFrame>, u64)>,
+    /// The divider is being dragged (the drag began near it).
+    dragging_divider: bool,
+    /// Why the last draw failed.
+    render_error: Option<String>,
+}
+
+impl View {
+    pub fn new(render_state: RenderState) -> View {
+        View {
+            render_state,
+            texture: None,
+            tracker: RedrawTracker::default(),
+            drawn: None,
+            dragging_divider: false,
+            render_error: None,
+        }
+    }
+
+    /// The view's size in pixels, once laid out.
+    pub fn size(&self) -> Option<[u32; 2]> {
+        self.texture.as_ref().map(|t| t.size)
+    }
+
+    /// Why the last draw failed.
+    pub fn render_error(&self) -> Option<&str> {
+        self.render_error.as_deref()
+    }
+
+    /// Shows the 3D view filling `ui` with its overlays and returns what the mouse did to it.
+    pub fn show(&mut self, ui: &mut egui::Ui, controller: &Controller) -> Vec<Action> {
+        let rect = ui.available_rect_before_wrap();
+        let response = ui.allocate_rect(rect, egui::Sense::drag());
+        let Some(size) = pixel_size(rect.size() * ui.ctx().pixels_per_point(), controller) else {
+            return Vec::new();
+        };
+        let id = self.ensure_texture(size);
+        let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+        ui.painter().image(id, rect, uv, egui::Color32::WHITE);
+        let state = &controller.state;
+        if state.shading.view == ViewMode::Difference {
+            legend::difference(ui.painter(), rect, state.shading.difference_range_deg);
+        }
+        let mut actions = Vec::new();
+        if state.split.enabled {
+            if let Some(divider) = self.split_divider(ui, &response, rect, controller) {
+                return vec![divider];
+            }
+        } else {
+            self.dragging_divider = false;
+        }
+        actions.extend(probe_overlay::show(ui, controller.probe(), rect, size, &state.camera));
+        actions.extend(input::viewport(&response, ui.ctx(), size));
+        actions.extend(input::probe_click(ui.ctx(), rect, size));
+        actions
+    }
+
+    /// Draws the split view's divider and labels over the view at `rect`; a drag that began
+    /// within [`DIVIDER_GRAB_POINTS`] of the divider moves it (the returned action, instead of
+    /// orbiting), elsewhere the view's gestures work as usual (`None`).
+    fn split_divider(
+        &mut self,
+        ui: &egui::Ui,
+        response: &egui::Response,
+        rect: egui::Rect,
+        controller: &Controller,
+    ) -> Option<Action> {
+        let split = controller.state.split;
+        let x = rect.left() + rect.width() * split.divider;
+        let painter = ui.painter();
+        painter.vline(x, rect.y_range(), egui::Stroke::new(2.0, egui::Color32::WHITE));
+        let [left, right] = split.labels();
+        let font = egui::FontId::proportional(15.0);
+        let label_y = rect.top() + 8.0;
+        for (text, anchor, pos) in [
+            (left, egui::Align2::RIGHT_TOP, egui::pos2(x - 10.0, label_y)),
+            (right, egui::Align2::LEFT_TOP, egui::pos2(x + 10.0, label_y)),
+        ] {
+            let galley = painter.layout_no_wrap(text, font.clone(), egui::Color32::WHITE);
+            let text_rect = anchor.anchor_size(pos, galley.size());
+            painter.rect_filled(text_rect.expand(4.0), 4.0, egui::Color32::from_black_alpha(170));
+            painter.galley(text_rect.min, galley, egui::Color32::WHITE);
+        }
+        let near = |p: egui::Pos2| (p.x - x).abs() <= DIVIDER_GRAB_POINTS && rect.y_range().contains(p.y);
+        if response.hover_pos().is_some_and(near) || self.dragging_divider {
+            ui.ctx().set_cursor_icon(egui::CursorIcon::ResizeHorizontal);
+        }
+        if response.drag_started() {
+            self.dragging_divider = ui.ctx().input(|i| i.pointer.press_origin()).is_some_and(near);
+        }
+        if !response.dragged() {
+            self.dragging_divider = false;
+            return None;
+        }
+        if !self.dragging_divider {
+            return None;
+        }
+        let pointer = response.interact_pointer_pos()?;
+        let fraction = ((pointer.x - rect.left()) / rect.width()).clamp(0.0, 1.0);
+        Some(Command::SetSplitDivider(fraction).into())
+    }
+
+    /// Makes the view texture `size` pixels, recreating it only when the size changed.
+    fn ensure_texture(&mut self, size: [u32; 2]) -> egui::TextureId {
+        if let Some(texture) = self.texture.as_ref().filter(|t| t.size == size) {
+            return texture.id;
+        }
+        let device = &self.render_state.device;
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("3d view"),
+            size: wgpu::Extent3d { width: size[0], height: size[1], depth_or_array_layers: 1 },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: VIEW_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[VIEW_RENDER_FORMAT],
+        });
+        let egui_view = texture.create_view(&Default::default());
+        let render_view = texture
+            .create_view(&wgpu::TextureViewDescriptor { format: Some(VIEW_RENDER_FORMAT), ..Default::default() });
+        let mut egui_renderer = self.render_state.renderer.write();
+        let id = match &self.texture {
+            Some(old) => {
+                egui_renderer.update_egui_texture_from_wgpu_texture(
+                    device,
+                    &egui_view,
+                    wgpu::FilterMode::Linear,
+                    old.id,
+                );
+                old.id
+            }
+            None => egui_renderer.register_native_texture(device, &egui_view, wgpu::FilterMode::Linear),
+        };
+        self.texture = Some(ViewTexture { render_view, id, size });
+        id
+    }
+
+    /// Draws the controller's picture into the view texture, only when the picture, its
+    /// size, the split view or the scene's GPU data changed.
+    pub fn draw(&mut self, controller: &mut Controller) {
+        let Some(texture) = &self.texture else { return };
+        let drawn = (controller.state.split_frame(), controller.revision());
+        if self.drawn != Some(drawn) {
+            self.drawn = Some(drawn);
+            self.tracker.invalidate();
+        }
+        if !self.tracker.needs_redraw(&controller.state.frame_params(), texture.size) {
+            return;
+        }
+        let target = RenderTarget { view: &texture.render_view, format: VIEW_RENDER_FORMAT, size: texture.size };
+        self.render_error = controller.draw(&target).err().map(|e| e.to_string());
+    }
+}
+
+/// Whole pixels for a view of `pixels`, within the adapter's limit; `None` when empty.
+fn pixel_size(pixels: egui::Vec2, controller: &Controller) -> Option<[u32; 2]> {
+    let limit = controller.renderer().max_target_size();
+    let side = |v: f32| (v.round() as u32).min(limit);
+    let size = [side(pixels.x), side(pixels.y)];
+    (size[0] > 0 && size[1] > 0).then_some(size)
+}

@@ -1,0 +1,217 @@
+//! `bumpview render`: the built-in scene or a mesh drawn offscreen (no window, no display)
+//! into a PNG. Its picture flags are the viewer's [`Command`]s, applied by
+//! [`ViewerState::apply`] as the panel's are, so they get the same clamps.
+
+use std::path::PathBuf;
+
+use bumpview::error::LoadWarning;
+use bumpview::frame::ViewMode;
+use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
+use bumpview::render::export::{TileGrid, caption, render_grid};
+use bumpview::render::{Gpu, Renderer};
+use bumpview::state::preset::{CapturePreset, Preset};
+use bumpview::state::{Command, SplitDifference, ViewerState};
+use glam::Vec3;
+
+use super::Failure;
+use super::args;
+use super::inputs::InputArgs;
+use super::methods::MethodArgs;
+use super::start::{Started, start};
+
+/// `render`'s size when neither `--size` nor the preset gives one.
+pub const DEFAULT_RENDER_SIZE: [u32; 2] = [1280, 720];
+
+#[derive(clap::Args)]
+pub struct RenderArgs {
+    /// Where to write the PNG [default with --preset: the preset's path with `.png`].
+    #[arg(long, required_unless_present = "preset")]
+    out: Option<PathBuf>,
+    /// Start from this preset (TOML, as the viewer's "Save preset" writes); flags given as well
+    /// override it.
+    #[arg(long, value_name = "FILE")]
+    preset: Option<PathBuf>,
+    /// Also write the state of this picture as a preset here.
+    #[arg(long, value_name = "FILE")]
+    save_preset: Option<PathBuf>,
+    /// Image size in pixels [default: the preset's, else 1280x720].
+    #[arg(long, value_parser = args::parse_size)]
+    size: Option<[u32; 2]>,
+    /// Transparent background: alpha 0 where there is no geometry (the PNG keeps alpha).
+    #[arg(long)]
+    transparent: bool,
+    /// Render at K times the size (1 to 4) and downsample with a box filter in linear light.
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_SUPERSAMPLE)))]
+    supersample: Option<u32>,
+    /// What to show [default: lit].
+    #[arg(long, value_parser = args::named::<ViewMode>())]
+    view: Option<ViewMode>,
+    /// Bump mapping on or off [default: on].
+    #[arg(long, value_parser = args::parse_on_off, action = clap::ArgAction::Set)]
+    bump: Option<bool>,
+    /// Bump strength (0 is flat, negative inverts the relief), clamped to −2…4 as the
+    /// viewer's slider [default: 1].
+    #[arg(long, value_parser = args::parse_finite, allow_hyphen_values = true)]
+    strength: Option<f32>,
+    /// Light position X,Y,Z in metres (world space, +Y up).
+    #[arg(long, value_parser = args::parse_vec3, allow_hyphen_values = true)]
+    light: Option<Vec3>,
+    /// Camera YAW,PITCH,DISTANCE: degrees about +Y (0 looks along −Z), degrees above the
+    /// target (clamped to ±89), metres from it (positive; clamped to 0.05…500).
+    #[arg(long, value_parser = args::parse_triple, allow_hyphen_values = true)]
+    camera: Option<[f32; 3]>,
+    /// Hide the light marker.
+    #[arg(long)]
+    no_light_marker: bool,
+    /// Draw T/B/N glyphs (red, green, blue lines) at vertices of meshes with tangent frames.
+    #[arg(long)]
+    glyphs: bool,
+    /// Split view, left │ right, as one image: bump (off │ on), view (lit │ shading-normal),
+    /// strength (1 │ 3), mode (colour-only │ bump-colour), tangents (per-face │ mikktspace),
+    /// convention (opengl │ directx) or bump-source (normal-map │ height-in-shader)
+    /// [default: the preset's].
+    #[arg(long, value_name = "KIND", value_parser = args::named::<SplitDifference>(), conflicts_with = "tiles")]
+    split: Option<SplitDifference>,
+    /// With --split: the two sides instead of the defaults above, e.g. `averaged-uniform,mikktspace`
+    /// for tangents or `0.5,2` for strength.
+    #[arg(long, value_name = "LEFT,RIGHT", requires = "split")]
+    split_sides: Option<String>,
+    /// With --split: the divider as a fraction of the width, 0 to 1 [default: 0.5].
+    #[arg(long, value_name = "FRACTION", value_parser = args::parse_finite, requires = "split")]
+    split_at: Option<f32>,
+    /// A row of tiles of --size side by side: flat │ bumped │ Tangent view.
+    #[arg(long, group = "tiles")]
+    row: bool,
+    /// A grid of tiles of --size: rows separated by `;`, tiles by `,`, each NAME[@STRENGTH]
+    /// with NAME flat, bumped, bump-only, colour-only or a view name; without SPEC
+    /// `flat,bumped,bump-only;tangent,bitangent,shading-normal`.
+    #[arg(long, value_name = "SPEC", num_args = 0..=1, default_missing_value = "", group = "tiles")]
+    grid: Option<String>,
+    /// With --row or --grid: a caption strip under each tile (view and mode, strength,
+    /// normal-map convention, tangent source).
+    #[arg(long, requires = "tiles")]
+    captions: bool,
+    /// Fail (exit 1, no PNG) when the model opened without a texture it names, instead of
+    /// drawing it without and warning on stderr.
+    #[arg(long)]
+    strict: bool,
+    #[command(flatten)]
+    methods: MethodArgs,
+    #[command(flatten)]
+    inputs: InputArgs,
+}
+
+impl RenderArgs {
+    /// The picture flags as the viewer's commands, in the order they apply. Values no command
+    /// takes (a camera distance that is not positive, a divider outside the view) are bad
+    /// arguments, as the README says; the others are clamped by the commands.
+    fn commands(&self) -> Result<Vec<Command>, Failure> {
+        let mut commands = Vec::new();
+        commands.extend(self.view.map(Command::SetView));
+        commands.extend(self.bump.map(Command::SetBump));
+        commands.extend(self.strength.map(Command::SetStrength));
+        if self.no_light_marker {
+            commands.push(Command::SetLightMarker(false));
+        }
+        if self.glyphs {
+            commands.push(Command::SetGlyphs(true));
+        }
+        commands.extend(self.light.map(Command::SetLightPosition));
+        if let Some([yaw, pitch, distance]) = self.camera {
+            if distance <= 0.0 {
+                return Err(Failure::BadArguments(format!("--camera: distance {distance} must be positive")));
+            }
+            commands.push(Command::PointCamera { yaw: yaw.to_radians(), pitch: pitch.to_radians(), distance });
+        }
+        if let Some(difference) = self.split {
+            commands.extend([Command::SetSplit(true), Command::SetSplitDifference(difference)]);
+            if let Some(sides) = &self.split_sides {
+                let sides = args::parse_split_sides(difference, sides);
+                commands.push(sides.map_err(|e| Failure::BadArguments(format!("--split-sides {e}")))?);
+            }
+        }
+        if let Some(at) = self.split_at {
+            if !(0.0..=1.0).contains(&at) {
+                let message = format!("--split-at {at}: expected a fraction of the width, 0 to 1");
+                return Err(Failure::BadArguments(message));
+            }
+            commands.push(Command::SetSplitDivider(at));
+        }
+        Ok(commands)
+    }
+
+    /// The tile grid asked for, made from the current shading (`None`: a single picture).
+    fn grid(&self, state: &ViewerState) -> Result<Option<TileGrid>, Failure> {
+        Ok(match (&self.grid, self.row) {
+            (Some(spec), _) if spec.is_empty() => Some(TileGrid::default_grid(&state.shading)),
+            (Some(spec), _) => {
+                let grid = TileGrid::parse(spec, &state.shading);
+                Some(grid.map_err(|e| Failure::BadArguments(format!("--grid {e}")))?)
+            }
+            (None, true) => Some(TileGrid::default_row(&state.shading)),
+            (None, false) => None,
+        })
+    }
+
+    /// The screenshot settings: the flags over the preset's.
+    fn capture(&self, preset: CapturePreset) -> CapturePreset {
+        CapturePreset {
+            size: Some(self.size.or(preset.size).unwrap_or(DEFAULT_RENDER_SIZE)),
+            transparent: self.transparent || preset.transparent,
+            supersample: self.supersample.unwrap_or(preset.supersample),
+            captions: self.captions || preset.captions,
+        }
+    }
+}
+
+/// Draws the picture and writes the PNG (and the preset, with `--save-preset`).
+pub fn run(args: &RenderArgs) -> Result<(), Failure> {
+    let preset = match &args.preset {
+        Some(path) => Preset::load(path)?,
+        None => Preset::default(),
+    };
+    let Started { files, capture, scene, mut state } = start(preset, args.inputs.files(), &args.methods)?;
+    for warning in &scene.warnings {
+        eprintln!("bumpview: warning: {warning}");
+    }
+    let unreadable = scene.warnings.iter().filter(|w| matches!(w, LoadWarning::UnreadableTexture { .. })).count();
+    if args.strict && unreadable > 0 {
+        return Err(Failure::Failed(format!("--strict: the model opened without {unreadable} texture(s)")));
+    }
+    for command in args.commands()? {
+        state.apply(command);
+    }
+    let capture = args.capture(capture);
+    let out = match (&args.out, &args.preset) {
+        (Some(out), _) => out.clone(),
+        (None, Some(preset)) => preset.with_extension("png"),
+        (None, None) => unreachable!("clap requires --out without --preset"),
+    };
+    let grid = args.grid(&state)?;
+    if grid.is_some() {
+        // Tiles are single pictures: a preset's split view does not apply.
+        state.apply(Command::SetSplit(false));
+    }
+    if let Some(path) = &args.save_preset {
+        Preset { capture, ..Preset::from_state(&state, files) }.save(path)?;
+    }
+    let gpu = Gpu::headless()?;
+    let mut renderer = Renderer::from_gpu(&gpu);
+    renderer.set_scene_uploads(&scene, &state.scene_uploads());
+    let options = capture.options(DEFAULT_RENDER_SIZE);
+    let params = state.frame_params();
+    let image = if let Some(grid) = grid {
+        let captions: Option<Vec<_>> = capture
+            .captions
+            .then(|| grid.tiles.iter().map(|s| caption(&renderer, &scene, &state.scene_options, s)).collect());
+        render_grid(&mut renderer, &options, &params, &grid, captions.as_deref())
+    } else if let Some(split) = state.split_frame() {
+        render_capture_split(&mut renderer, &options, &params, &split)
+    } else {
+        render_capture(&mut renderer, &options, &params)
+    }?;
+    write_png_atomically(&image, &out)?;
+    let (width, height) = image.dimensions();
+    println!("wrote {} ({width}x{height}, {})", out.display(), gpu.adapter_name());
+    Ok(())
+}

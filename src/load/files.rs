@@ -1,0 +1,189 @@
+//! The files of a scene: a mesh file (or the built-in scene) and texture files put into every
+//! material's slots — what the command line's `MESH --color --normal --height --gloss`, a
+//! preset's `[files]` table, the viewer's loader and its texture slots all describe
+//! ([`SceneFiles`]) — and MTL height maps.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use super::image::load_texture;
+use super::load_scene;
+use crate::error::LoadError;
+use crate::height::Kernel;
+use crate::scene::builtin::teaching_scene_with_kernel;
+use crate::scene::material::TEXTURE_SPAN_M;
+use crate::scene::{HeightMap, NormalMap, Scene, TextureImage, TextureKind};
+
+/// Metres the full range of a height map from a file spans (times an MTL `-bm`).
+pub const HEIGHT_RANGE_M: f32 = 0.01;
+
+/// What a scene is made from: a mesh file, or none for the built-in teaching scene, and
+/// texture files that replace a slot of every material. A preset stores it as its `[files]`
+/// table (these field names).
+#[derive(Debug, Clone, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SceneFiles {
+    /// A glTF 2.0 (`.gltf`, `.glb`) or OBJ file; `None`: the built-in scene.
+    pub mesh: Option<PathBuf>,
+    /// Base colour (sRGB).
+    pub color: Option<PathBuf>,
+    /// Tangent-space normal map, OpenGL convention (+Y up the image).
+    pub normal: Option<PathBuf>,
+    /// Height map (white = high, 1 cm per full range); also becomes the normal
+    /// map unless `normal` is given.
+    pub height: Option<PathBuf>,
+    /// Gloss (Blinn-Phong specular) map: linear RGB multiplying the material's `k_s`.
+    pub gloss: Option<PathBuf>,
+}
+
+/// A texture slot of [`SceneFiles`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "lowercase")]
+pub enum TextureSlot {
+    /// sRGB base colour.
+    Color,
+    /// Tangent-space normal map.
+    Normal,
+    /// Height map (white = high); also becomes the normal map unless one is given.
+    Height,
+    /// Gloss (specular) map.
+    Gloss,
+}
+
+impl TextureSlot {
+    /// The slot's name for people (panel and messages).
+    pub fn label(self) -> &'static str {
+        match self {
+            TextureSlot::Color => "colour",
+            TextureSlot::Normal => "normal map",
+            TextureSlot::Height => "height map",
+            TextureSlot::Gloss => "gloss",
+        }
+    }
+}
+
+impl SceneFiles {
+    /// Whether no file is named (the built-in scene as it is).
+    pub fn is_empty(&self) -> bool {
+        self == &SceneFiles::default()
+    }
+
+    /// The file in `slot`.
+    pub fn texture(&self, slot: TextureSlot) -> Option<&Path> {
+        self.slot(slot).as_deref()
+    }
+
+    /// Puts `path` into `slot`.
+    pub fn set_texture(&mut self, slot: TextureSlot, path: PathBuf) {
+        *self.slot_mut(slot) = Some(path);
+    }
+
+    fn slot(&self, slot: TextureSlot) -> &Option<PathBuf> {
+        match slot {
+            TextureSlot::Color => &self.color,
+            TextureSlot::Normal => &self.normal,
+            TextureSlot::Height => &self.height,
+            TextureSlot::Gloss => &self.gloss,
+        }
+    }
+
+    fn slot_mut(&mut self, slot: TextureSlot) -> &mut Option<PathBuf> {
+        match slot {
+            TextureSlot::Color => &mut self.color,
+            TextureSlot::Normal => &mut self.normal,
+            TextureSlot::Height => &mut self.height,
+            TextureSlot::Gloss => &mut self.gloss,
+        }
+    }
+
+    /// Every file named: the mesh first, then the textures in slot order.
+    pub fn paths(&self) -> Vec<&Path> {
+        let textures = [&self.color, &self.normal, &self.height, &self.gloss];
+        self.mesh.iter().chain(textures.into_iter().flatten()).map(PathBuf::as_path).collect()
+    }
+
+    /// Each path mapped by `f`.
+    fn map(&self, f: impl Fn(&Path) -> PathBuf) -> SceneFiles {
+        let map = |path: &Option<PathBuf>| path.as_deref().map(&f);
+        SceneFiles {
+            mesh: map(&self.mesh),
+            color: map(&self.color),
+            normal: map(&self.normal),
+            height: map(&self.height),
+            gloss: map(&self.gloss),
+        }
+    }
+
+    /// These files with relative paths joined to `folder` (a preset's paths are relative to
+    /// its file's folder).
+    pub fn resolved(&self, folder: &Path) -> SceneFiles {
+        self.map(|path| folder.join(path))
+    }
+
+    /// These files with paths made absolute against the current directory (unchanged where
+    /// that fails), so that file-change events, which name absolute paths, match them.
+    pub fn absolute(&self) -> SceneFiles {
+        self.map(|path| std::path::absolute(path).unwrap_or_else(|_| path.to_owned()))
+    }
+
+    /// These files over `base`, slot by slot: a file named here wins, an empty slot keeps
+    /// `base`'s (the command line's files over a preset's).
+    pub fn over(self, base: SceneFiles) -> SceneFiles {
+        SceneFiles {
+            mesh: self.mesh.or(base.mesh),
+            color: self.color.or(base.color),
+            normal: self.normal.or(base.normal),
+            height: self.height.or(base.height),
+            gloss: self.gloss.or(base.gloss),
+        }
+    }
+
+    /// Loads the scene: the mesh file ([`load_scene`]) or, without one, the built-in scene
+    /// with its brick normal map made by `kernel`, then the slot textures on every material
+    /// ([`replace_textures`]). Reads files, so it may take a while (the viewer runs it on a
+    /// worker thread). The error names the file that failed.
+    pub fn build(&self, kernel: Kernel) -> Result<Scene, LoadError> {
+        let mut scene = match &self.mesh {
+            Some(path) => load_scene(path)?,
+            None => teaching_scene_with_kernel(kernel),
+        };
+        replace_textures(&mut scene, self)?;
+        Ok(scene)
+    }
+}
+
+/// Loads each texture file of `files` (its mesh is not read) and puts it into its slot on
+/// every material of `scene`.
+pub fn replace_textures(scene: &mut Scene, files: &SceneFiles) -> Result<(), LoadError> {
+    if let Some(path) = &files.height {
+        let every: Vec<usize> = (0..scene.materials.len()).collect();
+        add_height_map(scene, &every, load_texture(path, TextureKind::Height)?, 1.0);
+    }
+    let mut each = |path: &Option<PathBuf>, kind, set: fn(&mut crate::scene::Material, usize)| {
+        if let Some(path) = path {
+            scene.textures.push(load_texture(path, kind)?);
+            let texture = scene.textures.len() - 1;
+            scene.materials.iter_mut().for_each(|m| set(m, texture));
+        }
+        Ok::<(), LoadError>(())
+    };
+    each(&files.color, TextureKind::Color, |m, t| m.base_color_texture = Some(t))?;
+    each(&files.normal, TextureKind::NormalMap, |m, t| m.normal_map = Some(NormalMap::new(t, 1.0)))?;
+    each(&files.gloss, TextureKind::Data, |m, t| m.gloss_texture = Some(t))?;
+    Ok(())
+}
+
+/// Puts a [`TextureKind::Height`] texture into the height map slot of `materials`, spanning
+/// `multiplier ·` [`HEIGHT_RANGE_M`] metres, and the normal map made from it with the slot's
+/// settings ([`HeightMap::new`]: central differences, wrapping) into its normal map slot.
+pub fn add_height_map(scene: &mut Scene, materials: &[usize], heights: TextureImage, multiplier: f32) {
+    let range_m = HEIGHT_RANGE_M * if multiplier.is_finite() { multiplier } else { 1.0 };
+    let slot = HeightMap::new(scene.textures.len() + 1, range_m);
+    let normal_map = slot.to_normal_map(&heights, TEXTURE_SPAN_M);
+    scene.textures.extend([normal_map, heights]);
+    for &m in materials {
+        scene.materials[m].normal_map = Some(NormalMap::new(slot.texture - 1, 1.0));
+        scene.materials[m].height_map = Some(slot.clone());
+    }
+}

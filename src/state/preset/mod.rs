@@ -1,0 +1,326 @@
+//! Presets: the whole viewer state (files, camera, light, shading, scene options, kernel) and
+//! the capture settings as a small TOML file, for `bumpview render --preset` and the viewer.
+//!
+//! Enums are stored by the names the command line uses (`view = "shading-normal"`), angles in
+//! degrees. Reading is strict about what is there and lenient about what is not:
+//!
+//! - an **unknown** key or section, a value of the wrong type or an unknown name is an error
+//!   naming the key (and, for parse errors, the line);
+//! - a **missing** key takes its default: the scene's own camera and light, the viewer's
+//!   start settings ([`ShadingSettings::default`], [`SceneOptions::default`], the default
+//!   kernel), no files (the built-in scene), and a capture at the caller's size.
+//!
+//! Numbers survive a round trip exactly: `f32` values are written as the shortest decimal that
+//! reads back to the same bits, and angles go through `f64` degrees, so a saved state renders
+//! the same pixels again.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use glam::Vec3;
+use serde::{Deserialize, Serialize};
+
+use crate::frame::{SceneOptions, ShadingSettings};
+use crate::height::Kernel;
+use crate::load::SceneFiles;
+use crate::names::{Named, parse_or_auto};
+use crate::render::capture::MAX_SUPERSAMPLE;
+use crate::scene::Scene;
+use crate::state::{SplitView, ViewerState};
+
+mod sections;
+
+pub use sections::*;
+
+/// The preset format this code writes and reads.
+pub const FORMAT_VERSION: u32 = 1;
+
+pub use crate::error::{PresetError, PresetSceneError};
+
+/// The whole preset file.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Preset {
+    /// [`FORMAT_VERSION`]; missing means the current one.
+    pub version: Option<u32>,
+    /// Relative paths are relative to the preset file's folder.
+    pub files: SceneFiles,
+    pub camera: CameraPreset,
+    pub light: LightPreset,
+    pub shading: ShadingPreset,
+    pub scene: ScenePreset,
+    pub capture: CapturePreset,
+    pub split: SplitPreset,
+}
+
+/// What a preset sets besides files, camera and light, checked and typed.
+struct Settings {
+    shading: ShadingSettings,
+    light_orbit: bool,
+    scene_options: SceneOptions,
+    kernel: Kernel,
+    split: SplitView,
+}
+
+impl Preset {
+    /// The preset of `state` showing `files`; no capture settings.
+    pub fn from_state(state: &ViewerState, files: SceneFiles) -> Preset {
+        let camera = state.camera;
+        Preset {
+            version: Some(FORMAT_VERSION),
+            files,
+            camera: CameraPreset {
+                target: Some(camera.target.to_array()),
+                yaw_deg: Some(degrees(camera.yaw)),
+                pitch_deg: Some(degrees(camera.pitch)),
+                distance: Some(camera.distance),
+                fov_y_deg: Some(degrees(camera.fov_y)),
+            },
+            light: LightPreset {
+                position: Some(state.light.position.to_array()),
+                color: Some(state.light.color.to_array()),
+                orbit: state.light_orbit,
+                marker: state.shading.show_light_marker,
+            },
+            shading: ShadingPreset::from(&state.shading),
+            scene: ScenePreset::new(&state.scene_options, state.kernel),
+            capture: CapturePreset::default(),
+            split: SplitPreset::from(&state.split),
+        }
+    }
+
+    /// The viewer state on `scene` (which gives the defaults of camera and light).
+    pub fn to_state(&self, scene: &Scene) -> Result<ViewerState, PresetError> {
+        let settings = self.settings()?;
+        let mut state = ViewerState::new(scene);
+        let c = &self.camera;
+        let radians = |deg: Option<f64>, default: f32| deg.map_or(default, |d| d.to_radians() as f32);
+        state.camera.target = c.target.map_or(state.camera.target, Vec3::from_array);
+        state.camera.yaw = radians(c.yaw_deg, state.camera.yaw);
+        state.camera.pitch = radians(c.pitch_deg, state.camera.pitch);
+        state.camera.distance = c.distance.unwrap_or(state.camera.distance);
+        state.camera.fov_y = radians(c.fov_y_deg, state.camera.fov_y);
+        state.light.position = self.light.position.map_or(state.light.position, Vec3::from_array);
+        state.light.color = self.light.color.map_or(state.light.color, Vec3::from_array);
+        state.shading = settings.shading;
+        state.light_orbit = settings.light_orbit;
+        state.scene_options = settings.scene_options;
+        state.kernel = settings.kernel;
+        state.split = settings.split;
+        Ok(state)
+    }
+
+    /// The brick-map kernel the scene is made with.
+    pub fn kernel(&self) -> Result<Kernel, PresetError> {
+        named("scene.kernel", &self.scene.kernel)
+    }
+
+    /// Loads the preset's files ([`SceneFiles::build`]; the built-in scene made with the
+    /// preset's kernel when there is no mesh).
+    pub fn build_scene(&self) -> Result<Scene, PresetSceneError> {
+        Ok(self.files.build(self.kernel()?)?)
+    }
+
+    /// The preset as TOML, with a comment line on top.
+    pub fn to_toml(&self) -> String {
+        let body = toml::to_string(self).expect("a preset is always representable in TOML");
+        format!("# bumpview preset (bumpview render --preset FILE)\n{body}")
+    }
+
+    /// Parses and checks a preset (every name and range; see the module doc for missing keys).
+    pub fn from_toml(text: &str) -> Result<Preset, PresetError> {
+        let preset: Preset = toml::from_str(text).map_err(|e| PresetError(one_line(&e.to_string())))?;
+        preset.settings()?;
+        Ok(preset)
+    }
+
+    /// Reads a preset file; relative file paths in it become relative to its folder.
+    pub fn load(path: &Path) -> Result<Preset, PresetError> {
+        let in_file = |message: String| PresetError(format!("{}: {message}", path.display()));
+        let text = std::fs::read_to_string(path).map_err(|e| in_file(e.to_string()))?;
+        let mut preset = Preset::from_toml(&text).map_err(|e| in_file(e.0))?;
+        let folder = path.parent().unwrap_or(Path::new(""));
+        preset.files = preset.files.resolved(folder);
+        Ok(preset)
+    }
+
+    /// Writes the preset atomically ([`crate::atomic::write_atomically`]).
+    pub fn save(&self, path: &Path) -> Result<(), PresetError> {
+        crate::atomic::write_bytes_atomically(path, self.to_toml().as_bytes())
+            .map_err(|e| PresetError(format!("could not write {}: {e}", path.display())))
+    }
+
+    /// Checks and types everything but files, camera and light.
+    fn settings(&self) -> Result<Settings, PresetError> {
+        if let Some(version) = self.version.filter(|&v| v != FORMAT_VERSION) {
+            return Err(bad("version", &version.to_string(), &format!("{FORMAT_VERSION} (this bumpview's format)")));
+        }
+        let c = &self.camera;
+        if let Some(d) = c.distance.filter(|d| !(d.is_finite() && *d > 0.0)) {
+            return Err(bad("camera.distance", &d.to_string(), "a positive number of metres"));
+        }
+        if let Some(f) = c.fov_y_deg.filter(|f| !(f.is_finite() && *f > 0.0 && *f < 180.0)) {
+            return Err(bad("camera.fov_y_deg", &f.to_string(), "degrees between 0 and 180"));
+        }
+        let finite = [c.yaw_deg, c.pitch_deg].into_iter().flatten().all(f64::is_finite)
+            && [c.target, self.light.position, self.light.color].into_iter().flatten().flatten().all(f32::is_finite);
+        if !finite {
+            return Err(PresetError("camera and light values must be finite numbers".into()));
+        }
+        let s = &self.shading;
+        if !s.strength.is_finite() {
+            return Err(bad("shading.strength", &s.strength.to_string(), "a finite number"));
+        }
+        let view = named("shading.view", &s.view)?;
+        let model = named_or_auto("shading.model", &s.model)?;
+        let scene = &self.scene;
+        let tangent_method = named_or_auto("scene.tangents", &scene.tangents)?;
+        let bump_source = named("scene.bump_source", &scene.bump_source)?;
+        let mut per_material = BTreeMap::new();
+        for (index, overrides) in &scene.per_material {
+            let section = format!("scene.per_material.{index}");
+            let i = index.parse::<usize>().map_err(|_| bad(&section, index, "a material index (0, 1, …)"))?;
+            per_material.insert(i, overrides.to_overrides(&section)?);
+        }
+        let capture = &self.capture;
+        if !(1..=MAX_SUPERSAMPLE).contains(&capture.supersample) {
+            let range = format!("1 to {MAX_SUPERSAMPLE}");
+            return Err(bad("capture.supersample", &capture.supersample.to_string(), &range));
+        }
+        if let Some([w, h]) = capture.size.filter(|[w, h]| *w == 0 || *h == 0) {
+            return Err(bad("capture.size", &format!("[{w}, {h}]"), "[width, height], each at least 1"));
+        }
+        let mode = named("shading.mode", &s.mode)?;
+        Ok(Settings {
+            // Every field: a new setting must get a place in the preset format too.
+            shading: ShadingSettings {
+                bump_enabled: s.bump,
+                strength: s.strength,
+                view,
+                show_light_marker: self.light.marker,
+                difference_range_deg: s.difference_range_deg,
+                shading_override: model,
+                mode,
+                wireframe: s.wireframe,
+                tbn_glyphs: s.tbn_glyphs,
+            },
+            light_orbit: self.light.orbit,
+            scene_options: SceneOptions {
+                tangent_method,
+                bump_source,
+                materials: scene.materials.to_overrides("scene.materials")?,
+                per_material,
+            },
+            kernel: self.kernel()?,
+            split: self.split.to_split()?,
+        })
+    }
+}
+
+/// The names of a left and a right value.
+fn names<T: Named>(pair: [T; 2]) -> [String; 2] {
+    pair.map(|value| value.name().to_owned())
+}
+
+/// The value named `text` ([`Named`]), else an error for `key` listing the names.
+fn named<T: Named>(key: &str, text: &str) -> Result<T, PresetError> {
+    T::parse_name(text).map_err(|e| bad(key, text, &format!("one of {}", e.expected.join(", "))))
+}
+
+/// `auto` (`None`) or the value named `text`, else an error for `key` listing the names.
+fn named_or_auto<T: Named>(key: &str, text: &str) -> Result<Option<T>, PresetError> {
+    parse_or_auto(text).map_err(|e| bad(key, text, &format!("one of {}", e.expected.join(", "))))
+}
+
+/// [`named`] for a left and a right value.
+fn named_pair<T: Named>(key: &str, pair: &[String; 2]) -> Result<[T; 2], PresetError> {
+    Ok([named(key, &pair[0])?, named(key, &pair[1])?])
+}
+
+/// "`key` = "value": expected …".
+fn bad(key: &str, value: &str, expected: &str) -> PresetError {
+    PresetError(format!("{key} = {value:?}: expected {expected}"))
+}
+
+/// toml's multi-line message (location, source line, caret, reason) as "location: reason".
+fn one_line(message: &str) -> String {
+    let quoted_source =
+        |line: &str| line.starts_with('|') || line.split_once(" |").is_some_and(|(n, _)| n.parse::<u32>().is_ok());
+    let lines: Vec<&str> = message.lines().map(str::trim).filter(|l| !l.is_empty() && !quoted_source(l)).collect();
+    lines.join(": ")
+}
+
+/// Degrees of an angle of `radians`: the shortest decimal that converts back to exactly the
+/// same `f32` radians (`20` rather than `19.99999941818584` where that is exact).
+fn degrees(radians: f32) -> f64 {
+    let exact = f64::from(radians).to_degrees();
+    let short = f64::from(radians.to_degrees());
+    if short.to_radians() as f32 == radians { short } else { exact }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frame::{BumpSource, ShadingMode, ViewMode};
+    use crate::height::Border;
+    use crate::scene::builtin::teaching_scene;
+    use crate::scene::{GreenAxis, MaterialOverrides, ShadingModel};
+    use crate::state::Command;
+    use crate::tangent::TangentMethod;
+
+    #[test]
+    fn a_changed_state_round_trips_exactly() {
+        let scene = teaching_scene();
+        let mut state = ViewerState::new(&scene);
+        state.apply(Command::OrbitCamera { d_yaw: 0.3712, d_pitch: -0.1234 });
+        state.apply(Command::Zoom(1.137));
+        state.apply(Command::SetLightPosition(Vec3::new(-1.1, 2.3, 0.7)));
+        state.apply(Command::SetStrength(2.37));
+        state.apply(Command::SetView(ViewMode::ShadingNormal));
+        state.apply(Command::SetLightMarker(false));
+        state.apply(Command::SetTangentMethod(Some(TangentMethod::PerFace)));
+        state.apply(Command::SetKernel(Kernel::Sobel5));
+        let overrides =
+            MaterialOverrides { green: Some(GreenAxis::DirectX), height_range_m: Some(0.0123), ..Default::default() };
+        state.apply(Command::SetMaterialOverrides { material: None, overrides });
+        let own = MaterialOverrides { border: Some(Border::Clamp), ..Default::default() };
+        state.apply(Command::SetMaterialOverrides { material: Some(1), overrides: own });
+        state.apply(Command::SetShadingOverride(Some(ShadingModel::MetallicRoughness)));
+        state.apply(Command::SetShadingMode(ShadingMode::BumpOnly));
+        state.apply(Command::ToggleWireframe);
+        state.apply(Command::ToggleGlyphs);
+        state.apply(Command::SetSplit(true));
+        state.apply(Command::SetSplitDifference(crate::state::SplitDifference::Strength));
+        state.apply(Command::SetSplitDivider(0.3137));
+        state.apply(Command::SetSplitStrengths([0.37, 2.91]));
+        state.apply(Command::SetSplitViews([ViewMode::Tangent, ViewMode::Handedness]));
+        state.apply(Command::SetSplitModes([ShadingMode::BumpOnly, ShadingMode::ColourOnly]));
+        state.apply(Command::SetSplitTangentMethods([TangentMethod::Analytic, TangentMethod::PerFace]));
+        state.apply(Command::SetSplitConventions([GreenAxis::DirectX, GreenAxis::OpenGl]));
+        state.apply(Command::SetSplitBumpSources([BumpSource::HeightInShader, BumpSource::NormalMap]));
+        let files = SceneFiles { height: Some("/x/h.png".into()), ..Default::default() };
+        let text = Preset::from_state(&state, files.clone()).to_toml();
+        let back = Preset::from_toml(&text).unwrap();
+        assert_eq!(back.files, files);
+        assert_eq!(back.to_state(&scene).unwrap(), state, "{text}");
+    }
+
+    #[test]
+    fn missing_keys_take_defaults_and_unknown_ones_are_errors() {
+        let scene = teaching_scene();
+        let empty = Preset::from_toml("").unwrap();
+        assert_eq!(empty.to_state(&scene).unwrap(), ViewerState::new(&scene));
+        let partial = Preset::from_toml("[shading]\nstrength = 2.5\n[camera]\ndistance = 3.0\n").unwrap();
+        let state = partial.to_state(&scene).unwrap();
+        assert_eq!((state.shading.strength, state.camera.distance), (2.5, 3.0));
+        assert_eq!(state.camera.yaw, scene.default_camera.yaw);
+        let unknown = Preset::from_toml("[shading]\nstrenght = 2.5\n").unwrap_err().0;
+        assert!(unknown.contains("strenght") && unknown.contains("line 2"), "{unknown}");
+        let name = Preset::from_toml("[shading]\nview = \"shiny\"\n").unwrap_err().0;
+        assert!(name.starts_with("shading.view = \"shiny\": expected one of lit,"), "{name}");
+        let kind = Preset::from_toml("[light]\norbit = 1\n").unwrap_err().0;
+        assert!(kind.contains("orbit") || kind.contains("line 2"), "{kind}");
+        assert!(Preset::from_toml("[capture]\nsupersample = 5\n").is_err());
+        assert!(Preset::from_toml("version = 2\n").unwrap_err().0.starts_with("version"));
+    }
+}

@@ -1,0 +1,274 @@
+//! The sections of a preset file, one struct each, and their conversions from and to the
+//! viewer state's values.
+
+use crate::frame::{SceneOptions, ShadingSettings};
+use crate::height::Kernel;
+use crate::names::{Named, name_or_auto};
+use crate::render::Background;
+use crate::render::capture::CaptureOptions;
+use crate::scene::MaterialOverrides;
+use crate::state::{SplitDifference, SplitView};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+use super::*;
+
+/// The split view: on or off, what differs, the divider and the pairs of values.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SplitPreset {
+    pub enabled: bool,
+    /// A [`SplitDifference`] name: `bump`, `view`, `strength`, `mode`, `tangents`,
+    /// `convention` or `bump-source`.
+    pub difference: String,
+    /// The divider, a fraction of the width (0..1).
+    pub divider: f32,
+    /// [`ViewMode`](crate::frame::ViewMode) names, left and right.
+    pub views: [String; 2],
+    pub strengths: [f32; 2],
+    /// [`ShadingMode`](crate::frame::ShadingMode) names, left and right.
+    pub modes: [String; 2],
+    /// [`TangentMethod`](crate::tangent::TangentMethod) names, left and right.
+    pub tangents: [String; 2],
+    /// Green conventions (`opengl`, `directx`), left and right.
+    pub conventions: [String; 2],
+    /// [`BumpSource`](crate::frame::BumpSource) names, left and right.
+    pub bump_sources: [String; 2],
+}
+
+impl Default for SplitPreset {
+    fn default() -> Self {
+        SplitPreset::from(&SplitView::default())
+    }
+}
+
+impl From<&SplitView> for SplitPreset {
+    fn from(s: &SplitView) -> Self {
+        SplitPreset {
+            enabled: s.enabled,
+            difference: s.difference.name().to_owned(),
+            divider: s.divider,
+            views: names(s.views),
+            strengths: s.strengths,
+            modes: names(s.modes),
+            tangents: names(s.tangent_methods),
+            conventions: names(s.conventions),
+            bump_sources: names(s.bump_sources),
+        }
+    }
+}
+
+impl SplitPreset {
+    pub(super) fn to_split(&self) -> Result<SplitView, PresetError> {
+        let difference: SplitDifference = named("split.difference", &self.difference)?;
+        if !(self.divider.is_finite() && (0.0..=1.0).contains(&self.divider)) {
+            return Err(bad("split.divider", &self.divider.to_string(), "a fraction of the width, 0 to 1"));
+        }
+        if let Some(s) = self.strengths.iter().find(|s| !s.is_finite()) {
+            return Err(bad("split.strengths", &s.to_string(), "finite numbers"));
+        }
+        Ok(SplitView {
+            // Every field: a new split setting must get a place in the preset format too.
+            enabled: self.enabled,
+            difference,
+            divider: self.divider,
+            views: named_pair("split.views", &self.views)?,
+            strengths: self.strengths,
+            modes: named_pair("split.modes", &self.modes)?,
+            tangent_methods: named_pair("split.tangents", &self.tangents)?,
+            conventions: named_pair("split.conventions", &self.conventions)?,
+            bump_sources: named_pair("split.bump_sources", &self.bump_sources)?,
+        })
+    }
+}
+
+/// The orbit camera; each missing value is the scene's default camera's.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct CameraPreset {
+    /// The point looked at, metres.
+    pub target: Option<[f32; 3]>,
+    /// Degrees about +Y (0 looks along −Z).
+    pub yaw_deg: Option<f64>,
+    /// Degrees above the target.
+    pub pitch_deg: Option<f64>,
+    /// Metres from the target.
+    pub distance: Option<f32>,
+    /// Vertical field of view, degrees.
+    pub fov_y_deg: Option<f64>,
+}
+
+/// The point light; missing position and colour are the scene's default light's.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct LightPreset {
+    /// Metres, world space.
+    pub position: Option<[f32; 3]>,
+    /// Linear RGB.
+    pub color: Option<[f32; 3]>,
+    /// The light orbits the target.
+    pub orbit: bool,
+    /// The light marker is drawn.
+    pub marker: bool,
+}
+
+impl Default for LightPreset {
+    fn default() -> Self {
+        let shading = ShadingSettings::default();
+        LightPreset { position: None, color: None, orbit: false, marker: shading.show_light_marker }
+    }
+}
+
+/// The shader uniforms: bump, strength, view and shading model.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ShadingPreset {
+    pub bump: bool,
+    pub strength: f32,
+    /// A [`ViewMode`](crate::frame::ViewMode) name.
+    pub view: String,
+    pub difference_range_deg: f32,
+    /// `auto`, `blinn-phong` or `pbr`.
+    pub model: String,
+    /// A [`ShadingMode`](crate::frame::ShadingMode) name: `bump-colour`, `bump-only` or `colour-only`.
+    pub mode: String,
+    /// The wireframe overlay.
+    pub wireframe: bool,
+    /// T/B/N glyphs at vertices.
+    pub tbn_glyphs: bool,
+}
+
+/// How the scene is prepared: tangents, bump source, kernel and material conventions.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ScenePreset {
+    /// `auto` or a [`TangentMethod`](crate::tangent::TangentMethod) name.
+    pub tangents: String,
+    /// A [`BumpSource`](crate::frame::BumpSource) name.
+    pub bump_source: String,
+    /// The built-in brick map's [`Kernel`] name.
+    pub kernel: String,
+    /// Conventions for every material.
+    pub materials: OverridesPreset,
+    /// Conventions per material, by index into the scene's materials (`"0"`, `"1"`…).
+    pub per_material: BTreeMap<String, OverridesPreset>,
+}
+
+/// [`MaterialOverrides`] by name; a missing key keeps the material's own setting.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct OverridesPreset {
+    /// `opengl` or `directx`.
+    pub normal_convention: Option<String>,
+    pub two_channel: Option<bool>,
+    pub object_space: Option<bool>,
+    pub depth_map: Option<bool>,
+    pub height_range_m: Option<f32>,
+    /// A [`Kernel`] name.
+    pub height_kernel: Option<String>,
+    /// `wrap` or `clamp`.
+    pub height_border: Option<String>,
+}
+
+/// Screenshot settings: size, transparent background, supersampling.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct CapturePreset {
+    /// `[width, height]` in pixels; `None`: the caller's size (the view's, or `render`'s default).
+    pub size: Option<[u32; 2]>,
+    /// Clear to alpha 0 where there is no geometry.
+    pub transparent: bool,
+    /// Render at this many times the size and box-filter down, 1..=[`MAX_SUPERSAMPLE`].
+    pub supersample: u32,
+    /// Row exports get a caption strip under each tile.
+    pub captions: bool,
+}
+
+impl Default for ShadingPreset {
+    fn default() -> Self {
+        ShadingPreset::from(&ShadingSettings::default())
+    }
+}
+
+impl From<&ShadingSettings> for ShadingPreset {
+    fn from(s: &ShadingSettings) -> Self {
+        ShadingPreset {
+            bump: s.bump_enabled,
+            strength: s.strength,
+            view: s.view.name().to_owned(),
+            difference_range_deg: s.difference_range_deg,
+            model: name_or_auto(s.shading_override).to_owned(),
+            mode: s.mode.name().to_owned(),
+            wireframe: s.wireframe,
+            tbn_glyphs: s.tbn_glyphs,
+        }
+    }
+}
+
+impl Default for ScenePreset {
+    fn default() -> Self {
+        ScenePreset::new(&SceneOptions::default(), Kernel::default())
+    }
+}
+
+impl ScenePreset {
+    pub(super) fn new(options: &SceneOptions, kernel: Kernel) -> ScenePreset {
+        ScenePreset {
+            tangents: name_or_auto(options.tangent_method).to_owned(),
+            bump_source: options.bump_source.name().to_owned(),
+            kernel: kernel.name().to_owned(),
+            materials: OverridesPreset::from(&options.materials),
+            per_material: options.per_material.iter().map(|(i, o)| (i.to_string(), o.into())).collect(),
+        }
+    }
+}
+
+impl Default for CapturePreset {
+    fn default() -> Self {
+        CapturePreset { size: None, transparent: false, supersample: 1, captions: false }
+    }
+}
+
+impl CapturePreset {
+    /// The capture these settings describe, `size` pixels when they give none.
+    pub fn options(&self, size: [u32; 2]) -> CaptureOptions {
+        let background = if self.transparent { Background::Transparent } else { Background::Opaque };
+        CaptureOptions { size: self.size.unwrap_or(size), background, supersample: self.supersample }
+    }
+}
+
+impl From<&MaterialOverrides> for OverridesPreset {
+    fn from(o: &MaterialOverrides) -> Self {
+        OverridesPreset {
+            normal_convention: o.green.map(|g| g.name().to_owned()),
+            two_channel: o.two_channel,
+            object_space: o.object_space,
+            depth_map: o.depth_map,
+            height_range_m: o.height_range_m,
+            height_kernel: o.kernel.map(|k| k.name().to_owned()),
+            height_border: o.border.map(|b| b.name().to_owned()),
+        }
+    }
+}
+
+impl OverridesPreset {
+    /// The overrides; `section` names the table in errors.
+    pub(super) fn to_overrides(&self, section: &str) -> Result<MaterialOverrides, PresetError> {
+        let key = |k: &str| format!("{section}.{k}");
+        let height_range_m = match self.height_range_m {
+            Some(r) if !(r.is_finite() && r >= 0.0) => {
+                return Err(bad(&key("height_range_m"), &r.to_string(), "a finite number of metres, at least 0"));
+            }
+            r => r,
+        };
+        Ok(MaterialOverrides {
+            green: self.normal_convention.as_deref().map(|n| named(&key("normal_convention"), n)).transpose()?,
+            two_channel: self.two_channel,
+            object_space: self.object_space,
+            depth_map: self.depth_map,
+            height_range_m,
+            kernel: self.height_kernel.as_deref().map(|n| named(&key("height_kernel"), n)).transpose()?,
+            border: self.height_border.as_deref().map(|n| named(&key("height_border"), n)).transpose()?,
+        })
+    }
+}

@@ -1,0 +1,123 @@
+//! The split view: two pictures side by side that differ in one thing, in uniforms (one scene
+//! upload) or in GPU data (a second upload for the right half).
+
+use crate::frame::{BumpSource, SceneOptions, ShadingMode, ShadingSettings, ViewMode};
+use crate::names::Named;
+use crate::scene::GreenAxis;
+use crate::tangent::TangentMethod;
+
+/// What the split view's two halves differ in. The first four are uniforms, so both halves
+/// share one scene upload; the others change GPU data ([`SplitDifference::changes_gpu_data`]),
+/// so the right half is drawn from a second upload of the scene. Named `bump`, `view`,
+/// `strength`, `mode`, `tangents`, `convention`, `bump-source`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "kebab-case")]
+pub enum SplitDifference {
+    /// Bump off │ bump on.
+    #[default]
+    Bump,
+    /// Two views, e.g. Lit │ Shading normal.
+    View,
+    /// Two bump strengths.
+    Strength,
+    /// Two lit-picture modes (bump × colour, bump only, colour only).
+    Mode,
+    /// Two tangent-frame methods.
+    Tangents,
+    /// Two normal-map green conventions (OpenGL │ DirectX) for every material.
+    Convention,
+    /// Two bump sources (normal map │ height in shader).
+    BumpSource,
+}
+
+impl SplitDifference {
+    /// Whether the halves need different GPU data (tangent streams, material flags, pipeline
+    /// variants), not only different uniforms.
+    pub fn changes_gpu_data(self) -> bool {
+        matches!(self, SplitDifference::Tangents | SplitDifference::Convention | SplitDifference::BumpSource)
+    }
+}
+
+/// The split view's settings: the two halves are the current settings with one thing changed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SplitView {
+    pub enabled: bool,
+    pub difference: SplitDifference,
+    /// The divider, a fraction of the width.
+    pub divider: f32,
+    pub views: [ViewMode; 2],
+    pub strengths: [f32; 2],
+    pub modes: [ShadingMode; 2],
+    pub tangent_methods: [TangentMethod; 2],
+    pub conventions: [GreenAxis; 2],
+    pub bump_sources: [BumpSource; 2],
+}
+
+impl Default for SplitView {
+    fn default() -> Self {
+        SplitView {
+            enabled: false,
+            difference: SplitDifference::Bump,
+            divider: 0.5,
+            views: [ViewMode::Lit, ViewMode::ShadingNormal],
+            strengths: [1.0, 3.0],
+            modes: [ShadingMode::ColourOnly, ShadingMode::BumpTimesColour],
+            tangent_methods: [TangentMethod::PerFace, TangentMethod::MikkTSpace],
+            conventions: [GreenAxis::OpenGl, GreenAxis::DirectX],
+            bump_sources: [BumpSource::NormalMap, BumpSource::HeightInShader],
+        }
+    }
+}
+
+impl SplitView {
+    /// The left and right shading: `current` with the chosen difference applied.
+    pub fn shading(&self, current: &ShadingSettings) -> [ShadingSettings; 2] {
+        let side = |i: usize| {
+            let mut s = *current;
+            match self.difference {
+                SplitDifference::Bump => s.bump_enabled = i == 1,
+                SplitDifference::View => s.view = self.views[i],
+                SplitDifference::Strength => s.strength = self.strengths[i],
+                SplitDifference::Mode => s.mode = self.modes[i],
+                SplitDifference::Tangents | SplitDifference::Convention | SplitDifference::BumpSource => {}
+            }
+            s
+        };
+        [side(0), side(1)]
+    }
+
+    /// The left and right scene options: `current` with the chosen difference applied (both
+    /// equal to `current` for differences that are only uniforms). A convention applies to
+    /// every material, over per-material choices.
+    pub fn scene_options(&self, current: &SceneOptions) -> [SceneOptions; 2] {
+        std::array::from_fn(|i| {
+            let mut options = current.clone();
+            match self.difference {
+                SplitDifference::Tangents => options.tangent_method = Some(self.tangent_methods[i]),
+                SplitDifference::Convention => {
+                    options.materials.green = Some(self.conventions[i]);
+                    for overrides in options.per_material.values_mut() {
+                        overrides.green = None;
+                    }
+                    options.per_material.retain(|_, o| !o.is_empty());
+                }
+                SplitDifference::BumpSource => options.bump_source = self.bump_sources[i],
+                SplitDifference::Bump | SplitDifference::View | SplitDifference::Strength | SplitDifference::Mode => {}
+            }
+            options
+        })
+    }
+
+    /// The on-screen labels of the left and right halves.
+    pub fn labels(&self) -> [String; 2] {
+        std::array::from_fn(|i| match self.difference {
+            SplitDifference::Bump => ["bump off", "bump on"][i].to_owned(),
+            SplitDifference::View => self.views[i].label().to_owned(),
+            SplitDifference::Strength => format!("strength {:.2}", self.strengths[i]),
+            SplitDifference::Mode => self.modes[i].label().to_owned(),
+            SplitDifference::Tangents => format!("tangents: {}", self.tangent_methods[i].name()),
+            SplitDifference::Convention => format!("normal map: {}", self.conventions[i].label()),
+            SplitDifference::BumpSource => self.bump_sources[i].label().to_owned(),
+        })
+    }
+}

@@ -1,0 +1,58 @@
+//! Enum names are what users type: command-line flags, preset files and the README spell
+//! them, so they must stay as they are. Each enum derives its names ([`bumpview::names`]);
+//! this pins every one, in order (the panel's, `--help`'s and the reports' order).
+
+use bumpview::frame::{BumpSource, ShadingMode, ViewMode};
+use bumpview::height::{Border, Kernel};
+use bumpview::names::Named;
+use bumpview::scene::{GreenAxis, ShadingModel};
+use bumpview::state::SplitDifference;
+use bumpview::tangent::TangentMethod;
+
+#[test]
+fn every_enum_keeps_its_names_in_order() {
+    let views = [
+        "lit",
+        "tangent",
+        "bitangent",
+        "normal",
+        "shading-normal",
+        "difference",
+        "uv-check",
+        "handedness",
+        "over-tilt",
+        "clearcoat-normal",
+    ];
+    assert_eq!(ViewMode::names(), views);
+    assert_eq!(ShadingMode::names(), ["bump-colour", "bump-only", "colour-only"]);
+    assert_eq!(BumpSource::names(), ["normal-map", "height-in-shader"]);
+    let differences = ["bump", "view", "strength", "mode", "tangents", "convention", "bump-source"];
+    assert_eq!(SplitDifference::names(), differences);
+    let methods =
+        ["mikktspace", "per-face", "averaged-uniform", "averaged-area", "averaged-angle", "supplied", "analytic"];
+    assert_eq!(TangentMethod::names(), methods);
+    assert_eq!(Kernel::names(), ["forward", "central", "sobel3", "scharr3", "sobel5", "central4"]);
+    assert_eq!(GreenAxis::names(), ["opengl", "directx"]);
+    assert_eq!(Border::names(), ["wrap", "clamp"]);
+    assert_eq!(ShadingModel::names(), ["blinn-phong", "pbr"]);
+}
+
+#[test]
+fn every_name_reads_back_as_its_value() {
+    fn round_trip<T: Named + std::fmt::Debug>() {
+        for &value in T::all() {
+            assert_eq!(T::from_name(value.name()), Some(value), "{value:?}");
+        }
+    }
+    round_trip::<ViewMode>();
+    round_trip::<ShadingMode>();
+    round_trip::<BumpSource>();
+    round_trip::<SplitDifference>();
+    round_trip::<TangentMethod>();
+    round_trip::<Kernel>();
+    round_trip::<GreenAxis>();
+    round_trip::<Border>();
+    round_trip::<ShadingModel>();
+    assert_eq!(ShadingMode::from_name("bump-colour"), Some(ShadingMode::BumpTimesColour));
+    assert_eq!(TangentMethod::from_name("averaged-area"), Some(TangentMethod::AveragedArea));
+}
