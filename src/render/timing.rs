@@ -9,7 +9,7 @@ use std::time::Instant;
 use super::capture::IMAGE_FORMAT;
 use super::{DrawOptions, RenderTarget, Renderer};
 use crate::error::RenderError;
-use crate::frame::{FrameParams, FrameQuality, SplitFrame};
+use crate::frame::{FrameParams, FrameQuality, Msaa, SplitFrame};
 
 /// Median wall times of a frame and of the floor, milliseconds.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -83,6 +83,21 @@ pub fn time_frames(
     Ok(FrameTiming { frame_ms: median(frame_times), floor_ms: median(floor_times) })
 }
 
+/// The median time of `frames` floors at `size` with `msaa` in [`IMAGE_FORMAT`], each waited
+/// for, after one untimed floor, in milliseconds: the budget of the viewer's interactive
+/// frames is a multiple of it.
+pub fn time_floor(renderer: &mut Renderer, size: [u32; 2], msaa: Msaa, frames: NonZeroU32) -> Result<f64, RenderError> {
+    renderer.check_target_size(size)?;
+    let texture = target_texture(renderer.device(), size);
+    let view = texture.create_view(&Default::default());
+    let target = RenderTarget { view: &view, format: IMAGE_FORMAT, size };
+    timed(renderer, |renderer, encoder| renderer.draw_floor(encoder, &target, msaa))?;
+    let times = (0..frames.get())
+        .map(|_| timed(renderer, |renderer, encoder| renderer.draw_floor(encoder, &target, msaa)))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(median(times))
+}
+
 /// A render target of `size` in [`IMAGE_FORMAT`].
 fn target_texture(device: &wgpu::Device, size: [u32; 2]) -> wgpu::Texture {
     device.create_texture(&wgpu::TextureDescriptor {
@@ -97,8 +112,9 @@ fn target_texture(device: &wgpu::Device, size: [u32; 2]) -> wgpu::Texture {
     })
 }
 
-/// Milliseconds from recording `record` to the adapter finishing it.
-fn timed(
+/// Milliseconds from recording `record` to the adapter finishing it: records into a fresh
+/// encoder, submits and waits.
+pub fn timed(
     renderer: &mut Renderer,
     record: impl FnOnce(&mut Renderer, &mut wgpu::CommandEncoder) -> Result<(), RenderError>,
 ) -> Result<f64, RenderError> {

@@ -11,8 +11,8 @@ pub use split::{SplitDifference, SplitView};
 use glam::{Vec2, Vec3};
 
 use crate::frame::{
-    BumpSource, FrameParams, STRENGTH_RANGE, SceneOptions, SceneUploads, ShadingMode, ShadingSettings, SplitFrame,
-    ViewMode,
+    BumpSource, FrameParams, Msaa, STRENGTH_RANGE, SceneOptions, SceneUploads, ShadingMode, ShadingSettings,
+    SplitFrame, ViewMode,
 };
 use crate::height::Kernel;
 use crate::scene::{GreenAxis, Light, MaterialOverrides, OrbitCamera, Scene, ShadingModel};
@@ -253,16 +253,19 @@ impl ViewerState {
     }
 }
 
-/// Decides whether a frame must be drawn: only when what it would show has changed.
+/// Decides whether a frame must be drawn: only when what it would show has changed — its
+/// parameters, its size in pixels or its multisampling, so the full-quality frame after
+/// interactive ones ([`interactive`]) is drawn once even though nothing else changed.
 #[derive(Debug, Default)]
 pub struct RedrawTracker {
-    last: Option<(FrameParams, [u32; 2])>,
+    last: Option<(FrameParams, [u32; 2], Msaa)>,
 }
 
 impl RedrawTracker {
-    /// True (and remembers the frame) when `params` at `size` differs from the last frame drawn.
-    pub fn needs_redraw(&mut self, params: &FrameParams, size: [u32; 2]) -> bool {
-        let frame = (*params, size);
+    /// True (and remembers the frame) when `params` drawn at `size` pixels with `msaa`
+    /// differs from the last frame drawn.
+    pub fn needs_redraw(&mut self, params: &FrameParams, size: [u32; 2], msaa: Msaa) -> bool {
+        let frame = (*params, size, msaa);
         if self.last.as_ref() == Some(&frame) {
             false
         } else {
@@ -288,13 +291,27 @@ mod tests {
         let scene = teaching_scene();
         let mut state = ViewerState::new(&scene);
         let mut tracker = RedrawTracker::default();
-        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64]));
-        assert!(!tracker.needs_redraw(&state.frame_params(), [64, 64]));
+        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
+        assert!(!tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
         state.apply(Command::Tick(0.5)); // no animation running: nothing changes
-        assert!(!tracker.needs_redraw(&state.frame_params(), [64, 64]));
+        assert!(!tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
         state.apply(Command::ToggleBump);
-        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64]));
-        assert!(tracker.needs_redraw(&state.frame_params(), [65, 64]));
+        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
+        assert!(tracker.needs_redraw(&state.frame_params(), [65, 64], Msaa::X4));
+    }
+
+    /// Interactive frames at one sample and a smaller size, then the same picture at full
+    /// quality once input stops: drawn once, then nothing until something changes.
+    #[test]
+    fn the_full_quality_frame_after_interactive_ones_is_drawn_once() {
+        let scene = teaching_scene();
+        let mut state = ViewerState::new(&scene);
+        let mut tracker = RedrawTracker::default();
+        state.apply(Command::OrbitCamera { d_yaw: 0.1, d_pitch: 0.0 });
+        assert!(tracker.needs_redraw(&state.frame_params(), [32, 32], Msaa::Off));
+        assert!(!tracker.needs_redraw(&state.frame_params(), [32, 32], Msaa::Off), "held still while dragging");
+        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4), "input stopped");
+        assert!(!tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
     }
 
     #[test]
@@ -319,14 +336,14 @@ mod tests {
         let scene = teaching_scene();
         let mut state = ViewerState::new(&scene);
         let mut tracker = RedrawTracker::default();
-        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64]));
+        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
         state.apply(Command::SetShadingMode(ShadingMode::BumpOnly));
-        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64]));
+        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
         state.apply(Command::SetShadingMode(ShadingMode::BumpOnly));
-        assert!(!tracker.needs_redraw(&state.frame_params(), [64, 64]));
+        assert!(!tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
         state.apply(Command::ToggleWireframe);
         assert!(state.shading.wireframe);
-        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64]));
+        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
         state.apply(Command::SetWireframe(false));
         assert!(!state.shading.wireframe);
         assert_eq!(state.scene_options, SceneOptions::default(), "no GPU data to re-make");
