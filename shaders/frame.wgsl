@@ -13,6 +13,10 @@ struct Frame {
     difference_range_deg: f32, // the Difference view's colour scale runs 0..this, degrees
     shading_mode: u32,        // ShadingMode::shader_index(): bump × colour, bump only, colour only
     over_tilt_cos: f32,       // shading::over_tilt_cos(): the Over-tilt view marks N·N_geo below this
+    parallax_layers_min: u32, // ParallaxSettings::layers_min, layers_max
+    parallax_layers_max: u32,
+    parallax_steps: u32,      // relief's binary-search steps
+    parallax_depth_m: f32,    // the relief's depth, metres; negative: each material's height range
 };
 
 @group(0) @binding(0) var<uniform> frame: Frame;

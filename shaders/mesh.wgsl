@@ -8,14 +8,15 @@
 // and the shading model it draws:
 //   vs_plain  + fs_plain          mesh without tangents, material without normal map
 //   vs_tangent + fs_tangent       mesh with tangents, material without normal map
-//   vs_tangent + fs_normal_mapped mesh with tangents and a tangent-space normal map
+//   vs_tangent + fs_normal_mapped mesh with tangents and a tangent-space normal map, read at
+//                                 the UV the parallax family shifts (parallax.wgsl)
 //   vs_plain  + fs_object_space   object-space normal map, no tangents
 //   vs_plain  + fs_height_bump    bump from the height map in screen space, no tangents
 //   vs_difference + fs_difference the Difference view: a mesh's frames against reference frames
 //   vs_wireframe + fs_wireframe   the wireframe overlay (a second pass, PolygonMode::Line)
 //   vs_glyph + fs_glyph           T/B/N glyphs at vertices (a line list, src/render/glyphs.rs)
 //
-// Prepended at build time: frame.wgsl (the Frame uniform, group 0) and pbr.wgsl.
+// Prepended at build time: frame.wgsl (the Frame uniform, group 0), pbr.wgsl and parallax.wgsl.
 
 struct Object {
     model: mat4x4<f32>,
@@ -362,8 +363,10 @@ fn fs_tangent(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @l
 }
 
 @fragment
-fn fs_normal_mapped(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
-    let n = geometric_normal(in.world_normal, front_facing);
+fn fs_normal_mapped(vertex: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    let n = geometric_normal(vertex.world_normal, front_facing);
+    var in = vertex;
+    in.uv = parallax_uv(vertex.uv, n, vertex.world_position);
     let frame_tb = tangent_frame(in.world_tangent, n);
     let texel = textureSample(bump_texture, detail_sampler, in.uv).rgb;
     var n_shading = n;

@@ -12,6 +12,8 @@
 //! stored (what the target holds: sRGB-encoded for the lit picture, `0.5·v + 0.5` for
 //! vector views).
 
+pub mod parallax;
+
 use glam::{Mat3, Vec3, Vec4};
 
 use crate::frame::{BumpKind, FrameParams, ShadingMode, ViewMode};

@@ -112,8 +112,9 @@ impl ShadingMode {
     }
 }
 
-/// The toggles that keep the scene's GPU data: uniforms, except the view and the shading
-/// model, which pick pipeline variants (each built on first use, then cached).
+/// The toggles that keep the scene's GPU data: uniforms, except the view, the shading model
+/// and the parallax technique, which pick pipeline variants (each built on first use, then
+/// cached).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShadingSettings {
     pub bump_enabled: bool,
@@ -136,6 +137,9 @@ pub struct ShadingSettings {
     /// Draw T/B/N glyphs (red, green, blue lines) at vertices of meshes with tangent frames,
     /// thinned on dense meshes (a line pass).
     pub tbn_glyphs: bool,
+    /// Parallax mapping of normal-mapped surfaces with a height map: the technique picks a
+    /// pipeline variant, layers, steps and depth are uniforms.
+    pub parallax: ParallaxSettings,
 }
 
 impl Default for ShadingSettings {
@@ -150,6 +154,115 @@ impl Default for ShadingSettings {
             mode: ShadingMode::BumpTimesColour,
             wireframe: false,
             tbn_glyphs: false,
+            parallax: ParallaxSettings::default(),
+        }
+    }
+}
+
+/// How texture coordinates are shifted by the material's height map before the normal map and
+/// the colour are read (the parallax family). The reference plane is the mesh surface, the
+/// top of the relief: a texel of height `h` (0..1, white = high; `1 − sample` for a depth map)
+/// lies `(1 − h) · depth` metres below it. A uniform. Named `off`, `offset`, `offset-limited`,
+/// `steep`, `occlusion`, `relief`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "kebab-case")]
+pub enum Parallax {
+    /// No shift: plain normal mapping.
+    #[default]
+    Off,
+    /// Kaneko et al. 2001, "Detailed shape representation with parallax mapping": one height
+    /// sample at the pixel's UV, shifted along the view ray to that depth (`÷ N·V`).
+    Offset,
+    /// Welsh 2004, "Parallax mapping with offset limiting": as [`Parallax::Offset`] without
+    /// the `÷ N·V`, so the shift never exceeds the depth at grazing views.
+    OffsetLimited,
+    /// McGuire & McGuire 2005, "Steep parallax mapping": a linear search along the view ray
+    /// through equally spaced depth layers; the first layer below the relief.
+    Steep,
+    /// Tatarchuk 2006, "Dynamic parallax occlusion mapping with approximate soft shadows": the
+    /// linear search, then the ray's intersection with the straight line between the heights
+    /// of the last two layers.
+    Occlusion,
+    /// Policarpo, Oliveira & Comba 2005, "Real-time relief mapping on arbitrary polygonal
+    /// surfaces": the linear search, then binary-search steps between the last two layers.
+    Relief,
+}
+
+impl Parallax {
+    /// A technique's name for people (labels and captions).
+    pub fn label(self) -> &'static str {
+        match self {
+            Parallax::Off => "no parallax",
+            Parallax::Offset => "parallax offset",
+            Parallax::OffsetLimited => "offset limiting",
+            Parallax::Steep => "steep parallax",
+            Parallax::Occlusion => "parallax occlusion",
+            Parallax::Relief => "relief mapping",
+        }
+    }
+
+    /// The index the `PARALLAX` pipeline constant takes (shaders/parallax.wgsl).
+    pub fn shader_index(self) -> u32 {
+        self as u32
+    }
+
+    /// Whether the technique searches through layers (steep, occlusion, relief).
+    pub fn marches(self) -> bool {
+        matches!(self, Parallax::Steep | Parallax::Occlusion | Parallax::Relief)
+    }
+}
+
+/// The most layers a search takes, and the most binary-search steps of relief mapping: the
+/// bounds of the shader's loops.
+pub const MAX_PARALLAX_LAYERS: u32 = 256;
+pub const MAX_PARALLAX_STEPS: u32 = 16;
+
+/// The parallax technique and its settings (uniforms).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ParallaxSettings {
+    pub technique: Parallax,
+    /// Layers of the linear search: `max` seen face-on, `min` at grazing views, linear in
+    /// `N·V` between (Tatarchuk 2006); each clamped to 1..=[`MAX_PARALLAX_LAYERS`]. Equal
+    /// values give a fixed count.
+    pub layers_min: u32,
+    pub layers_max: u32,
+    /// Binary-search steps of relief mapping, 0..=[`MAX_PARALLAX_STEPS`].
+    pub steps: u32,
+    /// The relief's depth, metres: `None` takes each material's height range
+    /// ([`crate::scene::HeightMap::range_m`]). 0 is plain normal mapping.
+    pub depth_m: Option<f32>,
+}
+
+impl Default for ParallaxSettings {
+    fn default() -> Self {
+        ParallaxSettings { technique: Parallax::Off, layers_min: 8, layers_max: 32, steps: 5, depth_m: None }
+    }
+}
+
+impl ParallaxSettings {
+    /// The layer count at `n_dot_v` (`N·V`, 0 grazing .. 1 face-on): Tatarchuk's
+    /// `⌊max + (min − max) · N·V + ½⌋`, within [`Self::layer_range`].
+    pub fn layers(&self, n_dot_v: f32) -> u32 {
+        let (low, high) = self.layer_range();
+        let t = if n_dot_v.is_finite() { n_dot_v.clamp(0.0, 1.0) } else { 0.0 };
+        (high as f32 + (low as f32 - high as f32) * t + 0.5).floor() as u32
+    }
+
+    /// `(min, max)` clamped to 1..=[`MAX_PARALLAX_LAYERS`], `min ≤ max`.
+    pub fn layer_range(&self) -> (u32, u32) {
+        let clamp = |n: u32| n.clamp(1, MAX_PARALLAX_LAYERS);
+        let (a, b) = (clamp(self.layers_min), clamp(self.layers_max));
+        (a.min(b), a.max(b))
+    }
+
+    /// A caption: the technique and, for searches, its layers (and relief's steps).
+    pub fn caption(&self) -> String {
+        let (low, high) = self.layer_range();
+        let layers = if low == high { format!("{high} layers") } else { format!("{low}–{high} layers") };
+        match self.technique {
+            Parallax::Off | Parallax::Offset | Parallax::OffsetLimited => self.technique.label().to_owned(),
+            Parallax::Steep | Parallax::Occlusion => format!("{}, {layers}", self.technique.label()),
+            Parallax::Relief => format!("{}, {layers} + {} steps", self.technique.label(), self.steps),
         }
     }
 }
@@ -286,6 +399,10 @@ pub struct SceneOptions {
     /// Per material (index into the scene's materials): conventions that win over
     /// `materials` field by field.
     pub per_material: PerMaterialOverrides,
+    /// Bind each normal-mapped material's height map for the parallax family: on while a
+    /// technique is chosen (`ViewerState::scene_uploads` sets it), so the height maps are
+    /// uploaded only then.
+    pub parallax: bool,
 }
 
 impl SceneOptions {
@@ -338,5 +455,20 @@ mod tests {
         for scale in [0.0, -1.0, f32::NAN, 7.0] {
             assert_eq!(FrameQuality { render_scale: scale, ..half }.render_size([1280, 720]), [1280, 720]);
         }
+    }
+
+    /// Tatarchuk's count: `max` face-on, `min` grazing, clamped to 1..=256 in either order;
+    /// captions name the technique and its layers.
+    #[test]
+    fn parallax_layers_follow_the_view_angle_and_captions_name_them() {
+        let settings =
+            ParallaxSettings { technique: Parallax::Occlusion, layers_min: 8, layers_max: 32, ..Default::default() };
+        assert_eq!([1.0, 0.5, 0.0, f32::NAN].map(|c| settings.layers(c)), [8, 20, 32, 32]);
+        let swapped = ParallaxSettings { layers_min: 999, layers_max: 0, ..settings };
+        assert_eq!(swapped.layer_range(), (1, 256));
+        assert_eq!(settings.caption(), "parallax occlusion, 8–32 layers");
+        let relief = ParallaxSettings { technique: Parallax::Relief, layers_min: 16, layers_max: 16, ..settings };
+        assert_eq!(relief.caption(), "relief mapping, 16 layers + 5 steps");
+        assert_eq!(ParallaxSettings { technique: Parallax::Offset, ..settings }.caption(), "parallax offset");
     }
 }

@@ -187,3 +187,24 @@ fn emission_adds_to_the_lit_picture() {
         );
     }
 }
+
+/// An OBJ material's `Ke` is its emitted light and `map_Ke` its emissive texture (which shows as
+/// is where `Ke` is missing or black).
+#[test]
+fn obj_materials_read_ke_and_map_ke() {
+    let dir = std::env::temp_dir().join(format!("bumpview-obj-emissive-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    image::RgbaImage::from_pixel(2, 2, image::Rgba([255, 128, 0, 255])).save(dir.join("glow.png")).unwrap();
+    let mtl = "newmtl lamp\nKe 0.5 0.25 0\nnewmtl sign\nmap_Ke glow.png\n";
+    std::fs::write(dir.join("m.mtl"), mtl).unwrap();
+    let obj = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl lamp\nf 1/1 2/2 3/3\nusemtl sign\nf 1/1 3/3 2/2\n";
+    std::fs::write(dir.join("m.obj"), obj).unwrap();
+    let scene = load_scene(&dir.join("m.obj")).unwrap_or_else(|e| panic!("{e}"));
+    std::fs::remove_dir_all(&dir).unwrap();
+    let by_name = |name: &str| scene.materials.iter().find(|m| m.name == name).unwrap();
+    assert_eq!(by_name("lamp").emissive_factor, Vec3::new(0.5, 0.25, 0.0));
+    assert_eq!(by_name("lamp").emissive_texture, None);
+    let sign = by_name("sign");
+    assert_eq!(sign.emissive_factor, Vec3::ONE);
+    assert!(sign.emissive_texture.is_some_and(|t| scene.textures[t].rgba[..4] == [255, 128, 0, 255]));
+}

@@ -207,3 +207,47 @@ fn frames_flag_errors() {
         assert_eq!(stderr_lines(&output).len(), 1, "{args:?}: {:?}", String::from_utf8_lossy(&output.stderr));
     }
 }
+
+/// The parallax flags reach the picture and the saved preset; depth 0 is the plain picture;
+/// layers outside 1–256, steps over 16 and a negative depth are bad values (exit 2); tile
+/// captions name the technique and its layers; `--split parallax` takes two techniques.
+#[test]
+fn parallax_flags_draw_save_and_caption_the_technique() {
+    let dir = std::env::temp_dir().join(format!("bumpview-cli-parallax-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = |name: &str| dir.join(name).to_str().unwrap().to_owned();
+    let render = |png: &str, extra: &[&str]| {
+        let out = path(png);
+        let mut args = vec!["render", "--out", &out, "--size", "96x64", "--camera", "60,0,0.5"];
+        args.extend(extra);
+        let output = bumpview(&args);
+        assert!(output.status.success(), "{args:?}: {}", String::from_utf8_lossy(&output.stderr));
+        image::open(&out).unwrap().to_rgba8()
+    };
+    let saved = path("relief.toml");
+    let plain = render("plain.png", &[]);
+    let relief = render(
+        "relief.png",
+        &["--parallax", "relief", "--parallax-layers", "4,64", "--parallax-steps", "3", "--save-preset", &saved],
+    );
+    assert_ne!(plain, relief, "the relief shows at 60°");
+    let preset = std::fs::read_to_string(&saved).unwrap();
+    for line in ["parallax = \"relief\"", "parallax_layers = [4, 64]", "parallax_steps = 3"] {
+        assert!(preset.contains(line), "{line} in {preset}");
+    }
+    let flat = render("flat.png", &["--parallax", "occlusion", "--parallax-depth", "0"]);
+    assert_eq!(plain, flat, "depth 0 is plain normal mapping");
+    render("split.png", &["--split", "parallax", "--split-sides", "offset,relief"]);
+    let grid =
+        render("grid.png", &["--parallax", "steep", "--parallax-layers", "16", "--grid", "bumped", "--captions"]);
+    assert!(grid.height() > 64, "a caption strip");
+
+    for bad in [&["--parallax-layers", "0,8"][..], &["--parallax-layers", "8,300"], &["--parallax-steps", "17"]] {
+        let output = bumpview(&[&["render", "--out", &path("bad.png")][..], bad].concat());
+        assert_eq!(output.status.code(), Some(2), "{bad:?}");
+    }
+    let output = bumpview(&["render", "--out", &path("bad.png"), "--parallax-depth=-0.01"]);
+    assert_eq!(output.status.code(), Some(2));
+    assert_eq!(stderr_lines(&output).len(), 1);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -2,7 +2,7 @@
 //! them, so they must stay as they are. Each enum derives its names ([`bumpview::names`]);
 //! this pins every one, in order (the panel's, `--help`'s and the reports' order).
 
-use bumpview::frame::{BumpSource, ShadingMode, ViewMode};
+use bumpview::frame::{BumpSource, Parallax, ShadingMode, ViewMode};
 use bumpview::height::{Border, Kernel};
 use bumpview::names::Named;
 use bumpview::scene::{GreenAxis, ShadingModel};
@@ -26,7 +26,7 @@ fn every_enum_keeps_its_names_in_order() {
     assert_eq!(ViewMode::names(), views);
     assert_eq!(ShadingMode::names(), ["bump-colour", "bump-only", "colour-only"]);
     assert_eq!(BumpSource::names(), ["normal-map", "height-in-shader"]);
-    let differences = ["bump", "view", "strength", "mode", "tangents", "convention", "bump-source"];
+    let differences = ["bump", "view", "strength", "mode", "tangents", "convention", "bump-source", "parallax"];
     assert_eq!(SplitDifference::names(), differences);
     let methods =
         ["mikktspace", "per-face", "averaged-uniform", "averaged-area", "averaged-angle", "supplied", "analytic"];
@@ -35,6 +35,7 @@ fn every_enum_keeps_its_names_in_order() {
     assert_eq!(GreenAxis::names(), ["opengl", "directx"]);
     assert_eq!(Border::names(), ["wrap", "clamp"]);
     assert_eq!(ShadingModel::names(), ["blinn-phong", "pbr"]);
+    assert_eq!(Parallax::names(), ["off", "offset", "offset-limited", "steep", "occlusion", "relief"]);
 }
 
 #[test]
@@ -53,6 +54,7 @@ fn every_name_reads_back_as_its_value() {
     round_trip::<GreenAxis>();
     round_trip::<Border>();
     round_trip::<ShadingModel>();
+    round_trip::<Parallax>();
     assert_eq!(ShadingMode::from_name("bump-colour"), Some(ShadingMode::BumpTimesColour));
     assert_eq!(TangentMethod::from_name("averaged-area"), Some(TangentMethod::AveragedArea));
 }

@@ -133,6 +133,61 @@ fn a_gpu_data_split_with_glyphs_round_trips_through_a_preset() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// The parallax settings and a parallax split round-trip through a preset: the preset
+/// `--save-preset` wrote renders the flags' picture byte for byte; out-of-range layers, steps
+/// or depth in a preset are one line naming the key.
+#[test]
+fn parallax_settings_round_trip_through_a_preset() {
+    let dir = temp_dir("preset-parallax");
+    let s = |p: &Path| p.to_str().unwrap().to_owned();
+    let (flags, preset, again) = (dir.join("flags.png"), dir.join("parallax.toml"), dir.join("again.png"));
+    render_ok(&[
+        "render",
+        "--out",
+        &s(&flags),
+        "--size",
+        "160x96",
+        "--camera",
+        "60,5,0.6",
+        "--parallax",
+        "relief",
+        "--parallax-layers",
+        "6,48",
+        "--parallax-steps",
+        "4",
+        "--parallax-depth",
+        "0.015",
+        "--split",
+        "parallax",
+        "--split-sides",
+        "offset-limited,relief",
+        "--save-preset",
+        &s(&preset),
+    ]);
+    let text = std::fs::read_to_string(&preset).unwrap();
+    for line in ["parallax_layers = [6, 48]", "parallax_depth_m = 0.015", "parallax = [\"offset-limited\", \"relief\"]"]
+    {
+        assert!(text.contains(line), "{line} in {text}");
+    }
+    render_ok(&["render", "--preset", &s(&preset), "--out", &s(&again)]);
+    assert_eq!(std::fs::read(&flags).unwrap(), std::fs::read(&again).unwrap(), "identical PNG bytes");
+    for (bad, key) in [
+        ("parallax_layers = [0, 8]", "parallax_layers"),
+        ("parallax_steps = 17", "parallax_steps"),
+        ("parallax_depth_m = -1.0", "parallax_depth_m"),
+        ("parallax = \"bumpy\"", "shading.parallax"),
+    ] {
+        let broken = dir.join("broken.toml");
+        std::fs::write(&broken, format!("[shading]\n{bad}\n")).unwrap();
+        let output = bumpview(&["render", "--preset", &s(&broken)]);
+        assert_eq!(output.status.code(), Some(1), "{bad}");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        let ours: Vec<_> = stderr.lines().filter(|l| l.starts_with("bumpview:")).collect();
+        assert!(ours.len() == 1 && ours[0].contains(key), "{bad}: {stderr}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn a_broken_preset_is_one_line_naming_the_key() {
     let dir = temp_dir("preset-bad");

@@ -37,7 +37,14 @@ fn built_in_scene_generates_tangents_only_where_missing_and_caches_pipelines() {
     assert!(scene.meshes.iter().all(|m| m.tangents.is_none()));
     let generated: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
     assert_eq!(renderer.counters().tangent_frames_generated, generated as u64);
-    assert_eq!(renderer.counters().textures_uploaded, 2, "colour and normal map, once each");
+    assert_eq!(
+        renderer.counters().textures_uploaded,
+        2,
+        "colour and normal map, once each: no height map without parallax"
+    );
+    let mut parallax = renderer_for(&scene);
+    parallax.set_scene(&scene, bumpview::frame::SceneOptions { parallax: true, ..Default::default() });
+    assert_eq!(parallax.counters().textures_uploaded, 2 + 3, "a second upload, with the height map for parallax");
 
     let params = default_params(&scene);
     render_image(&mut renderer, [64, 48], &params).unwrap();
@@ -48,9 +55,13 @@ fn built_in_scene_generates_tangents_only_where_missing_and_caches_pipelines() {
     toggled.shading.bump_enabled = false;
     toggled.shading.strength = -2.0;
     toggled.shading.mode = bumpview::frame::ShadingMode::BumpOnly;
+    toggled.shading.parallax.technique = bumpview::frame::Parallax::Relief;
     render_image(&mut renderer, [64, 48], &toggled).unwrap();
     let after_second = renderer.counters();
-    assert_eq!(after_second.pipelines_built, after_first.pipelines_built, "bump, strength and mode are uniforms");
+    assert_eq!(
+        after_second.pipelines_built, after_first.pipelines_built,
+        "bump, strength, lit mode and, without a height map bound for it, the parallax technique build nothing"
+    );
     assert_eq!(after_second.textures_uploaded, after_first.textures_uploaded);
     assert_eq!(after_second.frames_drawn, 2);
     toggled.shading.view = bumpview::frame::ViewMode::Tangent;
@@ -218,4 +229,33 @@ fn glyphs_and_uniform_splits_upload_nothing_and_gpu_data_splits_upload_once() {
     assert_eq!(split.textures_uploaded, 2 * after.textures_uploaded, "the scene's textures once more");
     renderer.set_split_scene(&scene, None);
     assert_eq!(renderer.counters().textures_uploaded, split.textures_uploaded, "dropping uploads nothing");
+}
+
+/// With a height map bound for it, the parallax technique picks pipeline variants (the
+/// `PARALLAX` constant): each technique builds the scene's two once, going back builds
+/// nothing and draws the same pixels.
+#[test]
+fn parallax_techniques_are_variants_built_once() {
+    use bumpview::frame::{Parallax, SceneOptions};
+    use bumpview::names::Named;
+    let scene = scene();
+    let mut renderer = renderer_for(&scene);
+    renderer.set_scene(&scene, SceneOptions { parallax: true, ..Default::default() });
+    let base = default_params(&scene);
+    let settings: Vec<_> = Parallax::all()
+        .iter()
+        .map(|&technique| {
+            let mut params = base;
+            params.shading.parallax.technique = technique;
+            params
+        })
+        .collect();
+    let before = renderer.counters().pipelines_built;
+    let first: Vec<_> = settings.iter().map(|p| render_image(&mut renderer, [64, 48], p).unwrap()).collect();
+    let built = renderer.counters().pipelines_built - before;
+    assert_eq!(built, 2 * Parallax::all().len() as u64, "double-sided wall and floor, single-sided torus");
+    for (params, image) in settings.iter().zip(&first).rev() {
+        assert!(render_image(&mut renderer, [64, 48], params).unwrap() == *image, "{:?}", params.shading.parallax);
+    }
+    assert_eq!(renderer.counters().pipelines_built - before, built, "back and forth builds nothing");
 }

@@ -159,7 +159,17 @@ fn lines(r: &ProbeReadout, mesh_name: &str) -> String {
         format!("bump     {bump}{}", if r.bump_enabled { "" } else { ", off (B)" }),
         format!("P [m]    {}  {:.3} m away", v3(r.position), r.distance),
         format!("UV       ({:6.3}, {:6.3})", r.uv.x, r.uv.y),
-        format!("texel    {texel} (0–255, mip 0)"),
+    ];
+    if let Some(m) = r.march {
+        text.extend([
+            format!("V_ts     {}  (tangent space)", opt3(m.view_tangent)),
+            format!("layers   {} of {}, depth {:.3}", m.layer_hit, m.layers, m.depth),
+            format!("shift    ({:7.4}, {:7.4}) → UV ({:6.3}, {:6.3})", m.shift.x, m.shift.y, m.uv.x, m.uv.y),
+            format!("height   {:6.3}  at the hit (0–1)", m.height),
+        ]);
+    }
+    text.extend([
+        format!("texel    {texel} (0–255, mip 0, at the read UV)"),
         format!("filtered {}", opt3(r.texel)),
         format!("decoded  {}", opt3(r.decoded)),
         format!("s={:<6.3} {}", r.strength, opt3(r.after_strength)),
@@ -176,7 +186,7 @@ fn lines(r: &ProbeReadout, mesh_name: &str) -> String {
         format!("albedo   {}  linear", v3(r.albedo)),
         format!("colour   {}  linear", v3(r.color_linear)),
         format!("sRGB     {:.0} {:.0} {:.0}  (0–255)", srgb.x, srgb.y, srgb.z),
-    ];
+    ]);
     if let Some(shown) = r.shown_bytes() {
         text.push(format!("shown    {:.0} {:.0} {:.0}  (this view)", shown.x, shown.y, shown.z));
     }

@@ -6,6 +6,7 @@ use std::marker::PhantomData;
 
 use clap::builder::{PossibleValue, TypedValueParser};
 
+use bumpview::frame::MAX_PARALLAX_LAYERS;
 use bumpview::names::{AUTO, Named, parse_or_auto};
 use bumpview::state::{Command, SplitDifference};
 use glam::Vec3;
@@ -28,6 +29,17 @@ pub fn parse_pixel(text: &str) -> Result<[u32; 2], String> {
         Some((Some(x), Some(y))) => Ok([x, y]),
         _ => Err(format!("{text:?}: expected X,Y in whole pixels, e.g. 400,300")),
     }
+}
+
+/// `"MIN,MAX"` → the parallax search's layers, each 1 to [`MAX_PARALLAX_LAYERS`]; one number
+/// is a fixed count.
+pub fn parse_layers(text: &str) -> Result<[u32; 2], String> {
+    let count = |s: &str| s.trim().parse::<u32>().ok().filter(|n| (1..=MAX_PARALLAX_LAYERS).contains(n));
+    let layers = match text.split_once(',') {
+        Some((min, max)) => count(min).zip(count(max)).map(|(min, max)| [min, max]),
+        None => count(text).map(|n| [n, n]),
+    };
+    layers.ok_or_else(|| format!("{text:?}: expected MIN,MAX layers, each 1 to {MAX_PARALLAX_LAYERS}, e.g. 8,32"))
 }
 
 /// `"a,b,c"` → three finite numbers.
@@ -139,6 +151,7 @@ pub fn parse_split_sides(difference: SplitDifference, text: &str) -> Result<Comm
         SplitDifference::Tangents => Command::SetSplitTangentMethods(pair(sides, parse_named)?),
         SplitDifference::Convention => Command::SetSplitConventions(pair(sides, parse_named)?),
         SplitDifference::BumpSource => Command::SetSplitBumpSources(pair(sides, parse_named)?),
+        SplitDifference::Parallax => Command::SetSplitParallax(pair(sides, parse_named)?),
     })
 }
 

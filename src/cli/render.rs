@@ -7,7 +7,7 @@ use std::num::NonZeroU32;
 use std::path::PathBuf;
 
 use bumpview::error::LoadWarning;
-use bumpview::frame::{FrameQuality, ViewMode};
+use bumpview::frame::{FrameQuality, MAX_PARALLAX_STEPS, Parallax, ViewMode};
 use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
 use bumpview::render::export::{TileGrid, caption, render_grid};
 use bumpview::render::timing::{TimedPicture, time_frames};
@@ -74,6 +74,21 @@ pub struct RenderArgs {
     /// target (clamped to ±89), metres from it (positive; clamped to 0.05…500).
     #[arg(long, value_parser = args::parse_triple, allow_hyphen_values = true)]
     camera: Option<[f32; 3]>,
+    /// Parallax technique on normal-mapped surfaces with a height map: off, offset (Kaneko
+    /// 2001), offset-limited (Welsh 2004), steep (McGuire 2005), occlusion (Tatarchuk 2006) or
+    /// relief (Policarpo 2005) [default: off].
+    #[arg(long, value_parser = args::named::<Parallax>())]
+    parallax: Option<Parallax>,
+    /// The searches' layers MIN,MAX (1 to 256 each; MAX face-on, MIN at grazing views)
+    /// [default: 8,32].
+    #[arg(long, value_name = "MIN,MAX", value_parser = args::parse_layers)]
+    parallax_layers: Option<[u32; 2]>,
+    /// Relief mapping's binary-search steps, 0 to 16 [default: 5].
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_PARALLAX_STEPS)))]
+    parallax_steps: Option<u32>,
+    /// The relief's depth in metres, 0 or more [default: each material's height range].
+    #[arg(long, value_name = "METRES", value_parser = args::parse_finite)]
+    parallax_depth: Option<f32>,
     /// Hide the light marker.
     #[arg(long)]
     no_light_marker: bool,
@@ -82,7 +97,8 @@ pub struct RenderArgs {
     glyphs: bool,
     /// Split view, left │ right, as one image: bump (off │ on), view (lit │ shading-normal),
     /// strength (1 │ 3), mode (colour-only │ bump-colour), tangents (per-face │ mikktspace),
-    /// convention (opengl │ directx) or bump-source (normal-map │ height-in-shader)
+    /// convention (opengl │ directx), bump-source (normal-map │ height-in-shader) or parallax
+    /// (steep │ occlusion)
     /// [default: the preset's].
     #[arg(long, value_name = "KIND", value_parser = args::named::<SplitDifference>(), conflicts_with = "tiles")]
     split: Option<SplitDifference>,
@@ -124,6 +140,15 @@ impl RenderArgs {
         commands.extend(self.view.map(Command::SetView));
         commands.extend(self.bump.map(Command::SetBump));
         commands.extend(self.strength.map(Command::SetStrength));
+        commands.extend(self.parallax.map(Command::SetParallax));
+        commands.extend(self.parallax_layers.map(Command::SetParallaxLayers));
+        commands.extend(self.parallax_steps.map(Command::SetParallaxSteps));
+        if let Some(depth) = self.parallax_depth {
+            if depth < 0.0 {
+                return Err(Failure::BadArguments(format!("--parallax-depth {depth}: expected metres, 0 or more")));
+            }
+            commands.push(Command::SetParallaxDepth(Some(depth)));
+        }
         if self.no_light_marker {
             commands.push(Command::SetLightMarker(false));
         }

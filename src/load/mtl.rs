@@ -114,6 +114,7 @@ fn parse(text: &str, path: &Path, scene: &mut Scene, names: &mut HashMap<String,
                 scene.materials[material_index].base_color_factor = kd.extend(1.0);
             }
             "ks" => scene.materials[material_index].specular = colour()?,
+            "ke" => scene.materials[material_index].emissive_factor = colour()?,
             "ns" => {
                 let ns = numbers()?.first().copied().ok_or_else(|| at("Ns needs a number".into()))?;
                 scene.materials[material_index].shininess = ns.clamp(*SHININESS.start(), *SHININESS.end());
@@ -122,6 +123,17 @@ fn parse(text: &str, path: &Path, scene: &mut Scene, names: &mut HashMap<String,
                 if let Some(image) = load_referenced(scene, &map()?.path, TextureKind::Color) {
                     let texture = add(scene, image);
                     scene.materials[material_index].base_color_texture = Some(texture);
+                }
+            }
+            "map_ke" => {
+                if let Some(image) = load_referenced(scene, &map()?.path, TextureKind::Color) {
+                    let texture = add(scene, image);
+                    let material = &mut scene.materials[material_index];
+                    material.emissive_texture = Some(texture);
+                    // The texture scales Ke; without a Ke (or with a black one) it shows as is.
+                    if material.emissive_factor == Vec3::ZERO {
+                        material.emissive_factor = Vec3::ONE;
+                    }
                 }
             }
             "map_ks" | "map_ns" => {

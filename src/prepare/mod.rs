@@ -59,10 +59,13 @@ pub struct InstanceTextures {
     pub clearcoat: Option<usize>,
     pub clearcoat_roughness: Option<usize>,
     pub clearcoat_normal: Option<usize>,
+    /// The height map the parallax family marches: for tangent-space normal-mapped variants
+    /// whose material has one.
+    pub height: Option<usize>,
 }
 
 impl InstanceTextures {
-    fn of(material: &Material, variant: Variant) -> InstanceTextures {
+    fn of(material: &Material, variant: Variant, parallax: bool) -> InstanceTextures {
         let bump = match variant {
             Variant::NormalMapped | Variant::ObjectSpace => material.normal_map.as_ref().map(|m| m.texture),
             Variant::HeightBump => material.height_map.as_ref().map(|m| m.texture),
@@ -82,12 +85,17 @@ impl InstanceTextures {
                 .and_then(|c| c.normal_map.as_ref())
                 .map(|m| m.texture)
                 .filter(|_| variant.has_tangents()),
+            height: material
+                .height_map
+                .as_ref()
+                .map(|h| h.texture)
+                .filter(|_| parallax && variant == Variant::NormalMapped),
         }
     }
 
     fn all(&self) -> impl Iterator<Item = usize> {
         let slots = [self.base_color, self.bump, self.metallic_roughness, self.occlusion, self.gloss, self.emissive];
-        let coat = [self.clearcoat, self.clearcoat_roughness, self.clearcoat_normal];
+        let coat = [self.clearcoat, self.clearcoat_roughness, self.clearcoat_normal, self.height];
         slots.into_iter().chain(coat).flatten()
     }
 }
@@ -167,7 +175,7 @@ impl PreparedScene {
                     transform: instance.transform,
                     bump,
                     variant,
-                    textures: InstanceTextures::of(material, variant),
+                    textures: InstanceTextures::of(material, variant, options.parallax),
                 }
             })
             .collect();

@@ -9,7 +9,9 @@
 //! with the same scene options and material overrides), samples the textures as the GPU's
 //! trilinear sampler does (level of detail from the UV footprint of the pixel's 2×2 quad,
 //! [`sample_bilinear`] on the mip levels around it) and runs the CPU twin of `shaders/mesh.wgsl`
-//! ([`crate::shading`]). The pinned point stays where it is when the camera or light moves;
+//! ([`crate::shading`]). With a parallax technique on, it first marches the height map as
+//! `shaders/parallax.wgsl` does ([`crate::chain::parallax`], [`MarchReadout`]) and reads the
+//! other textures at the shifted UV. The pinned point stays where it is when the camera or light moves;
 //! only the readout is recomputed.
 //!
 //! Spaces and units follow the crate conventions: positions in metres, world space; vectors
@@ -28,11 +30,12 @@ use std::sync::Arc;
 
 use glam::{Mat3, Vec2, Vec3, Vec4};
 
+use crate::chain::parallax::{MarchInputs, march};
 use crate::chain::{BumpSample, SurfaceSample, shade};
-use crate::frame::{BumpKind, FrameParams, SceneOptions};
-use crate::math::normal_matrix;
+use crate::frame::{BumpKind, FrameParams, Parallax, SceneOptions};
+use crate::math::{normal_matrix, normalize_or};
 use crate::prepare::PreparedScene;
-use crate::scene::{OrbitCamera, SamplerWrap, Scene, ShadingModel, TextureImage};
+use crate::scene::{OrbitCamera, SamplerWrap, Scene, ShadingModel, TextureImage, Wrap};
 use crate::shading::height_sample;
 use crate::tangent::TangentMethod;
 pub use pick::project_to_pixel;
@@ -69,6 +72,9 @@ pub struct ProbeReadout {
     /// Texture coordinates (crate conventions: origin top-left, v down).
     pub uv: Vec2,
     pub bump: BumpKind,
+    /// The parallax march at the point (`None`: parallax off, depth 0, or no height map on a
+    /// normal-mapped surface). The textures below are read at its shifted UV.
+    pub march: Option<MarchReadout>,
     /// Whether bump mapping is on (the `B` toggle); off, the shading normal is `normal`.
     pub bump_enabled: bool,
     /// The normal map's texel containing `uv` at mip 0: its integer coordinates and raw bytes
@@ -118,6 +124,25 @@ pub struct ProbeReadout {
     pub shown: Option<Vec3>,
 }
 
+/// The parallax march at a probed point ([`crate::chain::parallax::march`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MarchReadout {
+    /// The unit direction to the eye in tangent space `(V·T, V·B, V·N)`; `None` without a
+    /// tangent frame.
+    pub view_tangent: Option<Vec3>,
+    /// Layers of the linear search (0 for the offset techniques) and the first layer at or
+    /// below the relief.
+    pub layers: u32,
+    pub layer_hit: u32,
+    /// The UV the textures are read at, and its shift from the interpolated UV.
+    pub uv: Vec2,
+    pub shift: Vec2,
+    /// The depth reached along the ray, 0..1 of the relief's depth.
+    pub depth: f32,
+    /// The height map at the shifted UV, 0..1 (white = high, a depth map flipped).
+    pub height: f32,
+}
+
 impl ProbeReadout {
     /// `shown` as 8-bit values (unrounded), as they compare with a rendered PNG.
     pub fn shown_bytes(&self) -> Option<Vec3> {
@@ -141,7 +166,7 @@ impl ProbeScene {
         ProbeScene::wrap(Arc::new(PreparedScene::new(scene, options)))
     }
 
-    /// Probes the scene a renderer draws (e.g. [`crate::render::Renderer::prepared`]).
+    /// Probes the scene a renderer draws (the render module's `Renderer::prepared` hands it out).
     pub fn wrap(prepared: Arc<PreparedScene>) -> ProbeScene {
         let used = |index: &usize| prepared.uses_texture(*index);
         let mips = (0..prepared.scene.textures.len())
@@ -218,9 +243,45 @@ impl ProbeScene {
             triangle,
             position,
         });
-        let footprint = quad.as_ref().and_then(|q| q.derivatives(|b, _| uv_at(b)));
-        let sample = |texture: usize, wrap: SamplerWrap| sample_trilinear(&self.mips[texture], uv, wrap, footprint);
+        let interpolated_footprint = quad.as_ref().and_then(|q| q.derivatives(|b, _| uv_at(b)));
         let normal_matrix = normal_matrix(model);
+        let slots = &instance.textures;
+        let detail = material.detail_wrap;
+        // The parallax family (chain::parallax) marches the height map with the interpolated
+        // UV's footprint; the other textures are read at the shifted UV, their footprint from
+        // the shifted UVs of the quad's pixels (each marched with the point's derivatives).
+        let facing = if point.front_facing { 1.0 } else { -1.0 };
+        let eye = params.camera.eye();
+        let parallax = &params.shading.parallax;
+        let height_map = material.height_map.as_ref();
+        let depth_m = parallax.depth_m.map_or(height_map.map_or(0.0, |h| h.range_m), |d| d.max(0.0));
+        let marching =
+            slots.height.zip(quad.as_ref()).filter(|_| parallax.technique != Parallax::Off && depth_m != 0.0);
+        let march_at = marching.and_then(|(texture, quad)| {
+            let (dp_dx, dp_dy) = quad.derivatives(|_, p| p)?;
+            let (duv_dx, duv_dy) = interpolated_footprint?;
+            let flip = height_map.is_some_and(|h| h.depth);
+            let height = move |at: Vec2| {
+                let sample = height_sample(sample_trilinear(&self.mips[texture], at, detail, interpolated_footprint));
+                if flip { 1.0 - sample } else { sample }
+            };
+            let clamp = [detail.u == Wrap::ClampToEdge, detail.v == Wrap::ClampToEdge];
+            Some(move |b: Vec3, p: Vec3| {
+                let normal = normalize_or(normal_matrix.transform_vector3(at(b)(&mesh.normals)), Vec3::Z) * facing;
+                let view_dir = normalize_or(eye - p, normal);
+                let inputs =
+                    MarchInputs { uv: uv_at(b), normal, view_dir, dp_dx, dp_dy, duv_dx, duv_dy, depth_m, clamp };
+                (march(parallax, &inputs, height), height)
+            })
+        });
+        let marched = march_at.as_ref().map(|m| m(b, position));
+        let read_uv = marched.map_or(uv, |(m, _)| m.uv);
+        let footprint = match (&march_at, &quad) {
+            (Some(m), Some(quad)) => quad.derivatives(|b, p| m(b, p).0.uv),
+            _ => interpolated_footprint,
+        };
+        let sample =
+            |texture: usize, wrap: SamplerWrap| sample_trilinear(&self.mips[texture], read_uv, wrap, footprint);
         let frames = prepared_mesh.frames.as_ref();
         let world_tangent = frames.map(|f| {
             let t = corners.iter().zip(b.to_array()).fold(Vec4::ZERO, |acc, (&i, w)| acc + f.tangents[i as usize] * w);
@@ -228,8 +289,6 @@ impl ProbeScene {
             model.transform_vector3(t.truncate()).extend(t.w * mirror)
         });
 
-        let slots = &instance.textures;
-        let detail = material.detail_wrap;
         // The clear coat's textures at the layer's coordinates; the footprint through the
         // linear part of its transform.
         let coat_sample = |texture: Option<usize>| {
@@ -237,12 +296,12 @@ impl ProbeScene {
             let linear =
                 |d: Vec2| Vec2::new(coat.uv_transform[0].truncate().dot(d), coat.uv_transform[1].truncate().dot(d));
             let coat_footprint = footprint.map(|(dx, dy)| (linear(dx), linear(dy)));
-            Some(sample_trilinear(&self.mips[texture?], coat.layer_uv(uv), detail, coat_footprint))
+            Some(sample_trilinear(&self.mips[texture?], coat.layer_uv(read_uv), detail, coat_footprint))
         };
         let normal_map = slots.bump.filter(|_| matches!(instance.bump, BumpKind::TangentSpace | BumpKind::ObjectSpace));
         let nearest = normal_map.map(|t| {
             let texture = &self.scene().textures[t];
-            let xy = nearest_texel(texture, uv, detail);
+            let xy = nearest_texel(texture, read_uv, detail);
             (xy, texture.texel(xy[0] as i64, xy[1] as i64))
         });
         let bump = match (instance.bump, slots.bump) {
@@ -272,6 +331,17 @@ impl ProbeScene {
             clearcoat_normal: coat_sample(slots.clearcoat_normal),
         };
         let chain = shade(instance.bump, material, self.scene().ambient, &surface, params);
+        let march = marched.map(|(m, height)| MarchReadout {
+            view_tangent: chain.tangent.zip(chain.bitangent).map(|(t, b)| {
+                Vec3::new(chain.view_dir.dot(t), chain.view_dir.dot(b), chain.view_dir.dot(chain.normal))
+            }),
+            layers: m.layers,
+            layer_hit: m.layer_hit,
+            uv: m.uv,
+            shift: m.shift,
+            depth: m.depth,
+            height: height(m.uv),
+        });
         ProbeReadout {
             point: *point,
             mesh: instance.mesh,
@@ -280,6 +350,7 @@ impl ProbeScene {
             distance: (params.camera.eye() - position).length(),
             uv,
             bump: instance.bump,
+            march,
             bump_enabled: params.shading.bump_enabled,
             texel_xy: nearest.map(|n| n.0),
             texel_raw: nearest.map(|n| n.1),

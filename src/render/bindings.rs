@@ -54,9 +54,12 @@ pub const EMISSIVE_TEXTURE: Slot = slot(8, "emissive_texture", Resource::Texture
 pub const CLEARCOAT_TEXTURE: Slot = slot(9, "clearcoat_texture", Resource::Texture);
 pub const CLEARCOAT_ROUGHNESS_TEXTURE: Slot = slot(10, "clearcoat_roughness_texture", Resource::Texture);
 pub const CLEARCOAT_NORMAL_TEXTURE: Slot = slot(11, "clearcoat_normal_texture", Resource::Texture);
+/// The height map the parallax family marches (shaders/parallax.wgsl), linear, through the
+/// detail sampler; a placeholder where the instance has none.
+pub const HEIGHT_TEXTURE: Slot = slot(12, "height_texture", Resource::Texture);
 
 /// Group 1 of the mesh shader, in binding order.
-pub const MATERIAL: [Slot; 12] = [
+pub const MATERIAL: [Slot; 13] = [
     OBJECT,
     BASE_COLOR_TEXTURE,
     BASE_COLOR_SAMPLER,
@@ -69,6 +72,7 @@ pub const MATERIAL: [Slot; 12] = [
     CLEARCOAT_TEXTURE,
     CLEARCOAT_ROUGHNESS_TEXTURE,
     CLEARCOAT_NORMAL_TEXTURE,
+    HEIGHT_TEXTURE,
 ];
 
 /// Group 1 of the marker shader: the marker's model matrix.
@@ -114,12 +118,14 @@ mod tests {
     use wgpu::naga;
 
     use super::*;
+    use crate::frame::{MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Parallax};
     use crate::frame::{ShadingMode, ViewMode};
     use crate::names::Named;
     use crate::render::pipelines::{MARKER_WGSL, MESH_WGSL};
     use crate::render::uniforms::{
         DEPTH_MAP, HAS_CLEARCOAT, HAS_CLEARCOAT_NORMAL, HAS_CLEARCOAT_ROUGHNESS_TEXTURE, HAS_CLEARCOAT_TEXTURE,
-        HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS,
+        HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS, HAS_PARALLAX_HEIGHT, PARALLAX_CLAMP_U,
+        PARALLAX_CLAMP_V,
     };
     use crate::scene::{NormalConvention, ShadingModel};
 
@@ -190,6 +196,25 @@ mod tests {
         expected.insert("HAS_CLEARCOAT_ROUGHNESS_TEXTURE".into(), HAS_CLEARCOAT_ROUGHNESS_TEXTURE);
         expected.insert("HAS_CLEARCOAT_NORMAL".into(), HAS_CLEARCOAT_NORMAL);
         expected.insert("SHADING_METALLIC_ROUGHNESS".into(), ShadingModel::MetallicRoughness.shader_index());
+        for technique in Parallax::all().iter().copied().filter(|&p| p != Parallax::Off) {
+            expected.insert(constant_name("PARALLAX_", technique.name()), technique.shader_index());
+        }
+        expected.insert("MAX_PARALLAX_LAYERS".into(), MAX_PARALLAX_LAYERS);
+        expected.insert("MAX_PARALLAX_STEPS".into(), MAX_PARALLAX_STEPS);
+        expected.insert("HAS_PARALLAX_HEIGHT".into(), HAS_PARALLAX_HEIGHT);
+        expected.insert("PARALLAX_CLAMP_U".into(), PARALLAX_CLAMP_U);
+        expected.insert("PARALLAX_CLAMP_V".into(), PARALLAX_CLAMP_V);
         assert_eq!(constants, expected, "u32 constants of shaders/mesh.wgsl against the Rust side");
+    }
+
+    /// The parallax march's grazing floor is one number on both sides (shaders/parallax.wgsl,
+    /// chain::parallax).
+    #[test]
+    fn the_wgsl_grazing_floor_is_the_rust_one() {
+        let module = module(MESH_WGSL);
+        let floor = module.constants.iter().map(|(_, c)| c).find(|c| c.name.as_deref() == Some("GRAZING_N_DOT_V"));
+        let value = floor.map(|c| &module.global_expressions[c.init]);
+        let expected = crate::chain::parallax::GRAZING_N_DOT_V;
+        assert!(matches!(value, Some(naga::Expression::Literal(naga::Literal::F32(v))) if *v == expected), "{value:?}");
     }
 }

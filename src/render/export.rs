@@ -8,7 +8,9 @@ use ab_glyph::{Font, FontRef, PxScale, ScaleFont, point};
 use super::Renderer;
 use super::capture::{CaptureOptions, render_capture};
 use crate::error::RenderError;
-use crate::frame::{BumpSource, FrameParams, STRENGTH_RANGE, SceneOptions, ShadingMode, ShadingSettings, ViewMode};
+use crate::frame::{
+    BumpSource, FrameParams, Parallax, STRENGTH_RANGE, SceneOptions, ShadingMode, ShadingSettings, ViewMode,
+};
 use crate::names::Named;
 use crate::scene::Scene;
 
@@ -104,7 +106,7 @@ fn parse_tile(text: &str, current: &ShadingSettings) -> Result<ShadingSettings, 
 
 /// The caption of a tile: view (and mode), bump and strength, the normal-map convention of the
 /// scene's materials (after `options`' overrides) and the tangent frames the renderer drew
-/// with (its current scene, made with `options`).
+/// with (its current scene, made with `options`); with parallax on, the technique and its layers.
 pub fn caption(renderer: &Renderer, scene: &Scene, options: &SceneOptions, shading: &ShadingSettings) -> Vec<String> {
     let view = match shading.view {
         ViewMode::Lit | ViewMode::OverTilt => format!("{}: {}", shading.view.label(), shading.mode.label()),
@@ -140,7 +142,11 @@ pub fn caption(renderer: &Renderer, scene: &Scene, options: &SceneOptions, shadi
             Some(_) => used,
         }
     };
-    vec![view, bump, format!("normal map: {convention}"), format!("tangents: {tangents}")]
+    let mut lines = vec![view, bump, format!("normal map: {convention}"), format!("tangents: {tangents}")];
+    if shading.parallax.technique != Parallax::Off {
+        lines.push(shading.parallax.caption());
+    }
+    lines
 }
 
 /// Text size of captions under tiles `tile_width` pixels wide, pixels.

@@ -21,7 +21,7 @@ use glam::Mat4;
 
 use crate::counters::WorkCounters;
 use crate::error::RenderError;
-use crate::frame::{FrameParams, Msaa, SceneOptions, SceneUploads, ShadingSettings, SplitFrame, ViewMode};
+use crate::frame::{FrameParams, Msaa, Parallax, SceneOptions, SceneUploads, ShadingSettings, SplitFrame, ViewMode};
 use crate::prepare::PreparedScene;
 use crate::scene::Scene;
 use crate::tangent::TangentMethod;
@@ -596,13 +596,15 @@ fn has_glyphs(instance: &scene_gpu::GpuInstance, scene: &GpuScene) -> bool {
 }
 
 /// The pass an instance is drawn with in `shading`'s view: the Difference view has its own
-/// pass for meshes that have tangent frames; else the mesh pass specialised to the view and,
-/// in a lit view, to the shading model (the frame's override, else the material's).
+/// pass for meshes that have tangent frames; else the mesh pass specialised to the view, in a
+/// lit view to the shading model (the frame's override, else the material's) and, where a
+/// height map is bound for it, to the parallax technique.
 fn drawn_pass(instance: &scene_gpu::GpuInstance, scene: &GpuScene, shading: &ShadingSettings) -> Pass {
     let scene_gpu::GpuInstance { variant, cull_back_faces, mirrored, .. } = *instance;
     if shading.view == ViewMode::Difference && scene.prepared.meshes[instance.mesh].frames.is_some() {
         return Pass::Difference { variant, cull_back_faces, mirrored };
     }
     let lighting = shading.view.is_lit().then(|| shading.shading_override.unwrap_or(instance.shading_model));
-    Pass::Mesh { variant, cull_back_faces, mirrored, view: shading.view, lighting }
+    let parallax = if instance.parallax_height { shading.parallax.technique } else { Parallax::Off };
+    Pass::Mesh { variant, cull_back_faces, mirrored, view: shading.view, lighting, parallax }
 }

@@ -7,15 +7,16 @@ use std::collections::HashMap;
 
 use super::bindings;
 use crate::counters::WorkCounters;
-use crate::frame::ViewMode;
+use crate::frame::{Parallax, ViewMode};
 use crate::prepare::Variant;
 use crate::scene::ShadingModel;
 
 /// Shader sources, embedded at build time; frame.wgsl is the shared Frame uniform, pbr.wgsl
-/// the metallic-roughness shading the mesh shader calls.
+/// the metallic-roughness shading the mesh shader calls, parallax.wgsl the parallax family.
 pub const MESH_WGSL: &str = concat!(
     include_str!("../../shaders/frame.wgsl"),
     include_str!("../../shaders/pbr.wgsl"),
+    include_str!("../../shaders/parallax.wgsl"),
     include_str!("../../shaders/mesh.wgsl")
 );
 pub const MARKER_WGSL: &str =
@@ -41,6 +42,9 @@ pub enum Pass {
         /// The shading model of a lit view (the `SHADING_MODEL` constant); `None` for views
         /// that do not light.
         lighting: Option<ShadingModel>,
+        /// The parallax technique (the `PARALLAX` constant); [`Parallax::Off`] for instances
+        /// without a height map bound for it.
+        parallax: Parallax,
     },
     /// The Difference view of a mesh with a tangent stream: it adds the reference stream
     /// and binds the same group-1 layout as `variant`.
@@ -96,10 +100,7 @@ impl Layouts {
 
     /// The group-1 layout a mesh variant binds.
     pub fn material(&self, variant: Variant) -> &wgpu::BindGroupLayout {
-        match variant {
-            Variant::Plain | Variant::Tangent => &self.plain_material,
-            Variant::NormalMapped | Variant::ObjectSpace | Variant::HeightBump => &self.normal_mapped_material,
-        }
+        if variant.has_bump_texture() { &self.normal_mapped_material } else { &self.plain_material }
     }
 }
 
@@ -187,7 +188,7 @@ impl Pipelines {
         };
         let (module, group1, vs, fs, buffers, cull_mode, constants): (_, _, _, _, &[_], _, Vec<(&str, f64)>) =
             match key.pass {
-                Pass::Mesh { variant, cull_back_faces, view, lighting, .. } => {
+                Pass::Mesh { variant, cull_back_faces, view, lighting, parallax, .. } => {
                     let (vs, fs, buffers): (_, _, &[_]) = match variant {
                         Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
                         Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
@@ -198,6 +199,9 @@ impl Pipelines {
                     let cull = cull_back_faces.then_some(wgpu::Face::Back);
                     let mut constants = vec![encodes_srgb, ("VIEW", f64::from(view.shader_index()))];
                     constants.extend(lighting.map(|model| ("SHADING_MODEL", f64::from(model.shader_index()))));
+                    if parallax != Parallax::Off {
+                        constants.push(("PARALLAX", f64::from(parallax.shader_index())));
+                    }
                     (&self.mesh_module, self.layouts.material(variant), vs, fs, buffers, cull, constants)
                 }
                 Pass::Difference { variant, cull_back_faces, .. } => {
@@ -329,6 +333,6 @@ mod tests {
         }
         let mesh = naga::front::wgsl::parse_str(MESH_WGSL).expect("parsed above");
         let overrides: Vec<_> = mesh.overrides.iter().filter_map(|(_, o)| o.name.as_deref()).collect();
-        assert_eq!(overrides, ["TARGET_ENCODES_SRGB", "VIEW", "SHADING_MODEL"]);
+        assert_eq!(overrides, ["PARALLAX", "TARGET_ENCODES_SRGB", "VIEW", "SHADING_MODEL"]);
     }
 }

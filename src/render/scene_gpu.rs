@@ -38,6 +38,9 @@ pub struct GpuInstance {
     pub mirrored: bool,
     /// The material's own shading model (a frame may override it).
     pub shading_model: ShadingModel,
+    /// A height map is bound for the parallax family (a normal-mapped instance of a material
+    /// with a height map, uploaded with [`crate::frame::SceneOptions::parallax`]).
+    pub parallax_height: bool,
     pub bind_group: wgpu::BindGroup,
 }
 
@@ -244,6 +247,7 @@ pub fn upload(
             let clearcoat = optional(slots.clearcoat);
             let clearcoat_roughness = optional(slots.clearcoat_roughness);
             let clearcoat_normal = optional(slots.clearcoat_normal);
+            let height = optional(slots.height);
             let base_sampler = samplers.get(device, material.base_color_wrap);
             let detail_sampler = samplers.get(device, material.detail_wrap);
             let view = wgpu::BindingResource::TextureView;
@@ -260,6 +264,7 @@ pub fn upload(
                 bindings::CLEARCOAT_TEXTURE.entry(view(&clearcoat)),
                 bindings::CLEARCOAT_ROUGHNESS_TEXTURE.entry(view(&clearcoat_roughness)),
                 bindings::CLEARCOAT_NORMAL_TEXTURE.entry(view(&clearcoat_normal)),
+                bindings::HEIGHT_TEXTURE.entry(view(&height)),
             ];
             // The normal map or the height map, as the variant needs.
             let bump = slots.bump.map(|t| textures.get(&prepared, t, counters));
@@ -279,6 +284,7 @@ pub fn upload(
                 cull_back_faces: !material.double_sided,
                 mirrored: instance.mirrored(),
                 shading_model: material.shading_model,
+                parallax_height: instance.textures.height.is_some(),
                 bind_group,
             }
         })

@@ -6,7 +6,7 @@ use glam::Vec3;
 use crate::frame::FrameParams;
 use crate::math::normal_matrix;
 use crate::prepare::PreparedInstance;
-use crate::scene::{Clearcoat, Material};
+use crate::scene::{Clearcoat, Material, Wrap};
 use crate::shading::SELF_SHADOW_FADE;
 
 /// WGSL `Frame`.
@@ -24,12 +24,17 @@ pub struct FrameUniform {
     difference_range_deg: f32,
     shading_mode: u32,
     over_tilt_cos: f32,
+    parallax_layers_min: u32,
+    parallax_layers_max: u32,
+    parallax_steps: u32,
+    parallax_depth_m: f32,
     /// The WGSL struct's size is a multiple of 16 bytes.
-    _padding: [u32; 2],
+    _padding: [f32; 2],
 }
 
 impl FrameUniform {
     pub fn new(params: &FrameParams, ambient: Vec3, aspect: f32) -> Self {
+        let parallax = params.shading.parallax;
         FrameUniform {
             view_proj: params.camera.view_projection(aspect).to_cols_array_2d(),
             camera_pos: params.camera.eye().extend(1.0).to_array(),
@@ -42,7 +47,11 @@ impl FrameUniform {
             difference_range_deg: params.shading.difference_range_deg,
             shading_mode: params.shading.mode.shader_index(),
             over_tilt_cos: crate::shading::over_tilt_cos(),
-            _padding: [0; 2],
+            parallax_layers_min: parallax.layers_min,
+            parallax_layers_max: parallax.layers_max,
+            parallax_steps: parallax.steps,
+            parallax_depth_m: parallax.depth_m.map_or(-1.0, |d| d.max(0.0)),
+            _padding: [0.0; 2],
         }
     }
 }
@@ -88,6 +97,11 @@ pub(crate) const HAS_CLEARCOAT: u32 = 128;
 pub(crate) const HAS_CLEARCOAT_TEXTURE: u32 = 256;
 pub(crate) const HAS_CLEARCOAT_ROUGHNESS_TEXTURE: u32 = 512;
 pub(crate) const HAS_CLEARCOAT_NORMAL: u32 = 1024;
+/// Bit of `flags`: binding 12 holds the material's height map, which the parallax family marches.
+pub(crate) const HAS_PARALLAX_HEIGHT: u32 = 2048;
+/// Bits of `flags`: the height map's sampler clamps u, v; marched coordinates stay in 0..1.
+pub(crate) const PARALLAX_CLAMP_U: u32 = 4096;
+pub(crate) const PARALLAX_CLAMP_V: u32 = 8192;
 
 impl ObjectUniform {
     /// Normals go through the inverse-transpose of the model matrix; tangent `w` is
@@ -115,7 +129,10 @@ impl ObjectUniform {
                 | bit(coat.is_some(), HAS_CLEARCOAT)
                 | bit(slots.clearcoat.is_some(), HAS_CLEARCOAT_TEXTURE)
                 | bit(slots.clearcoat_roughness.is_some(), HAS_CLEARCOAT_ROUGHNESS_TEXTURE)
-                | bit(slots.clearcoat_normal.is_some(), HAS_CLEARCOAT_NORMAL),
+                | bit(slots.clearcoat_normal.is_some(), HAS_CLEARCOAT_NORMAL)
+                | bit(slots.height.is_some(), HAS_PARALLAX_HEIGHT)
+                | bit(material.detail_wrap.u == Wrap::ClampToEdge, PARALLAX_CLAMP_U)
+                | bit(material.detail_wrap.v == Wrap::ClampToEdge, PARALLAX_CLAMP_V),
             metallic: material.metallic,
             roughness: material.roughness,
             occlusion_strength: material.occlusion.as_ref().map_or(0.0, |o| o.strength),

@@ -11,8 +11,8 @@ pub use split::{SplitDifference, SplitView};
 use glam::{Vec2, Vec3};
 
 use crate::frame::{
-    BumpSource, FrameParams, Msaa, STRENGTH_RANGE, SceneOptions, SceneUploads, ShadingMode, ShadingSettings,
-    SplitFrame, ViewMode,
+    BumpSource, FrameParams, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Msaa, Parallax, STRENGTH_RANGE, SceneOptions,
+    SceneUploads, ShadingMode, ShadingSettings, SplitFrame, ViewMode,
 };
 use crate::height::Kernel;
 use crate::scene::{GreenAxis, Light, MaterialOverrides, OrbitCamera, Scene, ShadingModel};
@@ -106,6 +106,17 @@ pub enum Command {
     SetSplitConventions([GreenAxis; 2]),
     /// The two bump sources of [`SplitDifference::BumpSource`].
     SetSplitBumpSources([BumpSource; 2]),
+    /// The two techniques of [`SplitDifference::Parallax`].
+    SetSplitParallax([Parallax; 2]),
+    /// The parallax technique (a uniform).
+    SetParallax(Parallax),
+    /// The search's layers `[min, max]`, each clamped to 1..=[`MAX_PARALLAX_LAYERS`].
+    SetParallaxLayers([u32; 2]),
+    /// Relief mapping's binary-search steps, clamped to 0..=[`MAX_PARALLAX_STEPS`].
+    SetParallaxSteps(u32),
+    /// The relief's depth in metres (`None`: each material's height range); a negative or
+    /// non-finite depth is ignored.
+    SetParallaxDepth(Option<f32>),
 }
 
 /// Everything the user can change about the picture.
@@ -151,11 +162,15 @@ impl ViewerState {
     /// in GPU data, the left half's options for the main upload and the right half's for a
     /// second one; else the current options alone.
     pub fn scene_uploads(&self) -> SceneUploads {
+        // Height maps are bound for parallax while either picture marches.
+        let shown = self.split_frame().map_or(vec![self.shading], |s| vec![s.left, s.right]);
+        let parallax = shown.iter().any(|s| s.parallax.technique != Parallax::Off);
+        let options = SceneOptions { parallax, ..self.scene_options.clone() };
         if self.split.enabled && self.split.difference.changes_gpu_data() {
-            let [left, right] = self.split.scene_options(&self.scene_options);
+            let [left, right] = self.split.scene_options(&options);
             SceneUploads { main: left, split_right: Some(right) }
         } else {
-            SceneUploads { main: self.scene_options.clone(), split_right: None }
+            SceneUploads { main: options, split_right: None }
         }
     }
 
@@ -232,6 +247,15 @@ impl ViewerState {
             Command::SetShadingOverride(model) => self.shading.shading_override = model,
             Command::SetShadingMode(mode) => self.shading.mode = mode,
             Command::SetWireframe(on) => self.shading.wireframe = on,
+            Command::SetParallax(technique) => self.shading.parallax.technique = technique,
+            Command::SetParallaxLayers([min, max]) => {
+                let parallax = &mut self.shading.parallax;
+                parallax.layers_min = min.clamp(1, MAX_PARALLAX_LAYERS);
+                parallax.layers_max = max.clamp(1, MAX_PARALLAX_LAYERS);
+            }
+            Command::SetParallaxSteps(steps) => self.shading.parallax.steps = steps.min(MAX_PARALLAX_STEPS),
+            Command::SetParallaxDepth(Some(d)) if !(d.is_finite() && d >= 0.0) => {}
+            Command::SetParallaxDepth(depth) => self.shading.parallax.depth_m = depth,
             Command::ToggleWireframe => self.shading.wireframe = !self.shading.wireframe,
             Command::SetGlyphs(on) => self.shading.tbn_glyphs = on,
             Command::ToggleGlyphs => self.shading.tbn_glyphs = !self.shading.tbn_glyphs,
@@ -249,6 +273,7 @@ impl ViewerState {
             Command::SetSplitTangentMethods(methods) => self.split.tangent_methods = methods,
             Command::SetSplitConventions(conventions) => self.split.conventions = conventions,
             Command::SetSplitBumpSources(sources) => self.split.bump_sources = sources,
+            Command::SetSplitParallax(techniques) => self.split.parallax = techniques,
         }
     }
 }
@@ -346,6 +371,13 @@ mod tests {
         assert!(tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
         state.apply(Command::SetWireframe(false));
         assert!(!state.shading.wireframe);
+        state.apply(Command::SetParallax(Parallax::Relief));
+        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
+        state.apply(Command::SetParallaxLayers([0, 1000]));
+        state.apply(Command::SetParallaxSteps(99));
+        state.apply(Command::SetParallaxDepth(Some(-1.0)));
+        let parallax = state.shading.parallax;
+        assert_eq!((parallax.layers_min, parallax.layers_max, parallax.steps, parallax.depth_m), (1, 256, 16, None));
         assert_eq!(state.scene_options, SceneOptions::default(), "no GPU data to re-make");
     }
 
@@ -362,7 +394,11 @@ mod tests {
             let uploads = state.scene_uploads();
             assert_eq!(uploads.split_right.is_some(), difference.changes_gpu_data(), "{difference:?}");
             if !difference.changes_gpu_data() {
-                assert_eq!(uploads, single, "{difference:?}");
+                // A parallax split marches in both halves: one upload, with the height maps.
+                let parallax = difference == SplitDifference::Parallax;
+                let expected =
+                    SceneUploads { main: SceneOptions { parallax, ..Default::default() }, split_right: None };
+                assert_eq!(uploads, expected, "{difference:?}");
             }
         }
         state.apply(Command::SetSplitDifference(SplitDifference::Tangents));

@@ -1,15 +1,16 @@
 //! The split view: two pictures side by side that differ in one thing, in uniforms (one scene
 //! upload) or in GPU data (a second upload for the right half).
 
-use crate::frame::{BumpSource, SceneOptions, ShadingMode, ShadingSettings, ViewMode};
+use crate::frame::{BumpSource, Parallax, SceneOptions, ShadingMode, ShadingSettings, ViewMode};
 use crate::names::Named;
 use crate::scene::GreenAxis;
 use crate::tangent::TangentMethod;
 
-/// What the split view's two halves differ in. The first four are uniforms, so both halves
-/// share one scene upload; the others change GPU data ([`SplitDifference::changes_gpu_data`]),
-/// so the right half is drawn from a second upload of the scene. Named `bump`, `view`,
-/// `strength`, `mode`, `tangents`, `convention`, `bump-source`.
+/// What the split view's two halves differ in. Bump, view, strength, mode and parallax are
+/// uniforms, so both halves share one scene upload; the others change GPU data
+/// ([`SplitDifference::changes_gpu_data`]), so the right half is drawn from a second upload of
+/// the scene. Named `bump`, `view`, `strength`, `mode`, `tangents`, `convention`,
+/// `bump-source`, `parallax`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
 #[strum(serialize_all = "kebab-case")]
 pub enum SplitDifference {
@@ -28,6 +29,8 @@ pub enum SplitDifference {
     Convention,
     /// Two bump sources (normal map │ height in shader).
     BumpSource,
+    /// Two parallax techniques (same layers, steps and depth).
+    Parallax,
 }
 
 impl SplitDifference {
@@ -51,6 +54,7 @@ pub struct SplitView {
     pub tangent_methods: [TangentMethod; 2],
     pub conventions: [GreenAxis; 2],
     pub bump_sources: [BumpSource; 2],
+    pub parallax: [Parallax; 2],
 }
 
 impl Default for SplitView {
@@ -65,6 +69,7 @@ impl Default for SplitView {
             tangent_methods: [TangentMethod::PerFace, TangentMethod::MikkTSpace],
             conventions: [GreenAxis::OpenGl, GreenAxis::DirectX],
             bump_sources: [BumpSource::NormalMap, BumpSource::HeightInShader],
+            parallax: [Parallax::Steep, Parallax::Occlusion],
         }
     }
 }
@@ -79,6 +84,7 @@ impl SplitView {
                 SplitDifference::View => s.view = self.views[i],
                 SplitDifference::Strength => s.strength = self.strengths[i],
                 SplitDifference::Mode => s.mode = self.modes[i],
+                SplitDifference::Parallax => s.parallax.technique = self.parallax[i],
                 SplitDifference::Tangents | SplitDifference::Convention | SplitDifference::BumpSource => {}
             }
             s
@@ -102,7 +108,11 @@ impl SplitView {
                     options.per_material.retain(|_, o| !o.is_empty());
                 }
                 SplitDifference::BumpSource => options.bump_source = self.bump_sources[i],
-                SplitDifference::Bump | SplitDifference::View | SplitDifference::Strength | SplitDifference::Mode => {}
+                SplitDifference::Bump
+                | SplitDifference::View
+                | SplitDifference::Strength
+                | SplitDifference::Mode
+                | SplitDifference::Parallax => {}
             }
             options
         })
@@ -118,6 +128,7 @@ impl SplitView {
             SplitDifference::Tangents => format!("tangents: {}", self.tangent_methods[i].name()),
             SplitDifference::Convention => format!("normal map: {}", self.conventions[i].label()),
             SplitDifference::BumpSource => self.bump_sources[i].label().to_owned(),
+            SplitDifference::Parallax => self.parallax[i].label().to_owned(),
         })
     }
 }

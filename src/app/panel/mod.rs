@@ -7,6 +7,7 @@
 mod files;
 mod methods;
 mod output;
+mod parallax;
 mod picture;
 mod quick;
 
@@ -36,6 +37,7 @@ pub fn show(
             slot_targets = files::show(ui, controller, &mut actions);
         });
         section(ui, "Lit picture and overlays", true, |ui| picture::show(ui, &controller.state, &mut actions));
+        section(ui, "Parallax", false, |ui| parallax::show(ui, &controller.state, &mut actions));
         section(ui, "Tangent frames and kernels", false, |ui| {
             methods::methods(ui, &controller.state, &controller.facts().measurements, &mut actions);
         });

@@ -20,7 +20,7 @@ use std::path::Path;
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
-use crate::frame::{SceneOptions, ShadingSettings};
+use crate::frame::{MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, ParallaxSettings, SceneOptions, ShadingSettings};
 use crate::height::Kernel;
 use crate::load::SceneFiles;
 use crate::names::{Named, parse_or_auto};
@@ -191,6 +191,19 @@ impl Preset {
             return Err(bad("capture.size", &format!("[{w}, {h}]"), "[width, height], each at least 1"));
         }
         let mode = named("shading.mode", &s.mode)?;
+        let layers = format!("[min, max], each 1 to {MAX_PARALLAX_LAYERS}");
+        if let Some([a, b]) =
+            Some(s.parallax_layers).filter(|l| l.iter().any(|n| !(1..=MAX_PARALLAX_LAYERS).contains(n)))
+        {
+            return Err(bad("shading.parallax_layers", &format!("[{a}, {b}]"), &layers));
+        }
+        if s.parallax_steps > MAX_PARALLAX_STEPS {
+            let steps = format!("0 to {MAX_PARALLAX_STEPS}");
+            return Err(bad("shading.parallax_steps", &s.parallax_steps.to_string(), &steps));
+        }
+        if let Some(d) = s.parallax_depth_m.filter(|d| !(d.is_finite() && *d >= 0.0)) {
+            return Err(bad("shading.parallax_depth_m", &d.to_string(), "metres, 0 or more"));
+        }
         Ok(Settings {
             // Every field: a new setting must get a place in the preset format too.
             shading: ShadingSettings {
@@ -203,6 +216,13 @@ impl Preset {
                 mode,
                 wireframe: s.wireframe,
                 tbn_glyphs: s.tbn_glyphs,
+                parallax: ParallaxSettings {
+                    technique: named("shading.parallax", &s.parallax)?,
+                    layers_min: s.parallax_layers[0],
+                    layers_max: s.parallax_layers[1],
+                    steps: s.parallax_steps,
+                    depth_m: s.parallax_depth_m,
+                },
             },
             light_orbit: self.light.orbit,
             scene_options: SceneOptions {
@@ -210,6 +230,8 @@ impl Preset {
                 bump_source,
                 materials: scene.materials.to_overrides("scene.materials")?,
                 per_material,
+                // Set by `ViewerState::scene_uploads` from the shading.
+                parallax: false,
             },
             kernel: self.kernel()?,
             split: self.split.to_split()?,

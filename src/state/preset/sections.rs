@@ -34,6 +34,8 @@ pub struct SplitPreset {
     pub conventions: [String; 2],
     /// [`BumpSource`](crate::frame::BumpSource) names, left and right.
     pub bump_sources: [String; 2],
+    /// [`Parallax`](crate::frame::Parallax) technique names, left and right.
+    pub parallax: [String; 2],
 }
 
 impl Default for SplitPreset {
@@ -54,6 +56,7 @@ impl From<&SplitView> for SplitPreset {
             tangents: names(s.tangent_methods),
             conventions: names(s.conventions),
             bump_sources: names(s.bump_sources),
+            parallax: names(s.parallax),
         }
     }
 }
@@ -78,6 +81,7 @@ impl SplitPreset {
             tangent_methods: named_pair("split.tangents", &self.tangents)?,
             conventions: named_pair("split.conventions", &self.conventions)?,
             bump_sources: named_pair("split.bump_sources", &self.bump_sources)?,
+            parallax: named_pair("split.parallax", &self.parallax)?,
         })
     }
 }
@@ -136,6 +140,14 @@ pub struct ShadingPreset {
     pub wireframe: bool,
     /// T/B/N glyphs at vertices.
     pub tbn_glyphs: bool,
+    /// A [`Parallax`](crate::frame::Parallax) technique name: `off`, `offset`, `steep`, ….
+    pub parallax: String,
+    /// The search's layers `[min, max]` (each 1 to 256).
+    pub parallax_layers: [u32; 2],
+    /// Relief mapping's binary-search steps (0 to 16).
+    pub parallax_steps: u32,
+    /// The relief's depth, metres; missing: each material's height range.
+    pub parallax_depth_m: Option<f32>,
 }
 
 /// How the scene is prepared: tangents, bump source, kernel and material conventions.
@@ -201,6 +213,10 @@ impl From<&ShadingSettings> for ShadingPreset {
             mode: s.mode.name().to_owned(),
             wireframe: s.wireframe,
             tbn_glyphs: s.tbn_glyphs,
+            parallax: s.parallax.technique.name().to_owned(),
+            parallax_layers: [s.parallax.layers_min, s.parallax.layers_max],
+            parallax_steps: s.parallax.steps,
+            parallax_depth_m: s.parallax.depth_m,
         }
     }
 }

@@ -1,0 +1,124 @@
+// The parallax family (frame::Parallax): texture coordinates shifted along the view ray by
+// the material's height map before the normal map and the colour are read. The CPU twin is
+// src/chain/parallax.rs, formula for formula; its doc comment states the geometry (reference
+// plane at the top of the relief, UV density from screen-space derivatives) and the bounds.
+// Prepended to mesh.wgsl at build time; fs_normal_mapped calls parallax_uv.
+
+@group(1) @binding(12) var height_texture: texture_2d<f32>; // linear: 16-bit height in R (high), G (low)
+
+// The technique the pipeline draws: Parallax::shader_index(), one of the PARALLAX_ constants
+// below (0 is off). A pipeline constant, so a pipeline compiles only its own march.
+override PARALLAX: u32 = 0u;
+
+const PARALLAX_OFFSET: u32 = 1u;
+const PARALLAX_OFFSET_LIMITED: u32 = 2u;
+const PARALLAX_STEEP: u32 = 3u;
+const PARALLAX_OCCLUSION: u32 = 4u;
+const PARALLAX_RELIEF: u32 = 5u;
+const MAX_PARALLAX_LAYERS: u32 = 256u;
+const MAX_PARALLAX_STEPS: u32 = 16u;
+const GRAZING_N_DOT_V: f32 = 0.05;
+
+// Bits of Object.flags (src/render/uniforms.rs).
+const HAS_PARALLAX_HEIGHT: u32 = 2048u;
+const PARALLAX_CLAMP_U: u32 = 4096u;
+const PARALLAX_CLAMP_V: u32 = 8192u;
+
+struct ParallaxRay {
+    uv: vec2<f32>,
+    per_depth: vec2<f32>, // UV shift at the full depth
+    duv_dx: vec2<f32>,
+    duv_dy: vec2<f32>,
+};
+
+fn parallax_clamp(uv: vec2<f32>) -> vec2<f32> {
+    var out = uv;
+    if (object.flags & PARALLAX_CLAMP_U) != 0u {
+        out.x = clamp(out.x, 0.0, 1.0);
+    }
+    if (object.flags & PARALLAX_CLAMP_V) != 0u {
+        out.y = clamp(out.y, 0.0, 1.0);
+    }
+    return out;
+}
+
+fn parallax_uv_at(ray: ParallaxRay, t: f32) -> vec2<f32> {
+    return parallax_clamp(ray.uv + ray.per_depth * t);
+}
+
+// 1 − height at depth fraction t along the ray, sampled with the pixel's own UV footprint.
+fn parallax_depth_at(ray: ParallaxRay, t: f32) -> f32 {
+    let texel = textureSampleGrad(height_texture, detail_sampler, parallax_uv_at(ray, t), ray.duv_dx, ray.duv_dy);
+    var sample = (texel.r * 65280.0 + texel.g * 255.0) / 65535.0;
+    if (object.flags & DEPTH_MAP) != 0u {
+        sample = 1.0 - sample;
+    }
+    return 1.0 - sample;
+}
+
+// chain::parallax::march. Derivatives are taken before any branch (uniform control flow).
+fn parallax_uv(uv: vec2<f32>, n: vec3<f32>, position: vec3<f32>) -> vec2<f32> {
+    let dp_dx = dpdx(position);
+    let dp_dy = dpdy(position);
+    let duv_dx = dpdx(uv);
+    let duv_dy = dpdy(uv);
+    var depth_m = object.height_range_m;
+    if frame.parallax_depth_m >= 0.0 {
+        depth_m = frame.parallax_depth_m;
+    }
+    let r1 = cross(dp_dy, n);
+    let r2 = cross(n, dp_dx);
+    let det = dot(dp_dx, r1);
+    if PARALLAX == 0u || (object.flags & HAS_PARALLAX_HEIGHT) == 0u || depth_m == 0.0 || abs(det) < 1e-20 {
+        return uv;
+    }
+    let grad_u = (r1 * duv_dx.x + r2 * duv_dy.x) / det;
+    let grad_v = (r1 * duv_dx.y + r2 * duv_dy.y) / det;
+    let v = normalize_or(frame.camera_pos.xyz - position, n);
+    let n_dot_v = dot(n, v);
+    let along = vec2<f32>(-dot(grad_u, v), -dot(grad_v, v)) * depth_m;
+    let ray = ParallaxRay(uv, along / max(n_dot_v, GRAZING_N_DOT_V), duv_dx, duv_dy);
+    if PARALLAX == PARALLAX_OFFSET {
+        return parallax_uv_at(ray, parallax_depth_at(ray, 0.0));
+    }
+    if PARALLAX == PARALLAX_OFFSET_LIMITED {
+        return parallax_clamp(uv + along * parallax_depth_at(ray, 0.0));
+    }
+    // ParallaxSettings::layers: floor(max + (min − max)·N·V + 0.5), both clamped to 1..=256.
+    let low = clamp(min(frame.parallax_layers_min, frame.parallax_layers_max), 1u, MAX_PARALLAX_LAYERS);
+    let high = clamp(max(frame.parallax_layers_min, frame.parallax_layers_max), 1u, MAX_PARALLAX_LAYERS);
+    let layers = u32(floor(f32(high) + (f32(low) - f32(high)) * clamp(n_dot_v, 0.0, 1.0) + 0.5));
+    var i = 0u;
+    var t = 0.0;
+    var d = parallax_depth_at(ray, 0.0);
+    var t_prev = t;
+    var d_prev = d;
+    while i < layers && t < d {
+        t_prev = t;
+        d_prev = d;
+        i += 1u;
+        t = f32(i) / f32(layers);
+        d = parallax_depth_at(ray, t);
+    }
+    var t_hit = t;
+    if PARALLAX == PARALLAX_OCCLUSION && i > 0u {
+        let after = d - t;
+        let before = d_prev - t_prev;
+        let w = after / (after - before);
+        t_hit = t_prev * w + t * (1.0 - w);
+    }
+    if PARALLAX == PARALLAX_RELIEF && i > 0u {
+        var low_t = t_prev;
+        var high_t = t;
+        for (var k = 0u; k < min(frame.parallax_steps, MAX_PARALLAX_STEPS); k += 1u) {
+            let mid = 0.5 * (low_t + high_t);
+            if mid >= parallax_depth_at(ray, mid) {
+                high_t = mid;
+            } else {
+                low_t = mid;
+            }
+        }
+        t_hit = high_t;
+    }
+    return parallax_uv_at(ray, t_hit);
+}

@@ -1,0 +1,52 @@
+//! The parallax family: technique, depth, the search's layers and relief's steps (uniforms).
+
+use bumpview::frame::{MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Parallax};
+use bumpview::names::Named;
+use bumpview::state::{Command, ViewerState};
+
+use crate::app::action::Action;
+
+/// The technique selector, the depth (the material's or metres) and, for the searches, the
+/// layers and steps.
+pub(super) fn show(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
+    let settings = state.shading.parallax;
+    let mut technique = settings.technique;
+    egui::ComboBox::from_label("technique").selected_text(technique.label()).show_ui(ui, |ui| {
+        for &choice in Parallax::all() {
+            ui.selectable_value(&mut technique, choice, choice.label());
+        }
+    });
+    if technique != settings.technique {
+        actions.push(Command::SetParallax(technique).into());
+    }
+    ui.weak("normal-mapped surfaces with a height map; UVs shift along the view ray before the maps are read");
+    let mut own_depth = settings.depth_m.is_none();
+    if ui.checkbox(&mut own_depth, "depth: the material's height range").changed() {
+        actions.push(Command::SetParallaxDepth(if own_depth { None } else { Some(0.01) }).into());
+    }
+    if let Some(mut depth) = settings.depth_m {
+        let slider = egui::Slider::new(&mut depth, 0.0..=0.1).text("depth").suffix(" m").max_decimals(4);
+        if ui.add(slider).on_hover_text("0 is plain normal mapping").changed() {
+            actions.push(Command::SetParallaxDepth(Some(depth)).into());
+        }
+    }
+    if technique.marches() {
+        let (mut min, mut max) = (settings.layers_min, settings.layers_max);
+        let layers = 1..=MAX_PARALLAX_LAYERS;
+        let hint = "layers of the linear search: max face-on, min at grazing views";
+        let changed =
+            ui.add(egui::Slider::new(&mut min, layers.clone()).logarithmic(true).text("min layers")).changed()
+                | ui.add(egui::Slider::new(&mut max, layers).logarithmic(true).text("max layers"))
+                    .on_hover_text(hint)
+                    .changed();
+        if changed {
+            actions.push(Command::SetParallaxLayers([min, max]).into());
+        }
+    }
+    if technique == Parallax::Relief {
+        let mut steps = settings.steps;
+        if ui.add(egui::Slider::new(&mut steps, 0..=MAX_PARALLAX_STEPS).text("binary steps")).changed() {
+            actions.push(Command::SetParallaxSteps(steps).into());
+        }
+    }
+}

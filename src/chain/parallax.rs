@@ -1,0 +1,196 @@
+//! The parallax family on the CPU: the twin of `shaders/parallax.wgsl`, formula for formula
+//! and in the same order, so the probe marches the same height samples as the GPU.
+//!
+//! The reference plane is the mesh surface, the top of the relief; a texel of height `h` (0..1)
+//! lies `(1 − h) · depth` metres below it. The view ray enters at the pixel's UV and descends
+//! along `−V`: at depth `t · depth` metres (`t` 0..1) it is over the texture coordinates
+//! `uv + t · depth · S`, where `S = −(∇u·V, ∇v·V) / max(N·V, GRAZING_N_DOT_V)` is the UV shift
+//! per metre of depth. `∇u`, `∇v` are the world-space surface gradients of the texture
+//! coordinates (UV units per metre), from screen-space derivatives of the position and the UV
+//! as in Mikkelsen's surface gradient: the surface's UV density comes from the pixel, not from
+//! the tangent frame, so one relief is equally deep under every technique and on every UV
+//! layout. The searches (steep, occlusion, relief) take `ParallaxSettings::layers` layers and
+//! relief `steps` more samples: at most 257 + 16 height samples per pixel.
+
+use glam::{Vec2, Vec3};
+
+use crate::frame::{MAX_PARALLAX_STEPS, Parallax, ParallaxSettings};
+
+/// `N·V` is floored here before it divides: at grazing views the shift per metre of depth is
+/// at most `1 / GRAZING_N_DOT_V` times the face-on one (finite, no NaN).
+pub const GRAZING_N_DOT_V: f32 = 0.05;
+
+/// What the fragment shader knows at one pixel for the march.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MarchInputs {
+    /// The interpolated texture coordinates.
+    pub uv: Vec2,
+    /// The unit geometric normal (facing the viewer's side) and the unit direction to the eye.
+    pub normal: Vec3,
+    pub view_dir: Vec3,
+    /// Screen-space derivatives of the world position (metres per pixel) and of the UV.
+    pub dp_dx: Vec3,
+    pub dp_dy: Vec3,
+    pub duv_dx: Vec2,
+    pub duv_dy: Vec2,
+    /// The relief's depth, metres.
+    pub depth_m: f32,
+    /// The height map's sampler clamps u, v: marched coordinates stay in 0..1 on those axes.
+    pub clamp: [bool; 2],
+}
+
+/// The march at one pixel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct March {
+    /// Layers of the linear search (0 for techniques without one, or no shift).
+    pub layers: u32,
+    /// The first layer at or below the relief (0 = the surface itself).
+    pub layer_hit: u32,
+    /// The texture coordinates the normal map and colour are read at, and their shift.
+    pub uv: Vec2,
+    pub shift: Vec2,
+    /// The depth reached along the ray, 0..1 of the relief's depth.
+    pub depth: f32,
+}
+
+/// The texture coordinates of `inputs` shifted by `settings`' technique, reading heights
+/// (0..1, white = high, a depth map already flipped) with `height`. Off, depth 0 or a surface
+/// seen edge-on in screen space return the UV unchanged without a sample.
+pub fn march(settings: &ParallaxSettings, inputs: &MarchInputs, height: impl Fn(Vec2) -> f32) -> March {
+    let unshifted = March { layers: 0, layer_hit: 0, uv: inputs.uv, shift: Vec2::ZERO, depth: 0.0 };
+    let (n, v) = (inputs.normal, inputs.view_dir);
+    let r1 = inputs.dp_dy.cross(n);
+    let r2 = n.cross(inputs.dp_dx);
+    let det = inputs.dp_dx.dot(r1);
+    if settings.technique == Parallax::Off || inputs.depth_m == 0.0 || !inputs.depth_m.is_finite() || det.abs() < 1e-20
+    {
+        return unshifted;
+    }
+    let grad_u = (r1 * inputs.duv_dx.x + r2 * inputs.duv_dy.x) / det;
+    let grad_v = (r1 * inputs.duv_dx.y + r2 * inputs.duv_dy.y) / det;
+    let n_dot_v = n.dot(v);
+    let along = Vec2::new(-grad_u.dot(v), -grad_v.dot(v)) * inputs.depth_m;
+    let per_depth = along / n_dot_v.max(GRAZING_N_DOT_V);
+    let clamp = |uv: Vec2| {
+        Vec2::new(
+            if inputs.clamp[0] { uv.x.clamp(0.0, 1.0) } else { uv.x },
+            if inputs.clamp[1] { uv.y.clamp(0.0, 1.0) } else { uv.y },
+        )
+    };
+    let uv_at = |t: f32| clamp(inputs.uv + per_depth * t);
+    let depth_at = |t: f32| 1.0 - height(uv_at(t));
+    let done = |layers, layer_hit, uv: Vec2, depth| March { layers, layer_hit, uv, shift: uv - inputs.uv, depth };
+    match settings.technique {
+        Parallax::Off => unshifted,
+        Parallax::Offset => {
+            let d = depth_at(0.0);
+            done(0, 0, uv_at(d), d)
+        }
+        Parallax::OffsetLimited => {
+            let d = depth_at(0.0);
+            done(0, 0, clamp(inputs.uv + along * d), d)
+        }
+        Parallax::Steep | Parallax::Occlusion | Parallax::Relief => {
+            let layers = settings.layers(n_dot_v);
+            let (mut i, mut t, mut d) = (0u32, 0.0f32, depth_at(0.0));
+            let (mut t_prev, mut d_prev) = (t, d);
+            while i < layers && t < d {
+                t_prev = t;
+                d_prev = d;
+                i += 1;
+                t = i as f32 / layers as f32;
+                d = depth_at(t);
+            }
+            let t_hit = match settings.technique {
+                Parallax::Occlusion if i > 0 => {
+                    let after = d - t;
+                    let before = d_prev - t_prev;
+                    let w = after / (after - before);
+                    t_prev * w + t * (1.0 - w)
+                }
+                Parallax::Relief if i > 0 => {
+                    let (mut low, mut high) = (t_prev, t);
+                    for _ in 0..settings.steps.min(MAX_PARALLAX_STEPS) {
+                        let mid = 0.5 * (low + high);
+                        if mid >= depth_at(mid) {
+                            high = mid;
+                        } else {
+                            low = mid;
+                        }
+                    }
+                    high
+                }
+                _ => t,
+            };
+            done(layers, i, uv_at(t_hit), t_hit)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A flat surface in the z = 0 plane, u along +x and v along −y, one UV unit per metre,
+    /// seen from direction `view_dir`.
+    fn inputs(view_dir: Vec3) -> MarchInputs {
+        MarchInputs {
+            uv: Vec2::new(0.5, 0.5),
+            normal: Vec3::Z,
+            view_dir,
+            dp_dx: Vec3::X * 0.01,
+            dp_dy: Vec3::NEG_Y * 0.01,
+            duv_dx: Vec2::new(0.01, 0.0),
+            duv_dy: Vec2::new(0.0, 0.01),
+            depth_m: 0.1,
+            clamp: [false; 2],
+        }
+    }
+
+    fn settings(technique: Parallax, layers: u32) -> ParallaxSettings {
+        ParallaxSettings { technique, layers_min: layers, layers_max: layers, steps: 8, depth_m: None }
+    }
+
+    /// Over a flat floor at half depth (h = 0.5) every technique finds the ray at depth
+    /// 0.05 m: seen at 45° along +x, the shift is 0.05 UV units towards −u.
+    #[test]
+    fn a_flat_floor_is_found_at_its_depth_by_every_technique() {
+        let v = Vec3::new(1.0, 0.0, 1.0).normalize();
+        for technique in [Parallax::Offset, Parallax::Occlusion, Parallax::Relief] {
+            let m = march(&settings(technique, 16), &inputs(v), |_| 0.5);
+            assert!((m.shift - Vec2::new(-0.05, 0.0)).length() < 1e-5, "{technique:?}: {:?}", m.shift);
+        }
+        let steep = march(&settings(Parallax::Steep, 16), &inputs(v), |_| 0.5);
+        assert_eq!(steep.layer_hit, 8);
+        assert!((steep.shift.x + 0.05).abs() < 1e-5, "{:?}", steep.shift);
+        let limited = march(&settings(Parallax::OffsetLimited, 16), &inputs(v), |_| 0.5);
+        assert!((limited.shift.x + 0.05 * v.x).abs() < 1e-5, "{:?}", limited.shift);
+    }
+
+    #[test]
+    fn face_on_off_and_depth_zero_do_not_shift() {
+        for technique in [Parallax::Off, Parallax::Offset, Parallax::Steep, Parallax::Relief] {
+            let m = march(&settings(technique, 8), &inputs(Vec3::Z), |uv| uv.x.fract());
+            assert_eq!(m.uv, Vec2::new(0.5, 0.5), "{technique:?}");
+            let flat = MarchInputs { depth_m: 0.0, ..inputs(Vec3::new(1.0, 0.0, 0.2).normalize()) };
+            assert_eq!(march(&settings(technique, 8), &flat, |_| 0.0).shift, Vec2::ZERO, "{technique:?}");
+        }
+    }
+
+    /// Grazing, below the surface, 1 and 256 layers, a clamped border: finite, bounded, in range.
+    #[test]
+    fn grazing_and_below_stay_finite_and_clamped_stays_in_range() {
+        let views = [Vec3::X, Vec3::new(1.0, 0.0, -0.3).normalize(), Vec3::new(0.0, 1.0, 1e-4).normalize()];
+        for view in views {
+            for layers in [1, 256] {
+                for technique in [Parallax::Offset, Parallax::OffsetLimited, Parallax::Steep, Parallax::Occlusion] {
+                    let clamped = MarchInputs { clamp: [true; 2], ..inputs(view) };
+                    let m = march(&settings(technique, layers), &clamped, |uv| 0.5 + 0.5 * (uv.x * 40.0).sin());
+                    assert!(m.uv.is_finite() && m.depth.is_finite(), "{technique:?} {view} {layers}: {m:?}");
+                    assert!(m.uv.cmpge(Vec2::ZERO).all() && m.uv.cmple(Vec2::ONE).all(), "{m:?}");
+                    assert!(m.layer_hit <= layers);
+                }
+            }
+        }
+    }
+}
