@@ -8,7 +8,10 @@
 
 mod repair;
 
+use std::borrow::Cow;
+
 use glam::{Mat4, Vec4};
+use rayon::prelude::*;
 
 use crate::frame::{BumpKind, SceneOptions, bump_kind};
 use crate::scene::{Material, Mesh, Scene, TextureImage};
@@ -156,6 +159,8 @@ pub struct PreparedScene {
     pub notices: Vec<String>,
     /// Tangent frames made by a generator (not read from the file) for this preparation.
     pub tangent_frames_generated: u64,
+    /// Per texture of `scene`: its mip chain when made ahead ([`Self::precompute_mip_chains`]).
+    pub mip_chains: Vec<Option<Vec<TextureImage>>>,
 }
 
 impl PreparedScene {
@@ -203,7 +208,16 @@ impl PreparedScene {
                 PreparedMesh { mesh: repair::repaired(&drawn, &mut notices), frames }
             })
             .collect();
-        PreparedScene { scene, options: options.clone(), meshes, instances, notices, tangent_frames_generated }
+        let mip_chains = vec![None; scene.textures.len()];
+        PreparedScene {
+            scene,
+            options: options.clone(),
+            meshes,
+            instances,
+            notices,
+            tangent_frames_generated,
+            mip_chains,
+        }
     }
 
     /// Whether any instance binds texture `index` of [`Self::scene`].
@@ -212,9 +226,20 @@ impl PreparedScene {
     }
 
     /// The mip chain of texture `index` as it is sampled (level 0 first, box-filtered down to
-    /// one texel; see [`TextureImage::mip_chain`]).
-    pub fn mip_chain(&self, index: usize) -> Vec<TextureImage> {
-        self.scene.textures[index].mip_chain()
+    /// one texel; see [`TextureImage::mip_chain`]): the one made ahead, else made now.
+    pub fn mip_chain(&self, index: usize) -> Cow<'_, [TextureImage]> {
+        match &self.mip_chains[index] {
+            Some(chain) => Cow::Borrowed(chain),
+            None => Cow::Owned(self.scene.textures[index].mip_chain()),
+        }
+    }
+
+    /// Makes the mip chains of every texture an instance binds now (textures in parallel), so
+    /// that uploading the scene, on the UI thread, only copies them to the GPU.
+    pub fn precompute_mip_chains(&mut self) {
+        let used: Vec<bool> = (0..self.scene.textures.len()).map(|index| self.uses_texture(index)).collect();
+        self.mip_chains =
+            self.scene.textures.par_iter().zip(used).map(|(texture, used)| used.then(|| texture.mip_chain())).collect();
     }
 
     /// Number of triangles drawn.
@@ -291,6 +316,19 @@ mod tests {
             teaching_scene().materials.iter().filter_map(|m| m.normal_map.as_ref().map(|n| n.texture)).collect();
         assert!(!bump_textures.is_empty());
         assert!(bump_textures.iter().all(|&t| !prepared.uses_texture(t)));
+    }
+
+    #[test]
+    fn mip_chains_made_ahead_equal_those_made_on_upload() {
+        let mut prepared = PreparedScene::new(&teaching_scene(), &SceneOptions::default());
+        let on_demand: Vec<_> =
+            (0..prepared.scene.textures.len()).map(|i| prepared.mip_chain(i).into_owned()).collect();
+        prepared.precompute_mip_chains();
+        for (index, chain) in on_demand.iter().enumerate() {
+            assert_eq!(prepared.mip_chains[index].is_some(), prepared.uses_texture(index));
+            assert_eq!(prepared.mip_chain(index).as_ref(), chain.as_slice());
+        }
+        assert!(prepared.mip_chains.iter().any(Option::is_some));
     }
 
     #[test]

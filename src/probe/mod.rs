@@ -170,7 +170,7 @@ impl ProbeScene {
     pub fn wrap(prepared: Arc<PreparedScene>) -> ProbeScene {
         let used = |index: &usize| prepared.uses_texture(*index);
         let mips = (0..prepared.scene.textures.len())
-            .map(|index| if used(&index) { prepared.mip_chain(index) } else { vec![] })
+            .map(|index| if used(&index) { prepared.mip_chain(index).into_owned() } else { vec![] })
             .collect();
         ProbeScene { prepared, mips }
     }

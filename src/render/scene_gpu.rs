@@ -92,7 +92,7 @@ impl TextureCache<'_> {
     fn upload(
         &mut self,
         image: &TextureImage,
-        mut mips: Vec<TextureImage>,
+        mips: &[TextureImage],
         counters: &mut WorkCounters,
     ) -> wgpu::TextureView {
         let format = match image.kind {
@@ -107,8 +107,8 @@ impl TextureCache<'_> {
                 "texture {:?} is {}x{}, more than the adapter's {limit} per side: downscaled to {w}x{h}",
                 image.name, image.width, image.height
             ));
-            mips.drain(..fits);
         }
+        let mips = &mips[fits..];
         let base = &mips[0];
         let texture = self.device.create_texture(&wgpu::TextureDescriptor {
             label: Some(&image.name),
@@ -144,7 +144,7 @@ impl TextureCache<'_> {
     fn get(&mut self, prepared: &PreparedScene, index: usize, counters: &mut WorkCounters) -> wgpu::TextureView {
         if self.views[index].is_none() {
             let image = &prepared.scene.textures[index];
-            self.views[index] = Some(self.upload(image, prepared.mip_chain(index), counters));
+            self.views[index] = Some(self.upload(image, &prepared.mip_chain(index), counters));
         }
         self.views[index].clone().expect("uploaded above")
     }
@@ -159,7 +159,7 @@ impl TextureCache<'_> {
                 kind: TextureKind::Color,
                 rgba: vec![255; 4],
             };
-            self.white = Some(self.upload(&image, image.mip_chain(), counters));
+            self.white = Some(self.upload(&image, &image.mip_chain(), counters));
         }
         self.white.clone().expect("uploaded above")
     }

@@ -5,6 +5,7 @@
 //! uploads are made to match what the state asks ([`Controller::sync_uploads`]).
 
 mod exports;
+mod preparing;
 mod presets;
 #[cfg(test)]
 mod tests;
@@ -28,6 +29,7 @@ use bumpview::state::preset::CapturePreset;
 use bumpview::state::{Command, ViewerState};
 use bumpview::tangent::{MethodMeasurement, TangentMethod, measure};
 pub use exports::ScreenshotForm;
+use preparing::{Prepared, Preparer};
 pub use presets::{PresetForm, last_state_file};
 
 use super::action::Action;
@@ -112,6 +114,8 @@ pub struct Controller {
     /// The preset path field the panel edits, and the last save's or load's outcome.
     pub preset: PresetForm,
     probe: Probe,
+    /// Makes loaded scenes ready off the UI thread.
+    preparer: Preparer,
     /// The 3D view's size in pixels, as last laid out (`None` before the first frame).
     view_size: Option<[u32; 2]>,
     /// Counts changes of the scene or its GPU data: a drawn picture older than this is stale.
@@ -157,6 +161,7 @@ impl Controller {
             screenshot: ScreenshotForm::new(&capture),
             preset: PresetForm::default(),
             probe: Probe::default(),
+            preparer: Preparer::default(),
             view_size: None,
             revision: 0,
             last_state,
@@ -277,7 +282,7 @@ impl Controller {
             Action::SetInteractiveFrames(on) => self.interactive.enabled = on,
             Action::Loaded(finished) => {
                 if let Some((scene, purpose)) = self.files.finish(*finished) {
-                    self.install_scene(scene, purpose);
+                    self.prepare_scene(scene, purpose);
                 }
             }
         }
@@ -292,9 +297,31 @@ impl Controller {
         }
     }
 
-    /// Shows a newly loaded scene. A new mesh is framed by its default camera and light; a
-    /// reload keeps camera, light and settings.
-    fn install_scene(&mut self, scene: Scene, purpose: Purpose) {
+    /// Prepares a newly loaded scene off the UI thread ([`Preparer`]) for the options it will be
+    /// drawn with; the window keeps showing the current scene until [`Self::install_scene`].
+    fn prepare_scene(&mut self, scene: Scene, purpose: Purpose) {
+        let mut planned = self.state.clone();
+        if purpose == Purpose::Open {
+            planned.scene_options.per_material.clear();
+        }
+        let label =
+            self.files.scene_files.paths().first().map_or_else(|| "built-in scene".into(), |p| files::file_name(p));
+        let wake = self.waker();
+        if let Err(message) = self.preparer.start(scene, purpose, planned.scene_uploads(), label, wake) {
+            self.files.status = Some(Status::Failed(message));
+        }
+    }
+
+    /// What the panel shows while a loaded scene is prepared (stage and seconds so far).
+    pub fn preparing(&self) -> Option<String> {
+        self.preparer.busy()
+    }
+
+    /// Shows a newly loaded and prepared scene. A new mesh is framed by its default camera and
+    /// light; a reload keeps camera, light and settings. The prepared GPU data is uploaded as
+    /// it is unless the options changed while it was made (then it is re-made here).
+    fn install_scene(&mut self, prepared: Prepared) {
+        let Prepared { scene, purpose, uploads, main, split, facts } = prepared;
         if purpose == Purpose::Open {
             // Per-material overrides name materials by index: they belong to the old mesh.
             self.state.scene_options.per_material.clear();
@@ -302,8 +329,13 @@ impl Controller {
             self.state.light = scene.default_light;
         }
         self.state.default_camera = scene.default_camera;
-        self.renderer.set_scene_uploads(&scene, &self.state.scene_uploads());
-        self.facts = SceneFacts::new(&scene, self.state.scene_options.tangent_method);
+        if self.state.scene_uploads() == uploads {
+            self.renderer.set_prepared(main);
+            self.renderer.set_split_prepared(split);
+        } else {
+            self.renderer.set_scene_uploads(&scene, &self.state.scene_uploads());
+        }
+        self.facts = facts;
         self.scene = scene;
         self.probe.scene_changed();
         self.revision += 1;
@@ -350,10 +382,13 @@ impl Controller {
         if let Some(finished) = self.files.loader.poll() {
             actions.push(Action::Loaded(Box::new(finished)));
         }
-        // A reload waits for a load in flight (which wakes the UI when done), so that it does
-        // not replace a mesh the user is opening.
+        if let Some(prepared) = self.preparer.poll() {
+            self.install_scene(prepared);
+        }
+        // A reload waits for a load or preparation in flight (which wakes the UI when done), so
+        // that it does not replace a mesh the user is opening.
         let mut wait = None;
-        if self.files.loader.busy().is_none() {
+        if self.files.loader.busy().is_none() && self.preparer.busy().is_none() {
             if self.files.debouncer.fire(now) {
                 actions.push(Action::Reload);
             } else {

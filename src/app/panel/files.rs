@@ -25,6 +25,9 @@ pub(super) fn heading(ui: &mut egui::Ui, controller: &Controller, actions: &mut 
         if let Some(label) = files.loader.busy() {
             ui.add(egui::Spinner::new());
             ui.label(format!("loading {label}…"));
+        } else if let Some(preparing) = controller.preparing() {
+            ui.add(egui::Spinner::new());
+            ui.label(preparing);
         }
     });
     match &files.status {
