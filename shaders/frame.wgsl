@@ -9,13 +9,10 @@ struct Frame {
     ambient: vec4<f32>,       // linear RGB
     strength: f32,            // bump strength s, glTF normalTexture.scale semantics
     bump_enabled: u32,
-    view_mode: u32,           // ViewMode::shader_index()
     self_shadow_fade: f32,    // SELF_SHADOW_FADE
     difference_range_deg: f32, // the Difference view's colour scale runs 0..this, degrees
-    shading_override: u32,    // 0: each material's own model, else 1 + ShadingModel::shader_index()
     shading_mode: u32,        // ShadingMode::shader_index(): bump × colour, bump only, colour only
     over_tilt_cos: f32,       // shading::over_tilt_cos(): the Over-tilt view marks N·N_geo below this
-    parallax: u32,            // Parallax::shader_index() (shaders/parallax.wgsl)
     parallax_layers_min: u32, // ParallaxSettings::layers_min, layers_max
     parallax_layers_max: u32,
     parallax_steps: u32,      // relief's binary-search steps

@@ -3,7 +3,9 @@
 // Conventions: see the crate docs (src/lib.rs). The CPU reference of every function here is
 // src/shading.rs; keep the two in step.
 //
-// Entry points form the pipeline variants (src/render/pipelines.rs):
+// Entry points form the pipeline variants (src/render/pipelines.rs), and each mesh variant is
+// specialised by two pipeline constants, VIEW and SHADING_MODEL, so it compiles only the view
+// and the shading model it draws:
 //   vs_plain  + fs_plain          mesh without tangents, material without normal map
 //   vs_tangent + fs_tangent       mesh with tangents, material without normal map
 //   vs_tangent + fs_normal_mapped mesh with tangents and a tangent-space normal map, read at
@@ -28,7 +30,6 @@ struct Object {
     metallic: f32,              // metallic-roughness factors
     roughness: f32,
     occlusion_strength: f32,
-    shading_model: u32,         // ShadingModel::shader_index()
     emissive: vec4<f32>,        // rgb: linear emitted light (times the texture at 8 if HAS_EMISSIVE_TEXTURE)
     clearcoat: vec4<f32>,       // factor, perceptual roughness, normal-map scale (HAS_CLEARCOAT)
     clearcoat_uv: array<vec4<f32>, 2>, // rows of the 2x3 affine: mesh UV -> the coat's textures
@@ -62,6 +63,12 @@ const SHADING_METALLIC_ROUGHNESS: u32 = 1u;
 // True when the target stores sRGB-encoded values (Rgba8UnormSrgb): debug colours are then
 // decoded first so the stored bytes equal 0.5·v + 0.5.
 override TARGET_ENCODES_SRGB: bool = true;
+// The view the pipeline draws: ViewMode::shader_index(), one of the VIEW_ constants below
+// (0 is Lit).
+override VIEW: u32 = 0u;
+// The shading model of the lit views (Lit, Over-tilt): ShadingModel::shader_index(), the
+// frame's override or else the material's own.
+override SHADING_MODEL: u32 = 0u;
 
 const VIEW_TANGENT: u32 = 1u;
 const VIEW_BITANGENT: u32 = 2u;
@@ -212,21 +219,20 @@ fn clearcoat_uv(uv: vec2<f32>) -> vec2<f32> {
 // chain::shade's clear-coat normal: the coat's normal map through the frame (OpenGL
 // convention, bump strength times its scale), else the geometric normal.
 fn clearcoat_normal(in: VertexOutput, n: vec3<f32>, frame_tb: TangentFrame) -> vec3<f32> {
-    let texel = textureSample(clearcoat_normal_texture, detail_sampler, clearcoat_uv(in.uv)).rgb;
     if (object.flags & HAS_CLEARCOAT_NORMAL) == 0u || frame.bump_enabled == 0u {
         return n;
     }
+    let texel = textureSample(clearcoat_normal_texture, detail_sampler, clearcoat_uv(in.uv)).rgb;
     return perturbed_normal(n, frame_tb, texel, frame.strength * object.clearcoat.z, 0u);
 }
 
-// The lit colour (chain::shade): the material's shading model unless the frame overrides it,
-// plus emitted light in the bump × colour picture.
+// The lit colour (chain::shade) in the pipeline's shading model, plus emitted light in the
+// bump × colour picture.
 fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>, n_coat: vec3<f32>) -> vec3<f32> {
     var albedo = textureSample(base_color_texture, base_color_sampler, in.uv).rgb * object.base_color.rgb;
     var emission = object.emissive.rgb;
-    let emissive_texel = textureSample(emissive_texture, base_color_sampler, in.uv).rgb;
     if (object.flags & HAS_EMISSIVE_TEXTURE) != 0u {
-        emission *= emissive_texel;
+        emission *= textureSample(emissive_texture, base_color_sampler, in.uv).rgb;
     }
     if frame.shading_mode == MODE_COLOUR_ONLY {
         return albedo;
@@ -235,34 +241,33 @@ fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>, n_coat: v
         albedo = vec3<f32>(1.0);
         emission = vec3<f32>(0.0);
     }
-    var model = object.shading_model;
-    if frame.shading_override != 0u {
-        model = frame.shading_override - 1u;
-    }
-    if model != SHADING_METALLIC_ROUGHNESS {
+    if SHADING_MODEL != SHADING_METALLIC_ROUGHNESS {
         var k_s = object.specular.rgb;
         if (object.flags & HAS_GLOSS) != 0u {
             k_s *= textureSample(gloss_texture, detail_sampler, in.uv).rgb;
         }
         return blinn_phong(albedo, k_s, n_geo, n_shading, in.world_position) + emission;
     }
-    var metal_rough = textureSample(metallic_roughness_texture, detail_sampler, in.uv);
-    if (object.flags & HAS_METALLIC_ROUGHNESS) == 0u {
-        metal_rough = vec4<f32>(1.0); // the binding holds a placeholder: factors alone
+    // Each texture is sampled only where the material has it (uniform branches): without one
+    // its binding holds a placeholder and the factors stand alone.
+    var metal_rough = vec4<f32>(1.0);
+    if (object.flags & HAS_METALLIC_ROUGHNESS) != 0u {
+        metal_rough = textureSample(metallic_roughness_texture, detail_sampler, in.uv);
     }
-    let occlusion = 1.0 + object.occlusion_strength * (textureSample(occlusion_texture, detail_sampler, in.uv).r - 1.0);
+    // Without an occlusion texture the strength is 0 and the factor exactly 1.
+    var occlusion = 1.0;
+    if object.occlusion_strength != 0.0 {
+        occlusion += object.occlusion_strength * (textureSample(occlusion_texture, detail_sampler, in.uv).r - 1.0);
+    }
     var coat = vec2<f32>(0.0); // factor, roughness; 0: no coat
     if (object.flags & HAS_CLEARCOAT) != 0u {
         coat = object.clearcoat.xy;
     }
-    let coat_uv = clearcoat_uv(in.uv);
-    let coat_strength = textureSample(clearcoat_texture, detail_sampler, coat_uv).r;
-    let coat_roughness = textureSample(clearcoat_roughness_texture, detail_sampler, coat_uv).g;
     if (object.flags & HAS_CLEARCOAT_TEXTURE) != 0u {
-        coat.x *= coat_strength;
+        coat.x *= textureSample(clearcoat_texture, detail_sampler, clearcoat_uv(in.uv)).r;
     }
     if (object.flags & HAS_CLEARCOAT_ROUGHNESS_TEXTURE) != 0u {
-        coat.y *= coat_roughness;
+        coat.y *= textureSample(clearcoat_roughness_texture, detail_sampler, clearcoat_uv(in.uv)).g;
     }
     let inputs = PbrInputs(
         albedo,
@@ -322,7 +327,7 @@ fn surface_color(
     n_shading: vec3<f32>,
     n_coat: vec3<f32>,
 ) -> vec4<f32> {
-    switch frame.view_mode {
+    switch VIEW {
         case VIEW_TANGENT: { return stored(0.5 * frame_tb.t + 0.5); }
         case VIEW_BITANGENT: { return stored(0.5 * frame_tb.b + 0.5); }
         case VIEW_NORMAL: { return stored(0.5 * n_geo + 0.5); }

@@ -6,6 +6,10 @@
 
 @group(1) @binding(12) var height_texture: texture_2d<f32>; // linear: 16-bit height in R (high), G (low)
 
+// The technique the pipeline draws: Parallax::shader_index(), one of the PARALLAX_ constants
+// below (0 is off). A pipeline constant, so a pipeline compiles only its own march.
+override PARALLAX: u32 = 0u;
+
 const PARALLAX_OFFSET: u32 = 1u;
 const PARALLAX_OFFSET_LIMITED: u32 = 2u;
 const PARALLAX_STEEP: u32 = 3u;
@@ -65,7 +69,7 @@ fn parallax_uv(uv: vec2<f32>, n: vec3<f32>, position: vec3<f32>) -> vec2<f32> {
     let r1 = cross(dp_dy, n);
     let r2 = cross(n, dp_dx);
     let det = dot(dp_dx, r1);
-    if frame.parallax == 0u || (object.flags & HAS_PARALLAX_HEIGHT) == 0u || depth_m == 0.0 || abs(det) < 1e-20 {
+    if PARALLAX == 0u || (object.flags & HAS_PARALLAX_HEIGHT) == 0u || depth_m == 0.0 || abs(det) < 1e-20 {
         return uv;
     }
     let grad_u = (r1 * duv_dx.x + r2 * duv_dy.x) / det;
@@ -74,10 +78,10 @@ fn parallax_uv(uv: vec2<f32>, n: vec3<f32>, position: vec3<f32>) -> vec2<f32> {
     let n_dot_v = dot(n, v);
     let along = vec2<f32>(-dot(grad_u, v), -dot(grad_v, v)) * depth_m;
     let ray = ParallaxRay(uv, along / max(n_dot_v, GRAZING_N_DOT_V), duv_dx, duv_dy);
-    if frame.parallax == PARALLAX_OFFSET {
+    if PARALLAX == PARALLAX_OFFSET {
         return parallax_uv_at(ray, parallax_depth_at(ray, 0.0));
     }
-    if frame.parallax == PARALLAX_OFFSET_LIMITED {
+    if PARALLAX == PARALLAX_OFFSET_LIMITED {
         return parallax_clamp(uv + along * parallax_depth_at(ray, 0.0));
     }
     // ParallaxSettings::layers: floor(max + (min − max)·N·V + 0.5), both clamped to 1..=256.
@@ -97,13 +101,13 @@ fn parallax_uv(uv: vec2<f32>, n: vec3<f32>, position: vec3<f32>) -> vec2<f32> {
         d = parallax_depth_at(ray, t);
     }
     var t_hit = t;
-    if frame.parallax == PARALLAX_OCCLUSION && i > 0u {
+    if PARALLAX == PARALLAX_OCCLUSION && i > 0u {
         let after = d - t;
         let before = d_prev - t_prev;
         let w = after / (after - before);
         t_hit = t_prev * w + t * (1.0 - w);
     }
-    if frame.parallax == PARALLAX_RELIEF && i > 0u {
+    if PARALLAX == PARALLAX_RELIEF && i > 0u {
         var low_t = t_prev;
         var high_t = t;
         for (var k = 0u; k < min(frame.parallax_steps, MAX_PARALLAX_STEPS); k += 1u) {

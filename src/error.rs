@@ -27,6 +27,8 @@ pub enum RenderError {
     Gpu { width: u32, height: u32, reason: String },
     #[error("reading the rendered image back from the GPU failed: {0}")]
     Readback(String),
+    #[error("waiting for the GPU to finish a frame failed: {0}")]
+    Wait(String),
     #[error("no scene has been given to the renderer")]
     NoScene,
     #[error("could not write {path}: {reason}")]

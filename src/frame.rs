@@ -69,9 +69,15 @@ impl ViewMode {
         all[(i + 1) % all.len()]
     }
 
-    /// The index the shader switches on (`frame.view_mode`).
+    /// The index the mesh shader's `VIEW` pipeline constant takes.
     pub fn shader_index(self) -> u32 {
         self as u32
+    }
+
+    /// Whether the view shows the lit picture (Lit, Over-tilt), so its pipeline depends on
+    /// the shading model.
+    pub fn is_lit(self) -> bool {
+        matches!(self, ViewMode::Lit | ViewMode::OverTilt)
     }
 }
 
@@ -106,18 +112,22 @@ impl ShadingMode {
     }
 }
 
-/// The cheap toggles: they are shader uniforms, never a pipeline change.
+/// The toggles that keep the scene's GPU data: uniforms, except the view, the shading model
+/// and the parallax technique, which pick pipeline variants (each built on first use, then
+/// cached).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShadingSettings {
     pub bump_enabled: bool,
     /// Bump strength `s`, glTF `normalTexture.scale` semantics, multiplied with the
     /// material's own scale. 0 is flat, negative inverts.
     pub strength: f32,
+    /// A pipeline variant: each pipeline draws one view.
     pub view: ViewMode,
     pub show_light_marker: bool,
     /// The Difference view's colour scale spans 0 to this many degrees.
     pub difference_range_deg: f32,
-    /// Shade every material with this model (`None`: each material's own).
+    /// Shade every material with this model (`None`: each material's own). A pipeline
+    /// variant in the lit views.
     pub shading_override: Option<ShadingModel>,
     /// Bump × colour, bump only or colour only (a uniform).
     pub mode: ShadingMode,
@@ -127,7 +137,8 @@ pub struct ShadingSettings {
     /// Draw T/B/N glyphs (red, green, blue lines) at vertices of meshes with tangent frames,
     /// thinned on dense meshes (a line pass).
     pub tbn_glyphs: bool,
-    /// Parallax mapping of normal-mapped surfaces with a height map (uniforms).
+    /// Parallax mapping of normal-mapped surfaces with a height map: the technique picks a
+    /// pipeline variant, layers, steps and depth are uniforms.
     pub parallax: ParallaxSettings,
 }
 
@@ -190,7 +201,7 @@ impl Parallax {
         }
     }
 
-    /// The index the shader switches on (`frame.parallax`).
+    /// The index the `PARALLAX` pipeline constant takes (shaders/parallax.wgsl).
     pub fn shader_index(self) -> u32 {
         self as u32
     }
@@ -282,6 +293,46 @@ impl SplitFrame {
     }
 }
 
+/// Multisampling of a frame: full quality or the cheaper interactive frames.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Msaa {
+    /// 4 samples per pixel where the adapter can render and resolve them in the target's
+    /// format, else 1: screenshots, exports and the frame shown once input stops.
+    #[default]
+    X4,
+    /// 1 sample per pixel: frames drawn while the user drags or the light orbits.
+    Off,
+}
+
+/// How much a frame may cost: its multisampling and the share of the view's pixels drawn.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameQuality {
+    pub msaa: Msaa,
+    /// Pixels drawn per view pixel along each side, in (0, 1]: 0.5 draws a quarter of the
+    /// pixels, shown enlarged. 1 draws every pixel.
+    pub render_scale: f32,
+}
+
+impl FrameQuality {
+    /// Every pixel with 4× MSAA: what screenshots and exports are drawn with.
+    pub const FULL: FrameQuality = FrameQuality { msaa: Msaa::X4, render_scale: 1.0 };
+
+    /// The size in pixels to draw a view of `view_size` pixels at: each side times
+    /// [`Self::render_scale`], rounded, at least 1 and at most the side (a non-finite or
+    /// non-positive scale draws every pixel).
+    pub fn render_size(&self, view_size: [u32; 2]) -> [u32; 2] {
+        let scale =
+            if self.render_scale.is_finite() && self.render_scale > 0.0 { self.render_scale.min(1.0) } else { 1.0 };
+        view_size.map(|side| ((side as f32 * scale).round() as u32).max(1).min(side))
+    }
+}
+
+impl Default for FrameQuality {
+    fn default() -> Self {
+        FrameQuality::FULL
+    }
+}
+
 /// Where the bump comes from. It decides pipelines and uploads, so it is a scene option, not
 /// a uniform. Named `normal-map`, `height-in-shader`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
@@ -348,6 +399,10 @@ pub struct SceneOptions {
     /// Per material (index into the scene's materials): conventions that win over
     /// `materials` field by field.
     pub per_material: PerMaterialOverrides,
+    /// Bind each normal-mapped material's height map for the parallax family: on while a
+    /// technique is chosen (`ViewerState::scene_uploads` sets it), so the height maps are
+    /// uploaded only then.
+    pub parallax: bool,
 }
 
 impl SceneOptions {
@@ -390,6 +445,17 @@ pub struct SceneUploads {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn render_size_scales_each_side_and_keeps_at_least_a_pixel() {
+        let half = FrameQuality { msaa: Msaa::Off, render_scale: 0.5 };
+        assert_eq!(half.render_size([1280, 720]), [640, 360]);
+        assert_eq!(half.render_size([3, 1]), [2, 1]);
+        assert_eq!(FrameQuality::FULL.render_size([1280, 720]), [1280, 720]);
+        for scale in [0.0, -1.0, f32::NAN, 7.0] {
+            assert_eq!(FrameQuality { render_scale: scale, ..half }.render_size([1280, 720]), [1280, 720]);
+        }
+    }
 
     /// Tatarchuk's count: `max` face-on, `min` grazing, clamped to 1..=256 in either order;
     /// captions name the technique and its layers.

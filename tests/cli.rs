@@ -160,6 +160,54 @@ fn help_lists_every_view_and_method() {
     assert!(!viewer_help.contains("not yet shaded"), "{viewer_help}");
 }
 
+/// `render --frames N` prints one line on stdout, `frame <ms> ms, floor <ms> ms, ratio <r>`
+/// (medians, two decimals; the ratio of the unrounded medians), for full-quality frames and
+/// with `--interactive` for the viewer's interactive ones. No timing is asserted: only the
+/// line's form and that its numbers agree.
+#[test]
+fn frames_prints_frame_floor_and_ratio() {
+    for extra in [&[][..], &["--interactive"], &["--split", "bump", "--view", "normal"]] {
+        let mut args = vec!["render", "--frames", "3", "--size", "64x48"];
+        args.extend(extra);
+        let output = bumpview(&args);
+        assert!(output.status.success(), "{args:?}: {}", String::from_utf8_lossy(&output.stderr));
+        let stdout = String::from_utf8(output.stdout).unwrap();
+        let lines: Vec<&str> = stdout.lines().collect();
+        assert_eq!(lines.len(), 1, "{stdout:?}");
+        let number = |text: &str| {
+            let (whole, decimals) = text.split_once('.').unwrap_or_else(|| panic!("{text:?} in {stdout:?}"));
+            assert!(whole.chars().all(|c| c.is_ascii_digit()) && !whole.is_empty(), "{stdout:?}");
+            assert!(decimals.len() == 2 && decimals.chars().all(|c| c.is_ascii_digit()), "{stdout:?}");
+            text.parse::<f64>().unwrap()
+        };
+        let rest = lines[0].strip_prefix("frame ").unwrap_or_else(|| panic!("{stdout:?}"));
+        let (frame, rest) = rest.split_once(" ms, floor ").unwrap_or_else(|| panic!("{stdout:?}"));
+        let (floor, ratio) = rest.split_once(" ms, ratio ").unwrap_or_else(|| panic!("{stdout:?}"));
+        let (frame, floor, ratio) = (number(frame), number(floor), number(ratio));
+        assert!(floor > 0.0 && frame > 0.0, "{stdout:?}");
+        // Each printed median is rounded to 0.005 ms, the ratio to 0.005.
+        let slack = 0.005 + 0.005 * (1.0 + ratio) / floor;
+        assert!((ratio - frame / floor).abs() <= slack, "{stdout:?}");
+    }
+}
+
+/// `--frames` draws instead of writing: with `--out`, 0 frames, or `--interactive` without it
+/// is a bad flag (exit 2, one line).
+#[test]
+fn frames_flag_errors() {
+    let cases: [&[&str]; 4] = [
+        &["render", "--frames", "0"],
+        &["render", "--frames", "3", "--out", "x.png"],
+        &["render", "--interactive", "--out", "x.png"],
+        &["render", "--frames", "3", "--row"],
+    ];
+    for args in cases {
+        let output = bumpview(args);
+        assert_eq!(output.status.code(), Some(2), "{args:?}: {}", String::from_utf8_lossy(&output.stderr));
+        assert_eq!(stderr_lines(&output).len(), 1, "{args:?}: {:?}", String::from_utf8_lossy(&output.stderr));
+    }
+}
+
 /// The parallax flags reach the picture and the saved preset; depth 0 is the plain picture;
 /// layers outside 1–256, steps over 16 and a negative depth are bad values (exit 2); tile
 /// captions name the technique and its layers; `--split parallax` takes two techniques.

@@ -8,10 +8,24 @@ mod common;
 
 use bumpview::frame::{FrameParams, Parallax, ParallaxSettings, SceneOptions, ViewMode};
 use bumpview::probe::ProbeScene;
+use bumpview::render::Renderer;
 use bumpview::render::capture::{render_float, render_image};
 use bumpview::scene::{SamplerWrap, Scene, Wrap};
 use common::*;
 use glam::Vec2;
+
+/// The scene options a picture with a parallax technique is drawn with: the height maps bound
+/// (`ViewerState::scene_uploads` sets this while a technique is chosen).
+fn parallax_options() -> SceneOptions {
+    SceneOptions { parallax: true, ..Default::default() }
+}
+
+/// A renderer holding `scene` uploaded for parallax.
+fn parallax_renderer(scene: &Scene) -> Renderer {
+    let mut renderer = renderer_for(scene);
+    renderer.set_scene(scene, parallax_options());
+    renderer
+}
 
 const SIZE: [u32; 2] = [256, 256];
 const ALL: [Parallax; 5] =
@@ -45,7 +59,7 @@ fn difference(a: &image::RgbaImage, b: &image::RgbaImage) -> (f32, f32) {
 #[test]
 fn depth_zero_is_the_normal_mapped_picture() {
     let scene = scene();
-    let mut renderer = renderer_for(&scene);
+    let mut renderer = parallax_renderer(&scene);
     let params = oblique(&scene, 60.0);
     let plain = render_image(&mut renderer, SIZE, &params).unwrap();
     for technique in ALL {
@@ -64,7 +78,7 @@ fn depth_zero_is_the_normal_mapped_picture() {
 #[test]
 fn face_on_every_technique_is_plain_normal_mapping() {
     let scene = scene();
-    let mut renderer = renderer_for(&scene);
+    let mut renderer = parallax_renderer(&scene);
     let mut params = close_wall_params(&scene, 20.0);
     params.camera.fov_y = 2.0 * (0.0625f32 / 20.0).atan();
     let plain = render_image(&mut renderer, SIZE, &params).unwrap();
@@ -90,8 +104,8 @@ fn face_on_every_technique_is_plain_normal_mapping() {
 #[test]
 fn the_probe_marches_as_the_shader_does() {
     let scene = scene();
-    let mut renderer = renderer_for(&scene);
-    let probe = ProbeScene::new(&scene, &SceneOptions::default());
+    let mut renderer = parallax_renderer(&scene);
+    let probe = ProbeScene::new(&scene, &parallax_options());
     let fixed = ALL.map(|technique| with(&oblique(&scene, 60.0), technique, 16, 5, None));
     let mut by_angle = with(&oblique(&scene, 60.0), Parallax::Occlusion, 0, 5, None);
     (by_angle.shading.parallax.layers_min, by_angle.shading.parallax.layers_max) = (4, 64);
@@ -131,7 +145,7 @@ fn the_probe_marches_as_the_shader_does() {
 #[test]
 fn more_layers_converge_and_occlusion_and_relief_beat_steep() {
     let scene = scene();
-    let mut renderer = renderer_for(&scene);
+    let mut renderer = parallax_renderer(&scene);
     for yaw in [45.0, 70.0] {
         let params = oblique(&scene, yaw);
         let reference = render_image(&mut renderer, SIZE, &with(&params, Parallax::Relief, 256, 8, None)).unwrap();
@@ -173,7 +187,7 @@ fn grazing_views_few_and_many_layers_and_clamped_borders_stay_finite() {
                 material.detail_wrap = SamplerWrap { u: Wrap::ClampToEdge, v: Wrap::ClampToEdge };
             }
         }
-        let probe = ProbeScene::new(&scene, &SceneOptions::default());
+        let probe = ProbeScene::new(&scene, &parallax_options());
         for (yaw, pitch) in views {
             let mut base = oblique(&scene, yaw);
             base.camera.pitch = f32::to_radians(pitch);
@@ -209,7 +223,7 @@ fn grazing_views_few_and_many_layers_and_clamped_borders_stay_finite() {
 #[test]
 fn grazing_views_render_finite_pixels() {
     let scene = scene();
-    let mut renderer = renderer_for(&scene);
+    let mut renderer = parallax_renderer(&scene);
     for (yaw, pitch) in [(88.0, 0.0), (85.0, -80.0), (0.0, -89.0), (150.0, -30.0)] {
         let mut base = oblique(&scene, yaw);
         base.camera.pitch = f32::to_radians(pitch);

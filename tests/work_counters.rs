@@ -37,7 +37,14 @@ fn built_in_scene_generates_tangents_only_where_missing_and_caches_pipelines() {
     assert!(scene.meshes.iter().all(|m| m.tangents.is_none()));
     let generated: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
     assert_eq!(renderer.counters().tangent_frames_generated, generated as u64);
-    assert_eq!(renderer.counters().textures_uploaded, 3, "colour, normal and height map (for parallax), once each");
+    assert_eq!(
+        renderer.counters().textures_uploaded,
+        2,
+        "colour and normal map, once each: no height map without parallax"
+    );
+    let mut parallax = renderer_for(&scene);
+    parallax.set_scene(&scene, bumpview::frame::SceneOptions { parallax: true, ..Default::default() });
+    assert_eq!(parallax.counters().textures_uploaded, 2 + 3, "a second upload, with the height map for parallax");
 
     let params = default_params(&scene);
     render_image(&mut renderer, [64, 48], &params).unwrap();
@@ -46,14 +53,61 @@ fn built_in_scene_generates_tangents_only_where_missing_and_caches_pipelines() {
     assert_eq!(after_first.pipelines_built, 2);
     let mut toggled = params;
     toggled.shading.bump_enabled = false;
-    toggled.shading.view = bumpview::frame::ViewMode::Tangent;
     toggled.shading.strength = -2.0;
+    toggled.shading.mode = bumpview::frame::ShadingMode::BumpOnly;
     toggled.shading.parallax.technique = bumpview::frame::Parallax::Relief;
     render_image(&mut renderer, [64, 48], &toggled).unwrap();
     let after_second = renderer.counters();
-    assert_eq!(after_second.pipelines_built, after_first.pipelines_built, "toggles are uniforms");
+    assert_eq!(
+        after_second.pipelines_built, after_first.pipelines_built,
+        "bump, strength, lit mode and, without a height map bound for it, the parallax technique build nothing"
+    );
     assert_eq!(after_second.textures_uploaded, after_first.textures_uploaded);
     assert_eq!(after_second.frames_drawn, 2);
+    toggled.shading.view = bumpview::frame::ViewMode::Tangent;
+    render_image(&mut renderer, [64, 48], &toggled).unwrap();
+    let after_third = renderer.counters();
+    assert_eq!(after_third.pipelines_built, after_first.pipelines_built + 2, "the Tangent view's two variants");
+    assert_eq!(after_third.textures_uploaded, after_first.textures_uploaded);
+}
+
+/// The view and the shading model pick pipeline variants (WGSL pipeline constants). Going
+/// through every view with every shading model builds each variant once: back and forth
+/// builds nothing more, and every picture drawn again equals its first drawing pixel for
+/// pixel. (That the variants draw what the single shader drew before is held by the tests
+/// against the CPU references: shading_reference, debug_views, pbr_reference, modes_and_views.)
+#[test]
+fn view_and_shading_model_variants_are_built_once() {
+    use bumpview::frame::ViewMode;
+    use bumpview::names::Named;
+    use bumpview::scene::ShadingModel;
+    let scene = scene();
+    let mut renderer = renderer_for(&scene);
+    let base = default_params(&scene);
+    let models = [None, Some(ShadingModel::BlinnPhong), Some(ShadingModel::MetallicRoughness)];
+    let settings: Vec<_> = ViewMode::all()
+        .iter()
+        .flat_map(|&view| models.map(|model| (view, model)))
+        .map(|(view, model)| {
+            let mut params = base;
+            params.shading.view = view;
+            params.shading.shading_override = model;
+            params
+        })
+        .collect();
+    let before = renderer.counters().pipelines_built;
+    let first: Vec<_> = settings.iter().map(|p| render_image(&mut renderer, [64, 48], p).unwrap()).collect();
+    let built = renderer.counters().pipelines_built - before;
+    // Two instance kinds (double-sided wall and floor, single-sided torus) times: Lit and
+    // Over-tilt in Blinn-Phong (the built-in materials' own, so `None` shares it) and in
+    // metallic-roughness, and every other view once (Difference by its own pass).
+    let unlit_views = ViewMode::all().iter().filter(|v| !v.is_lit()).count() as u64;
+    assert_eq!(built, 2 * (2 * 2 + unlit_views));
+    assert_eq!(renderer.built_pipelines().len() as u64, renderer.counters().pipelines_built, "none built twice");
+    for (params, image) in settings.iter().zip(&first).rev() {
+        assert!(render_image(&mut renderer, [64, 48], params).unwrap() == *image, "{:?}", params.shading);
+    }
+    assert_eq!(renderer.counters().pipelines_built - before, built, "back and forth builds nothing");
 }
 
 /// A mesh that brings tangents but whose material has no normal map keeps its tangents for
@@ -175,4 +229,33 @@ fn glyphs_and_uniform_splits_upload_nothing_and_gpu_data_splits_upload_once() {
     assert_eq!(split.textures_uploaded, 2 * after.textures_uploaded, "the scene's textures once more");
     renderer.set_split_scene(&scene, None);
     assert_eq!(renderer.counters().textures_uploaded, split.textures_uploaded, "dropping uploads nothing");
+}
+
+/// With a height map bound for it, the parallax technique picks pipeline variants (the
+/// `PARALLAX` constant): each technique builds the scene's two once, going back builds
+/// nothing and draws the same pixels.
+#[test]
+fn parallax_techniques_are_variants_built_once() {
+    use bumpview::frame::{Parallax, SceneOptions};
+    use bumpview::names::Named;
+    let scene = scene();
+    let mut renderer = renderer_for(&scene);
+    renderer.set_scene(&scene, SceneOptions { parallax: true, ..Default::default() });
+    let base = default_params(&scene);
+    let settings: Vec<_> = Parallax::all()
+        .iter()
+        .map(|&technique| {
+            let mut params = base;
+            params.shading.parallax.technique = technique;
+            params
+        })
+        .collect();
+    let before = renderer.counters().pipelines_built;
+    let first: Vec<_> = settings.iter().map(|p| render_image(&mut renderer, [64, 48], p).unwrap()).collect();
+    let built = renderer.counters().pipelines_built - before;
+    assert_eq!(built, 2 * Parallax::all().len() as u64, "double-sided wall and floor, single-sided torus");
+    for (params, image) in settings.iter().zip(&first).rev() {
+        assert!(render_image(&mut renderer, [64, 48], params).unwrap() == *image, "{:?}", params.shading.parallax);
+    }
+    assert_eq!(renderer.counters().pipelines_built - before, built, "back and forth builds nothing");
 }

@@ -39,6 +39,9 @@ pub enum Action {
     PinProbe { pixel: [u32; 2], size: [u32; 2] },
     /// Remove the pixel probe.
     ClearProbe,
+    /// Draw cheaper frames while the user drags or the light orbits (one sample per pixel,
+    /// fewer pixels when still slow), or always full quality.
+    SetInteractiveFrames(bool),
 }
 
 impl From<Command> for Action {

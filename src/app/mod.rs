@@ -19,7 +19,7 @@ use std::cell::RefCell;
 use std::path::PathBuf;
 use std::rc::Rc;
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use bumpview::load::{SceneFiles, TextureSlot};
 use bumpview::render::Renderer;
@@ -57,6 +57,9 @@ pub struct Options {
 
 /// Longest frame step fed to animations, so a stall does not make the light jump.
 const MAX_TICK_SECONDS: f32 = 0.1;
+/// After an interactive frame the UI runs again within this long, so the full-quality frame
+/// follows when input stops even if no further event arrives.
+const INTERACTIVE_RECHECK: Duration = Duration::from_millis(100);
 
 /// Opens the viewer window and runs until it is closed.
 pub fn run(options: Options) -> Result<(), String> {
@@ -171,7 +174,14 @@ impl eframe::App for ViewerApp {
         if self.controller.animate(ctx.input(|i| i.stable_dt).min(MAX_TICK_SECONDS)) {
             ctx.request_repaint();
         }
-        self.view.draw(&mut self.controller);
+        // Interactive frames while a widget or the view is dragged, the view zoomed or the
+        // light orbits; the frame after one is drawn again (at full quality once input stops).
+        let active = ctx.dragged_id().is_some()
+            || ctx.input(|i| i.smooth_scroll_delta != egui::Vec2::ZERO)
+            || self.controller.state.is_animating();
+        if self.view.draw(&mut self.controller, active) {
+            ctx.request_repaint_after(INTERACTIVE_RECHECK);
+        }
         self.automation.on_frame(&ctx, self.controller.renderer().device());
     }
 

@@ -1,14 +1,18 @@
 //! `bumpview render`: the built-in scene or a mesh drawn offscreen (no window, no display)
-//! into a PNG. Its picture flags are the viewer's [`Command`]s, applied by
-//! [`ViewerState::apply`] as the panel's are, so they get the same clamps.
+//! into a PNG, or with `--frames N` timed against the adapter's floor. Its picture flags are
+//! the viewer's [`Command`]s, applied by [`ViewerState::apply`] as the panel's are, so they
+//! get the same clamps.
 
+use std::num::NonZeroU32;
 use std::path::PathBuf;
 
 use bumpview::error::LoadWarning;
-use bumpview::frame::{MAX_PARALLAX_STEPS, Parallax, ViewMode};
+use bumpview::frame::{FrameQuality, MAX_PARALLAX_STEPS, Parallax, ViewMode};
 use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
 use bumpview::render::export::{TileGrid, caption, render_grid};
+use bumpview::render::timing::{TimedPicture, time_frames};
 use bumpview::render::{Gpu, Renderer};
+use bumpview::state::interactive::InteractiveQuality;
 use bumpview::state::preset::{CapturePreset, Preset};
 use bumpview::state::{Command, SplitDifference, ViewerState};
 use glam::Vec3;
@@ -25,8 +29,18 @@ pub const DEFAULT_RENDER_SIZE: [u32; 2] = [1280, 720];
 #[derive(clap::Args)]
 pub struct RenderArgs {
     /// Where to write the PNG [default with --preset: the preset's path with `.png`].
-    #[arg(long, required_unless_present = "preset")]
+    #[arg(long, required_unless_present_any = ["preset", "frames"])]
     out: Option<PathBuf>,
+    /// Instead of writing a PNG: draw the picture N times at --size and print one line on
+    /// stdout, `frame <ms> ms, floor <ms> ms, ratio <r>`: the median time of a frame (drawn
+    /// until the adapter finished) and of the adapter's floor (a clear and one full-screen
+    /// triangle of one colour, same size, format, depth buffer and MSAA), drawn alternately.
+    #[arg(long, value_name = "N", conflicts_with_all = ["out", "transparent", "supersample", "tiles"])]
+    frames: Option<NonZeroU32>,
+    /// With --frames: time the frames the viewer draws while you drag (1 sample per pixel,
+    /// at the render scale it settles on) instead of full-quality ones (4× MSAA).
+    #[arg(long, requires = "frames", conflicts_with_all = ["out", "transparent", "supersample", "tiles"])]
+    interactive: bool,
     /// Start from this preset (TOML, as the viewer's "Save preset" writes); flags given as well
     /// override it.
     #[arg(long, value_name = "FILE")]
@@ -207,11 +221,6 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         state.apply(command);
     }
     let capture = args.capture(capture);
-    let out = match (&args.out, &args.preset) {
-        (Some(out), _) => out.clone(),
-        (None, Some(preset)) => preset.with_extension("png"),
-        (None, None) => unreachable!("clap requires --out without --preset"),
-    };
     let grid = args.grid(&state)?;
     if grid.is_some() {
         // Tiles are single pictures: a preset's split view does not apply.
@@ -220,6 +229,15 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     if let Some(path) = &args.save_preset {
         Preset { capture, ..Preset::from_state(&state, files) }.save(path)?;
     }
+    if let Some(frames) = args.frames {
+        let size = capture.size.unwrap_or(DEFAULT_RENDER_SIZE);
+        return time(&scene, &state, size, frames, args.interactive);
+    }
+    let out = match (&args.out, &args.preset) {
+        (Some(out), _) => out.clone(),
+        (None, Some(preset)) => preset.with_extension("png"),
+        (None, None) => unreachable!("clap requires --out without --preset or --frames"),
+    };
     let gpu = Gpu::headless()?;
     let mut renderer = Renderer::from_gpu(&gpu);
     renderer.set_scene_uploads(&scene, &state.scene_uploads());
@@ -238,5 +256,35 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     write_png_atomically(&image, &out)?;
     let (width, height) = image.dimensions();
     println!("wrote {} ({width}x{height}, {})", out.display(), gpu.adapter_name());
+    Ok(())
+}
+
+/// `--frames`: times `frames` frames of the picture at `size` (full quality, or as the viewer
+/// draws them while dragging) against the adapter's floor and prints the line.
+fn time(
+    scene: &bumpview::scene::Scene,
+    state: &ViewerState,
+    size: [u32; 2],
+    frames: NonZeroU32,
+    interactive: bool,
+) -> Result<(), Failure> {
+    let gpu = Gpu::headless()?;
+    let mut renderer = Renderer::from_gpu(&gpu);
+    renderer.set_scene_uploads(scene, &state.scene_uploads());
+    let params = state.frame_params();
+    let split = state.split_frame();
+    let mut picture =
+        TimedPicture { params: &params, split: split.as_ref(), view_size: size, quality: FrameQuality::FULL };
+    if interactive {
+        picture.quality = InteractiveQuality::default().settle(&mut renderer, &picture)?;
+    }
+    let timing = time_frames(&mut renderer, &picture, frames)?;
+    let [width, height] = picture.quality.render_size(size);
+    let samples = renderer.samples(bumpview::render::capture::IMAGE_FORMAT, picture.quality.msaa);
+    eprintln!(
+        "bumpview: timed {frames} frames of {width}x{height} pixels, {samples} sample(s) each, on {}",
+        gpu.adapter_name()
+    );
+    println!("{timing}");
     Ok(())
 }

@@ -68,7 +68,7 @@ pub struct InstanceTextures {
 }
 
 impl InstanceTextures {
-    fn of(material: &Material, variant: Variant) -> InstanceTextures {
+    fn of(material: &Material, variant: Variant, parallax: bool) -> InstanceTextures {
         let bump = match variant {
             Variant::NormalMapped | Variant::ObjectSpace => material.normal_map.as_ref().map(|m| m.texture),
             Variant::HeightBump => material.height_map.as_ref().map(|m| m.texture),
@@ -88,7 +88,11 @@ impl InstanceTextures {
                 .and_then(|c| c.normal_map.as_ref())
                 .map(|m| m.texture)
                 .filter(|_| variant.has_tangents()),
-            height: material.height_map.as_ref().map(|h| h.texture).filter(|_| variant == Variant::NormalMapped),
+            height: material
+                .height_map
+                .as_ref()
+                .map(|h| h.texture)
+                .filter(|_| parallax && variant == Variant::NormalMapped),
         }
     }
 
@@ -176,7 +180,7 @@ impl PreparedScene {
                     transform: instance.transform,
                     bump,
                     variant,
-                    textures: InstanceTextures::of(material, variant),
+                    textures: InstanceTextures::of(material, variant, options.parallax),
                 }
             })
             .collect();

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use super::{Background, RenderTarget, Renderer};
+use super::{Background, DrawOptions, RenderTarget, Renderer};
 use crate::error::RenderError;
 use crate::frame::{FrameParams, SplitFrame};
 
@@ -18,9 +18,9 @@ pub struct FloatImage {
     pub pixels: Vec<[f32; 4]>,
 }
 
-/// Renders one frame at `size` into a fresh texture of `format` and returns its bytes,
-/// tightly packed, rows top to bottom. With `split`, the split view with its divider at the
-/// given column.
+/// Renders one full-quality frame at `size` into a fresh texture of `format` and returns its
+/// bytes, tightly packed, rows top to bottom. With `split`, the split view with its divider at
+/// the given column.
 fn render_offscreen(
     renderer: &mut Renderer,
     size: [u32; 2],
@@ -28,6 +28,22 @@ fn render_offscreen(
     params: &FrameParams,
     background: Background,
     split: Option<(&SplitFrame, u32)>,
+) -> Result<Vec<u8>, RenderError> {
+    let split = split.map(|(split, divider_x)| SplitFrame { divider: divider_x as f32 / size[0] as f32, ..*split });
+    let options = DrawOptions { background, ..Default::default() };
+    draw_offscreen(renderer, size, format, |renderer, encoder, target| {
+        renderer.draw(encoder, target, params, split.as_ref(), options)
+    })
+}
+
+/// Runs `record` on a fresh texture of `size` and `format` (e.g. [`Renderer::draw`] with any
+/// options, or [`Renderer::draw_floor`]) and returns the texture's bytes, tightly packed, rows
+/// top to bottom.
+pub fn draw_offscreen(
+    renderer: &mut Renderer,
+    size: [u32; 2],
+    format: wgpu::TextureFormat,
+    record: impl FnOnce(&mut Renderer, &mut wgpu::CommandEncoder, &RenderTarget) -> Result<(), RenderError>,
 ) -> Result<Vec<u8>, RenderError> {
     renderer.check_target_size(size)?;
     let [width, height] = size;
@@ -50,13 +66,7 @@ fn render_offscreen(
     let view = texture.create_view(&Default::default());
     let mut encoder = device.create_command_encoder(&Default::default());
     let target = RenderTarget { view: &view, format, size };
-    match split {
-        None => renderer.render_with_background(&mut encoder, &target, params, background)?,
-        Some((split, divider_x)) => {
-            let split = SplitFrame { divider: divider_x as f32 / width as f32, ..*split };
-            renderer.render_split(&mut encoder, &target, params, &split, background)?
-        }
-    }
+    record(renderer, &mut encoder, &target)?;
 
     let bytes_per_pixel = format.block_copy_size(None).expect("colour format");
     let row_bytes = width * bytes_per_pixel;

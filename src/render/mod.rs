@@ -1,14 +1,18 @@
 //! The wgpu renderer. It draws into any texture view it is given, so the window, screenshots
-//! and tests share one code path: [`Renderer::render`]. Depth-tested, with 4× MSAA where the
-//! adapter supports it for the target format.
+//! and tests share one code path: [`Renderer::draw`]. Depth-tested, with 4× MSAA where the
+//! adapter supports it for the target format ([`Msaa::X4`]) or 1 sample ([`Msaa::Off`], the
+//! interactive frames). [`Renderer::draw_floor`] draws the adapter's floor, what any frame of
+//! that size and MSAA costs at least; [`timing`] measures frames against it.
 
 mod bindings;
 pub mod capture;
 pub mod export;
+mod floor;
 pub mod glyphs;
 pub mod gpu;
 pub mod pipelines;
 mod scene_gpu;
+pub mod timing;
 mod uniforms;
 
 use std::sync::Arc;
@@ -17,8 +21,8 @@ use glam::Mat4;
 
 use crate::counters::WorkCounters;
 use crate::error::RenderError;
-use crate::frame::{FrameParams, SceneOptions, SceneUploads, ShadingSettings, SplitFrame, ViewMode};
-use crate::prepare::{PreparedScene, Variant};
+use crate::frame::{FrameParams, Msaa, Parallax, SceneOptions, SceneUploads, ShadingSettings, SplitFrame, ViewMode};
+use crate::prepare::PreparedScene;
 use crate::scene::Scene;
 use crate::tangent::TangentMethod;
 pub use gpu::Gpu;
@@ -57,7 +61,14 @@ impl Background {
     }
 }
 
-/// Multisampled colour and depth attachments for one target size and format.
+/// How a frame is drawn, besides what it shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct DrawOptions {
+    pub background: Background,
+    pub msaa: Msaa,
+}
+
+/// Multisampled colour and depth attachments for one target size, format and sample count.
 struct FrameTargets {
     size: [u32; 2],
     format: wgpu::TextureFormat,
@@ -77,11 +88,15 @@ pub struct Renderer {
     /// both are written before the encoder is submitted, so each half needs its own.
     split_uniform: wgpu::Buffer,
     split_bind_group: wgpu::BindGroup,
+    /// The floor's pipelines ([`Self::draw_floor`]), by format and sample count.
+    floor: floor::FloorPipelines,
     scene: Option<GpuScene>,
     /// The split view's right half, when it differs from the left in GPU data
     /// ([`Self::set_split_scene`]); else the right half is drawn from `scene` too.
     split_scene: Option<GpuScene>,
-    targets: Option<FrameTargets>,
+    /// The attachments of the last frame drawn with each sample count, so frames that switch
+    /// between 1 and 4 samples (interactive and full quality) keep both.
+    targets: Vec<FrameTargets>,
     counters: WorkCounters,
     /// The scene's notices, plus one while the wireframe is asked for but unsupported.
     notices: Vec<String>,
@@ -111,6 +126,7 @@ impl Renderer {
         let (frame_uniform, frame_bind_group) = uniform("frame");
         let (split_uniform, split_bind_group) = uniform("frame (split, right half)");
         Renderer {
+            floor: floor::FloorPipelines::new(&device),
             device,
             queue,
             adapter,
@@ -121,7 +137,7 @@ impl Renderer {
             split_bind_group,
             scene: None,
             split_scene: None,
-            targets: None,
+            targets: Vec::new(),
             counters: WorkCounters::default(),
             notices: Vec::new(),
         }
@@ -245,6 +261,15 @@ impl Renderer {
         }
     }
 
+    /// The samples per pixel a frame of `format` is drawn with: 1 for [`Msaa::Off`], else
+    /// [`Self::sample_count`].
+    pub fn samples(&self, format: wgpu::TextureFormat, msaa: Msaa) -> u32 {
+        match msaa {
+            Msaa::X4 => self.sample_count(format),
+            Msaa::Off => 1,
+        }
+    }
+
     /// 4 when the device can render and resolve 4× MSAA in `format`, else 1. Adapter-specific
     /// format features count only when the device enabled them.
     pub fn sample_count(&self, format: wgpu::TextureFormat) -> u32 {
@@ -258,11 +283,14 @@ impl Renderer {
         if resolvable && features.flags.sample_count_supported(4) { 4 } else { 1 }
     }
 
-    fn ensure_targets(&mut self, size: [u32; 2], format: wgpu::TextureFormat) {
-        let samples = self.sample_count(format);
-        if self.targets.as_ref().is_some_and(|t| t.size == size && t.format == format && t.samples == samples) {
-            return;
+    /// The attachments for `samples` at `size` and `format`, made unless the last frame with
+    /// that sample count had them.
+    fn ensure_targets(&mut self, size: [u32; 2], format: wgpu::TextureFormat, samples: u32) -> &FrameTargets {
+        let index = self.targets.iter().position(|t| t.samples == samples);
+        if let Some(i) = index.filter(|&i| self.targets[i].size == size && self.targets[i].format == format) {
+            return &self.targets[i];
         }
+        self.targets.retain(|t| t.samples != samples);
         let texture = |label: &str, format| {
             self.device
                 .create_texture(&wgpu::TextureDescriptor {
@@ -279,18 +307,47 @@ impl Renderer {
         };
         let msaa_color = (samples > 1).then(|| texture("msaa colour", format));
         let depth = texture("depth", DEPTH_FORMAT);
-        self.targets = Some(FrameTargets { size, format, samples, msaa_color, depth });
+        self.targets.push(FrameTargets { size, format, samples, msaa_color, depth });
+        self.targets.last().expect("pushed above")
     }
 
-    /// Records one frame of the current scene into `encoder`, drawing into `target`.
-    /// Uniforms are written to the queue now; the frame appears when `encoder` is submitted.
+    /// Records one frame of the current scene into `encoder`, drawing into `target`: the split
+    /// view when `split` is given ([`Self::render_split`]), else the whole picture. Uniforms
+    /// are written to the queue now; the frame appears when `encoder` is submitted.
+    pub fn draw(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &RenderTarget,
+        params: &FrameParams,
+        split: Option<&SplitFrame>,
+        options: DrawOptions,
+    ) -> Result<(), RenderError> {
+        match split {
+            None => {
+                let whole = Half { shading: params.shading, scissor: None, scene: SceneSlot::Main };
+                self.record(encoder, target, params, &[whole], options)
+            }
+            Some(split) => {
+                let [width, height] = target.size;
+                let x = split.divider_pixels(width);
+                let right_scene = if self.split_scene.is_some() { SceneSlot::Split } else { SceneSlot::Main };
+                let halves = [
+                    Half { shading: split.left, scissor: Some([0, 0, x, height]), scene: SceneSlot::Main },
+                    Half { shading: split.right, scissor: Some([x, 0, width - x, height]), scene: right_scene },
+                ];
+                self.record(encoder, target, params, &halves, options)
+            }
+        }
+    }
+
+    /// One full-quality frame ([`Self::draw`] with default options).
     pub fn render(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
         target: &RenderTarget,
         params: &FrameParams,
     ) -> Result<(), RenderError> {
-        self.render_with_background(encoder, target, params, Background::Opaque)
+        self.draw(encoder, target, params, None, DrawOptions::default())
     }
 
     /// [`Self::render`] over the given background.
@@ -301,15 +358,14 @@ impl Renderer {
         params: &FrameParams,
         background: Background,
     ) -> Result<(), RenderError> {
-        let whole = Half { shading: params.shading, scissor: None, scene: SceneSlot::Main };
-        self.record(encoder, target, params, &[whole], background)
+        self.draw(encoder, target, params, None, DrawOptions { background, ..Default::default() })
     }
 
     /// The split view: one frame of the same camera and light whose columns left of the
     /// divider are drawn with `split.left` and the others with `split.right`, in one pass with
     /// a scissor rectangle per half. The right half is drawn from the split scene when one is
     /// set ([`Self::set_split_scene`]). Each half holds exactly the pixels a full
-    /// [`Self::render`] with its settings (and scene upload) would.
+    /// [`Self::render`] with its settings (and scene upload) would. Full quality.
     pub fn render_split(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
@@ -318,14 +374,26 @@ impl Renderer {
         split: &SplitFrame,
         background: Background,
     ) -> Result<(), RenderError> {
-        let [width, height] = target.size;
-        let x = split.divider_pixels(width);
-        let right_scene = if self.split_scene.is_some() { SceneSlot::Split } else { SceneSlot::Main };
-        let halves = [
-            Half { shading: split.left, scissor: Some([0, 0, x, height]), scene: SceneSlot::Main },
-            Half { shading: split.right, scissor: Some([x, 0, width - x, height]), scene: right_scene },
-        ];
-        self.record(encoder, target, params, &halves, background)
+        self.draw(encoder, target, params, Some(split), DrawOptions { background, ..Default::default() })
+    }
+
+    /// Records the adapter's floor into `encoder`: the clear and one full-screen triangle of
+    /// one colour, depth-tested and written, into `target` with the attachments, sample count
+    /// and resolve a frame drawn with `msaa` has. No frame of that size can cost less.
+    pub fn draw_floor(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &RenderTarget,
+        msaa: Msaa,
+    ) -> Result<(), RenderError> {
+        self.check_target_size(target.size)?;
+        let samples = self.samples(target.format, msaa);
+        self.floor.ensure(&self.device, target.format, samples, &mut self.counters);
+        let targets = self.ensure_targets(target.size, target.format, samples);
+        let mut pass = begin_scene_pass(encoder, targets, target.view, Background::Opaque);
+        pass.set_pipeline(self.floor.get(target.format, samples));
+        pass.draw(0..3, 0..1);
+        Ok(())
     }
 
     /// The upload a half is drawn from.
@@ -344,11 +412,11 @@ impl Renderer {
         target: &RenderTarget,
         params: &FrameParams,
         halves: &[Half],
-        background: Background,
+        options: DrawOptions,
     ) -> Result<(), RenderError> {
         assert!(halves.len() <= 2, "one uniform buffer per half, two in all");
         self.check_target_size(target.size)?;
-        let samples = self.sample_count(target.format);
+        let samples = self.samples(target.format, options.msaa);
         // Here and for the pipelines below the scene is borrowed field by field ([`Self::scene_in`]
         // would borrow all of `self`), as the counters and the pipeline cache change meanwhile.
         for half in halves {
@@ -391,44 +459,19 @@ impl Renderer {
             }
             .ok_or(RenderError::NoScene)?;
             let shading = &half.shading;
-            let difference = shading.view == ViewMode::Difference;
             let marker = shading.show_light_marker.then_some(Pass::LightMarker);
             let wireframe = shading.wireframe && line_mode;
             let wireframe_passes = scene.instances.iter().filter(|_| wireframe).map(wireframe_pass);
             let glyph_passes =
                 scene.instances.iter().filter(|i| shading.tbn_glyphs && has_glyphs(i, scene)).map(glyph_pass);
-            let drawn = scene.instances.iter().map(|i| drawn_pass(i, scene, difference));
+            let drawn = scene.instances.iter().map(|i| drawn_pass(i, scene, shading));
             for pass in drawn.chain(marker).chain(wireframe_passes).chain(glyph_passes) {
                 self.pipelines.ensure(&self.device, key(pass), &mut self.counters);
             }
         }
-        self.ensure_targets(target.size, target.format);
-        let Some(targets) = self.targets.as_ref() else { unreachable!("targets made above") };
-
-        let (view, resolve_target) = match &targets.msaa_color {
-            Some(msaa) => (msaa, Some(target.view)),
-            None => (target.view, None),
-        };
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("scene"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view,
-                depth_slice: None,
-                resolve_target,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(background.clear_color()),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &targets.depth,
-                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Discard }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        self.ensure_targets(target.size, target.format, samples);
+        let targets = self.targets.iter().find(|t| t.samples == samples).expect("made above");
+        let mut pass = begin_scene_pass(encoder, targets, target.view, options.background);
         for (half, bind_group) in halves.iter().zip([&self.frame_bind_group, &self.split_bind_group]) {
             if let Some([x, y, width, height]) = half.scissor {
                 if width == 0 || height == 0 {
@@ -438,10 +481,9 @@ impl Renderer {
             }
             let scene = self.scene_in(half.scene).expect("checked above");
             let shading = &half.shading;
-            let difference = shading.view == ViewMode::Difference;
             pass.set_bind_group(0, bind_group, &[]);
             for instance in &scene.instances {
-                let instance_pass = drawn_pass(instance, scene, difference);
+                let instance_pass = drawn_pass(instance, scene, shading);
                 let mesh = &scene.meshes[instance.mesh];
                 pass.set_pipeline(self.pipelines.get(&key(instance_pass)));
                 pass.set_bind_group(1, &instance.bind_group, &[]);
@@ -491,6 +533,37 @@ impl Renderer {
     }
 }
 
+/// Begins the one render pass of a frame (or of the floor): `targets`' multisampled colour
+/// resolved into `view` (or `view` itself at 1 sample) and their depth, both cleared.
+fn begin_scene_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    targets: &FrameTargets,
+    view: &wgpu::TextureView,
+    background: Background,
+) -> wgpu::RenderPass<'e> {
+    let (view, resolve_target) = match &targets.msaa_color {
+        Some(msaa) => (msaa, Some(view)),
+        None => (view, None),
+    };
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("scene"),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view,
+            depth_slice: None,
+            resolve_target,
+            ops: wgpu::Operations { load: wgpu::LoadOp::Clear(background.clear_color()), store: wgpu::StoreOp::Store },
+        })],
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: &targets.depth,
+            depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Discard }),
+            stencil_ops: None,
+        }),
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    })
+}
+
 /// Which scene upload a half of the frame is drawn from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum SceneSlot {
@@ -507,23 +580,14 @@ struct Half {
     scene: SceneSlot,
 }
 
-/// The variant whose group-1 layout an instance's overlays (wireframe, glyphs) bind.
-fn overlay_variant(instance: &scene_gpu::GpuInstance) -> Variant {
-    match instance.pass {
-        Pass::Mesh { variant, .. }
-        | Pass::Difference { variant, .. }
-        | Pass::Wireframe { variant }
-        | Pass::Glyphs { variant } => variant,
-        Pass::LightMarker => Variant::Plain,
-    }
-}
-
+/// The wireframe of an instance binds its variant's group-1 layout.
 fn wireframe_pass(instance: &scene_gpu::GpuInstance) -> Pass {
-    Pass::Wireframe { variant: overlay_variant(instance) }
+    Pass::Wireframe { variant: instance.variant }
 }
 
+/// The glyphs of an instance bind its variant's group-1 layout.
 fn glyph_pass(instance: &scene_gpu::GpuInstance) -> Pass {
-    Pass::Glyphs { variant: overlay_variant(instance) }
+    Pass::Glyphs { variant: instance.variant }
 }
 
 /// Whether an instance's mesh has glyph lines to draw (made for meshes with tangent frames).
@@ -531,15 +595,16 @@ fn has_glyphs(instance: &scene_gpu::GpuInstance, scene: &GpuScene) -> bool {
     scene.meshes[instance.mesh].glyphs.as_ref().is_some_and(|(_, count)| *count > 0)
 }
 
-/// The pass an instance is drawn with: the Difference view swaps in its own pass for meshes
-/// that have tangent frames.
-fn drawn_pass(instance: &scene_gpu::GpuInstance, scene: &GpuScene, difference: bool) -> Pass {
-    match instance.pass {
-        Pass::Mesh { variant, cull_back_faces, mirrored }
-            if difference && scene.prepared.meshes[instance.mesh].frames.is_some() =>
-        {
-            Pass::Difference { variant, cull_back_faces, mirrored }
-        }
-        pass => pass,
+/// The pass an instance is drawn with in `shading`'s view: the Difference view has its own
+/// pass for meshes that have tangent frames; else the mesh pass specialised to the view, in a
+/// lit view to the shading model (the frame's override, else the material's) and, where a
+/// height map is bound for it, to the parallax technique.
+fn drawn_pass(instance: &scene_gpu::GpuInstance, scene: &GpuScene, shading: &ShadingSettings) -> Pass {
+    let scene_gpu::GpuInstance { variant, cull_back_faces, mirrored, .. } = *instance;
+    if shading.view == ViewMode::Difference && scene.prepared.meshes[instance.mesh].frames.is_some() {
+        return Pass::Difference { variant, cull_back_faces, mirrored };
     }
+    let lighting = shading.view.is_lit().then(|| shading.shading_override.unwrap_or(instance.shading_model));
+    let parallax = if instance.parallax_height { shading.parallax.technique } else { Parallax::Off };
+    Pass::Mesh { variant, cull_back_faces, mirrored, view: shading.view, lighting, parallax }
 }

@@ -1,11 +1,15 @@
-//! Render pipelines, one variant per combination of what a mesh and material actually have,
-//! built on first use and cached. Cheap toggles (bump, strength, view) are uniforms instead.
+//! Render pipelines, one variant per combination of what a mesh and material actually have
+//! and of the view and shading model drawn (WGSL pipeline constants, so a pipeline compiles
+//! only the code it runs), built on first use and cached. Bump, strength and the lit mode are
+//! uniforms instead.
 
 use std::collections::HashMap;
 
 use super::bindings;
 use crate::counters::WorkCounters;
+use crate::frame::{Parallax, ViewMode};
 use crate::prepare::Variant;
+use crate::scene::ShadingModel;
 
 /// Shader sources, embedded at build time; frame.wgsl is the shared Frame uniform, pbr.wgsl
 /// the metallic-roughness shading the mesh shader calls, parallax.wgsl the parallax family.
@@ -33,6 +37,14 @@ pub enum Pass {
         /// The model matrix mirrors (negative determinant): front faces, counter-clockwise
         /// in model space, are clockwise on screen.
         mirrored: bool,
+        /// The view drawn (the `VIEW` constant).
+        view: ViewMode,
+        /// The shading model of a lit view (the `SHADING_MODEL` constant); `None` for views
+        /// that do not light.
+        lighting: Option<ShadingModel>,
+        /// The parallax technique (the `PARALLAX` constant); [`Parallax::Off`] for instances
+        /// without a height map bound for it.
+        parallax: Parallax,
     },
     /// The Difference view of a mesh with a tangent stream: it adds the reference stream
     /// and binds the same group-1 layout as `variant`.
@@ -169,14 +181,14 @@ impl Pipelines {
     }
 
     fn build(&self, device: &wgpu::Device, key: PipelineKey) -> wgpu::RenderPipeline {
-        let encodes_srgb = [("TARGET_ENCODES_SRGB", if key.format.is_srgb() { 1.0 } else { 0.0 })];
+        let encodes_srgb = ("TARGET_ENCODES_SRGB", if key.format.is_srgb() { 1.0 } else { 0.0 });
         let front_face = match key.pass {
             Pass::Mesh { mirrored: true, .. } | Pass::Difference { mirrored: true, .. } => wgpu::FrontFace::Cw,
             _ => wgpu::FrontFace::Ccw,
         };
-        let (module, group1, vs, fs, buffers, cull_mode, constants): (_, _, _, _, &[_], _, &[(&str, f64)]) =
+        let (module, group1, vs, fs, buffers, cull_mode, constants): (_, _, _, _, &[_], _, Vec<(&str, f64)>) =
             match key.pass {
-                Pass::Mesh { variant, cull_back_faces, .. } => {
+                Pass::Mesh { variant, cull_back_faces, view, lighting, parallax, .. } => {
                     let (vs, fs, buffers): (_, _, &[_]) = match variant {
                         Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
                         Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
@@ -185,13 +197,18 @@ impl Pipelines {
                         Variant::HeightBump => ("vs_plain", "fs_height_bump", &[POSITION, NORMAL, UV]),
                     };
                     let cull = cull_back_faces.then_some(wgpu::Face::Back);
-                    (&self.mesh_module, self.layouts.material(variant), vs, fs, buffers, cull, &encodes_srgb)
+                    let mut constants = vec![encodes_srgb, ("VIEW", f64::from(view.shader_index()))];
+                    constants.extend(lighting.map(|model| ("SHADING_MODEL", f64::from(model.shader_index()))));
+                    if parallax != Parallax::Off {
+                        constants.push(("PARALLAX", f64::from(parallax.shader_index())));
+                    }
+                    (&self.mesh_module, self.layouts.material(variant), vs, fs, buffers, cull, constants)
                 }
                 Pass::Difference { variant, cull_back_faces, .. } => {
                     let buffers: &[_] = &[POSITION, NORMAL, UV, TANGENT, REFERENCE_TANGENT];
                     let cull = cull_back_faces.then_some(wgpu::Face::Back);
                     let layout = self.layouts.material(variant);
-                    (&self.mesh_module, layout, "vs_difference", "fs_difference", buffers, cull, &encodes_srgb)
+                    (&self.mesh_module, layout, "vs_difference", "fs_difference", buffers, cull, vec![encodes_srgb])
                 }
                 Pass::Wireframe { variant } => (
                     &self.mesh_module,
@@ -200,7 +217,7 @@ impl Pipelines {
                     "fs_wireframe",
                     &[POSITION],
                     None,
-                    &encodes_srgb,
+                    vec![encodes_srgb],
                 ),
                 Pass::Glyphs { variant } => (
                     &self.mesh_module,
@@ -209,7 +226,7 @@ impl Pipelines {
                     "fs_glyph",
                     &[GLYPH],
                     None,
-                    &encodes_srgb,
+                    vec![encodes_srgb],
                 ),
                 Pass::LightMarker => (
                     &self.marker_module,
@@ -218,7 +235,7 @@ impl Pipelines {
                     "fs_marker",
                     &[POSITION],
                     Some(wgpu::Face::Back),
-                    &[],
+                    vec![],
                 ),
             };
         let wireframe = matches!(key.pass, Pass::Wireframe { .. });
@@ -234,7 +251,7 @@ impl Pipelines {
             bind_group_layouts: &[Some(&self.layouts.frame), Some(group1)],
             immediate_size: 0,
         });
-        let options = wgpu::PipelineCompilationOptions { constants, ..Default::default() };
+        let options = wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };
         device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(&format!("{key:?}")),
             layout: Some(&layout),
@@ -279,10 +296,10 @@ mod tests {
     use wgpu::naga;
 
     /// Every shader parses and validates with naga, no GPU needed, and has the entry points
-    /// the pipeline variants name.
+    /// the pipeline variants name; the mesh shader has the pipeline constants they set.
     #[test]
     fn shaders_validate_and_have_every_entry_point() {
-        let cases: [(&str, &[&str]); 2] = [
+        let cases: [(&str, &[&str]); 3] = [
             (
                 MESH_WGSL,
                 &[
@@ -302,6 +319,7 @@ mod tests {
                 ],
             ),
             (MARKER_WGSL, &["vs_marker", "fs_marker"]),
+            (super::super::floor::FLOOR_WGSL, &["vs_floor", "fs_floor"]),
         ];
         for (source, entry_points) in cases {
             let module =
@@ -313,5 +331,8 @@ mod tests {
                 assert!(module.entry_points.iter().any(|e| e.name == *name), "missing entry point {name}");
             }
         }
+        let mesh = naga::front::wgsl::parse_str(MESH_WGSL).expect("parsed above");
+        let overrides: Vec<_> = mesh.overrides.iter().filter_map(|(_, o)| o.name.as_deref()).collect();
+        assert_eq!(overrides, ["PARALLAX", "TARGET_ENCODES_SRGB", "VIEW", "SHADING_MODEL"]);
     }
 }

@@ -9,11 +9,11 @@ use wgpu::util::DeviceExt;
 
 use super::bindings;
 use super::glyphs::{MAX_GLYPHS_PER_MESH, glyph_lines};
-use super::pipelines::{Layouts, Pass};
+use super::pipelines::Layouts;
 use super::uniforms::ObjectUniform;
 use crate::counters::WorkCounters;
-use crate::prepare::{PreparedMesh, PreparedScene};
-use crate::scene::{SamplerWrap, TextureImage, TextureKind, Wrap};
+use crate::prepare::{PreparedMesh, PreparedScene, Variant};
+use crate::scene::{SamplerWrap, ShadingModel, TextureImage, TextureKind, Wrap};
 use crate::tangent;
 
 pub struct GpuMesh {
@@ -31,7 +31,16 @@ pub struct GpuMesh {
 
 pub struct GpuInstance {
     pub mesh: usize,
-    pub pass: Pass,
+    pub variant: Variant,
+    /// Single-sided material: back faces are culled.
+    pub cull_back_faces: bool,
+    /// The model matrix mirrors: front faces are clockwise on screen.
+    pub mirrored: bool,
+    /// The material's own shading model (a frame may override it).
+    pub shading_model: ShadingModel,
+    /// A height map is bound for the parallax family (a normal-mapped instance of a material
+    /// with a height map, uploaded with [`crate::frame::SceneOptions::parallax`]).
+    pub parallax_height: bool,
     pub bind_group: wgpu::BindGroup,
 }
 
@@ -269,10 +278,13 @@ pub fn upload(
             });
             // A mirroring transform turns front faces clockwise on screen; the pipeline's front
             // face follows, so culling and `front_facing` (the double-sided flip) stay right.
-            let (variant, mirrored) = (instance.variant, instance.mirrored());
             GpuInstance {
                 mesh: instance.mesh,
-                pass: Pass::Mesh { variant, cull_back_faces: !material.double_sided, mirrored },
+                variant: instance.variant,
+                cull_back_faces: !material.double_sided,
+                mirrored: instance.mirrored(),
+                shading_model: material.shading_model,
+                parallax_height: instance.textures.height.is_some(),
                 bind_group,
             }
         })

@@ -20,18 +20,16 @@ pub struct FrameUniform {
     ambient: [f32; 4],
     strength: f32,
     bump_enabled: u32,
-    view_mode: u32,
     self_shadow_fade: f32,
     difference_range_deg: f32,
-    shading_override: u32,
     shading_mode: u32,
     over_tilt_cos: f32,
-    parallax: u32,
     parallax_layers_min: u32,
     parallax_layers_max: u32,
     parallax_steps: u32,
     parallax_depth_m: f32,
-    _padding: [f32; 3],
+    /// The WGSL struct's size is a multiple of 16 bytes.
+    _padding: [f32; 2],
 }
 
 impl FrameUniform {
@@ -45,18 +43,15 @@ impl FrameUniform {
             ambient: ambient.extend(1.0).to_array(),
             strength: params.shading.strength,
             bump_enabled: params.shading.bump_enabled as u32,
-            view_mode: params.shading.view.shader_index(),
             self_shadow_fade: SELF_SHADOW_FADE,
             difference_range_deg: params.shading.difference_range_deg,
-            shading_override: params.shading.shading_override.map_or(0, |m| 1 + m.shader_index()),
             shading_mode: params.shading.mode.shader_index(),
             over_tilt_cos: crate::shading::over_tilt_cos(),
-            parallax: parallax.technique.shader_index(),
             parallax_layers_min: parallax.layers_min,
             parallax_layers_max: parallax.layers_max,
             parallax_steps: parallax.steps,
             parallax_depth_m: parallax.depth_m.map_or(-1.0, |d| d.max(0.0)),
-            _padding: [0.0; 3],
+            _padding: [0.0; 2],
         }
     }
 }
@@ -76,7 +71,8 @@ pub struct ObjectUniform {
     metallic: f32,
     roughness: f32,
     occlusion_strength: f32,
-    shading_model: u32,
+    /// WGSL aligns `emissive` (a vec4) to 16 bytes.
+    _padding: u32,
     /// Linear emitted light (rgb); a texture at binding 8 multiplies it where flagged.
     emissive: [f32; 4],
     /// The clear coat: factor, perceptual roughness, its normal map's scale, unused.
@@ -140,7 +136,7 @@ impl ObjectUniform {
             metallic: material.metallic,
             roughness: material.roughness,
             occlusion_strength: material.occlusion.as_ref().map_or(0.0, |o| o.strength),
-            shading_model: material.shading_model.shader_index(),
+            _padding: 0,
             emissive: material.emissive_factor.extend(0.0).to_array(),
             clearcoat: coat
                 .map_or([0.0; 4], |c| [c.factor, c.roughness, c.normal_map.as_ref().map_or(1.0, |m| m.scale), 0.0]),

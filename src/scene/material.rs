@@ -152,7 +152,7 @@ pub enum ShadingModel {
 }
 
 impl ShadingModel {
-    /// The index the shader switches on (`object.shading_model`, `frame.shading_override − 1`).
+    /// The index the mesh shader's `SHADING_MODEL` pipeline constant takes.
     pub fn shader_index(self) -> u32 {
         self as u32
     }

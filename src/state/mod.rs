@@ -2,6 +2,7 @@
 //! [`Command`]s; [`ViewerState::apply`] is the one place they take effect, so the window, the
 //! `render` command and the tests all describe a picture the same way: a [`FrameParams`].
 
+pub mod interactive;
 pub mod preset;
 mod split;
 
@@ -10,7 +11,7 @@ pub use split::{SplitDifference, SplitView};
 use glam::{Vec2, Vec3};
 
 use crate::frame::{
-    BumpSource, FrameParams, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Parallax, STRENGTH_RANGE, SceneOptions,
+    BumpSource, FrameParams, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Msaa, Parallax, STRENGTH_RANGE, SceneOptions,
     SceneUploads, ShadingMode, ShadingSettings, SplitFrame, ViewMode,
 };
 use crate::height::Kernel;
@@ -161,11 +162,15 @@ impl ViewerState {
     /// in GPU data, the left half's options for the main upload and the right half's for a
     /// second one; else the current options alone.
     pub fn scene_uploads(&self) -> SceneUploads {
+        // Height maps are bound for parallax while either picture marches.
+        let shown = self.split_frame().map_or(vec![self.shading], |s| vec![s.left, s.right]);
+        let parallax = shown.iter().any(|s| s.parallax.technique != Parallax::Off);
+        let options = SceneOptions { parallax, ..self.scene_options.clone() };
         if self.split.enabled && self.split.difference.changes_gpu_data() {
-            let [left, right] = self.split.scene_options(&self.scene_options);
+            let [left, right] = self.split.scene_options(&options);
             SceneUploads { main: left, split_right: Some(right) }
         } else {
-            SceneUploads { main: self.scene_options.clone(), split_right: None }
+            SceneUploads { main: options, split_right: None }
         }
     }
 
@@ -273,16 +278,19 @@ impl ViewerState {
     }
 }
 
-/// Decides whether a frame must be drawn: only when what it would show has changed.
+/// Decides whether a frame must be drawn: only when what it would show has changed — its
+/// parameters, its size in pixels or its multisampling, so the full-quality frame after
+/// interactive ones ([`interactive`]) is drawn once even though nothing else changed.
 #[derive(Debug, Default)]
 pub struct RedrawTracker {
-    last: Option<(FrameParams, [u32; 2])>,
+    last: Option<(FrameParams, [u32; 2], Msaa)>,
 }
 
 impl RedrawTracker {
-    /// True (and remembers the frame) when `params` at `size` differs from the last frame drawn.
-    pub fn needs_redraw(&mut self, params: &FrameParams, size: [u32; 2]) -> bool {
-        let frame = (*params, size);
+    /// True (and remembers the frame) when `params` drawn at `size` pixels with `msaa`
+    /// differs from the last frame drawn.
+    pub fn needs_redraw(&mut self, params: &FrameParams, size: [u32; 2], msaa: Msaa) -> bool {
+        let frame = (*params, size, msaa);
         if self.last.as_ref() == Some(&frame) {
             false
         } else {
@@ -308,13 +316,27 @@ mod tests {
         let scene = teaching_scene();
         let mut state = ViewerState::new(&scene);
         let mut tracker = RedrawTracker::default();
-        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64]));
-        assert!(!tracker.needs_redraw(&state.frame_params(), [64, 64]));
+        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
+        assert!(!tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
         state.apply(Command::Tick(0.5)); // no animation running: nothing changes
-        assert!(!tracker.needs_redraw(&state.frame_params(), [64, 64]));
+        assert!(!tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
         state.apply(Command::ToggleBump);
-        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64]));
-        assert!(tracker.needs_redraw(&state.frame_params(), [65, 64]));
+        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
+        assert!(tracker.needs_redraw(&state.frame_params(), [65, 64], Msaa::X4));
+    }
+
+    /// Interactive frames at one sample and a smaller size, then the same picture at full
+    /// quality once input stops: drawn once, then nothing until something changes.
+    #[test]
+    fn the_full_quality_frame_after_interactive_ones_is_drawn_once() {
+        let scene = teaching_scene();
+        let mut state = ViewerState::new(&scene);
+        let mut tracker = RedrawTracker::default();
+        state.apply(Command::OrbitCamera { d_yaw: 0.1, d_pitch: 0.0 });
+        assert!(tracker.needs_redraw(&state.frame_params(), [32, 32], Msaa::Off));
+        assert!(!tracker.needs_redraw(&state.frame_params(), [32, 32], Msaa::Off), "held still while dragging");
+        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4), "input stopped");
+        assert!(!tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
     }
 
     #[test]
@@ -339,18 +361,18 @@ mod tests {
         let scene = teaching_scene();
         let mut state = ViewerState::new(&scene);
         let mut tracker = RedrawTracker::default();
-        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64]));
+        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
         state.apply(Command::SetShadingMode(ShadingMode::BumpOnly));
-        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64]));
+        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
         state.apply(Command::SetShadingMode(ShadingMode::BumpOnly));
-        assert!(!tracker.needs_redraw(&state.frame_params(), [64, 64]));
+        assert!(!tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
         state.apply(Command::ToggleWireframe);
         assert!(state.shading.wireframe);
-        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64]));
+        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
         state.apply(Command::SetWireframe(false));
         assert!(!state.shading.wireframe);
         state.apply(Command::SetParallax(Parallax::Relief));
-        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64]));
+        assert!(tracker.needs_redraw(&state.frame_params(), [64, 64], Msaa::X4));
         state.apply(Command::SetParallaxLayers([0, 1000]));
         state.apply(Command::SetParallaxSteps(99));
         state.apply(Command::SetParallaxDepth(Some(-1.0)));
@@ -372,7 +394,11 @@ mod tests {
             let uploads = state.scene_uploads();
             assert_eq!(uploads.split_right.is_some(), difference.changes_gpu_data(), "{difference:?}");
             if !difference.changes_gpu_data() {
-                assert_eq!(uploads, single, "{difference:?}");
+                // A parallax split marches in both halves: one upload, with the height maps.
+                let parallax = difference == SplitDifference::Parallax;
+                let expected =
+                    SceneUploads { main: SceneOptions { parallax, ..Default::default() }, split_right: None };
+                assert_eq!(uploads, expected, "{difference:?}");
             }
         }
         state.apply(Command::SetSplitDifference(SplitDifference::Tangents));

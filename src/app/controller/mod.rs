@@ -10,17 +10,21 @@ mod presets;
 #[cfg(test)]
 mod tests;
 
+use std::num::NonZeroU32;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use bumpview::check::{CheckReport, check_scene};
 use bumpview::error::RenderError;
+use bumpview::frame::{FrameQuality, Msaa};
 use bumpview::height::Kernel;
 use bumpview::load::SceneFiles;
 use bumpview::names::Named;
-use bumpview::render::{Background, RenderTarget, Renderer};
+use bumpview::render::timing::{time_floor, timed};
+use bumpview::render::{DrawOptions, RenderTarget, Renderer};
 use bumpview::scene::Scene;
+use bumpview::state::interactive::InteractiveQuality;
 use bumpview::state::preset::CapturePreset;
 use bumpview::state::{Command, ViewerState};
 use bumpview::tangent::{MethodMeasurement, TangentMethod, measure};
@@ -79,6 +83,20 @@ impl SceneFacts {
     }
 }
 
+/// What the last interactive frame cost, for the panel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InteractiveFrame {
+    /// Width and height drawn, pixels.
+    pub size: [u32; 2],
+    /// Drawing it until the adapter finished, milliseconds.
+    pub frame_ms: f64,
+    /// Its budget ([`InteractiveQuality::budget_ms`]), milliseconds.
+    pub budget_ms: f64,
+}
+
+/// Floors timed for an interactive frame's budget: the median of this many.
+const FLOOR_FRAMES: u32 = 5;
+
 pub struct Controller {
     pub state: ViewerState,
     scene: Scene,
@@ -106,6 +124,14 @@ pub struct Controller {
     last_state: Option<PathBuf>,
     /// The folder screenshots and tile exports go to; empty: the current directory.
     screenshot_dir: PathBuf,
+    /// Frames while the user drags or the light orbits: the panel setting and the render
+    /// scale learnt from their times.
+    interactive: InteractiveQuality,
+    /// The adapter's floor at the view's size with one sample (pixels, milliseconds), timed
+    /// at the first interactive frame at that size.
+    floor: Option<([u32; 2], f64)>,
+    /// What the last interactive frame cost.
+    last_interactive: Option<InteractiveFrame>,
 }
 
 impl Controller {
@@ -140,6 +166,9 @@ impl Controller {
             revision: 0,
             last_state,
             screenshot_dir: PathBuf::new(),
+            interactive: InteractiveQuality::default(),
+            floor: None,
+            last_interactive: None,
         }
     }
 
@@ -176,6 +205,22 @@ impl Controller {
 
     pub fn view_size(&self) -> Option<[u32; 2]> {
         self.view_size
+    }
+
+    /// Whether frames are drawn cheaper while the user drags or the light orbits.
+    pub fn interactive_frames(&self) -> bool {
+        self.interactive.enabled
+    }
+
+    /// What the last interactive frame cost (`None` before one was drawn).
+    pub fn last_interactive(&self) -> Option<InteractiveFrame> {
+        self.last_interactive
+    }
+
+    /// The quality of the next frame: interactive while `active` (something is being dragged,
+    /// the view zoomed or the light orbits) and the setting is on, else full.
+    pub fn frame_quality(&self, active: bool) -> FrameQuality {
+        self.interactive.quality(active)
     }
 
     /// The 3D view was laid out `size` pixels large (screenshots default to it, the probe
@@ -234,6 +279,7 @@ impl Controller {
                 (self.wake)();
             }
             Action::ClearProbe => self.probe.clear(),
+            Action::SetInteractiveFrames(on) => self.interactive.enabled = on,
             Action::Loaded(finished) => {
                 if let Some((scene, purpose)) = self.files.finish(*finished) {
                     self.prepare_scene(scene, purpose);
@@ -372,16 +418,37 @@ impl Controller {
         self.state.is_animating()
     }
 
-    /// Draws the current picture (the split view when it is on) into `target` and submits it.
-    pub fn draw(&mut self, target: &RenderTarget) -> Result<(), RenderError> {
-        let mut encoder = self.renderer.device().create_command_encoder(&Default::default());
+    /// Draws the current picture (the split view when it is on) into `target` with `msaa`
+    /// and submits it. An interactive frame (one sample) is waited for and timed, and its
+    /// time against the floor at the view's size sets the next one's render scale.
+    pub fn draw(&mut self, target: &RenderTarget, msaa: Msaa) -> Result<(), RenderError> {
         let params = self.state.frame_params();
-        match self.state.split_frame() {
-            Some(split) => self.renderer.render_split(&mut encoder, target, &params, &split, Background::Opaque)?,
-            None => self.renderer.render(&mut encoder, target, &params)?,
+        let split = self.state.split_frame();
+        let options = DrawOptions { msaa, ..Default::default() };
+        if msaa == Msaa::X4 {
+            let mut encoder = self.renderer.device().create_command_encoder(&Default::default());
+            self.renderer.draw(&mut encoder, target, &params, split.as_ref(), options)?;
+            self.renderer.queue().submit([encoder.finish()]);
+            return Ok(());
         }
-        self.renderer.queue().submit([encoder.finish()]);
+        let frame_ms =
+            timed(&mut self.renderer, |r, encoder| r.draw(encoder, target, &params, split.as_ref(), options))?;
+        let floor_ms = self.floor_ms(self.view_size.unwrap_or(target.size))?;
+        self.interactive.record(frame_ms, floor_ms);
+        let budget_ms = InteractiveQuality::budget_ms(floor_ms);
+        self.last_interactive = Some(InteractiveFrame { size: target.size, frame_ms, budget_ms });
         Ok(())
+    }
+
+    /// The floor at `size` with one sample, milliseconds: timed once per size.
+    fn floor_ms(&mut self, size: [u32; 2]) -> Result<f64, RenderError> {
+        if let Some((_, ms)) = self.floor.filter(|(at, _)| *at == size) {
+            return Ok(ms);
+        }
+        let frames = NonZeroU32::new(FLOOR_FRAMES).expect("not zero");
+        let ms = time_floor(&mut self.renderer, size, Msaa::Off, frames)?;
+        self.floor = Some((size, ms));
+        Ok(ms)
     }
 }
 

@@ -179,3 +179,45 @@ fn a_texture_opened_into_a_slot_reloads_the_scene_in_the_background() {
     assert!(painted, "the texture is in the scene");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// While something is dragged or the light orbits, frames are interactive: one sample per
+/// pixel at the learnt render scale, each timed against the floor at the view's size; when
+/// input stops the next frame is full quality; with the panel setting off every frame is.
+#[test]
+fn interactive_frames_only_while_active_and_enabled() {
+    use bumpview::frame::{FrameQuality, Msaa};
+    use bumpview::render::RenderTarget;
+    use bumpview::render::capture::IMAGE_FORMAT;
+    use bumpview::state::interactive::MIN_BUDGET_MS;
+
+    let mut controller = controller();
+    let view_size = [160, 100];
+    controller.set_view_size(Some(view_size));
+    let quality = controller.frame_quality(true);
+    assert_eq!(quality, FrameQuality { msaa: Msaa::Off, render_scale: 1.0 }, "every pixel until a frame is timed");
+    let size = quality.render_size(view_size);
+    let texture = controller.renderer().device().create_texture(&wgpu::TextureDescriptor {
+        label: None,
+        size: wgpu::Extent3d { width: size[0], height: size[1], depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: IMAGE_FORMAT,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+        view_formats: &[],
+    });
+    let view = texture.create_view(&Default::default());
+    let built = controller.renderer().counters().pipelines_built;
+    controller.draw(&RenderTarget { view: &view, format: IMAGE_FORMAT, size }, Msaa::Off).unwrap();
+    let last = controller.last_interactive().expect("timed");
+    assert_eq!(last.size, size);
+    assert!(last.frame_ms > 0.0 && last.budget_ms >= MIN_BUDGET_MS, "{last:?}");
+    assert!(controller.renderer().counters().pipelines_built > built, "one-sample pipelines and the floor's");
+    let scale = controller.frame_quality(true).render_scale;
+    assert!((0.25..=1.0).contains(&scale), "{scale}");
+
+    assert_eq!(controller.frame_quality(false), FrameQuality::FULL, "input stopped");
+    controller.apply([Action::SetInteractiveFrames(false)]);
+    assert!(!controller.interactive_frames());
+    assert_eq!(controller.frame_quality(true), FrameQuality::FULL, "the setting off");
+}

@@ -51,6 +51,7 @@ pub fn show(
         });
         section(ui, "Preset", false, |ui| output::preset(ui, &mut controller.preset, &mut actions));
         ui.separator();
+        output::interactive(ui, controller, &mut actions);
         output::stats(ui, controller);
     });
     (actions, slot_targets)

@@ -54,6 +54,26 @@ pub(super) fn preset(ui: &mut egui::Ui, form: &mut PresetForm, actions: &mut Vec
     outcome(ui, &form.message);
 }
 
+/// The interactive-frames setting and what the last interactive frame cost.
+pub(super) fn interactive(ui: &mut egui::Ui, controller: &Controller, actions: &mut Vec<Action>) {
+    let mut on = controller.interactive_frames();
+    let hint = "while you drag or the light orbits: 1 sample per pixel, and fewer pixels while a frame costs more \
+                than twice the adapter's floor (at least 4 ms); one full-quality frame (4× MSAA) when input stops. \
+                Screenshots and exports are always full quality.";
+    if ui.checkbox(&mut on, "Interactive frames while dragging").on_hover_text(hint).changed() {
+        actions.push(Action::SetInteractiveFrames(on));
+    }
+    if let (true, Some(frame), Some([width, _])) = (on, controller.last_interactive(), controller.view_size()) {
+        let [w, h] = frame.size;
+        ui.small(format!(
+            "last: {w}x{h} ({:.0} % of the view's width), {:.1} ms, budget {:.1} ms",
+            100.0 * w as f64 / width as f64,
+            frame.frame_ms,
+            frame.budget_ms
+        ));
+    }
+}
+
 /// The adapter, the view's size and the work done so far.
 pub(super) fn stats(ui: &mut egui::Ui, controller: &Controller) {
     let size = controller.view_size().map_or_else(|| "no view".to_owned(), |[w, h]| format!("{w}x{h}"));

@@ -1,5 +1,6 @@
 //! The 3D view: an offscreen texture the controller draws into ([`View::draw`], only when the
-//! picture would change) and egui shows as an image, with what goes over it — the split
+//! picture would change; smaller than the view while interactive frames are drawn at a lower
+//! render scale) and egui shows as an image stretched over the view, with what goes over it — the split
 //! view's divider and labels (dragged with the mouse), the Difference view's legend, the
 //! probe's marker and readout ([`probe_overlay`]) — and the mouse gestures on it ([`input`]).
 
@@ -7,7 +8,7 @@ pub mod input;
 mod legend;
 pub mod probe_overlay;
 
-use bumpview::frame::{SplitFrame, ViewMode};
+use bumpview::frame::{Msaa, SplitFrame, ViewMode};
 use bumpview::render::RenderTarget;
 use bumpview::state::{Command, RedrawTracker};
 use eframe::egui_wgpu::RenderState;
@@ -28,7 +29,7 @@ struct ViewTexture {
     render_view: wgpu::TextureView,
     /// egui's handle of the plain `Rgba8Unorm` view.
     id: egui::TextureId,
-    /// Width and height in pixels.
+    /// Width and height in pixels: the view's, or fewer at a lower render scale.
     size: [u32; 2],
 }
 
@@ -36,6 +37,8 @@ pub struct View {
     /// eframe's device and egui's renderer, which the view texture is registered with.
     render_state: RenderState,
     texture: Option<ViewTexture>,
+    /// The view's size in pixels, as last laid out.
+    size: Option<[u32; 2]>,
     tracker: RedrawTracker,
     /// The split view and the controller's revision the texture was last drawn with.
     drawn: Option<(Option<SplitFrame>, u64)>,
@@ -50,6 +53,7 @@ impl View {
         View {
             render_state,
             texture: None,
+            size: None,
             tracker: RedrawTracker::default(),
             drawn: None,
             dragging_divider: false,
@@ -57,9 +61,9 @@ impl View {
         }
     }
 
-    /// The view's size in pixels, once laid out.
+    /// The view's size in pixels, once laid out (the texture may have fewer).
     pub fn size(&self) -> Option<[u32; 2]> {
-        self.texture.as_ref().map(|t| t.size)
+        self.size
     }
 
     /// Why the last draw failed.
@@ -74,7 +78,12 @@ impl View {
         let Some(size) = pixel_size(rect.size() * ui.ctx().pixels_per_point(), controller) else {
             return Vec::new();
         };
-        let id = self.ensure_texture(size);
+        self.size = Some(size);
+        // The texture's size is decided when it is drawn ([`Self::draw`]); the id stays.
+        let id = match &self.texture {
+            Some(texture) => texture.id,
+            None => self.ensure_texture(size),
+        };
         let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
         ui.painter().image(id, rect, uv, egui::Color32::WHITE);
         let state = &controller.state;
@@ -176,20 +185,27 @@ impl View {
         id
     }
 
-    /// Draws the controller's picture into the view texture, only when the picture, its
-    /// size, the split view or the scene's GPU data changed.
-    pub fn draw(&mut self, controller: &mut Controller) {
-        let Some(texture) = &self.texture else { return };
+    /// Draws the controller's picture into the view texture at the quality it chooses
+    /// ([`Controller::frame_quality`]: interactive while `active`), only when the picture, its
+    /// size or quality, the split view or the scene's GPU data changed. Returns whether it drew
+    /// an interactive frame: then a full-quality one is owed once input stops.
+    pub fn draw(&mut self, controller: &mut Controller, active: bool) -> bool {
+        let Some(size) = self.size else { return false };
+        let quality = controller.frame_quality(active);
+        let render_size = quality.render_size(size);
+        self.ensure_texture(render_size);
+        let Some(texture) = &self.texture else { return false };
         let drawn = (controller.state.split_frame(), controller.revision());
         if self.drawn != Some(drawn) {
             self.drawn = Some(drawn);
             self.tracker.invalidate();
         }
-        if !self.tracker.needs_redraw(&controller.state.frame_params(), texture.size) {
-            return;
+        if !self.tracker.needs_redraw(&controller.state.frame_params(), render_size, quality.msaa) {
+            return false;
         }
-        let target = RenderTarget { view: &texture.render_view, format: VIEW_RENDER_FORMAT, size: texture.size };
-        self.render_error = controller.draw(&target).err().map(|e| e.to_string());
+        let target = RenderTarget { view: &texture.render_view, format: VIEW_RENDER_FORMAT, size: render_size };
+        self.render_error = controller.draw(&target, quality.msaa).err().map(|e| e.to_string());
+        quality.msaa == Msaa::Off
     }
 }
 

@@ -230,6 +230,8 @@ impl Preset {
                 bump_source,
                 materials: scene.materials.to_overrides("scene.materials")?,
                 per_material,
+                // Set by `ViewerState::scene_uploads` from the shading.
+                parallax: false,
             },
             kernel: self.kernel()?,
             split: self.split.to_split()?,

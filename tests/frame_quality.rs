@@ -1,0 +1,62 @@
+//! Interactive frames (one sample per pixel) and the adapter's floor, on whatever adapter wgpu
+//! finds (lavapipe in CI). Timing is not asserted here: it is measured by the frame benchmark
+//! and `bumpview render --frames N`.
+
+mod common;
+
+use bumpview::frame::Msaa;
+use bumpview::render::DrawOptions;
+use bumpview::render::capture::{IMAGE_FORMAT, draw_offscreen};
+use common::*;
+
+const SIZE: [u32; 2] = [160, 100];
+
+fn frame(renderer: &mut bumpview::render::Renderer, msaa: Msaa) -> Vec<[u8; 4]> {
+    let params = default_params(&scene());
+    let options = DrawOptions { msaa, ..Default::default() };
+    let bytes = draw_offscreen(renderer, SIZE, IMAGE_FORMAT, |r, encoder, target| {
+        r.draw(encoder, target, &params, None, options)
+    })
+    .unwrap();
+    bytes.chunks_exact(4).map(|p| p.try_into().unwrap()).collect()
+}
+
+/// With one sample a pixel covered by one triangle is shaded exactly as with four (the
+/// fragment shader runs once per pixel either way, at its centre); only pixels crossed by a
+/// triangle edge — silhouettes, the grid cells of wall and floor, the torus' facets — differ.
+#[test]
+fn one_sample_frames_differ_from_full_quality_only_along_edges() {
+    let scene = scene();
+    let mut renderer = renderer_for(&scene);
+    let full = frame(&mut renderer, Msaa::X4);
+    let interactive = frame(&mut renderer, Msaa::Off);
+    let differing = full.iter().zip(&interactive).filter(|(a, b)| a != b).count();
+    let share = differing as f64 / full.len() as f64;
+    eprintln!("{differing} of {} pixels differ ({:.1}%)", full.len(), 100.0 * share);
+    // At 160x100 edges cross about one pixel in twenty (measured on lavapipe: 4.5%); a frame
+    // drawn wrong (wrong pipeline, missing geometry, no resolve) differs almost everywhere.
+    assert!(share < 0.08, "{:.1}% of pixels differ", 100.0 * share);
+    assert!(differing > 0, "4x MSAA smooths some edge");
+    let samples: Vec<u32> = renderer.built_pipelines().iter().map(|k| k.samples).collect();
+    assert!(samples.contains(&1) && samples.contains(&renderer.sample_count(IMAGE_FORMAT)), "{samples:?}");
+}
+
+/// The floor covers every pixel with its one colour, with and without MSAA, and builds its
+/// pipeline once per sample count.
+#[test]
+fn the_floor_is_one_colour_everywhere() {
+    let scene = scene();
+    let mut renderer = renderer_for(&scene);
+    let built = renderer.counters().pipelines_built;
+    for msaa in [Msaa::X4, Msaa::Off, Msaa::X4] {
+        let bytes =
+            draw_offscreen(&mut renderer, SIZE, IMAGE_FORMAT, |r, encoder, target| r.draw_floor(encoder, target, msaa))
+                .unwrap();
+        // Linear grey 0.5 encodes to sRGB 187.5 of 255, rounded either way.
+        let first = [bytes[0], bytes[1], bytes[2], bytes[3]];
+        assert!(matches!(first, [187 | 188, g, b, 255] if g == first[0] && b == first[0]), "{first:?}");
+        assert!(bytes.chunks_exact(4).all(|p| p == first), "{msaa:?}: not one colour");
+    }
+    let distinct_counts = if renderer.sample_count(IMAGE_FORMAT) == 1 { 1 } else { 2 };
+    assert_eq!(renderer.counters().pipelines_built, built + distinct_counts);
+}
