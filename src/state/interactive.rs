@@ -25,6 +25,9 @@ pub const RENDER_SCALE_STEP: f32 = 1.0 / 16.0;
 /// itself as the upper bound this leaves a band where the scale stays, so timing noise does
 /// not make it flicker).
 pub const GROW_BELOW_SHARE: f64 = 0.7;
+/// A new render scale aims at this share of the budget, inside the band, so frames a little
+/// slower than the one measured still fit.
+pub const AIM_SHARE: f64 = 0.85;
 
 /// Chooses each frame's quality and adapts the interactive render scale to the budget.
 #[derive(Debug, Clone, PartialEq)]
@@ -68,10 +71,10 @@ impl InteractiveQuality {
 
     /// Learns from an interactive frame drawn at the current render scale: it took
     /// `frame_ms` (drawing until the adapter finished) where the floor takes `floor_ms`.
-    /// Over budget, the scale shrinks by the square root of the overrun (a frame's cost grows
-    /// with its pixels, the square of the scale); well under budget it grows the same way;
-    /// rounded down to a [`RENDER_SCALE_STEP`], within `MIN_RENDER_SCALE..=1`. Non-finite or
-    /// non-positive times are ignored.
+    /// Over budget or under [`GROW_BELOW_SHARE`] of it, the scale changes by the square root
+    /// of the frame's time against [`AIM_SHARE`] of the budget (a frame's cost grows with its
+    /// pixels, the square of the scale), rounded down to a [`RENDER_SCALE_STEP`], within
+    /// `MIN_RENDER_SCALE..=1`. Non-finite or non-positive times are ignored.
     pub fn record(&mut self, frame_ms: f64, floor_ms: f64) {
         if !(frame_ms.is_finite() && frame_ms > 0.0 && floor_ms.is_finite() && floor_ms >= 0.0) {
             return;
@@ -80,18 +83,18 @@ impl InteractiveQuality {
         if frame_ms <= budget && frame_ms >= GROW_BELOW_SHARE * budget {
             return;
         }
-        let wanted = self.render_scale as f64 * (budget / frame_ms).sqrt();
+        let wanted = self.render_scale as f64 * (AIM_SHARE * budget / frame_ms).sqrt();
         let stepped = (wanted as f32 / RENDER_SCALE_STEP).floor() * RENDER_SCALE_STEP;
         self.render_scale = stepped.clamp(MIN_RENDER_SCALE, 1.0);
     }
 
     /// Draws interactive frames of `picture` (its quality is replaced; the setting is not
-    /// consulted) as the viewer would
-    /// while the user drags, timing each few against the floor, until the render scale stays
-    /// put twice in a row or after [`SETTLE_ROUNDS`] rounds; returns the quality arrived at.
-    /// For `bumpview render --frames` and the benchmark: what a drag costs on this adapter.
+    /// consulted) as the viewer would while the user drags, timing [`SETTLE_FRAMES`] at a
+    /// time against the floor, until the render scale stays put twice in a row or after
+    /// [`SETTLE_ROUNDS`] rounds; returns the quality arrived at. For `bumpview render
+    /// --frames` and the benchmark: what a drag costs on this adapter.
     pub fn settle(&mut self, renderer: &mut Renderer, picture: &TimedPicture) -> Result<FrameQuality, RenderError> {
-        let frames = NonZeroU32::new(3).expect("not zero");
+        let frames = NonZeroU32::new(SETTLE_FRAMES).expect("not zero");
         let mut unchanged = 0;
         for _ in 0..SETTLE_ROUNDS {
             let before = self.render_scale;
@@ -108,6 +111,8 @@ impl InteractiveQuality {
 
 /// At most this many rounds of [`InteractiveQuality::settle`].
 pub const SETTLE_ROUNDS: usize = 12;
+/// Frames (and floors) timed per round of [`InteractiveQuality::settle`]; their medians count.
+pub const SETTLE_FRAMES: u32 = 5;
 
 #[cfg(test)]
 mod tests {
@@ -122,18 +127,19 @@ mod tests {
         assert_eq!(quality.quality(true), FrameQuality::FULL, "the setting off: always full quality");
     }
 
-    /// A frame that costs four times its budget is drawn at half the scale next (a quarter of
-    /// the pixels); one within the band keeps the scale; a cheap one grows it, never past 1.
+    /// A frame that costs four times its budget is drawn at a little under half the scale
+    /// next (aiming at 85 % of the budget: sqrt(8.5 / 40) = 0.46, down to 7/16); one within
+    /// the band keeps the scale; a cheap one grows it, never past 1.
     #[test]
     fn the_scale_follows_the_budget() {
         let mut quality = InteractiveQuality::default();
         let floor = 5.0; // budget 10 ms
         quality.record(40.0, floor);
-        assert_eq!(quality.render_scale(), 0.5);
+        assert_eq!(quality.render_scale(), 7.0 / 16.0);
         quality.record(9.0, floor);
-        assert_eq!(quality.render_scale(), 0.5, "within the band");
+        assert_eq!(quality.render_scale(), 7.0 / 16.0, "within the band");
         quality.record(2.5, floor);
-        assert_eq!(quality.render_scale(), 1.0, "four times under budget: twice the scale");
+        assert_eq!(quality.render_scale(), 12.0 / 16.0, "0.4375 · sqrt(8.5 / 2.5) = 0.81");
         quality.record(1.0, floor);
         assert_eq!(quality.render_scale(), 1.0, "never past every pixel");
         quality.record(1000.0, floor);
