@@ -98,8 +98,8 @@ pub fn time_floor(renderer: &mut Renderer, size: [u32; 2], msaa: Msaa, frames: N
     Ok(median(times))
 }
 
-/// A render target of `size` in [`IMAGE_FORMAT`].
-fn target_texture(device: &wgpu::Device, size: [u32; 2]) -> wgpu::Texture {
+/// A render target of `size` in [`IMAGE_FORMAT`] (render attachment only).
+pub fn target_texture(device: &wgpu::Device, size: [u32; 2]) -> wgpu::Texture {
     device.create_texture(&wgpu::TextureDescriptor {
         label: Some("timed target"),
         size: wgpu::Extent3d { width: size[0], height: size[1], depth_or_array_layers: 1 },

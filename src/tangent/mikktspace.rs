@@ -74,17 +74,7 @@ mod tests {
     use crate::tangent::bitangent;
     use glam::{Vec2, Vec3};
 
-    /// A unit quad in the XY plane facing +Z, u along +X and v (glTF, down the image) along −Y.
-    fn quad(flip_u: bool) -> Mesh {
-        let u = |x: f32| if flip_u { 1.0 - x } else { x };
-        Mesh {
-            positions: vec![Vec3::new(0., 0., 0.), Vec3::new(1., 0., 0.), Vec3::new(1., 1., 0.), Vec3::new(0., 1., 0.)],
-            normals: vec![Vec3::Z; 4],
-            uvs: vec![Vec2::new(u(0.), 1.), Vec2::new(u(1.), 1.), Vec2::new(u(1.), 0.), Vec2::new(u(0.), 0.)],
-            indices: vec![0, 1, 2, 0, 2, 3],
-            ..Mesh::empty("quad")
-        }
-    }
+    use crate::tangent::test_quad as quad;
 
     #[test]
     fn bitangent_points_up_the_image() {

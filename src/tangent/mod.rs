@@ -127,3 +127,17 @@ pub fn tangents(mesh: &Mesh, method: TangentMethod) -> Option<Vec<Vec4>> {
 pub fn bitangent(normal: Vec3, tangent: Vec4) -> Vec3 {
     crate::math::handedness(tangent) * normal.cross(tangent.truncate())
 }
+/// Test fixture: a unit quad in the XY plane facing +Z, u along +X (mirrored when `flip_u`)
+/// and v (glTF, down the image) along −Y.
+#[cfg(test)]
+pub(crate) fn test_quad(flip_u: bool) -> Mesh {
+    use glam::{Vec2, Vec3};
+    let u = |x: f32| if flip_u { 1.0 - x } else { x };
+    Mesh {
+        positions: vec![Vec3::new(0., 0., 0.), Vec3::new(1., 0., 0.), Vec3::new(1., 1., 0.), Vec3::new(0., 1., 0.)],
+        normals: vec![Vec3::Z; 4],
+        uvs: vec![Vec2::new(u(0.), 1.), Vec2::new(u(1.), 1.), Vec2::new(u(1.), 0.), Vec2::new(u(0.), 0.)],
+        indices: vec![0, 1, 2, 0, 2, 3],
+        ..Mesh::empty("quad")
+    }
+}

@@ -188,6 +188,7 @@ fn interactive_frames_only_while_active_and_enabled() {
     use bumpview::frame::{FrameQuality, Msaa};
     use bumpview::render::RenderTarget;
     use bumpview::render::capture::IMAGE_FORMAT;
+    use bumpview::render::timing::target_texture;
     use bumpview::state::interactive::MIN_BUDGET_MS;
 
     let mut controller = controller();
@@ -196,16 +197,7 @@ fn interactive_frames_only_while_active_and_enabled() {
     let quality = controller.frame_quality(true);
     assert_eq!(quality, FrameQuality { msaa: Msaa::Off, render_scale: 1.0 }, "every pixel until a frame is timed");
     let size = quality.render_size(view_size);
-    let texture = controller.renderer().device().create_texture(&wgpu::TextureDescriptor {
-        label: None,
-        size: wgpu::Extent3d { width: size[0], height: size[1], depth_or_array_layers: 1 },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: IMAGE_FORMAT,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-        view_formats: &[],
-    });
+    let texture = target_texture(controller.renderer().device(), size);
     let view = texture.create_view(&Default::default());
     let built = controller.renderer().counters().pipelines_built;
     controller.draw(&RenderTarget { view: &view, format: IMAGE_FORMAT, size }, Msaa::Off).unwrap();
