@@ -119,7 +119,7 @@ fn the_probe_marches_as_the_shader_does() {
             for x in (5..SIZE[0]).step_by(23) {
                 let readout = probe.probe(&params, SIZE, [x, y]).expect("the wall fills the view");
                 let march = readout.march.expect("the wall marches");
-                let n_dot_v = readout.view_dir.dot(readout.normal);
+                let n_dot_v = readout.chain.view_dir.dot(readout.chain.normal);
                 assert_eq!(march.layers, if technique.marches() { settings.layers(n_dot_v) } else { 0 });
                 counts.insert(march.layers);
                 assert!(march.shift.length() > 0.0 || march.depth == 0.0, "{x},{y}: {march:?}");
@@ -198,7 +198,7 @@ fn grazing_views_few_and_many_layers_and_clamped_borders_stay_finite() {
                     for y in (0..SIZE[1]).step_by(37) {
                         for x in (0..SIZE[0]).step_by(37) {
                             let Some(r) = probe.probe(&params, SIZE, [x, y]) else { continue };
-                            assert!(r.color_linear.is_finite() && r.shading_normal.is_finite(), "{r:?}");
+                            assert!(r.chain.color_linear.is_finite() && r.chain.shading_normal.is_finite(), "{r:?}");
                             let Some(m) = r.march else { continue };
                             marched += 1;
                             assert!(m.uv.is_finite() && m.depth.is_finite() && m.height.is_finite(), "{m:?}");

@@ -44,33 +44,33 @@ fn probe_on_the_close_wall_matches_the_wall_and_the_rendered_pixels() {
         assert!(close(readout.position, hit, 1e-5), "{x},{y}: {} vs {hit}", readout.position);
         let uv = wall_uv(hit);
         assert!((readout.uv - uv).abs().max_element() < 1e-5, "{x},{y}: uv {} vs {uv}", readout.uv);
-        assert!(close(readout.tangent.unwrap(), Vec3::X, 1e-5), "T {:?}", readout.tangent);
-        assert!(close(readout.bitangent.unwrap(), Vec3::Y, 1e-5), "B {:?}", readout.bitangent);
-        assert!(close(readout.normal, Vec3::Z, 1e-5), "N {}", readout.normal);
-        assert_eq!(readout.w, Some(1.0));
-        assert!(readout.texel_raw.is_some() && readout.decoded.is_some());
+        assert!(close(readout.chain.tangent.unwrap(), Vec3::X, 1e-5), "T {:?}", readout.chain.tangent);
+        assert!(close(readout.chain.bitangent.unwrap(), Vec3::Y, 1e-5), "B {:?}", readout.chain.bitangent);
+        assert!(close(readout.chain.normal, Vec3::Z, 1e-5), "N {}", readout.chain.normal);
+        assert_eq!(readout.chain.w, Some(1.0));
+        assert!(readout.texel_raw.is_some() && readout.chain.decoded.is_some());
         // The same chain as the wall reference of tests/common.
         let reference = wall_chain(&scene, &params, SIZE, x, y);
-        let n_diff = (readout.shading_normal - reference.shading_normal).abs().max_element();
+        let n_diff = (readout.chain.shading_normal - reference.shading_normal).abs().max_element();
         assert!(
             n_diff < 1e-3,
             "({x},{y}): shading normal {} vs reference {}",
-            readout.shading_normal,
+            readout.chain.shading_normal,
             reference.shading_normal
         );
-        assert!(close(readout.albedo, reference.albedo, 1e-5));
+        assert!(close(readout.chain.albedo, reference.albedo, 1e-5));
 
         let gpu = lit.get_pixel(x, y);
         let cpu = readout.shown_bytes().unwrap();
         let diff = (0..3).map(|c| (gpu[c] as f32 - cpu[c]).abs()).fold(0.0, f32::max);
         let stored = normals.get_pixel(x, y);
-        let expected = (readout.shading_normal * 0.5 + 0.5) * 255.0;
+        let expected = (readout.chain.shading_normal * 0.5 + 0.5) * 255.0;
         let normal_diff = (0..3).map(|c| (stored[c] as f32 - expected[c]).abs()).fold(0.0, f32::max);
         worst = (worst.0.max(diff), worst.1.max(normal_diff));
         assert!(diff <= 3.0, "({x},{y}): GPU {gpu:?} vs probe {cpu}");
         assert!(normal_diff <= 2.0, "({x},{y}): shading normal view {stored:?} vs probe {expected}");
         // The decoded pixel of the Shading-normal view within 2/255 per stored channel.
-        assert!(close(decode_debug(stored), readout.shading_normal, 4.0 / 255.0 + 1e-3));
+        assert!(close(decode_debug(stored), readout.chain.shading_normal, 4.0 / 255.0 + 1e-3));
     }
     println!("worst: lit {} steps, shading normal {} steps", worst.0, worst.1);
 }
@@ -99,11 +99,16 @@ fn moving_the_light_changes_n_dot_l_at_the_pinned_point() {
     params.camera.yaw = 0.3; // the camera may move too: the point stays pinned
     let after = probe_scene.readout(&point, &params, SIZE);
     assert_eq!(before.position, after.position);
-    assert_eq!(before.shading_normal, after.shading_normal);
-    let expected = after.shading_normal.dot((params.light.position - after.position).normalize());
-    assert!((after.n_dot_l - expected).abs() < 1e-6, "{} vs {expected}", after.n_dot_l);
-    assert!((after.n_dot_l - before.n_dot_l).abs() > 0.05, "{} vs {}", after.n_dot_l, before.n_dot_l);
-    assert_ne!(before.color_linear, after.color_linear);
+    assert_eq!(before.chain.shading_normal, after.chain.shading_normal);
+    let expected = after.chain.shading_normal.dot((params.light.position - after.position).normalize());
+    assert!((after.chain.n_dot_l - expected).abs() < 1e-6, "{} vs {expected}", after.chain.n_dot_l);
+    assert!(
+        (after.chain.n_dot_l - before.chain.n_dot_l).abs() > 0.05,
+        "{} vs {}",
+        after.chain.n_dot_l,
+        before.chain.n_dot_l
+    );
+    assert_ne!(before.chain.color_linear, after.chain.color_linear);
 }
 
 /// The probe uses the material overrides the renderer draws with: DirectX green flips the
@@ -119,7 +124,7 @@ fn material_overrides_reach_the_probe() {
     };
     let flipped = ProbeScene::new(&scene, &options).probe(&params, SIZE, [40, 50]).unwrap();
     assert_eq!(plain.texel_raw, flipped.texel_raw);
-    let (a, b) = (plain.decoded.unwrap(), flipped.decoded.unwrap());
+    let (a, b) = (plain.chain.decoded.unwrap(), flipped.chain.decoded.unwrap());
     assert!((a.x - b.x).abs() < 1e-6 && (a.y + b.y).abs() < 1e-6, "{a} {b}");
 }
 
@@ -240,8 +245,8 @@ fn probe_reproduces_the_height_bump_in_the_shader() {
         for [x, y] in pixels() {
             let Some(readout) = probe_scene.probe(&params, SIZE, [x, y]) else { continue };
             let stored = normals.get_pixel(x, y);
-            normal.push(max_diff(stored, (readout.shading_normal * 0.5 + 0.5) * 255.0));
-            unbumped.push(max_diff(stored, (readout.normal * 0.5 + 0.5) * 255.0));
+            normal.push(max_diff(stored, (readout.chain.shading_normal * 0.5 + 0.5) * 255.0));
+            unbumped.push(max_diff(stored, (readout.chain.normal * 0.5 + 0.5) * 255.0));
             colour.push(max_diff(lit.get_pixel(x, y), readout.shown_bytes().unwrap()));
         }
         for diffs in [&mut colour, &mut normal, &mut unbumped] {
@@ -287,7 +292,7 @@ fn probe_reads_the_mip_levels_the_gpu_reads_when_textures_are_minified() {
         }
         let (x, y) = (x as u32, y as u32);
         let stored = normals.get_pixel(x, y);
-        let expected = (readout.shading_normal * 0.5 + 0.5) * 255.0;
+        let expected = (readout.chain.shading_normal * 0.5 + 0.5) * 255.0;
         normal.push((0..3).map(|c| (stored[c] as f32 - expected[c]).abs()).fold(0.0, f32::max));
         let (gpu, cpu) = (lit.get_pixel(x, y), readout.shown_bytes().unwrap());
         colour.push((0..3).map(|c| (gpu[c] as f32 - cpu[c]).abs()).fold(0.0, f32::max));

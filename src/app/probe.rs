@@ -153,7 +153,7 @@ fn lines(r: &ProbeReadout, mesh_name: &str) -> String {
         (Some([x, y]), Some([red, green, blue, alpha])) => format!("({x}, {y}) = {red} {green} {blue} {alpha}"),
         _ => "—".to_owned(),
     };
-    let srgb = (r.color_linear.map(bumpview::math::linear_to_srgb) * 255.0).round();
+    let srgb = (r.chain.color_linear.map(bumpview::math::linear_to_srgb) * 255.0).round();
     let mut text = vec![
         format!("mesh     {mesh_name} ({face} face)"),
         format!("bump     {bump}{}", if r.bump_enabled { "" } else { ", off (B)" }),
@@ -171,20 +171,20 @@ fn lines(r: &ProbeReadout, mesh_name: &str) -> String {
     text.extend([
         format!("texel    {texel} (0–255, mip 0, at the read UV)"),
         format!("filtered {}", opt3(r.texel)),
-        format!("decoded  {}", opt3(r.decoded)),
-        format!("s={:<6.3} {}", r.strength, opt3(r.after_strength)),
-        format!("T        {}", opt3(r.tangent)),
-        format!("B        {}", opt3(r.bitangent)),
-        format!("N        {}", v3(r.normal)),
-        format!("w        {}", r.w.map_or_else(|| "—".to_owned(), |w| format!("{w:+.0}"))),
+        format!("decoded  {}", opt3(r.chain.decoded)),
+        format!("s={:<6.3} {}", r.chain.strength, opt3(r.chain.after_strength)),
+        format!("T        {}", opt3(r.chain.tangent)),
+        format!("B        {}", opt3(r.chain.bitangent)),
+        format!("N        {}", v3(r.chain.normal)),
+        format!("w        {}", r.chain.w.map_or_else(|| "—".to_owned(), |w| format!("{w:+.0}"))),
         format!("frames   {}", r.tangent_method.map_or("none", |m| m.name())),
-        format!("N'       {}  (world)", v3(r.shading_normal)),
-        format!("L        {}", v3(r.light_dir)),
-        format!("H        {}", v3(r.half)),
-        format!("N'·L     {:6.3}   N'·H {:6.3}", r.n_dot_l, r.n_dot_h),
-        format!("fade     {:6.3}  (N·L self-shadow)", r.self_shadow),
-        format!("albedo   {}  linear", v3(r.albedo)),
-        format!("colour   {}  linear", v3(r.color_linear)),
+        format!("N'       {}  (world)", v3(r.chain.shading_normal)),
+        format!("L        {}", v3(r.chain.light_dir)),
+        format!("H        {}", v3(r.chain.half)),
+        format!("N'·L     {:6.3}   N'·H {:6.3}", r.chain.n_dot_l, r.chain.n_dot_h),
+        format!("fade     {:6.3}  (N·L self-shadow)", r.chain.self_shadow),
+        format!("albedo   {}  linear", v3(r.chain.albedo)),
+        format!("colour   {}  linear", v3(r.chain.color_linear)),
         format!("sRGB     {:.0} {:.0} {:.0}  (0–255)", srgb.x, srgb.y, srgb.z),
     ]);
     if let Some(shown) = r.shown_bytes() {

@@ -31,11 +31,11 @@ use std::sync::Arc;
 use glam::{Mat3, Vec2, Vec3, Vec4};
 
 use crate::chain::parallax::{MarchInputs, march};
-use crate::chain::{BumpSample, SurfaceSample, shade};
+use crate::chain::{BumpSample, ChainValues, SurfaceSample, shade};
 use crate::frame::{BumpKind, FrameParams, Parallax, SceneOptions};
 use crate::math::{normal_matrix, normalize_or};
 use crate::prepare::PreparedScene;
-use crate::scene::{OrbitCamera, SamplerWrap, Scene, ShadingModel, TextureImage, Wrap};
+use crate::scene::{OrbitCamera, SamplerWrap, Scene, TextureImage, Wrap};
 use crate::shading::height_sample;
 use crate::tangent::TangentMethod;
 pub use pick::project_to_pixel;
@@ -84,44 +84,11 @@ pub struct ProbeReadout {
     /// The normal map's filtered sample at `uv` (RGB, 0..1, linear; at the mip levels the GPU
     /// reads): what the shader decodes.
     pub texel: Option<Vec3>,
-    /// The decoded unit vector ([`decode_normal`]): tangent space, or model space for an
-    /// object-space map.
-    pub decoded: Option<Vec3>,
-    /// Effective strength: the viewer's strength times the material's `normalTexture.scale`.
-    pub strength: f32,
-    /// Tangent-space normal after strength: `normalize(x·s, y·s, max(z, 0))` (tangent-space
-    /// maps only).
-    pub after_strength: Option<Vec3>,
-    /// World-space tangent after Gram-Schmidt against `normal`, bitangent `w · cross(N, T)`,
-    /// handedness `w = ±1` (the instance's mirroring included).
-    pub tangent: Option<Vec3>,
-    pub bitangent: Option<Vec3>,
-    pub w: Option<f32>,
     /// The tangent method the frames come from.
     pub tangent_method: Option<TangentMethod>,
-    /// Geometric (interpolated vertex) normal, world space, facing the viewer's side on a
-    /// double-sided back face.
-    pub normal: Vec3,
-    /// The normal used for lighting, world space.
-    pub shading_normal: Vec3,
-    /// Unit directions from the point to the light and the eye, and their half vector.
-    pub light_dir: Vec3,
-    pub view_dir: Vec3,
-    pub half: Vec3,
-    /// `N·L` and `N·H` with the shading normal, signed (the shader uses `max(·, 0)`).
-    pub n_dot_l: f32,
-    pub n_dot_h: f32,
-    /// The geometric self-shadow fade `smoothstep(0, SELF_SHADOW_FADE, N_geo·L)`, 0..1.
-    pub self_shadow: f32,
-    /// Linear albedo: base colour texture (filtered as the GPU does) times the factor.
-    pub albedo: Vec3,
-    pub shading_model: ShadingModel,
-    /// The lit colour in the viewer's shading mode, linear RGB.
-    pub color_linear: Vec3,
-    /// What the current view stores at this pixel, 0..1 as in the PNG (sRGB-encoded for the
-    /// lit picture, `0.5·v + 0.5` for vector views); `None` for the Difference and UV check
-    /// views, which the probe does not reproduce.
-    pub shown: Option<Vec3>,
+    /// Every value of the shading chain at the point ([`crate::chain::shade`]): the decoded
+    /// texel, after strength, T, B, N, w, shading normal, N·L, N·H, colour and what the view stores.
+    pub chain: ChainValues,
 }
 
 /// The parallax march at a probed point ([`crate::chain::parallax::march`]).
@@ -146,7 +113,7 @@ pub struct MarchReadout {
 impl ProbeReadout {
     /// `shown` as 8-bit values (unrounded), as they compare with a rendered PNG.
     pub fn shown_bytes(&self) -> Option<Vec3> {
-        self.shown.map(|c| c * 255.0)
+        self.chain.shown.map(|c| c * 255.0)
     }
 }
 
@@ -358,25 +325,8 @@ impl ProbeScene {
                 Some(BumpSample::NormalMap(texel)) => Some(texel),
                 _ => None,
             },
-            decoded: chain.decoded,
-            strength: chain.strength,
-            after_strength: chain.after_strength,
-            tangent: chain.tangent,
-            bitangent: chain.bitangent,
-            w: chain.w,
             tangent_method: frames.map(|f| f.method),
-            normal: chain.normal,
-            shading_normal: chain.shading_normal,
-            light_dir: chain.light_dir,
-            view_dir: chain.view_dir,
-            half: chain.half,
-            n_dot_l: chain.n_dot_l,
-            n_dot_h: chain.n_dot_h,
-            self_shadow: chain.self_shadow,
-            albedo: chain.albedo,
-            shading_model: chain.shading_model,
-            color_linear: chain.color_linear,
-            shown: chain.shown,
+            chain,
         }
     }
 
