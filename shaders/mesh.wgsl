@@ -181,21 +181,74 @@ fn perturbed_normal(n: vec3<f32>, frame_tb: TangentFrame, texel: vec3<f32>, stre
     return normalize_or(frame_tb.t * nt.x + frame_tb.b * nt.y + n * nt.z, n);
 }
 
-// shading::blinn_phong
-// k_s: the material's specular colour, times its gloss map where it has one.
-fn blinn_phong(albedo: vec3<f32>, k_s: vec3<f32>, n_geo: vec3<f32>, n_shading: vec3<f32>, position: vec3<f32>) -> vec3<f32> {
-    let l = normalize_or(frame.light_pos.xyz - position, n_geo);
+// ---- lights (src/shading/lights.rs) ----
+
+const MIN_ATTENUATION_DENOMINATOR: f32 = 1e-6; // lights::MIN_ATTENUATION_DENOMINATOR
+const MAX_LIGHT_DISTANCE_M: f32 = 1e15;         // lights::MAX_LIGHT_DISTANCE_M
+const SPECULAR_PHONG: u32 = 1u;                // SpecularMode::Phong
+const SPECULAR_OFF: u32 = 2u;                  // SpecularMode::Off
+
+// lights::attenuation: OpenGL's 1 / (c + l·d + q·d²).
+fn attenuation(coefficients: vec3<f32>, distance_m: f32) -> f32 {
+    let d = min(distance_m, MAX_LIGHT_DISTANCE_M);
+    let c = coefficients;
+    return 1.0 / max(c.x + c.y * d + c.z * d * d, MIN_ATTENUATION_DENOMINATOR);
+}
+
+// lights::Incident
+struct Incident {
+    direction: vec3<f32>,
+    radiance: vec3<f32>,
+};
+
+// lights::incident: a point light (w = 1) attenuated by distance, a directional one (w = 0) not.
+fn incident_light(light: Light, position: vec3<f32>, fallback: vec3<f32>) -> Incident {
+    if light.position.w == 0.0 {
+        return Incident(normalize_or(light.position.xyz, fallback), light.radiance.rgb);
+    }
+    let to_light = light.position.xyz - position;
+    let factor = attenuation(light.attenuation.xyz, length(to_light));
+    return Incident(normalize_or(to_light, fallback), light.radiance.rgb * factor);
+}
+
+// lights::specular_power: Blinn max(N·H, 0)^s, Phong max(R·V, 0)^s, or 0.
+fn specular_power(n: vec3<f32>, n_geo: vec3<f32>, l: vec3<f32>, v: vec3<f32>, shininess: f32) -> f32 {
+    var cosine = max(dot(n, normalize_or(l + v, n_geo)), 0.0);
+    if frame.specular_mode == SPECULAR_PHONG {
+        cosine = max(dot(2.0 * dot(n, l) * n - l, v), 0.0);
+    } else if frame.specular_mode == SPECULAR_OFF {
+        cosine = 0.0;
+    }
+    if dot(n, l) > 0.0 && cosine > 0.0 {
+        return pow(cosine, shininess);
+    }
+    return 0.0;
+}
+
+// The material's shininess, or the frame's for every material.
+fn shininess() -> f32 {
+    return select(object.specular.a, frame.shininess, frame.shininess >= 0.0);
+}
+
+// shading::blinn_phong_light: one light's diffuse and specular with the self-shadow fade.
+fn blinn_phong_light(light: Light, albedo: vec3<f32>, k_s: vec3<f32>, n_geo: vec3<f32>, n_shading: vec3<f32>, position: vec3<f32>) -> vec3<f32> {
+    let arriving = incident_light(light, position, n_geo);
+    let l = arriving.direction;
     let v = normalize_or(frame.camera_pos.xyz - position, n_geo);
-    let h = normalize_or(l + v, n_geo);
     let self_shadow = smoothstep(0.0, frame.self_shadow_fade, dot(n_geo, l));
     let n_dot_l = max(dot(n_shading, l), 0.0);
-    let n_dot_h = max(dot(n_shading, h), 0.0);
-    var specular = 0.0;
-    if n_dot_l > 0.0 && n_dot_h > 0.0 {
-        specular = pow(n_dot_h, object.specular.a);
+    let specular = specular_power(n_shading, n_geo, l, v, shininess());
+    return self_shadow * arriving.radiance * (albedo * n_dot_l + k_s * specular);
+}
+
+// shading::blinn_phong: the ambient light plus every light that is on.
+// k_s: the material's specular colour, times its gloss map where it has one.
+fn blinn_phong(albedo: vec3<f32>, k_s: vec3<f32>, n_geo: vec3<f32>, n_shading: vec3<f32>, position: vec3<f32>) -> vec3<f32> {
+    var sum = albedo * frame.ambient.rgb;
+    for (var i = 0u; i < min(frame.light_count, MAX_LIGHTS); i++) {
+        sum += blinn_phong_light(frame.lights[i], albedo, k_s, n_geo, n_shading, position);
     }
-    return albedo * frame.ambient.rgb
-        + self_shadow * frame.light_color.rgb * (albedo * n_dot_l + k_s * specular);
+    return sum;
 }
 
 fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {

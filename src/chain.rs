@@ -18,7 +18,8 @@ use glam::{Mat3, Vec3, Vec4};
 
 use crate::frame::{BumpKind, FrameParams, ShadingMode, ViewMode};
 use crate::math::{handedness, linear_to_srgb, normalize_or, orthonormalize_tangent, smoothstep};
-use crate::scene::{Material, ShadingModel};
+use crate::scene::{MAX_LIGHTS, Material, ShadingModel};
+use crate::shading::lights::incident;
 use crate::shading::pbr::{ClearcoatInputs, PbrInputs, metallic_roughness};
 use crate::shading::{
     LightingInputs, OVER_TILT_COLOR, SELF_SHADOW_FADE, blinn_phong, debug_color, decode_normal, handedness_color,
@@ -92,15 +93,11 @@ pub struct ChainValues {
     pub shading_normal: Vec3,
     /// The clear-coat layer's normal (its normal map through T, B, N; else `normal`).
     pub clearcoat_normal: Vec3,
-    /// Unit directions from the point to the light and the eye, and their half vector.
-    pub light_dir: Vec3,
+    /// Unit direction from the point to the eye.
     pub view_dir: Vec3,
-    pub half: Vec3,
-    /// `N·L` and `N·H` with the shading normal, signed (the shading uses `max(·, 0)`).
-    pub n_dot_l: f32,
-    pub n_dot_h: f32,
-    /// The geometric self-shadow fade `smoothstep(0, SELF_SHADOW_FADE, N_geo·L)`, 0..1.
-    pub self_shadow: f32,
+    /// Each of the frame's lights at the point, in the frame's order; `None` for a light
+    /// that is off and past the last light.
+    pub lights: [Option<LightTerms>; MAX_LIGHTS],
     /// Linear albedo: base colour texture times the factor.
     pub albedo: Vec3,
     /// The model the point is lit with (the frame's override, else the material's).
@@ -112,15 +109,28 @@ pub struct ChainValues {
     pub shown: Option<Vec3>,
 }
 
+/// One light at one point of the chain.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LightTerms {
+    /// Unit direction from the point to the light, and its half vector with the view direction.
+    pub direction: Vec3,
+    pub half: Vec3,
+    /// `N·L`, `N·H` and `R·V` (`R = 2(N·L)N − L`) with the shading normal, signed (the
+    /// shading uses `max(·, 0)`).
+    pub n_dot_l: f32,
+    pub n_dot_h: f32,
+    pub r_dot_v: f32,
+    /// The geometric self-shadow fade `smoothstep(0, SELF_SHADOW_FADE, N_geo·L)`, 0..1.
+    pub self_shadow: f32,
+    /// The distance attenuation (1 for a directional light) and the radiance arriving,
+    /// `color · intensity · attenuation`, linear RGB.
+    pub attenuation: f32,
+    pub radiance: Vec3,
+}
+
 /// The shading chain at one point of an instance bumped by `bump`, drawn with `material`
-/// under `frame` in a scene with `ambient` light.
-pub fn shade(
-    bump: BumpKind,
-    material: &Material,
-    ambient: Vec3,
-    point: &SurfaceSample,
-    frame: &FrameParams,
-) -> ChainValues {
+/// under `frame` (whose lights carry the ambient light).
+pub fn shade(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &FrameParams) -> ChainValues {
     let shading = &frame.shading;
     let facing = if point.front_facing { 1.0 } else { -1.0 };
     let n = normalize_or(point.world_normal, Vec3::Z) * facing;
@@ -169,9 +179,24 @@ pub fn shade(
     };
 
     let eye = frame.camera.eye();
-    let light_dir = normalize_or(frame.light.position - point.position, n);
     let view_dir = normalize_or(eye - point.position, n);
-    let half = normalize_or(light_dir + view_dir, n);
+    let mut lights = [None; MAX_LIGHTS];
+    for (terms, light) in lights.iter_mut().zip(frame.lights.as_slice()).filter(|(_, light)| light.enabled) {
+        let arriving = incident(light, point.position, n);
+        let l = arriving.direction;
+        let n_dot_l = shading_normal.dot(l);
+        let half = normalize_or(l + view_dir, n);
+        *terms = Some(LightTerms {
+            direction: l,
+            half,
+            n_dot_l,
+            n_dot_h: shading_normal.dot(half),
+            r_dot_v: (2.0 * n_dot_l * shading_normal - l).dot(view_dir),
+            self_shadow: smoothstep(0.0, SELF_SHADOW_FADE, n.dot(l)),
+            attenuation: arriving.attenuation,
+            radiance: arriving.radiance,
+        });
+    }
     let albedo = point.base_color.unwrap_or(Vec3::ONE) * material.base_color_factor.truncate();
     let shading_model = shading.shading_override.unwrap_or(material.shading_model);
     let lit_albedo = if shading.mode == ShadingMode::BumpOnly { Vec3::ONE } else { albedo };
@@ -188,10 +213,10 @@ pub fn shade(
             shading_normal,
             position: point.position,
             eye,
-            light: frame.light,
-            ambient,
+            lights: frame.lights,
             specular: material.specular * point.gloss.unwrap_or(Vec3::ONE),
-            shininess: material.shininess.max(1.0),
+            shininess: shading.shininess.unwrap_or(material.shininess).max(1.0),
+            specular_mode: shading.specular,
         }),
         (_, ShadingModel::MetallicRoughness) => {
             let metal_rough = point.metallic_roughness.unwrap_or(Vec3::ONE);
@@ -205,7 +230,7 @@ pub fn shade(
                 shading_normal,
                 position: point.position,
                 eye,
-                light: frame.light,
+                lights: frame.lights,
                 clearcoat: coat.map(|c| ClearcoatInputs {
                     factor: c.factor * point.clearcoat.unwrap_or(1.0),
                     roughness: c.roughness * point.clearcoat_roughness.unwrap_or(1.0),
@@ -239,12 +264,8 @@ pub fn shade(
         normal: n,
         shading_normal,
         clearcoat_normal,
-        light_dir,
         view_dir,
-        half,
-        n_dot_l: shading_normal.dot(light_dir),
-        n_dot_h: shading_normal.dot(half),
-        self_shadow: smoothstep(0.0, SELF_SHADOW_FADE, n.dot(light_dir)),
+        lights,
         albedo,
         shading_model,
         color_linear,

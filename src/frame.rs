@@ -4,8 +4,14 @@
 //! how an instance is bumped ([`bump_kind`]). Everything above this layer — the prepare
 //! stage, the GPU renderer, the CPU probe, the viewer state — describes a picture with these.
 
+mod lighting;
+
+pub use lighting::LightingSpace;
+
 use crate::names::Named;
-use crate::scene::{Light, MaterialOverrides, NormalSpace, OrbitCamera, PerMaterialOverrides, Scene, ShadingModel};
+use crate::scene::{
+    LightKind, Lights, MaterialOverrides, NormalSpace, OrbitCamera, PerMaterialOverrides, Scene, ShadingModel, SpecularMode,
+};
 use crate::tangent::TangentMethod;
 
 /// The bump strength's range (the slider's; typed values outside it are clamped).
@@ -140,6 +146,13 @@ pub struct ShadingSettings {
     /// Parallax mapping of normal-mapped surfaces with a height map: the technique picks a
     /// pipeline variant, layers, steps and depth are uniforms.
     pub parallax: ParallaxSettings,
+    /// The classic model's highlight: Blinn, Phong or none (a uniform).
+    pub specular: SpecularMode,
+    /// The classic model's shininess exponent for every material (`None`: each material's
+    /// own); at least 1 (a uniform).
+    pub shininess: Option<f32>,
+    /// Where the lit views light tangent-space normal-mapped surfaces (a pipeline variant).
+    pub lighting_space: LightingSpace,
 }
 
 impl Default for ShadingSettings {
@@ -155,6 +168,9 @@ impl Default for ShadingSettings {
             wireframe: false,
             tbn_glyphs: false,
             parallax: ParallaxSettings::default(),
+            specular: SpecularMode::Blinn,
+            shininess: None,
+            lighting_space: LightingSpace::World,
         }
     }
 }
@@ -271,11 +287,27 @@ impl ParallaxSettings {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FrameParams {
     pub camera: OrbitCamera,
-    pub light: Light,
+    /// The lights and the ambient light.
+    pub lights: Lights,
     pub shading: ShadingSettings,
 }
 
-/// The split view's two pictures: the same camera and light, `left` shading left of the
+impl FrameParams {
+    /// Where light `index`'s marker is drawn and dragged: a point light's position; a
+    /// directional light's half the camera distance from the camera target, towards the light.
+    pub fn marker_position(&self, index: usize) -> glam::Vec3 {
+        let light = &self.lights[index];
+        match light.kind {
+            LightKind::Point => light.position,
+            LightKind::Directional => {
+                let towards = crate::math::normalize_or(light.position, glam::Vec3::Y);
+                self.camera.target + towards * (0.5 * self.camera.distance)
+            }
+        }
+    }
+}
+
+/// The split view's two pictures: the same camera and lights, `left` shading left of the
 /// divider and `right` shading right of it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SplitFrame {
@@ -300,7 +332,7 @@ pub enum Msaa {
     /// format, else 1: screenshots, exports and the frame shown once input stops.
     #[default]
     X4,
-    /// 1 sample per pixel: frames drawn while the user drags or the light orbits.
+    /// 1 sample per pixel: frames drawn while the user drags or a light orbits.
     Off,
 }
 

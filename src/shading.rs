@@ -7,12 +7,14 @@
 //! GPU and compare against them. All vectors are world space and unit length unless stated;
 //! colours are linear RGB.
 
+pub mod lights;
 pub mod pbr;
 
 use glam::{Mat3, Vec3, Vec4};
 
 use crate::math::{handedness, normalize_or, orthonormalize_tangent, smoothstep};
-use crate::scene::{GreenAxis, Light, NormalConvention};
+use crate::scene::{GreenAxis, Light, Lights, NormalConvention, SpecularMode};
+use lights::{incident, specular_power};
 
 /// Width of the self-shadow fade in units of `N_geo · L` (a cosine): the light fades in
 /// smoothly from grazing (0) to `N_geo · L = 0.1` (about 84° from the normal).
@@ -71,7 +73,7 @@ pub fn object_space_normal(
     normalize_or(n_geo + strength * (n_map - n_geo), n_geo)
 }
 
-/// Everything Blinn-Phong needs at one surface point.
+/// Everything the classic model needs at one surface point.
 #[derive(Debug, Clone, Copy)]
 pub struct LightingInputs {
     /// Linear albedo (base colour texture × factor).
@@ -83,27 +85,34 @@ pub struct LightingInputs {
     /// Point position, metres.
     pub position: Vec3,
     pub eye: Vec3,
-    pub light: Light,
-    pub ambient: Vec3,
+    /// Every light (switched-off ones bring nothing) and the ambient light.
+    pub lights: Lights,
     /// k_s, linear: the material's specular colour times its gloss map's texel where it has one.
     pub specular: Vec3,
     pub shininess: f32,
+    pub specular_mode: SpecularMode,
 }
 
-/// Blinn-Phong with ambient, diffuse and specular, and geometric self-shadowing:
-/// `albedo·ambient + fade(N_geo·L) · light · (albedo·max(N·L, 0) + k_s·max(N·H, 0)^shininess)`,
-/// where `fade` is `smoothstep(0, SELF_SHADOW_FADE, ·)` and the specular term is zero
-/// where `N·L ≤ 0`. Degenerate directions (light or eye on the point) fall back to `N_geo`.
+/// The classic model: `albedo·ambient` plus [`blinn_phong_light`] of every light that is on.
 pub fn blinn_phong(p: &LightingInputs) -> Vec3 {
+    let lit = p.lights.as_slice().iter().filter(|light| light.enabled);
+    lit.fold(p.albedo * p.lights.ambient(), |sum, light| sum + blinn_phong_light(p, light))
+}
+
+/// What one light adds in the classic model, with geometric self-shadowing:
+/// `fade(N_geo·L) · radiance · (albedo·max(N·L, 0) + k_s·specular)`, where `fade` is
+/// `smoothstep(0, SELF_SHADOW_FADE, ·)`, the radiance and `L` come from
+/// [`lights::incident`] and the specular term from [`lights::specular_power`] in the
+/// frame's mode. Degenerate directions (light or eye on the point) fall back to `N_geo`.
+pub fn blinn_phong_light(p: &LightingInputs, light: &Light) -> Vec3 {
     let n_geo = p.geometric_normal;
-    let l = normalize_or(p.light.position - p.position, n_geo);
+    let incident = incident(light, p.position, n_geo);
+    let l = incident.direction;
     let v = normalize_or(p.eye - p.position, n_geo);
-    let h = normalize_or(l + v, n_geo);
     let self_shadow = smoothstep(0.0, SELF_SHADOW_FADE, n_geo.dot(l));
     let n_dot_l = p.shading_normal.dot(l).max(0.0);
-    let n_dot_h = p.shading_normal.dot(h).max(0.0);
-    let specular = if n_dot_l > 0.0 && n_dot_h > 0.0 { n_dot_h.powf(p.shininess) } else { 0.0 };
-    p.albedo * p.ambient + self_shadow * p.light.color * (p.albedo * n_dot_l + p.specular * specular)
+    let specular = specular_power(p.specular_mode, p.shading_normal, n_geo, l, v, p.shininess);
+    self_shadow * incident.radiance * (p.albedo * n_dot_l + p.specular * specular)
 }
 
 /// A height map's filtered texel as a height sample, 0..1 of the full range: 16 bits in red
@@ -201,10 +210,10 @@ mod tests {
             shading_normal: Vec3::Z,
             position: Vec3::ZERO,
             eye: Vec3::new(0.0, 0.0, 2.0),
-            light: Light { position: Vec3::new(0.0, 0.0, 3.0), color: Vec3::ONE },
-            ambient: Vec3::splat(0.1),
+            lights: Lights::one(Light::point(Vec3::new(0.0, 0.0, 3.0), Vec3::ONE), Vec3::splat(0.1)),
             specular: Vec3::splat(0.2),
             shininess: 16.0,
+            specular_mode: SpecularMode::Blinn,
         }
     }
 
@@ -218,7 +227,7 @@ mod tests {
     #[test]
     fn light_below_the_geometric_surface_leaves_only_ambient_even_if_bumped_towards_it() {
         let mut p = inputs();
-        p.light.position = Vec3::new(3.0, 0.0, -0.1);
+        p.lights[0].position = Vec3::new(3.0, 0.0, -0.1);
         p.shading_normal = Vec3::new(1.0, 0.0, 0.2).normalize();
         assert!((blinn_phong(&p) - p.albedo * 0.1).length() < 1e-7);
     }

@@ -45,7 +45,7 @@ fn differences(metallic: f32, roughness: f32, cpu_roughness: f32, by_override: b
                 shading_normal: Vec3::Z,
                 position,
                 eye: params.camera.eye(),
-                light: params.light,
+                lights: params.lights,
                 clearcoat: None,
             });
             let cpu = linear.map(|c| linear_to_srgb(c) * 255.0);

@@ -297,7 +297,7 @@ impl ProbeScene {
             clearcoat_roughness: coat_sample(slots.clearcoat_roughness).map(|t| t.y),
             clearcoat_normal: coat_sample(slots.clearcoat_normal),
         };
-        let chain = shade(instance.bump, material, self.scene().ambient, &surface, params);
+        let chain = shade(instance.bump, material, &surface, params);
         let march = marched.map(|(m, height)| MarchReadout {
             view_tangent: chain.tangent.zip(chain.bitangent).map(|(t, b)| {
                 Vec3::new(chain.view_dir.dot(t), chain.view_dir.dot(b), chain.view_dir.dot(chain.normal))

@@ -17,17 +17,18 @@ mod uniforms;
 
 use std::sync::Arc;
 
-use glam::Mat4;
+use bytemuck::Zeroable;
+use glam::Vec3;
 
 use crate::counters::WorkCounters;
 use crate::error::RenderError;
 use crate::frame::{FrameParams, Msaa, Parallax, SceneOptions, SceneUploads, ShadingSettings, SplitFrame, ViewMode};
 use crate::prepare::PreparedScene;
-use crate::scene::Scene;
+use crate::scene::{MAX_LIGHTS, Scene};
 use crate::tangent::TangentMethod;
 pub use gpu::Gpu;
 use pipelines::{DEPTH_FORMAT, Pass, PipelineKey, Pipelines};
-use scene_gpu::GpuScene;
+use scene_gpu::{GpuScene, MarkerUniform};
 use uniforms::FrameUniform;
 
 /// Where to draw: a view of a 2D texture of `format`, `size` pixels.
@@ -433,12 +434,16 @@ impl Renderer {
             }
         }
         let aspect = target.size[0] as f32 / target.size[1] as f32;
-        let marker_model = Mat4::from_translation(params.light.position);
+        let mut markers = [MarkerUniform::zeroed(); MAX_LIGHTS];
+        for (i, (marker, light)) in markers.iter_mut().zip(params.lights.as_slice()).enumerate() {
+            let centre = params.marker_position(i);
+            *marker = MarkerUniform { centre: centre.extend(1.0).to_array(), color: light.color.clamp(Vec3::ZERO, Vec3::ONE).extend(1.0).to_array() };
+        }
         for (half, buffer) in halves.iter().zip([&self.frame_uniform, &self.split_uniform]) {
             let scene = self.scene_in(half.scene).ok_or(RenderError::NoScene)?;
             let frame = FrameParams { shading: half.shading, ..*params };
-            self.queue.write_buffer(buffer, 0, bytemuck::bytes_of(&FrameUniform::new(&frame, scene.ambient, aspect)));
-            self.queue.write_buffer(&scene.marker.model, 0, bytemuck::bytes_of(&marker_model.to_cols_array()));
+            self.queue.write_buffer(buffer, 0, bytemuck::bytes_of(&FrameUniform::new(&frame, aspect)));
+            self.queue.write_buffer(&scene.marker.lights, 0, bytemuck::bytes_of(&markers));
         }
 
         let key = |pass| PipelineKey { pass, format: target.format, samples };
@@ -524,7 +529,9 @@ impl Renderer {
                 pass.set_bind_group(1, &marker.bind_group, &[]);
                 pass.set_vertex_buffer(0, marker.positions.slice(..));
                 pass.set_index_buffer(marker.indices.slice(..), wgpu::IndexFormat::Uint32);
-                pass.draw_indexed(0..marker.index_count, 0, 0..1);
+                for (i, _) in params.lights.as_slice().iter().enumerate().filter(|(_, light)| light.enabled) {
+                    pass.draw_indexed(0..marker.index_count, 0, i as u32..i as u32 + 1);
+                }
             }
         }
         drop(pass);

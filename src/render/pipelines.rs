@@ -94,7 +94,7 @@ impl Layouts {
             frame: layout("frame", &[bindings::FRAME]),
             plain_material: layout("plain material", &plain),
             normal_mapped_material: layout("normal-mapped material", &bindings::MATERIAL),
-            marker: layout("light marker", &[bindings::MARKER_MODEL]),
+            marker: layout("light marker", &[bindings::MARKERS]),
         }
     }
 

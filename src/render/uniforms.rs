@@ -1,13 +1,40 @@
 //! Uniform blocks, laid out exactly as the WGSL structs in `shaders/frame.wgsl` and `shaders/mesh.wgsl`.
 
 use bytemuck::{Pod, Zeroable};
-use glam::Vec3;
 
 use crate::frame::FrameParams;
 use crate::math::normal_matrix;
 use crate::prepare::PreparedInstance;
-use crate::scene::{Clearcoat, Material, Wrap};
+use crate::scene::{Clearcoat, Light, LightKind, MAX_LIGHTS, Material, Wrap};
 use crate::shading::SELF_SHADOW_FADE;
+
+/// WGSL `Light`: one light that is on.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+pub struct LightUniform {
+    /// xyz: a point light's position (w = 1) or a directional light's direction towards the
+    /// light (w = 0), world space.
+    position: [f32; 4],
+    /// rgb: colour × intensity, linear.
+    radiance: [f32; 4],
+    /// The attenuation coefficients c, l, q; unused.
+    attenuation: [f32; 4],
+}
+
+impl LightUniform {
+    fn new(light: &Light) -> Self {
+        let w = match light.kind {
+            LightKind::Point => 1.0,
+            LightKind::Directional => 0.0,
+        };
+        let [c, l, q] = light.attenuation.to_array();
+        LightUniform {
+            position: light.position.extend(w).to_array(),
+            radiance: (light.color * light.intensity).extend(1.0).to_array(),
+            attenuation: [c, l, q, 0.0],
+        }
+    }
+}
 
 /// WGSL `Frame`.
 #[repr(C)]
@@ -15,8 +42,9 @@ use crate::shading::SELF_SHADOW_FADE;
 pub struct FrameUniform {
     view_proj: [[f32; 4]; 4],
     camera_pos: [f32; 4],
-    light_pos: [f32; 4],
-    light_color: [f32; 4],
+    /// The lights that are on, in order, the first `light_count` used.
+    lights: [LightUniform; MAX_LIGHTS],
+    /// Colour × strength, linear.
     ambient: [f32; 4],
     strength: f32,
     bump_enabled: u32,
@@ -28,19 +56,29 @@ pub struct FrameUniform {
     parallax_layers_max: u32,
     parallax_steps: u32,
     parallax_depth_m: f32,
+    light_count: u32,
+    specular_mode: u32,
+    /// The shininess for every material; negative: each material's own.
+    shininess: f32,
     /// The WGSL struct's size is a multiple of 16 bytes.
-    _padding: [f32; 2],
+    _padding: [f32; 3],
 }
 
 impl FrameUniform {
-    pub fn new(params: &FrameParams, ambient: Vec3, aspect: f32) -> Self {
+    pub fn new(params: &FrameParams, aspect: f32) -> Self {
         let parallax = params.shading.parallax;
+        let mut lights = [LightUniform::zeroed(); MAX_LIGHTS];
+        let on = params.lights.as_slice().iter().filter(|light| light.enabled);
+        let mut light_count = 0;
+        for (slot, light) in lights.iter_mut().zip(on) {
+            *slot = LightUniform::new(light);
+            light_count += 1;
+        }
         FrameUniform {
             view_proj: params.camera.view_projection(aspect).to_cols_array_2d(),
             camera_pos: params.camera.eye().extend(1.0).to_array(),
-            light_pos: params.light.position.extend(1.0).to_array(),
-            light_color: params.light.color.extend(1.0).to_array(),
-            ambient: ambient.extend(1.0).to_array(),
+            lights,
+            ambient: params.lights.ambient().extend(1.0).to_array(),
             strength: params.shading.strength,
             bump_enabled: params.shading.bump_enabled as u32,
             self_shadow_fade: SELF_SHADOW_FADE,
@@ -51,7 +89,10 @@ impl FrameUniform {
             parallax_layers_max: parallax.layers_max,
             parallax_steps: parallax.steps,
             parallax_depth_m: parallax.depth_m.map_or(-1.0, |d| d.max(0.0)),
-            _padding: [0.0; 2],
+            light_count,
+            specular_mode: params.shading.specular.shader_index(),
+            shininess: params.shading.shininess.map_or(-1.0, |s| s.max(1.0)),
+            _padding: [0.0; 3],
         }
     }
 }

@@ -43,7 +43,7 @@ pub fn close_wall_params(scene: &Scene, distance: f32) -> FrameParams {
     let mut params = default_params(scene);
     params.camera =
         OrbitCamera { target: Vec3::new(0.0, 1.5, WALL_Z), yaw: 0.0, pitch: 0.0, distance, ..params.camera };
-    params.light.position = Vec3::new(0.12, 1.62, WALL_Z + 0.35);
+    params.lights[0].position = Vec3::new(0.12, 1.62, WALL_Z + 0.35);
     params
 }
 
@@ -127,7 +127,7 @@ pub fn wall_chain(scene: &Scene, params: &FrameParams, size: [u32; 2], x: u32, y
         clearcoat_roughness: None,
         clearcoat_normal: None,
     };
-    shade(BumpKind::TangentSpace, material, scene.ambient, &surface, params)
+    shade(BumpKind::TangentSpace, material, &surface, params)
 }
 
 /// A loaded scene is sane: per mesh, every position, normal, UV and supplied tangent finite,

@@ -5,6 +5,7 @@
 //! [`Action`]s; only the forms' text fields are edited in place.
 
 mod files;
+mod lights;
 mod methods;
 mod output;
 mod parallax;
@@ -37,6 +38,7 @@ pub fn show(
             slot_targets = files::show(ui, controller, &mut actions);
         });
         section(ui, "Lit picture and overlays", true, |ui| picture::show(ui, &controller.state, &mut actions));
+        section(ui, "Lights and specular", false, |ui| lights::show(ui, &controller.state, &mut actions));
         section(ui, "Parallax", false, |ui| parallax::show(ui, &controller.state, &mut actions));
         section(ui, "Tangent frames and kernels", false, |ui| {
             methods::methods(ui, &controller.state, &controller.facts().measurements, &mut actions);

@@ -127,9 +127,15 @@ fn pair_combos<T: Named>(ui: &mut egui::Ui, what: &str, pair: [T; 2], label: fn(
     (chosen != pair).then_some(chosen)
 }
 
+/// The selected light's position (a directional light's direction towards it), orbit and
+/// markers; the other settings are in the "Lights and specular" section.
 fn light(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
-    let mut position = state.light.position;
+    let selected = state.selected_light();
+    let mut position = state.lights[selected].position;
     let mut moved = false;
+    if state.lights.len() > 1 {
+        ui.weak(format!("light {} of {}", selected + 1, state.lights.len()));
+    }
     for (axis, value) in [("light X", &mut position.x), ("light Y", &mut position.y), ("light Z", &mut position.z)] {
         moved |= ui.add(egui::Slider::new(value, LIGHT_RANGE).text(axis).suffix(" m")).changed();
     }
@@ -142,7 +148,7 @@ fn light(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
             actions.push(Command::SetLightOrbit(orbit).into());
         }
         let mut marker = state.shading.show_light_marker;
-        if ui.checkbox(&mut marker, "marker").changed() {
+        if ui.checkbox(&mut marker, "markers").changed() {
             actions.push(Command::SetLightMarker(marker).into());
         }
         ui.weak("Ctrl-drag moves it");

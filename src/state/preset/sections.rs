@@ -6,7 +6,8 @@ use crate::height::Kernel;
 use crate::names::{Named, name_or_auto};
 use crate::render::Background;
 use crate::render::capture::CaptureOptions;
-use crate::scene::MaterialOverrides;
+use crate::scene::{Attenuation, Light, MaterialOverrides};
+use glam::Vec3;
 use crate::state::{SplitDifference, SplitView};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -102,17 +103,18 @@ pub struct CameraPreset {
     pub fov_y_deg: Option<f64>,
 }
 
-/// The point light; missing position and colour are the scene's default light's.
+/// The `[light]` table: orbit and markers, and (older presets) the one light's position and
+/// colour, which set the first light; missing ones are the scene's default light's.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct LightPreset {
-    /// Metres, world space.
+    /// Metres, world space (older presets; `[[lights]]` holds every light).
     pub position: Option<[f32; 3]>,
-    /// Linear RGB.
+    /// Linear RGB (older presets).
     pub color: Option<[f32; 3]>,
-    /// The light orbits the target.
+    /// The lights orbit the target.
     pub orbit: bool,
-    /// The light marker is drawn.
+    /// The light markers are drawn.
     pub marker: bool,
 }
 
@@ -120,6 +122,83 @@ impl Default for LightPreset {
     fn default() -> Self {
         let shading = ShadingSettings::default();
         LightPreset { position: None, color: None, orbit: false, marker: shading.show_light_marker }
+    }
+}
+
+/// One `[[lights]]` entry; missing keys are those of a white point light of intensity 1,
+/// on, without attenuation, at the scene's default light's position.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct LightEntryPreset {
+    /// `point` or `directional`.
+    pub kind: String,
+    /// A point light's position (metres, world space) or a directional light's direction
+    /// towards the light.
+    pub position: Option<[f32; 3]>,
+    /// Linear RGB, each at least 0.
+    pub color: [f32; 3],
+    /// At least 0.
+    pub intensity: f32,
+    pub enabled: bool,
+    /// `[c, l, q]` of `1 / (c + l·d + q·d²)`, each at least 0, not all 0.
+    pub attenuation: [f32; 3],
+}
+
+impl Default for LightEntryPreset {
+    fn default() -> Self {
+        LightEntryPreset::from(&Light::point(Vec3::ZERO, Vec3::ONE))
+    }
+}
+
+impl From<&Light> for LightEntryPreset {
+    fn from(light: &Light) -> Self {
+        LightEntryPreset {
+            kind: light.kind.name().to_owned(),
+            position: Some(light.position.to_array()),
+            color: light.color.to_array(),
+            intensity: light.intensity,
+            enabled: light.enabled,
+            attenuation: light.attenuation.to_array(),
+        }
+    }
+}
+
+impl LightEntryPreset {
+    /// The light; `index` names the entry in errors, `default_position` stands in for a
+    /// missing position.
+    pub(super) fn to_light(&self, index: usize, default_position: Vec3) -> Result<Light, PresetError> {
+        let key = |k: &str| format!("lights[{index}].{k}");
+        let kind = named(&key("kind"), &self.kind)?;
+        let position = self.position.map_or(default_position, Vec3::from_array);
+        if !position.is_finite() {
+            return Err(bad(&key("position"), &format!("{position}"), "finite numbers"));
+        }
+        let color = Vec3::from_array(self.color);
+        if !(color.is_finite() && color.min_element() >= 0.0) {
+            return Err(bad(&key("color"), &format!("{:?}", self.color), "linear RGB, each finite and at least 0"));
+        }
+        if !(self.intensity.is_finite() && self.intensity >= 0.0) {
+            return Err(bad(&key("intensity"), &self.intensity.to_string(), "a finite number, at least 0"));
+        }
+        let attenuation = Attenuation::from_array(self.attenuation)
+            .map_err(|e| bad(&key("attenuation"), &format!("{:?}", self.attenuation), &e))?;
+        Ok(Light { kind, position, color, intensity: self.intensity, enabled: self.enabled, attenuation })
+    }
+}
+
+/// The ambient light; a missing colour is the scene's.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct AmbientPreset {
+    /// Linear RGB, each at least 0.
+    pub color: Option<[f32; 3]>,
+    /// Multiplies the colour, at least 0.
+    pub strength: f32,
+}
+
+impl Default for AmbientPreset {
+    fn default() -> Self {
+        AmbientPreset { color: None, strength: 1.0 }
     }
 }
 
@@ -148,6 +227,12 @@ pub struct ShadingPreset {
     pub parallax_steps: u32,
     /// The relief's depth, metres; missing: each material's height range.
     pub parallax_depth_m: Option<f32>,
+    /// A [`SpecularMode`](crate::scene::SpecularMode) name: `blinn`, `phong` or `off`.
+    pub specular: String,
+    /// The shininess for every material (at least 1); missing: each material's own.
+    pub shininess: Option<f32>,
+    /// A [`LightingSpace`](crate::frame::LightingSpace) name: `world`, `tangent` or `view`.
+    pub lighting_space: String,
 }
 
 /// How the scene is prepared: tangents, bump source, kernel and material conventions.
@@ -217,6 +302,9 @@ impl From<&ShadingSettings> for ShadingPreset {
             parallax_layers: [s.parallax.layers_min, s.parallax.layers_max],
             parallax_steps: s.parallax.steps,
             parallax_depth_m: s.parallax.depth_m,
+            specular: s.specular.name().to_owned(),
+            shininess: s.shininess,
+            lighting_space: s.lighting_space.name().to_owned(),
         }
     }
 }

@@ -1,0 +1,37 @@
+//! In which space the lit views light a surface (seeds 000, 001, 003): the same formulas with
+//! the normal, light and view vectors taken into world, tangent or view space first.
+
+/// Where the lighting is computed. A pipeline variant of the lit views of tangent-space
+/// normal-mapped surfaces (other surfaces have no tangent frame and light in world space).
+/// Named `world`, `tangent`, `view`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "kebab-case")]
+pub enum LightingSpace {
+    /// The map's normal through the per-pixel T, B, N into world space; light and view
+    /// vectors per pixel in world space.
+    #[default]
+    World,
+    /// Seed 003: the light and view vectors taken into tangent space per vertex by the
+    /// inverse of the triangle's T, B, N (the identity where its UVs are degenerate),
+    /// interpolated unnormalised and normalised per pixel; the map's normal used as decoded.
+    Tangent,
+    /// Seed 000: the map's normal through T, B, N, then with the light and view vectors
+    /// rotated into view space by the camera's view matrix.
+    View,
+}
+
+impl LightingSpace {
+    /// A space's name for people (labels and captions).
+    pub fn label(self) -> &'static str {
+        match self {
+            LightingSpace::World => "world-space lighting",
+            LightingSpace::Tangent => "tangent-space lighting",
+            LightingSpace::View => "view-space lighting",
+        }
+    }
+
+    /// The index the `LIGHTING_SPACE` pipeline constant takes.
+    pub fn shader_index(self) -> u32 {
+        self as u32
+    }
+}
