@@ -16,14 +16,17 @@ pub mod parallax;
 
 use glam::{Mat3, Vec3, Vec4};
 
-use crate::frame::{BumpKind, FrameParams, ShadingMode, ViewMode};
+use crate::frame::{BumpKind, FrameParams, LightingSpace, ShadingMode, ViewMode};
 use crate::math::{handedness, linear_to_srgb, normalize_or, orthonormalize_tangent, smoothstep};
 use crate::scene::{MAX_LIGHTS, Material, ShadingModel};
 use crate::shading::lights::incident;
 use crate::shading::pbr::{ClearcoatInputs, PbrInputs, metallic_roughness};
+use crate::shading::spaces::{
+    TangentSpaceVectors, tangent_lighting_vectors, tangent_space_vectors, view_lighting_vectors,
+};
 use crate::shading::{
-    LightingInputs, OVER_TILT_COLOR, SELF_SHADOW_FADE, blinn_phong, debug_color, decode_normal, handedness_color,
-    object_space_normal, over_tilted, surface_gradient_normal,
+    LightingInputs, world_vectors, OVER_TILT_COLOR, SELF_SHADOW_FADE, blinn_phong, debug_color, decode_normal, handedness_color,
+    object_space_normal, over_tilted, surface_gradient_normal, tangent_space_normal,
 };
 
 /// What the fragment shader reads at one surface point.
@@ -57,6 +60,10 @@ pub struct SurfaceSample {
     pub clearcoat: Option<f32>,
     pub clearcoat_roughness: Option<f32>,
     pub clearcoat_normal: Option<Vec3>,
+    /// The tangent-space vertex stage's outputs interpolated to the point
+    /// ([`crate::shading::spaces::tangent_space_vectors`] at each corner); `None`: computed at
+    /// the point from its own frame (what interpolation gives where the frame is constant).
+    pub tangent_space: Option<TangentSpaceVectors>,
 }
 
 /// What the bump texture gives at a point.
@@ -102,6 +109,9 @@ pub struct ChainValues {
     pub albedo: Vec3,
     /// The model the point is lit with (the frame's override, else the material's).
     pub shading_model: ShadingModel,
+    /// The space the point is lit in: the frame's for the classic model on tangent-space
+    /// normal-mapped surfaces with a tangent frame, else world space.
+    pub lighting_space: LightingSpace,
     /// The lit colour in the frame's shading mode, linear RGB.
     pub color_linear: Vec3,
     /// What the frame's view stores, 0..1; `None` for the Difference and UV check views,
@@ -149,7 +159,7 @@ pub fn shade(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: 
     let decoded = texel.zip(map).map(|(texel, m)| decode_normal(texel, m.convention));
     let after_strength = decoded
         .filter(|_| bump == BumpKind::TangentSpace)
-        .map(|d| normalize_or(Vec3::new(d.x * strength, d.y * strength, d.z.max(0.0)), Vec3::Z));
+        .map(|d| tangent_space_normal(d, strength));
     let shading_normal = match (shading.bump_enabled, bump, tangent_frame, after_strength, texel, map, point.bump) {
         (true, BumpKind::TangentSpace, Some((t, b, _)), Some(nt), ..) => {
             normalize_or(t * nt.x + b * nt.y + n * nt.z, n)
@@ -171,8 +181,7 @@ pub fn shade(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: 
     let clearcoat_normal = match (shading.bump_enabled, tangent_frame, coat_map, point.clearcoat_normal) {
         (true, Some((t, b, _)), Some(map), Some(texel)) => {
             let decoded = decode_normal(texel, map.convention);
-            let s = shading.strength * map.scale;
-            let nt = normalize_or(Vec3::new(decoded.x * s, decoded.y * s, decoded.z.max(0.0)), Vec3::Z);
+            let nt = tangent_space_normal(decoded, shading.strength * map.scale);
             normalize_or(t * nt.x + b * nt.y + n * nt.z, n)
         }
         _ => n,
@@ -199,6 +208,10 @@ pub fn shade(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: 
     }
     let albedo = point.base_color.unwrap_or(Vec3::ONE) * material.base_color_factor.truncate();
     let shading_model = shading.shading_override.unwrap_or(material.shading_model);
+    let lighting_space = match (bump, tangent_frame, shading_model) {
+        (BumpKind::TangentSpace, Some(_), ShadingModel::BlinnPhong) => shading.lighting_space,
+        _ => LightingSpace::World,
+    };
     let lit_albedo = if shading.mode == ShadingMode::BumpOnly { Vec3::ONE } else { albedo };
     // Emitted light shows in the bump × colour picture only.
     let emission = match shading.mode {
@@ -207,17 +220,33 @@ pub fn shade(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: 
     };
     let lit_color = match (shading.mode, shading_model) {
         (ShadingMode::ColourOnly, _) => albedo,
-        (_, ShadingModel::BlinnPhong) => blinn_phong(&LightingInputs {
-            albedo: lit_albedo,
-            geometric_normal: n,
-            shading_normal,
-            position: point.position,
-            eye,
-            lights: frame.lights,
-            specular: material.specular * point.gloss.unwrap_or(Vec3::ONE),
-            shininess: shading.shininess.unwrap_or(material.shininess).max(1.0),
-            specular_mode: shading.specular,
-        }),
+        (_, ShadingModel::BlinnPhong) => {
+            let inputs = LightingInputs {
+                albedo: lit_albedo,
+                geometric_normal: n,
+                shading_normal,
+                position: point.position,
+                eye,
+                lights: frame.lights,
+                specular: material.specular * point.gloss.unwrap_or(Vec3::ONE),
+                shininess: shading.shininess.unwrap_or(material.shininess).max(1.0),
+                specular_mode: shading.specular,
+            };
+            let vectors = match lighting_space {
+                LightingSpace::World => world_vectors(&inputs),
+                LightingSpace::Tangent => {
+                    let own = || {
+                        let tangent = point.world_tangent.unwrap_or(Vec4::X);
+                        tangent_space_vectors(point.position, point.world_normal, tangent, frame.lights.as_slice(), eye)
+                    };
+                    let tangent_normal = if shading.bump_enabled { after_strength } else { None };
+                    let interpolated = point.tangent_space.unwrap_or_else(own);
+                    tangent_lighting_vectors(&interpolated, tangent_normal.unwrap_or(Vec3::Z))
+                }
+                LightingSpace::View => view_lighting_vectors(&world_vectors(&inputs), frame.camera.view_rotation()),
+            };
+            blinn_phong(&inputs, &vectors)
+        }
         (_, ShadingModel::MetallicRoughness) => {
             let metal_rough = point.metallic_roughness.unwrap_or(Vec3::ONE);
             let occlusion_strength = material.occlusion.as_ref().map_or(0.0, |o| o.strength);
@@ -268,6 +297,7 @@ pub fn shade(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: 
         lights,
         albedo,
         shading_model,
+        lighting_space,
         color_linear,
         shown,
     }

@@ -9,11 +9,12 @@
 
 pub mod lights;
 pub mod pbr;
+pub mod spaces;
 
 use glam::{Mat3, Vec3, Vec4};
 
 use crate::math::{handedness, normalize_or, orthonormalize_tangent, smoothstep};
-use crate::scene::{GreenAxis, Light, Lights, NormalConvention, SpecularMode};
+use crate::scene::{GreenAxis, Lights, MAX_LIGHTS, NormalConvention, SpecularMode};
 use lights::{incident, specular_power};
 
 /// Width of the self-shadow fade in units of `N_geo · L` (a cosine): the light fades in
@@ -36,6 +37,12 @@ pub fn decode_normal(texel_rgb: Vec3, convention: NormalConvention) -> Vec3 {
     normalize_or(v, Vec3::Z)
 }
 
+/// A decoded tangent-space normal after strength `s`: `normalize(x·s, y·s, max(z, 0))` (a
+/// tangent-space normal never points into the surface).
+pub fn tangent_space_normal(decoded: Vec3, strength: f32) -> Vec3 {
+    normalize_or(Vec3::new(decoded.x * strength, decoded.y * strength, decoded.z.max(0.0)), Vec3::Z)
+}
+
 /// The normal after a tangent-space normal map: decode the texel ([`decode_normal`]), clamp
 /// `z ≥ 0` (a tangent-space normal never points into the surface), scale by `(s, s, 1)`,
 /// normalise, take it from tangent to world space with `T` (Gram-Schmidt against `n_geo`)
@@ -47,9 +54,7 @@ pub fn perturbed_normal(
     strength: f32,
     convention: NormalConvention,
 ) -> Vec3 {
-    let decoded = decode_normal(texel_rgb, convention);
-    let scaled = Vec3::new(decoded.x * strength, decoded.y * strength, decoded.z.max(0.0));
-    let n_tangent = normalize_or(scaled, Vec3::Z);
+    let n_tangent = tangent_space_normal(decode_normal(texel_rgb, convention), strength);
     let t = orthonormalize_tangent(tangent.truncate(), n_geo);
     let b = handedness(tangent) * n_geo.cross(t);
     normalize_or(t * n_tangent.x + b * n_tangent.y + n_geo * n_tangent.z, n_geo)
@@ -93,26 +98,55 @@ pub struct LightingInputs {
     pub specular_mode: SpecularMode,
 }
 
-/// The classic model: `albedo·ambient` plus [`blinn_phong_light`] of every light that is on.
-pub fn blinn_phong(p: &LightingInputs) -> Vec3 {
-    let lit = p.lights.as_slice().iter().filter(|light| light.enabled);
-    lit.fold(p.albedo * p.lights.ambient(), |sum, light| sum + blinn_phong_light(p, light))
+/// The unit vectors the classic model lights with at one point, all in one lighting space
+/// ([`spaces`]): world space ([`world_vectors`]), tangent space or view space.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LightingVectors {
+    pub geometric_normal: Vec3,
+    pub shading_normal: Vec3,
+    /// Towards the eye.
+    pub view: Vec3,
+    /// Towards each light, by the frame's light index (lights that are off: unused).
+    pub lights: [Vec3; MAX_LIGHTS],
 }
 
-/// What one light adds in the classic model, with geometric self-shadowing:
-/// `fade(N_geo·L) · radiance · (albedo·max(N·L, 0) + k_s·specular)`, where `fade` is
-/// `smoothstep(0, SELF_SHADOW_FADE, ·)`, the radiance and `L` come from
-/// [`lights::incident`] and the specular term from [`lights::specular_power`] in the
-/// frame's mode. Degenerate directions (light or eye on the point) fall back to `N_geo`.
-pub fn blinn_phong_light(p: &LightingInputs, light: &Light) -> Vec3 {
+/// The world-space vectors of `p`: its normals, and the directions to the eye and to each
+/// light ([`lights::incident`]); degenerate directions fall back to `N_geo`.
+pub fn world_vectors(p: &LightingInputs) -> LightingVectors {
     let n_geo = p.geometric_normal;
-    let incident = incident(light, p.position, n_geo);
-    let l = incident.direction;
-    let v = normalize_or(p.eye - p.position, n_geo);
+    let mut lights = [n_geo; MAX_LIGHTS];
+    for (l, light) in lights.iter_mut().zip(p.lights.as_slice()) {
+        *l = incident(light, p.position, n_geo).direction;
+    }
+    LightingVectors {
+        geometric_normal: n_geo,
+        shading_normal: p.shading_normal,
+        view: normalize_or(p.eye - p.position, n_geo),
+        lights,
+    }
+}
+
+/// The classic model with the vectors of one lighting space: `albedo·ambient` plus
+/// [`light_term`] of every light that is on, each bringing its radiance
+/// ([`lights::incident`], attenuated by its world-space distance).
+pub fn blinn_phong(p: &LightingInputs, space: &LightingVectors) -> Vec3 {
+    let mut sum = p.albedo * p.lights.ambient();
+    for (l, light) in space.lights.iter().zip(p.lights.as_slice()).filter(|(_, light)| light.enabled) {
+        sum += light_term(p, space, *l, incident(light, p.position, p.geometric_normal).radiance);
+    }
+    sum
+}
+
+/// What one light adds in the classic model from unit direction `l` with `radiance`, with
+/// geometric self-shadowing: `fade(N_geo·L) · radiance · (albedo·max(N·L, 0) + k_s·specular)`,
+/// where `fade` is `smoothstep(0, SELF_SHADOW_FADE, ·)` and the specular term comes from
+/// [`lights::specular_power`] in the frame's mode; every vector from `space`.
+pub fn light_term(p: &LightingInputs, space: &LightingVectors, l: Vec3, radiance: Vec3) -> Vec3 {
+    let (n_geo, n) = (space.geometric_normal, space.shading_normal);
     let self_shadow = smoothstep(0.0, SELF_SHADOW_FADE, n_geo.dot(l));
-    let n_dot_l = p.shading_normal.dot(l).max(0.0);
-    let specular = specular_power(p.specular_mode, p.shading_normal, n_geo, l, v, p.shininess);
-    self_shadow * incident.radiance * (p.albedo * n_dot_l + p.specular * specular)
+    let n_dot_l = n.dot(l).max(0.0);
+    let specular = specular_power(p.specular_mode, n, n_geo, l, space.view, p.shininess);
+    self_shadow * radiance * (p.albedo * n_dot_l + p.specular * specular)
 }
 
 /// A height map's filtered texel as a height sample, 0..1 of the full range: 16 bits in red
@@ -198,7 +232,7 @@ pub fn debug_color(v: Vec3) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::NormalSpace;
+    use crate::scene::{Light, NormalSpace};
 
     const GL: NormalConvention =
         NormalConvention { green: GreenAxis::OpenGl, two_channel: false, space: NormalSpace::Tangent };
@@ -221,7 +255,7 @@ mod tests {
     fn head_on_light_gives_ambient_plus_full_diffuse_and_specular() {
         let p = inputs();
         let expected = p.albedo * 0.1 + p.albedo + Vec3::splat(0.2);
-        assert!((blinn_phong(&p) - expected).length() < 1e-6);
+        assert!((blinn_phong(&p, &world_vectors(&p)) - expected).length() < 1e-6);
     }
 
     #[test]
@@ -229,7 +263,7 @@ mod tests {
         let mut p = inputs();
         p.lights[0].position = Vec3::new(3.0, 0.0, -0.1);
         p.shading_normal = Vec3::new(1.0, 0.0, 0.2).normalize();
-        assert!((blinn_phong(&p) - p.albedo * 0.1).length() < 1e-7);
+        assert!((blinn_phong(&p, &world_vectors(&p)) - p.albedo * 0.1).length() < 1e-7);
     }
 
     #[test]

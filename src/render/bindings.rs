@@ -119,7 +119,7 @@ mod tests {
 
     use super::*;
     use crate::frame::{MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Parallax};
-    use crate::frame::{ShadingMode, ViewMode};
+    use crate::frame::{LightingSpace, ShadingMode, ViewMode};
     use crate::names::Named;
     use crate::render::pipelines::{MARKER_WGSL, MESH_WGSL};
     use crate::render::uniforms::{
@@ -205,6 +205,9 @@ mod tests {
         expected.insert("PARALLAX_CLAMP_U".into(), PARALLAX_CLAMP_U);
         expected.insert("PARALLAX_CLAMP_V".into(), PARALLAX_CLAMP_V);
         expected.insert("MAX_LIGHTS".into(), crate::scene::MAX_LIGHTS as u32);
+        for space in LightingSpace::all().iter().copied().filter(|&s| s != LightingSpace::default()) {
+            expected.insert(constant_name("LIGHTING_", space.name()), space.shader_index());
+        }
         for mode in SpecularMode::all().iter().copied().filter(|&m| m != SpecularMode::default()) {
             expected.insert(constant_name("SPECULAR_", mode.name()), mode.shader_index());
         }
@@ -220,6 +223,7 @@ mod tests {
             ("GRAZING_N_DOT_V", crate::chain::parallax::GRAZING_N_DOT_V),
             ("MIN_ATTENUATION_DENOMINATOR", crate::shading::lights::MIN_ATTENUATION_DENOMINATOR),
             ("MAX_LIGHT_DISTANCE_M", crate::shading::lights::MAX_LIGHT_DISTANCE_M),
+            ("MIN_TBN_DETERMINANT", crate::shading::spaces::MIN_TBN_DETERMINANT),
         ] {
             let constant = module.constants.iter().map(|(_, c)| c).find(|c| c.name.as_deref() == Some(name));
             let value = constant.map(|c| &module.global_expressions[c.init]);

@@ -22,9 +22,9 @@ use glam::Vec3;
 
 use crate::counters::WorkCounters;
 use crate::error::RenderError;
-use crate::frame::{FrameParams, Msaa, Parallax, SceneOptions, SceneUploads, ShadingSettings, SplitFrame, ViewMode};
-use crate::prepare::PreparedScene;
-use crate::scene::{MAX_LIGHTS, Scene};
+use crate::frame::{FrameParams, LightingSpace, Msaa, Parallax, SceneOptions, SceneUploads, ShadingSettings, SplitFrame, ViewMode};
+use crate::prepare::{PreparedScene, Variant};
+use crate::scene::{MAX_LIGHTS, Scene, ShadingModel};
 use crate::tangent::TangentMethod;
 pub use gpu::Gpu;
 use pipelines::{DEPTH_FORMAT, Pass, PipelineKey, Pipelines};
@@ -613,5 +613,10 @@ fn drawn_pass(instance: &scene_gpu::GpuInstance, scene: &GpuScene, shading: &Sha
     }
     let lighting = shading.view.is_lit().then(|| shading.shading_override.unwrap_or(instance.shading_model));
     let parallax = if instance.parallax_height { shading.parallax.technique } else { Parallax::Off };
-    Pass::Mesh { variant, cull_back_faces, mirrored, view: shading.view, lighting, parallax }
+    // As chain::shade decides: the classic model on tangent-space normal-mapped surfaces.
+    let lighting_space = match (variant, lighting) {
+        (Variant::NormalMapped, Some(ShadingModel::BlinnPhong)) => shading.lighting_space,
+        _ => LightingSpace::World,
+    };
+    Pass::Mesh { variant, cull_back_faces, mirrored, view: shading.view, lighting, parallax, lighting_space }
 }

@@ -7,7 +7,7 @@ use std::collections::HashMap;
 
 use super::bindings;
 use crate::counters::WorkCounters;
-use crate::frame::{Parallax, ViewMode};
+use crate::frame::{LightingSpace, Parallax, ViewMode};
 use crate::prepare::Variant;
 use crate::scene::ShadingModel;
 
@@ -45,6 +45,10 @@ pub enum Pass {
         /// The parallax technique (the `PARALLAX` constant); [`Parallax::Off`] for instances
         /// without a height map bound for it.
         parallax: Parallax,
+        /// The classic model's lighting space (the `LIGHTING_SPACE` constant; tangent space
+        /// adds its own vertex stage); [`LightingSpace::World`] except for normal-mapped
+        /// variants in lit views with the classic model.
+        lighting_space: LightingSpace,
     },
     /// The Difference view of a mesh with a tangent stream: it adds the reference stream
     /// and binds the same group-1 layout as `variant`.
@@ -188,8 +192,11 @@ impl Pipelines {
         };
         let (module, group1, vs, fs, buffers, cull_mode, constants): (_, _, _, _, &[_], _, Vec<(&str, f64)>) =
             match key.pass {
-                Pass::Mesh { variant, cull_back_faces, view, lighting, parallax, .. } => {
+                Pass::Mesh { variant, cull_back_faces, view, lighting, parallax, lighting_space, .. } => {
                     let (vs, fs, buffers): (_, _, &[_]) = match variant {
+                        Variant::NormalMapped if lighting_space == LightingSpace::Tangent => {
+                            ("vs_tangent_space", "fs_normal_mapped_tangent_space", &[POSITION, NORMAL, UV, TANGENT])
+                        }
                         Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
                         Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
                         Variant::NormalMapped => ("vs_tangent", "fs_normal_mapped", &[POSITION, NORMAL, UV, TANGENT]),
@@ -201,6 +208,9 @@ impl Pipelines {
                     constants.extend(lighting.map(|model| ("SHADING_MODEL", f64::from(model.shader_index()))));
                     if parallax != Parallax::Off {
                         constants.push(("PARALLAX", f64::from(parallax.shader_index())));
+                    }
+                    if lighting_space != LightingSpace::World {
+                        constants.push(("LIGHTING_SPACE", f64::from(lighting_space.shader_index())));
                     }
                     (&self.mesh_module, self.layouts.material(variant), vs, fs, buffers, cull, constants)
                 }
@@ -308,6 +318,8 @@ mod tests {
                     "fs_plain",
                     "fs_tangent",
                     "fs_normal_mapped",
+                    "vs_tangent_space",
+                    "fs_normal_mapped_tangent_space",
                     "fs_object_space",
                     "fs_height_bump",
                     "vs_difference",
@@ -333,6 +345,6 @@ mod tests {
         }
         let mesh = naga::front::wgsl::parse_str(MESH_WGSL).expect("parsed above");
         let overrides: Vec<_> = mesh.overrides.iter().filter_map(|(_, o)| o.name.as_deref()).collect();
-        assert_eq!(overrides, ["PARALLAX", "TARGET_ENCODES_SRGB", "VIEW", "SHADING_MODEL"]);
+        assert_eq!(overrides, ["PARALLAX", "TARGET_ENCODES_SRGB", "VIEW", "SHADING_MODEL", "LIGHTING_SPACE"]);
     }
 }
