@@ -11,6 +11,7 @@ mod csv;
 mod markdown;
 pub mod measure;
 pub mod roundtrip;
+pub mod spaces;
 pub mod stiff;
 pub mod surfaces;
 pub mod timing;
@@ -258,6 +259,7 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
         stability: &stiff::stability_rows(),
         round_trips: &round_trips,
         agreements: &agreements,
+        lighting_spaces: &spaces::space_rows(&crate::scene::builtin::teaching_scene()),
     };
     let files = [
         (MARKDOWN, markdown::render(&page).into_bytes()),
