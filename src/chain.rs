@@ -25,8 +25,8 @@ use crate::shading::spaces::{
     TangentSpaceVectors, tangent_lighting_vectors, tangent_space_vectors, view_lighting_vectors,
 };
 use crate::shading::{
-    LightingInputs, world_vectors, OVER_TILT_COLOR, SELF_SHADOW_FADE, blinn_phong, debug_color, decode_normal, handedness_color,
-    object_space_normal, over_tilted, surface_gradient_normal, tangent_space_normal,
+    LightingInputs, OVER_TILT_COLOR, SELF_SHADOW_FADE, blinn_phong, debug_color, decode_normal, handedness_color,
+    object_space_normal, over_tilted, surface_gradient_normal, tangent_space_normal, world_vectors,
 };
 
 /// What the fragment shader reads at one surface point.
@@ -157,9 +157,7 @@ pub fn shade(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: 
         _ => None,
     };
     let decoded = texel.zip(map).map(|(texel, m)| decode_normal(texel, m.convention));
-    let after_strength = decoded
-        .filter(|_| bump == BumpKind::TangentSpace)
-        .map(|d| tangent_space_normal(d, strength));
+    let after_strength = decoded.filter(|_| bump == BumpKind::TangentSpace).map(|d| tangent_space_normal(d, strength));
     let shading_normal = match (shading.bump_enabled, bump, tangent_frame, after_strength, texel, map, point.bump) {
         (true, BumpKind::TangentSpace, Some((t, b, _)), Some(nt), ..) => {
             normalize_or(t * nt.x + b * nt.y + n * nt.z, n)

@@ -10,7 +10,8 @@ pub use lighting::LightingSpace;
 
 use crate::names::Named;
 use crate::scene::{
-    LightKind, Lights, MaterialOverrides, NormalSpace, OrbitCamera, PerMaterialOverrides, Scene, ShadingModel, SpecularMode,
+    LightKind, Lights, MaterialOverrides, NormalSpace, OrbitCamera, PerMaterialOverrides, Scene, ShadingModel,
+    SpecularMode,
 };
 use crate::tangent::TangentMethod;
 

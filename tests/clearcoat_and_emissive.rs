@@ -105,7 +105,10 @@ fn a_coat_is_the_dimmed_base_plus_a_black_dielectric() {
             shading_normal: n,
             position: Vec3::ZERO,
             eye: Vec3::new(t.cos() * 2.0, 1.0 + (t * 0.5).sin(), t.sin() * 2.0),
-            lights: Lights::one(Light::point(Vec3::new(-1.0, 2.0, (t * 0.9).cos()), Vec3::new(1.0, 0.9, 0.8)), Vec3::ZERO),
+            lights: Lights::one(
+                Light::point(Vec3::new(-1.0, 2.0, (t * 0.9).cos()), Vec3::new(1.0, 0.9, 0.8)),
+                Vec3::ZERO,
+            ),
             clearcoat: None,
         };
         let factor = (t * 0.13).fract();

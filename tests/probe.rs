@@ -101,7 +101,11 @@ fn moving_the_light_changes_n_dot_l_at_the_pinned_point() {
     assert_eq!(before.position, after.position);
     assert_eq!(before.chain.shading_normal, after.chain.shading_normal);
     let expected = after.chain.shading_normal.dot((params.lights[0].position - after.position).normalize());
-    assert!((after.chain.lights[0].unwrap().n_dot_l - expected).abs() < 1e-6, "{} vs {expected}", after.chain.lights[0].unwrap().n_dot_l);
+    assert!(
+        (after.chain.lights[0].unwrap().n_dot_l - expected).abs() < 1e-6,
+        "{} vs {expected}",
+        after.chain.lights[0].unwrap().n_dot_l
+    );
     assert!(
         (after.chain.lights[0].unwrap().n_dot_l - before.chain.lights[0].unwrap().n_dot_l).abs() > 0.05,
         "{} vs {}",

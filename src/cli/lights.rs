@@ -29,9 +29,13 @@ pub fn parse_light(text: &str) -> Result<LightSpec, String> {
     }
     let intensity = match parts.next() {
         None => None,
-        Some(i) => Some(i.trim().parse::<f32>().ok().filter(|i| i.is_finite() && *i >= 0.0).ok_or_else(|| {
-            format!("{text:?}: intensity {i:?} must be a finite number, at least 0")
-        })?),
+        Some(i) => Some(
+            i.trim()
+                .parse::<f32>()
+                .ok()
+                .filter(|i| i.is_finite() && *i >= 0.0)
+                .ok_or_else(|| format!("{text:?}: intensity {i:?} must be a finite number, at least 0"))?,
+        ),
     };
     if parts.next().is_some() {
         return Err(format!("{text:?}: expected X,Y,Z[:R,G,B[:INTENSITY]]"));

@@ -94,8 +94,8 @@ pub struct RenderArgs {
     glyphs: bool,
     /// Split view, left │ right, as one image: bump (off │ on), view (lit │ shading-normal),
     /// strength (1 │ 3), mode (colour-only │ bump-colour), tangents (per-face │ mikktspace),
-    /// convention (opengl │ directx), bump-source (normal-map │ height-in-shader) or parallax
-    /// (steep │ occlusion)
+    /// convention (opengl │ directx), bump-source (normal-map │ height-in-shader), parallax
+    /// (steep │ occlusion) or lighting-space (world │ tangent)
     /// [default: the preset's].
     #[arg(long, value_name = "KIND", value_parser = args::named::<SplitDifference>(), conflicts_with = "tiles")]
     split: Option<SplitDifference>,

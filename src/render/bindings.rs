@@ -118,8 +118,8 @@ mod tests {
     use wgpu::naga;
 
     use super::*;
-    use crate::frame::{MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Parallax};
     use crate::frame::{LightingSpace, ShadingMode, ViewMode};
+    use crate::frame::{MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Parallax};
     use crate::names::Named;
     use crate::render::pipelines::{MARKER_WGSL, MESH_WGSL};
     use crate::render::uniforms::{

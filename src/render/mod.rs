@@ -22,7 +22,9 @@ use glam::Vec3;
 
 use crate::counters::WorkCounters;
 use crate::error::RenderError;
-use crate::frame::{FrameParams, LightingSpace, Msaa, Parallax, SceneOptions, SceneUploads, ShadingSettings, SplitFrame, ViewMode};
+use crate::frame::{
+    FrameParams, LightingSpace, Msaa, Parallax, SceneOptions, SceneUploads, ShadingSettings, SplitFrame, ViewMode,
+};
 use crate::prepare::{PreparedScene, Variant};
 use crate::scene::{MAX_LIGHTS, Scene, ShadingModel};
 use crate::tangent::TangentMethod;
@@ -437,7 +439,10 @@ impl Renderer {
         let mut markers = [MarkerUniform::zeroed(); MAX_LIGHTS];
         for (i, (marker, light)) in markers.iter_mut().zip(params.lights.as_slice()).enumerate() {
             let centre = params.marker_position(i);
-            *marker = MarkerUniform { centre: centre.extend(1.0).to_array(), color: light.color.clamp(Vec3::ZERO, Vec3::ONE).extend(1.0).to_array() };
+            *marker = MarkerUniform {
+                centre: centre.extend(1.0).to_array(),
+                color: light.color.clamp(Vec3::ZERO, Vec3::ONE).extend(1.0).to_array(),
+            };
         }
         for (half, buffer) in halves.iter().zip([&self.frame_uniform, &self.split_uniform]) {
             let scene = self.scene_in(half.scene).ok_or(RenderError::NoScene)?;

@@ -50,7 +50,8 @@ pub fn space_rows(scene: &Scene) -> Vec<SpaceRow> {
         let texture = &scene.textures[map.texture];
         let (model, normals) = (instance.transform, normal_matrix(instance.transform));
         let mirror = if instance.mirrored() { -1.0 } else { 1.0 };
-        let world_tangent = |i: usize| model.transform_vector3(frames.tangents[i].truncate()).extend(frames.tangents[i].w * mirror);
+        let world_tangent =
+            |i: usize| model.transform_vector3(frames.tangents[i].truncate()).extend(frames.tangents[i].w * mirror);
         let corner = |i: usize| {
             let position = model.transform_point3(mesh.positions[i]);
             let normal = normals.transform_vector3(mesh.normals[i]);
@@ -69,10 +70,8 @@ pub fn space_rows(scene: &Scene) -> Vec<SpaceRow> {
                 let normal = mix3(&|k| corners[k].1);
                 let tangent = corners.iter().zip(weights).fold(Vec4::ZERO, |sum, (c, w)| sum + c.2 * w);
                 let uv = corners.iter().zip(weights).fold(Vec2::ZERO, |sum, (c, w)| sum + c.3 * w);
-                let texel = texture.texel(
-                    (uv.x * texture.width as f32).floor() as i64,
-                    (uv.y * texture.height as f32).floor() as i64,
-                );
+                let texel = texture
+                    .texel((uv.x * texture.width as f32).floor() as i64, (uv.y * texture.height as f32).floor() as i64);
                 let interpolated = TangentSpaceVectors::weighted([&vectors[0], &vectors[1], &vectors[2]], w);
                 let point = SurfaceSample {
                     position,
@@ -81,7 +80,9 @@ pub fn space_rows(scene: &Scene) -> Vec<SpaceRow> {
                     world_tangent: Some(tangent),
                     normal_matrix: glam::Mat3::from_mat4(normals),
                     base_color: None,
-                    bump: Some(BumpSample::NormalMap(Vec3::new(texel[0] as f32, texel[1] as f32, texel[2] as f32) / 255.0)),
+                    bump: Some(BumpSample::NormalMap(
+                        Vec3::new(texel[0] as f32, texel[1] as f32, texel[2] as f32) / 255.0,
+                    )),
                     metallic_roughness: None,
                     occlusion: None,
                     gloss: None,
@@ -92,7 +93,8 @@ pub fn space_rows(scene: &Scene) -> Vec<SpaceRow> {
                     tangent_space: Some(interpolated),
                 };
                 let shaded = |space: LightingSpace| {
-                    let frame = FrameParams { shading: ShadingSettings { lighting_space: space, ..params.shading }, ..params };
+                    let frame =
+                        FrameParams { shading: ShadingSettings { lighting_space: space, ..params.shading }, ..params };
                     shade(instance.bump, material, &point, &frame)
                 };
                 let world = shaded(LightingSpace::World);

@@ -77,14 +77,7 @@ pub struct Light {
 impl Light {
     /// A point light at `position` of `color`, intensity 1, on, without attenuation.
     pub fn point(position: Vec3, color: Vec3) -> Light {
-        Light {
-            kind: LightKind::Point,
-            position,
-            color,
-            intensity: 1.0,
-            enabled: true,
-            attenuation: Attenuation::NONE,
-        }
+        Light { kind: LightKind::Point, position, color, intensity: 1.0, enabled: true, attenuation: Attenuation::NONE }
     }
 
     /// A directional light from `towards_light` (world space, pointing at the light).

@@ -81,7 +81,10 @@ mod tests {
         let mut light = Light::directional(Vec3::new(0.0, 2.0, 0.0), Vec3::ONE);
         light.attenuation = Attenuation { constant: 0.0, linear: 0.0, quadratic: 9.0 };
         for p in [Vec3::ZERO, Vec3::new(5.0, -3.0, 2.0)] {
-            assert_eq!(incident(&light, p, Vec3::Z), Incident { direction: Vec3::Y, attenuation: 1.0, radiance: Vec3::ONE });
+            assert_eq!(
+                incident(&light, p, Vec3::Z),
+                Incident { direction: Vec3::Y, attenuation: 1.0, radiance: Vec3::ONE }
+            );
         }
     }
 

@@ -37,11 +37,9 @@ impl TangentSpaceVectors {
     /// the rasteriser interpolates vertex outputs (perspective-correct: weights in world space).
     pub fn weighted(corners: [&TangentSpaceVectors; 3], weights: Vec3) -> TangentSpaceVectors {
         let w = weights.to_array();
-        let mix = |f: &dyn Fn(&TangentSpaceVectors) -> Vec3| (0..3).fold(Vec3::ZERO, |sum, i| sum + f(corners[i]) * w[i]);
-        TangentSpaceVectors {
-            view: mix(&|c| c.view),
-            lights: std::array::from_fn(|l| mix(&|c| c.lights[l])),
-        }
+        let mix =
+            |f: &dyn Fn(&TangentSpaceVectors) -> Vec3| (0..3).fold(Vec3::ZERO, |sum, i| sum + f(corners[i]) * w[i]);
+        TangentSpaceVectors { view: mix(&|c| c.view), lights: std::array::from_fn(|l| mix(&|c| c.lights[l])) }
     }
 }
 

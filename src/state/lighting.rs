@@ -16,13 +16,19 @@ pub enum LightCommand {
     Select(usize),
     /// Replaces light `index`, or appends it when `index` is the number of lights (ignored
     /// past that, when [`MAX_LIGHTS`] are there, or with a non-finite or negative value).
-    Set { index: usize, light: Light },
+    Set {
+        index: usize,
+        light: Light,
+    },
     /// Removes light `index`; the last light stays.
     Remove(usize),
     /// Keeps the first `count` lights (at least one).
     Truncate(usize),
     /// The ambient light: linear RGB colour and a strength multiplying it (each at least 0).
-    SetAmbient { color: Vec3, strength: f32 },
+    SetAmbient {
+        color: Vec3,
+        strength: f32,
+    },
     SetSpecular(SpecularMode),
     /// The shininess for every material (`None`: each material's own), at least 1.
     SetShininess(Option<f32>),

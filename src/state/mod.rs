@@ -114,6 +114,8 @@ pub enum Command {
     SetSplitBumpSources([BumpSource; 2]),
     /// The two techniques of [`SplitDifference::Parallax`].
     SetSplitParallax([Parallax; 2]),
+    /// The two spaces of [`SplitDifference::LightingSpace`].
+    SetSplitLightingSpaces([crate::frame::LightingSpace; 2]),
     /// The parallax technique (a uniform).
     SetParallax(Parallax),
     /// The search's layers `[min, max]`, each clamped to 1..=[`MAX_PARALLAX_LAYERS`].
@@ -301,6 +303,7 @@ impl ViewerState {
             Command::SetSplitConventions(conventions) => self.split.conventions = conventions,
             Command::SetSplitBumpSources(sources) => self.split.bump_sources = sources,
             Command::SetSplitParallax(techniques) => self.split.parallax = techniques,
+            Command::SetSplitLightingSpaces(spaces) => self.split.lighting_spaces = spaces,
             Command::Lighting(command) => self.apply_lighting(command),
         }
     }

@@ -1,7 +1,7 @@
 //! The top of the panel, always in sight: bump on/off and strength, the view, the split view
 //! and the light.
 
-use bumpview::frame::{BumpSource, Parallax, STRENGTH_RANGE, ShadingMode, ViewMode};
+use bumpview::frame::{BumpSource, LightingSpace, Parallax, STRENGTH_RANGE, ShadingMode, ViewMode};
 use bumpview::names::Named;
 use bumpview::scene::GreenAxis;
 use bumpview::shading::OVER_TILT_LIMIT_DEG;
@@ -102,6 +102,10 @@ fn split(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
         }
         SplitDifference::BumpSource => {
             pair_combos(ui, "bump source", split.bump_sources, BumpSource::label).map(Command::SetSplitBumpSources)
+        }
+        SplitDifference::LightingSpace => {
+            pair_combos(ui, "lighting space", split.lighting_spaces, LightingSpace::label)
+                .map(Command::SetSplitLightingSpaces)
         }
         SplitDifference::Parallax => {
             pair_combos(ui, "parallax", split.parallax, Parallax::label).map(Command::SetSplitParallax)

@@ -320,10 +320,10 @@ fn degrees(radians: f32) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::frame::LightingSpace;
     use crate::frame::{BumpSource, ShadingMode, ViewMode};
     use crate::height::Border;
     use crate::scene::builtin::teaching_scene;
-    use crate::frame::LightingSpace;
     use crate::scene::{GreenAxis, MaterialOverrides, ShadingModel, SpecularMode};
     use crate::state::{Command, LightCommand};
     use crate::tangent::TangentMethod;

@@ -7,8 +7,8 @@ use crate::names::{Named, name_or_auto};
 use crate::render::Background;
 use crate::render::capture::CaptureOptions;
 use crate::scene::{Attenuation, Light, MaterialOverrides};
-use glam::Vec3;
 use crate::state::{SplitDifference, SplitView};
+use glam::Vec3;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -20,7 +20,7 @@ use super::*;
 pub struct SplitPreset {
     pub enabled: bool,
     /// A [`SplitDifference`] name: `bump`, `view`, `strength`, `mode`, `tangents`,
-    /// `convention` or `bump-source`.
+    /// `convention`, `bump-source`, `parallax` or `lighting-space`.
     pub difference: String,
     /// The divider, a fraction of the width (0..1).
     pub divider: f32,
@@ -37,6 +37,8 @@ pub struct SplitPreset {
     pub bump_sources: [String; 2],
     /// [`Parallax`](crate::frame::Parallax) technique names, left and right.
     pub parallax: [String; 2],
+    /// [`LightingSpace`](crate::frame::LightingSpace) names, left and right.
+    pub lighting_spaces: [String; 2],
 }
 
 impl Default for SplitPreset {
@@ -58,6 +60,7 @@ impl From<&SplitView> for SplitPreset {
             conventions: names(s.conventions),
             bump_sources: names(s.bump_sources),
             parallax: names(s.parallax),
+            lighting_spaces: names(s.lighting_spaces),
         }
     }
 }
@@ -83,6 +86,7 @@ impl SplitPreset {
             conventions: named_pair("split.conventions", &self.conventions)?,
             bump_sources: named_pair("split.bump_sources", &self.bump_sources)?,
             parallax: named_pair("split.parallax", &self.parallax)?,
+            lighting_spaces: named_pair("split.lighting_spaces", &self.lighting_spaces)?,
         })
     }
 }
