@@ -17,7 +17,8 @@
 //   vs_wireframe + fs_wireframe   the wireframe overlay (a second pass, PolygonMode::Line)
 //   vs_glyph + fs_glyph           T/B/N glyphs at vertices (a line list, src/render/glyphs.rs)
 //
-// Prepended at build time: frame.wgsl (the Frame uniform, group 0), pbr.wgsl and parallax.wgsl.
+// Prepended at build time: frame.wgsl (the Frame uniform, group 0), pbr.wgsl, parallax.wgsl and
+// lights.wgsl (the lights, the classic model's lighting spaces and their vertex stage).
 
 struct Object {
     model: mat4x4<f32>,
@@ -185,112 +186,6 @@ fn tangent_space_normal(texel: vec3<f32>, strength: f32, flags: u32) -> vec3<f32
 fn perturbed_normal(n: vec3<f32>, frame_tb: TangentFrame, texel: vec3<f32>, strength: f32, flags: u32) -> vec3<f32> {
     let nt = tangent_space_normal(texel, strength, flags);
     return normalize_or(frame_tb.t * nt.x + frame_tb.b * nt.y + n * nt.z, n);
-}
-
-// ---- lights (src/shading/lights.rs) ----
-
-const MIN_ATTENUATION_DENOMINATOR: f32 = 1e-6; // lights::MIN_ATTENUATION_DENOMINATOR
-const MAX_LIGHT_DISTANCE_M: f32 = 1e15;         // lights::MAX_LIGHT_DISTANCE_M
-const SPECULAR_PHONG: u32 = 1u;                // SpecularMode::Phong
-const SPECULAR_OFF: u32 = 2u;                  // SpecularMode::Off
-
-// lights::attenuation: OpenGL's 1 / (c + l·d + q·d²).
-fn attenuation(coefficients: vec3<f32>, distance_m: f32) -> f32 {
-    let d = min(distance_m, MAX_LIGHT_DISTANCE_M);
-    let c = coefficients;
-    return 1.0 / max(c.x + c.y * d + c.z * d * d, MIN_ATTENUATION_DENOMINATOR);
-}
-
-// lights::Incident
-struct Incident {
-    direction: vec3<f32>,
-    radiance: vec3<f32>,
-};
-
-// lights::incident: a point light (w = 1) attenuated by distance, a directional one (w = 0) not.
-fn incident_light(light: Light, position: vec3<f32>, fallback: vec3<f32>) -> Incident {
-    if light.position.w == 0.0 {
-        return Incident(normalize_or(light.position.xyz, fallback), light.radiance.rgb);
-    }
-    let to_light = light.position.xyz - position;
-    let factor = attenuation(light.attenuation.xyz, length(to_light));
-    return Incident(normalize_or(to_light, fallback), light.radiance.rgb * factor);
-}
-
-// lights::specular_power: Blinn max(N·H, 0)^s, Phong max(R·V, 0)^s, or 0.
-fn specular_power(n: vec3<f32>, n_geo: vec3<f32>, l: vec3<f32>, v: vec3<f32>, shininess: f32) -> f32 {
-    var cosine = max(dot(n, normalize_or(l + v, n_geo)), 0.0);
-    if frame.specular_mode == SPECULAR_PHONG {
-        cosine = max(dot(2.0 * dot(n, l) * n - l, v), 0.0);
-    } else if frame.specular_mode == SPECULAR_OFF {
-        cosine = 0.0;
-    }
-    if dot(n, l) > 0.0 && cosine > 0.0 {
-        return pow(cosine, shininess);
-    }
-    return 0.0;
-}
-
-// The material's shininess, or the frame's for every material.
-fn shininess() -> f32 {
-    return select(object.specular.a, frame.shininess, frame.shininess >= 0.0);
-}
-
-// shading::light_term: one light's diffuse and specular with the self-shadow fade, from unit
-// vectors of one lighting space.
-fn light_term(albedo: vec3<f32>, k_s: vec3<f32>, n_geo: vec3<f32>, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, radiance: vec3<f32>) -> vec3<f32> {
-    let self_shadow = smoothstep(0.0, frame.self_shadow_fade, dot(n_geo, l));
-    let n_dot_l = max(dot(n, l), 0.0);
-    let specular = specular_power(n, n_geo, l, v, shininess());
-    return self_shadow * radiance * (albedo * n_dot_l + k_s * specular);
-}
-
-// ---- lighting spaces (src/shading/spaces.rs); LightingSpace::shader_index() ----
-
-const LIGHTING_TANGENT: u32 = 1u;
-const LIGHTING_VIEW: u32 = 2u;
-// The space the classic model lights in: set for tangent-space normal-mapped surfaces in the
-// lit views, else world space (0).
-override LIGHTING_SPACE: u32 = 0u;
-
-// Tangent-space lighting's inputs at this fragment (fs_normal_mapped_tangent_space sets them):
-// the map's normal after strength, and the interpolated vertex outputs (unnormalised).
-struct TangentSpaceInputs {
-    normal: vec3<f32>,
-    view: vec3<f32>,
-    lights: array<vec3<f32>, MAX_LIGHTS>,
-};
-var<private> tangent_space: TangentSpaceInputs;
-
-// shading::blinn_phong with the vectors of the pipeline's lighting space
-// (shading::world_vectors, spaces::tangent_lighting_vectors, spaces::view_lighting_vectors):
-// the ambient light plus every light that is on, its radiance attenuated in world space.
-// k_s: the material's specular colour, times its gloss map where it has one.
-fn blinn_phong(albedo: vec3<f32>, k_s: vec3<f32>, n_geo: vec3<f32>, n_shading: vec3<f32>, position: vec3<f32>) -> vec3<f32> {
-    var sum = albedo * frame.ambient.rgb;
-    var g = n_geo;
-    var n = n_shading;
-    var v = normalize_or(frame.camera_pos.xyz - position, n_geo);
-    if LIGHTING_SPACE == LIGHTING_TANGENT {
-        g = vec3<f32>(0.0, 0.0, 1.0);
-        n = tangent_space.normal;
-        v = normalize_or(tangent_space.view, g);
-    } else if LIGHTING_SPACE == LIGHTING_VIEW {
-        g = frame.view_rotation * n_geo;
-        n = frame.view_rotation * n_shading;
-        v = frame.view_rotation * v;
-    }
-    for (var i = 0u; i < min(frame.light_count, MAX_LIGHTS); i++) {
-        let arriving = incident_light(frame.lights[i], position, n_geo);
-        var l = arriving.direction;
-        if LIGHTING_SPACE == LIGHTING_TANGENT {
-            l = normalize_or(tangent_space.lights[i], g);
-        } else if LIGHTING_SPACE == LIGHTING_VIEW {
-            l = frame.view_rotation * l;
-        }
-        sum += light_term(albedo, k_s, g, n, l, v, arriving.radiance);
-    }
-    return sum;
 }
 
 fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
@@ -469,70 +364,6 @@ fn fs_normal_mapped(vertex: VertexOutput, @builtin(front_facing) front_facing: b
         n_shading = perturbed_normal(n, frame_tb, texel, frame.strength * object.normal_scale, object.flags);
     }
     return surface_color(in, n, frame_tb, n_shading, clearcoat_normal(in, n, frame_tb));
-}
-
-// ---- tangent-space lighting (seed 003; src/shading/spaces.rs) ----
-
-// The vertex outputs plus the view vector and each light's vector in the vertex's tangent
-// space, unnormalised: 13 of the adapter's inter-stage locations (wgpu's default limit is 16),
-// so all MAX_LIGHTS lights fit without packing.
-struct TangentSpaceOutput {
-    @builtin(position) clip_position: vec4<f32>,
-    @location(0) world_position: vec3<f32>,
-    @location(1) world_normal: vec3<f32>,
-    @location(2) uv: vec2<f32>,
-    @location(3) world_tangent: vec4<f32>,
-    @location(4) view_ts: vec3<f32>,
-    @location(5) light_ts_0: vec3<f32>,
-    @location(6) light_ts_1: vec3<f32>,
-    @location(7) light_ts_2: vec3<f32>,
-    @location(8) light_ts_3: vec3<f32>,
-    @location(9) light_ts_4: vec3<f32>,
-    @location(10) light_ts_5: vec3<f32>,
-    @location(11) light_ts_6: vec3<f32>,
-    @location(12) light_ts_7: vec3<f32>,
-};
-
-const MIN_TBN_DETERMINANT: f32 = 1e-6; // spaces::MIN_TBN_DETERMINANT
-
-// spaces::inverse_tbn: the inverse of (T | B | N), the identity where it is degenerate.
-fn inverse_tbn(t: vec3<f32>, b: vec3<f32>, n: vec3<f32>) -> mat3x3<f32> {
-    let det = dot(t, cross(b, n));
-    if !(abs(det) >= MIN_TBN_DETERMINANT) || abs(det) > 1e30 {
-        return mat3x3<f32>(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 0.0, 1.0));
-    }
-    // Rows of the inverse: the cross products of the columns over the determinant.
-    return transpose(mat3x3<f32>(cross(b, n), cross(n, t), cross(t, b))) * (1.0 / det);
-}
-
-// spaces::tangent_space_vectors: a light's vector (to a point light, or towards a
-// directional one) through the inverse of the vertex's frame.
-fn tangent_space_light(to_tangent: mat3x3<f32>, i: u32, position: vec3<f32>) -> vec3<f32> {
-    let light = frame.lights[i];
-    return to_tangent * (light.position.xyz - position * light.position.w);
-}
-
-@vertex
-fn vs_tangent_space(
-    @location(0) position: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(2) uv: vec2<f32>,
-    @location(3) tangent: vec4<f32>,
-) -> TangentSpaceOutput {
-    let v = to_world(position, normal, uv, tangent);
-    let n = normalize_or(v.world_normal, vec3<f32>(0.0, 0.0, 1.0));
-    let t = normalize_or(v.world_tangent.xyz, any_perpendicular(n));
-    let b = select(1.0, -1.0, v.world_tangent.w < 0.0) * cross(n, t);
-    let m = inverse_tbn(t, b, n);
-    let p = v.world_position;
-    return TangentSpaceOutput(
-        v.clip_position, p, v.world_normal, v.uv, v.world_tangent,
-        m * (frame.camera_pos.xyz - p),
-        tangent_space_light(m, 0u, p), tangent_space_light(m, 1u, p),
-        tangent_space_light(m, 2u, p), tangent_space_light(m, 3u, p),
-        tangent_space_light(m, 4u, p), tangent_space_light(m, 5u, p),
-        tangent_space_light(m, 6u, p), tangent_space_light(m, 7u, p),
-    );
 }
 
 // fs_normal_mapped lit in tangent space: the same normal, frame and views, with the classic

@@ -10,8 +10,7 @@ pub use lighting::LightingSpace;
 
 use crate::names::Named;
 use crate::scene::{
-    LightKind, Lights, MaterialOverrides, NormalSpace, OrbitCamera, PerMaterialOverrides, Scene, ShadingModel,
-    SpecularMode,
+    Lights, MaterialOverrides, NormalSpace, OrbitCamera, PerMaterialOverrides, Scene, ShadingModel, SpecularMode,
 };
 use crate::tangent::TangentMethod;
 
@@ -291,21 +290,6 @@ pub struct FrameParams {
     /// The lights and the ambient light.
     pub lights: Lights,
     pub shading: ShadingSettings,
-}
-
-impl FrameParams {
-    /// Where light `index`'s marker is drawn and dragged: a point light's position; a
-    /// directional light's half the camera distance from the camera target, towards the light.
-    pub fn marker_position(&self, index: usize) -> glam::Vec3 {
-        let light = &self.lights[index];
-        match light.kind {
-            LightKind::Point => light.position,
-            LightKind::Directional => {
-                let towards = crate::math::normalize_or(light.position, glam::Vec3::Y);
-                self.camera.target + towards * (0.5 * self.camera.distance)
-            }
-        }
-    }
 }
 
 /// The split view's two pictures: the same camera and lights, `left` shading left of the

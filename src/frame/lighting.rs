@@ -1,5 +1,9 @@
 //! In which space the lit views light a surface (seeds 000, 001, 003): the same formulas with
-//! the normal, light and view vectors taken into world, tangent or view space first.
+//! the normal, light and view vectors taken into world, tangent or view space first; and where
+//! a frame's light markers are.
+
+use super::FrameParams;
+use crate::scene::LightKind;
 
 /// Where the lighting is computed. A pipeline variant of the lit views of tangent-space
 /// normal-mapped surfaces (other surfaces have no tangent frame and light in world space).
@@ -33,5 +37,20 @@ impl LightingSpace {
     /// The index the `LIGHTING_SPACE` pipeline constant takes.
     pub fn shader_index(self) -> u32 {
         self as u32
+    }
+}
+
+impl FrameParams {
+    /// Where light `index`'s marker is drawn and dragged: a point light's position; a
+    /// directional light's half the camera distance from the camera target, towards the light.
+    pub fn marker_position(&self, index: usize) -> glam::Vec3 {
+        let light = &self.lights[index];
+        match light.kind {
+            LightKind::Point => light.position,
+            LightKind::Directional => {
+                let towards = crate::math::normalize_or(light.position, glam::Vec3::Y);
+                self.camera.target + towards * (0.5 * self.camera.distance)
+            }
+        }
     }
 }

@@ -12,11 +12,13 @@ use crate::prepare::Variant;
 use crate::scene::ShadingModel;
 
 /// Shader sources, embedded at build time; frame.wgsl is the shared Frame uniform, pbr.wgsl
-/// the metallic-roughness shading the mesh shader calls, parallax.wgsl the parallax family.
+/// the metallic-roughness shading the mesh shader calls, parallax.wgsl the parallax family,
+/// lights.wgsl the lights and the classic model's lighting spaces.
 pub const MESH_WGSL: &str = concat!(
     include_str!("../../shaders/frame.wgsl"),
     include_str!("../../shaders/pbr.wgsl"),
     include_str!("../../shaders/parallax.wgsl"),
+    include_str!("../../shaders/lights.wgsl"),
     include_str!("../../shaders/mesh.wgsl")
 );
 pub const MARKER_WGSL: &str =
@@ -345,6 +347,6 @@ mod tests {
         }
         let mesh = naga::front::wgsl::parse_str(MESH_WGSL).expect("parsed above");
         let overrides: Vec<_> = mesh.overrides.iter().filter_map(|(_, o)| o.name.as_deref()).collect();
-        assert_eq!(overrides, ["PARALLAX", "TARGET_ENCODES_SRGB", "VIEW", "SHADING_MODEL", "LIGHTING_SPACE"]);
+        assert_eq!(overrides, ["PARALLAX", "LIGHTING_SPACE", "TARGET_ENCODES_SRGB", "VIEW", "SHADING_MODEL"]);
     }
 }
