@@ -2,10 +2,10 @@
 //! them, so they must stay as they are. Each enum derives its names ([`bumpview::names`]);
 //! this pins every one, in order (the panel's, `--help`'s and the reports' order).
 
-use bumpview::frame::{BumpSource, Parallax, ShadingMode, ViewMode};
+use bumpview::frame::{BumpSource, LightingSpace, Parallax, ShadingMode, ViewMode};
 use bumpview::height::{Border, Kernel};
 use bumpview::names::Named;
-use bumpview::scene::{GreenAxis, ShadingModel};
+use bumpview::scene::{GreenAxis, LightKind, ShadingModel, SpecularMode};
 use bumpview::state::SplitDifference;
 use bumpview::tangent::TangentMethod;
 
@@ -26,7 +26,8 @@ fn every_enum_keeps_its_names_in_order() {
     assert_eq!(ViewMode::names(), views);
     assert_eq!(ShadingMode::names(), ["bump-colour", "bump-only", "colour-only"]);
     assert_eq!(BumpSource::names(), ["normal-map", "height-in-shader"]);
-    let differences = ["bump", "view", "strength", "mode", "tangents", "convention", "bump-source", "parallax"];
+    let differences =
+        ["bump", "view", "strength", "mode", "tangents", "convention", "bump-source", "parallax", "lighting-space"];
     assert_eq!(SplitDifference::names(), differences);
     let methods = [
         "mikktspace",
@@ -44,6 +45,9 @@ fn every_enum_keeps_its_names_in_order() {
     assert_eq!(Border::names(), ["wrap", "clamp"]);
     assert_eq!(ShadingModel::names(), ["blinn-phong", "pbr"]);
     assert_eq!(Parallax::names(), ["off", "offset", "offset-limited", "steep", "occlusion", "relief"]);
+    assert_eq!(LightKind::names(), ["point", "directional"]);
+    assert_eq!(SpecularMode::names(), ["blinn", "phong", "off"]);
+    assert_eq!(LightingSpace::names(), ["world", "tangent", "view"]);
 }
 
 #[test]
@@ -57,6 +61,9 @@ fn every_name_reads_back_as_its_value() {
     round_trip::<ShadingMode>();
     round_trip::<BumpSource>();
     round_trip::<SplitDifference>();
+    round_trip::<LightKind>();
+    round_trip::<SpecularMode>();
+    round_trip::<LightingSpace>();
     round_trip::<TangentMethod>();
     round_trip::<Kernel>();
     round_trip::<GreenAxis>();
