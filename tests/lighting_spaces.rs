@@ -29,6 +29,10 @@ fn in_space(params: &FrameParams, space: LightingSpace) -> FrameParams {
 /// measured max 1.60, p99 1.03).
 #[test]
 fn the_spaces_agree_on_the_flat_wall() {
+    let gpu = bumpview::render::Gpu::headless().unwrap();
+    let locations = gpu.device.limits().max_inter_stage_shader_variables;
+    println!("max_inter_stage_shader_variables: {locations} on {}", gpu.adapter.get_info().name);
+    assert!(locations >= 13, "the tangent-space vertex stage needs 13 locations, the adapter has {locations}");
     let scene = scene();
     let mut renderer = renderer_for(&scene);
     let params = close_wall_params(&scene, 0.3);
