@@ -20,7 +20,7 @@ pub(super) fn show(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Act
     ui.horizontal_wrapped(|ui| {
         for (i, light) in state.lights.as_slice().iter().enumerate() {
             let [r, g, b] = light.color.clamp(Vec3::ZERO, Vec3::ONE).to_array().map(|c| (c * 255.0) as u8);
-            let text = egui::RichText::new(format!("● {}", i + 1)).color(egui::Color32::from_rgb(r, g, b));
+            let text = egui::RichText::new(format!("L{}", i + 1)).color(egui::Color32::from_rgb(r, g, b));
             let text = if light.enabled { text } else { text.strikethrough() };
             if ui.selectable_label(i == selected, text).clicked() {
                 push(actions, LightCommand::Select(i));
