@@ -194,3 +194,30 @@ fn markers_take_their_lights_colours() {
     let pixel = image.get_pixel(x, y);
     assert_ne!([pixel[0], pixel[1], pixel[2]], [0, 0, 255], "a light that is off has no marker");
 }
+
+/// Extreme lights stay finite in every lighting space: a point light exactly on the wall with
+/// pure quadratic attenuation (the denominator floored), a directional light with a tiny
+/// direction, a huge intensity far away, and eight lights at once.
+#[test]
+fn extreme_lights_stay_finite() {
+    let scene = scene();
+    let mut renderer = renderer_for(&scene);
+    let on_wall = Light {
+        attenuation: Attenuation { constant: 0.0, linear: 0.0, quadratic: 1.0 },
+        ..Light::point(Vec3::new(0.0, 1.5, WALL_Z), Vec3::ONE)
+    };
+    let tiny = Light::directional(Vec3::new(0.0, 1e-20, 1e-20), Vec3::ONE);
+    let far = Light { intensity: 1e30, ..Light::point(Vec3::splat(1e20), Vec3::ONE) };
+    let lights = [on_wall, tiny, far, on_wall, tiny, far, on_wall, tiny];
+    for space in [bumpview::frame::LightingSpace::World, bumpview::frame::LightingSpace::Tangent] {
+        let mut params = close_wall_params(&scene, 0.3);
+        params.lights = params.lights.with_lights(&lights).unwrap();
+        params.shading.lighting_space = space;
+        params.shading.specular = SpecularMode::Phong;
+        let image = render_float(&mut renderer, [64, 64], &params).unwrap();
+        let bad = image.pixels.iter().filter(|p| p.iter().any(|c| !c.is_finite())).count();
+        assert_eq!(bad, 0, "{space:?}: {bad} non-finite pixels");
+        let cpu = wall_chain(&scene, &params, [64, 64], 32, 32);
+        assert!(cpu.color_linear.is_finite(), "{space:?}: CPU {}", cpu.color_linear);
+    }
+}
