@@ -1,7 +1,6 @@
-// The lights (src/shading/lights.rs), the classic model with its lighting spaces
-// (src/shading.rs blinn_phong, src/shading/spaces.rs) and the tangent-space vertex stage.
-// Prepended after parallax.wgsl and before mesh.wgsl, whose helpers (normalize_or,
-// any_perpendicular, to_world) and Object uniform it uses.
+// The lights (src/shading/lights.rs) and the classic model with its lighting spaces
+// (src/shading.rs blinn_phong, src/shading/spaces.rs). Prepended after parallax.wgsl and
+// before mesh.wgsl, whose helpers (normalize_or) and Object uniform it uses.
 
 // ---- lights (src/shading/lights.rs) ----
 
@@ -70,11 +69,10 @@ const LIGHTING_VIEW: u32 = 2u;
 override LIGHTING_SPACE: u32 = 0u;
 
 // Tangent-space lighting's inputs at this fragment (fs_normal_mapped_tangent_space sets them):
-// the map's normal after strength, and the interpolated vertex outputs (unnormalised).
+// the map's normal after strength, and the triangle's inverse frame (world → tangent space).
 struct TangentSpaceInputs {
     normal: vec3<f32>,
-    view: vec3<f32>,
-    lights: array<vec3<f32>, MAX_LIGHTS>,
+    to_tangent: mat3x3<f32>,
 };
 var<private> tangent_space: TangentSpaceInputs;
 
@@ -90,7 +88,7 @@ fn blinn_phong(albedo: vec3<f32>, k_s: vec3<f32>, n_geo: vec3<f32>, n_shading: v
     if LIGHTING_SPACE == LIGHTING_TANGENT {
         g = vec3<f32>(0.0, 0.0, 1.0);
         n = tangent_space.normal;
-        v = normalize_or(tangent_space.view, g);
+        v = normalize_or(tangent_space.to_tangent * v, g);
     } else if LIGHTING_SPACE == LIGHTING_VIEW {
         g = frame.view_rotation * n_geo;
         n = frame.view_rotation * n_shading;
@@ -100,7 +98,7 @@ fn blinn_phong(albedo: vec3<f32>, k_s: vec3<f32>, n_geo: vec3<f32>, n_shading: v
         let arriving = incident_light(frame.lights[i], position, n_geo);
         var l = arriving.direction;
         if LIGHTING_SPACE == LIGHTING_TANGENT {
-            l = normalize_or(tangent_space.lights[i], g);
+            l = normalize_or(tangent_space.to_tangent * l, g);
         } else if LIGHTING_SPACE == LIGHTING_VIEW {
             l = frame.view_rotation * l;
         }
@@ -111,65 +109,37 @@ fn blinn_phong(albedo: vec3<f32>, k_s: vec3<f32>, n_geo: vec3<f32>, n_shading: v
 
 // ---- tangent-space lighting (seed 003; src/shading/spaces.rs) ----
 
-// The vertex outputs plus the view vector and each light's vector in the vertex's tangent
-// space, unnormalised: 13 of the adapter's inter-stage locations (wgpu's default limit is 16),
-// so all MAX_LIGHTS lights fit without packing.
-struct TangentSpaceOutput {
-    @builtin(position) clip_position: vec4<f32>,
-    @location(0) world_position: vec3<f32>,
-    @location(1) world_normal: vec3<f32>,
-    @location(2) uv: vec2<f32>,
-    @location(3) world_tangent: vec4<f32>,
-    @location(4) view_ts: vec3<f32>,
-    @location(5) light_ts_0: vec3<f32>,
-    @location(6) light_ts_1: vec3<f32>,
-    @location(7) light_ts_2: vec3<f32>,
-    @location(8) light_ts_3: vec3<f32>,
-    @location(9) light_ts_4: vec3<f32>,
-    @location(10) light_ts_5: vec3<f32>,
-    @location(11) light_ts_6: vec3<f32>,
-    @location(12) light_ts_7: vec3<f32>,
-};
-
 const MIN_TBN_DETERMINANT: f32 = 1e-6; // spaces::MIN_TBN_DETERMINANT
+const MIN_UV_AREA_PER_M2: f32 = 1e-6;  // spaces::MIN_UV_AREA_PER_M2
+
+fn identity3() -> mat3x3<f32> {
+    return mat3x3<f32>(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 0.0, 1.0));
+}
 
 // spaces::inverse_tbn: the inverse of (T | B | N), the identity where it is degenerate.
 fn inverse_tbn(t: vec3<f32>, b: vec3<f32>, n: vec3<f32>) -> mat3x3<f32> {
     let det = dot(t, cross(b, n));
     if !(abs(det) >= MIN_TBN_DETERMINANT) || abs(det) > 1e30 {
-        return mat3x3<f32>(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 0.0, 1.0));
+        return identity3();
     }
     // Rows of the inverse: the cross products of the columns over the determinant.
     return transpose(mat3x3<f32>(cross(b, n), cross(n, t), cross(t, b))) * (1.0 / det);
 }
 
-// spaces::tangent_space_vectors: a light's vector (to a point light, or towards a
-// directional one) through the inverse of the vertex's frame.
-fn tangent_space_light(to_tangent: mat3x3<f32>, i: u32, position: vec3<f32>) -> vec3<f32> {
-    let light = frame.lights[i];
-    return to_tangent * (light.position.xyz - position * light.position.w);
+// spaces::triangle_inverse_tbn: seed 003's per-triangle frame from two differences across the
+// triangle (here the pixel's screen-space derivatives of position and UV): T = ∂P/∂u,
+// B = −∂P/∂v, N the face normal on `normal`'s side, normalised, not orthogonalised, inverted.
+fn triangle_inverse_tbn(dp_a: vec3<f32>, dp_b: vec3<f32>, duv_a: vec2<f32>, duv_b: vec2<f32>, normal: vec3<f32>) -> mat3x3<f32> {
+    let det = duv_a.x * duv_b.y - duv_a.y * duv_b.x;
+    let face = cross(dp_a, dp_b);
+    if !(abs(det) > MIN_UV_AREA_PER_M2 * length(face)) || abs(det) > 1e30 {
+        return identity3();
+    }
+    let dp_du = (dp_a * duv_b.y - dp_b * duv_a.y) / det;
+    let dp_dv = (dp_b * duv_a.x - dp_a * duv_b.x) / det;
+    var n = normalize_or(face, normal);
+    if dot(n, normal) < 0.0 {
+        n = -n;
+    }
+    return inverse_tbn(normalize_or(dp_du, vec3<f32>(1.0, 0.0, 0.0)), normalize_or(-dp_dv, vec3<f32>(0.0, 1.0, 0.0)), n);
 }
-
-@vertex
-fn vs_tangent_space(
-    @location(0) position: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(2) uv: vec2<f32>,
-    @location(3) tangent: vec4<f32>,
-) -> TangentSpaceOutput {
-    let v = to_world(position, normal, uv, tangent);
-    let n = normalize_or(v.world_normal, vec3<f32>(0.0, 0.0, 1.0));
-    let t = normalize_or(v.world_tangent.xyz, any_perpendicular(n));
-    let b = select(1.0, -1.0, v.world_tangent.w < 0.0) * cross(n, t);
-    let m = inverse_tbn(t, b, n);
-    let p = v.world_position;
-    return TangentSpaceOutput(
-        v.clip_position, p, v.world_normal, v.uv, v.world_tangent,
-        m * (frame.camera_pos.xyz - p),
-        tangent_space_light(m, 0u, p), tangent_space_light(m, 1u, p),
-        tangent_space_light(m, 2u, p), tangent_space_light(m, 3u, p),
-        tangent_space_light(m, 4u, p), tangent_space_light(m, 5u, p),
-        tangent_space_light(m, 6u, p), tangent_space_light(m, 7u, p),
-    );
-}
-

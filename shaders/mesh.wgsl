@@ -10,7 +10,7 @@
 //   vs_tangent + fs_tangent       mesh with tangents, material without normal map
 //   vs_tangent + fs_normal_mapped mesh with tangents and a tangent-space normal map, read at
 //                                 the UV the parallax family shifts (parallax.wgsl)
-//   vs_tangent_space + fs_normal_mapped_tangent_space  the same, lit in tangent space (seed 003)
+//   vs_tangent + fs_normal_mapped_tangent_space  the same, lit in tangent space (seed 003)
 //   vs_plain  + fs_object_space   object-space normal map, no tangents
 //   vs_plain  + fs_height_bump    bump from the height map in screen space, no tangents
 //   vs_difference + fs_difference the Difference view: a mesh's frames against reference frames
@@ -18,7 +18,7 @@
 //   vs_glyph + fs_glyph           T/B/N glyphs at vertices (a line list, src/render/glyphs.rs)
 //
 // Prepended at build time: frame.wgsl (the Frame uniform, group 0), pbr.wgsl, parallax.wgsl and
-// lights.wgsl (the lights, the classic model's lighting spaces and their vertex stage).
+// lights.wgsl (the lights and the classic model's lighting spaces).
 
 struct Object {
     model: mat4x4<f32>,
@@ -366,12 +366,20 @@ fn fs_normal_mapped(vertex: VertexOutput, @builtin(front_facing) front_facing: b
     return surface_color(in, n, frame_tb, n_shading, clearcoat_normal(in, n, frame_tb));
 }
 
-// fs_normal_mapped lit in tangent space: the same normal, frame and views, with the classic
-// model's vectors from the vertex stage (blinn_phong's LIGHTING_TANGENT branch).
+// fs_normal_mapped lit in tangent space (blinn_phong's LIGHTING_TANGENT branch): the same
+// normal, frame and views, with the light and view vectors taken by the triangle's inverse
+// frame from screen-space derivatives (seed 003 takes light − P per vertex and interpolates;
+// with one frame per triangle that is the frame times light − P at the pixel, exactly).
 @fragment
-fn fs_normal_mapped_tangent_space(ts: TangentSpaceOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
-    let vertex = VertexOutput(ts.clip_position, ts.world_position, ts.world_normal, ts.uv, ts.world_tangent);
+fn fs_normal_mapped_tangent_space(vertex: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let n = geometric_normal(vertex.world_normal, front_facing);
+    tangent_space.to_tangent = triangle_inverse_tbn(
+        dpdx(vertex.world_position),
+        dpdy(vertex.world_position),
+        dpdx(vertex.uv),
+        dpdy(vertex.uv),
+        n,
+    );
     var in = vertex;
     in.uv = parallax_uv(vertex.uv, n, vertex.world_position);
     let frame_tb = tangent_frame(in.world_tangent, n);
@@ -383,11 +391,6 @@ fn fs_normal_mapped_tangent_space(ts: TangentSpaceOutput, @builtin(front_facing)
         n_shading = perturbed_normal(n, frame_tb, texel, strength, object.flags);
         tangent_space.normal = tangent_space_normal(texel, strength, object.flags);
     }
-    tangent_space.view = ts.view_ts;
-    tangent_space.lights = array<vec3<f32>, MAX_LIGHTS>(
-        ts.light_ts_0, ts.light_ts_1, ts.light_ts_2, ts.light_ts_3,
-        ts.light_ts_4, ts.light_ts_5, ts.light_ts_6, ts.light_ts_7,
-    );
     return surface_color(in, n, frame_tb, n_shading, clearcoat_normal(in, n, frame_tb));
 }
 

@@ -21,9 +21,7 @@ use crate::math::{handedness, linear_to_srgb, normalize_or, orthonormalize_tange
 use crate::scene::{MAX_LIGHTS, Material, ShadingModel};
 use crate::shading::lights::incident;
 use crate::shading::pbr::{ClearcoatInputs, PbrInputs, metallic_roughness};
-use crate::shading::spaces::{
-    TangentSpaceVectors, tangent_lighting_vectors, tangent_space_vectors, view_lighting_vectors,
-};
+use crate::shading::spaces::{inverse_tbn, tangent_lighting_vectors, view_lighting_vectors};
 use crate::shading::{
     LightingInputs, OVER_TILT_COLOR, SELF_SHADOW_FADE, blinn_phong, debug_color, decode_normal, handedness_color,
     object_space_normal, over_tilted, surface_gradient_normal, tangent_space_normal, world_vectors,
@@ -60,10 +58,11 @@ pub struct SurfaceSample {
     pub clearcoat: Option<f32>,
     pub clearcoat_roughness: Option<f32>,
     pub clearcoat_normal: Option<Vec3>,
-    /// The tangent-space vertex stage's outputs interpolated to the point
-    /// ([`crate::shading::spaces::tangent_space_vectors`] at each corner); `None`: computed at
-    /// the point from its own frame (what interpolation gives where the frame is constant).
-    pub tangent_space: Option<TangentSpaceVectors>,
+    /// The triangle's inverse frame (world → tangent space) for tangent-space lighting
+    /// ([`crate::shading::spaces::triangle_inverse_tbn`], from screen-space derivatives on the
+    /// GPU); `None`: the inverse of the point's own T, B, N (the same where the frame is the
+    /// triangle's, as on the flat wall).
+    pub triangle_frame: Option<Mat3>,
 }
 
 /// What the bump texture gives at a point.
@@ -233,13 +232,10 @@ pub fn shade(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: 
             let vectors = match lighting_space {
                 LightingSpace::World => world_vectors(&inputs),
                 LightingSpace::Tangent => {
-                    let own = || {
-                        let tangent = point.world_tangent.unwrap_or(Vec4::X);
-                        tangent_space_vectors(point.position, point.world_normal, tangent, frame.lights.as_slice(), eye)
-                    };
+                    let own = tangent_frame.map_or(Mat3::IDENTITY, |(t, b, _)| inverse_tbn(t, b, n));
                     let tangent_normal = if shading.bump_enabled { after_strength } else { None };
-                    let interpolated = point.tangent_space.unwrap_or_else(own);
-                    tangent_lighting_vectors(&interpolated, tangent_normal.unwrap_or(Vec3::Z))
+                    let to_tangent = point.triangle_frame.unwrap_or(own);
+                    tangent_lighting_vectors(&world_vectors(&inputs), to_tangent, tangent_normal.unwrap_or(Vec3::Z))
                 }
                 LightingSpace::View => view_lighting_vectors(&world_vectors(&inputs), frame.camera.view_rotation()),
             };

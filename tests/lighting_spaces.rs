@@ -1,6 +1,7 @@
 //! World, tangent and view-space lighting on the software adapter: they agree on the flat
-//! wall, whose frame is constant, and tangent space differs on the torus, whose frame turns,
-//! by what the CPU chain (src/chain.rs, through the probe's interpolated vertex outputs) says.
+//! wall, whose frame is constant, and tangent space differs on the torus, whose per-triangle
+//! frames are facets of the smooth per-pixel frame, by what the CPU chain (src/chain.rs, with
+//! the probe's triangle frames) says.
 
 mod common;
 
@@ -21,18 +22,14 @@ fn in_space(params: &FrameParams, space: LightingSpace) -> FrameParams {
     params
 }
 
-/// On the wall the vertex frames are all the same, so interpolating tangent-space vectors is
-/// exact and view space is a rotation: the three pictures agree within 1 step of 8 bits
+/// On the wall every triangle's frame is the per-pixel frame (T = +X, B = +Y, N = +Z), and view
+/// space is a rotation: the three pictures agree within 1 step of 8 bits
 /// (measured on lavapipe: tangent 1, view 0 — float rounding of the inverse frame), and
 /// tangent space matches the CPU chain within the bumped-wall tolerance of
 /// tests/shading_reference.rs (3 steps next to mortar edges, 1.5 steps for 99% of pixels;
 /// measured max 1.60, p99 1.03).
 #[test]
 fn the_spaces_agree_on_the_flat_wall() {
-    let gpu = bumpview::render::Gpu::headless().unwrap();
-    let locations = gpu.device.limits().max_inter_stage_shader_variables;
-    println!("max_inter_stage_shader_variables: {locations} on {}", gpu.adapter.get_info().name);
-    assert!(locations >= 13, "the tangent-space vertex stage needs 13 locations, the adapter has {locations}");
     let scene = scene();
     let mut renderer = renderer_for(&scene);
     let params = close_wall_params(&scene, 0.3);
@@ -67,13 +64,14 @@ fn rgb(image: &FloatImage, [x, y]: [u32; 2]) -> Vec3 {
     Vec3::new(r, g, b)
 }
 
-/// A coarse torus (24 × 8 quads: its vertex frames turn by 15° and 45° across a triangle)
-/// seen close: tangent-space lighting differs from world space there, and the GPU's
-/// difference (linear, float target) is the CPU chain's at the probed pixels. Measured on
-/// lavapipe over 873 torus pixels: the CPU difference reaches 0.071 linear (the largest
-/// channel), the GPU's differs from it by at most 0.0019; bounds 0.03 and 0.01. The check can
-/// fail: normalising the vectors per vertex before interpolating (seed 003's own vertex
-/// shader) moves the GPU's difference off the CPU's. With the built-in 96 × 32 torus the
+/// A coarse torus (24 × 8 quads: its smooth frame turns by 15° and 45° across a triangle)
+/// seen close: tangent-space lighting, by each triangle's frame, differs from world space
+/// there, and the GPU's difference (linear, float target; its triangle frames from
+/// screen-space derivatives) is the CPU chain's (frames from the triangle's edges) at the
+/// probed pixels. Measured on lavapipe over 873 torus pixels: the CPU difference reaches 0.235
+/// linear (the largest channel); the GPU's differs from it by p99 0.0036, max 0.0081 (4× MSAA
+/// mixes two facets' frames at triangle edges); bounds 0.1, 0.01 and 0.03. The check can
+/// fail: the pixel's own frame instead of the triangle's is 0.16 off at p99. With the built-in 96 × 32 torus the
 /// difference is far smaller (`bumpview report`, Lighting spaces: 1.34 steps of 8 bits at most).
 #[test]
 fn tangent_space_differs_on_the_torus_by_what_the_cpu_chain_says() {
@@ -87,7 +85,7 @@ fn tangent_space_differs_on_the_torus_by_what_the_cpu_chain_says() {
     let tangent = in_space(&params, LightingSpace::Tangent);
     let gpu_world = render_float(&mut renderer, SIZE, &params).unwrap();
     let gpu_tangent = render_float(&mut renderer, SIZE, &tangent).unwrap();
-    let (mut cpu_max, mut mismatch, mut pixels) = (0f32, 0f32, 0);
+    let (mut cpu_max, mut mismatches) = (0f32, vec![]);
     for y in (3..SIZE[1]).step_by(7) {
         for x in (3..SIZE[0]).step_by(7) {
             let Some(world) = probe.probe(&params, SIZE, [x, y]).filter(|r| r.mesh == 2) else { continue };
@@ -96,12 +94,13 @@ fn tangent_space_differs_on_the_torus_by_what_the_cpu_chain_says() {
             let cpu = in_tangent.chain.color_linear - world.chain.color_linear;
             let gpu = rgb(&gpu_tangent, [x, y]) - rgb(&gpu_world, [x, y]);
             cpu_max = cpu_max.max(cpu.abs().max_element());
-            mismatch = mismatch.max((gpu - cpu).abs().max_element());
-            pixels += 1;
+            mismatches.push((gpu - cpu).abs().max_element());
         }
     }
-    println!("{pixels} torus pixels: tangent − world up to {cpu_max} (CPU); GPU − CPU up to {mismatch}");
+    mismatches.sort_by(f32::total_cmp);
+    let (pixels, p99, max) = (mismatches.len(), percentile(&mismatches, 0.99), *mismatches.last().unwrap());
+    println!("{pixels} torus pixels: tangent − world up to {cpu_max} (CPU); GPU − CPU p99 {p99}, max {max}");
     assert!(pixels > 100, "only {pixels} pixels on the torus");
-    assert!(cpu_max > 0.03, "tangent space differs by only {cpu_max}");
-    assert!(mismatch < 0.01, "the GPU's difference is {mismatch} off the CPU's");
+    assert!(cpu_max > 0.1, "tangent space differs by only {cpu_max}");
+    assert!(p99 < 0.01 && max < 0.03, "the GPU's difference is off the CPU's: p99 {p99}, max {max}");
 }

@@ -84,7 +84,7 @@ pub struct LightArgs {
     #[arg(long, value_parser = args::parse_finite)]
     shininess: Option<f32>,
     /// Where tangent-space normal-mapped surfaces are lit: world (per pixel), tangent (light
-    /// and view vectors by the inverse TBN per vertex, seed 003) or view (seed 000)
+    /// and view vectors by each triangle's inverse TBN, seed 003) or view (seed 000)
     /// [default: world].
     #[arg(long, value_parser = args::named::<LightingSpace>())]
     lighting_space: Option<LightingSpace>,

@@ -15,9 +15,9 @@ pub enum LightingSpace {
     /// vectors per pixel in world space.
     #[default]
     World,
-    /// Seed 003: the light and view vectors taken into tangent space per vertex by the
-    /// inverse of the triangle's T, B, N (the identity where its UVs are degenerate),
-    /// interpolated unnormalised and normalised per pixel; the map's normal used as decoded.
+    /// Seed 003: the light and view vectors taken into tangent space by the inverse of the
+    /// triangle's T, B, N (from its positions and UVs, not orthogonalised; the identity where
+    /// its UVs have no area) and normalised per pixel; the map's normal used as decoded.
     Tangent,
     /// Seed 000: the map's normal through T, B, N, then with the light and view vectors
     /// rotated into view space by the camera's view matrix.

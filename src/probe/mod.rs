@@ -37,7 +37,7 @@ use crate::math::{normal_matrix, normalize_or};
 use crate::prepare::PreparedScene;
 use crate::scene::{OrbitCamera, SamplerWrap, Scene, TextureImage, Wrap};
 use crate::shading::height_sample;
-use crate::shading::spaces::{TangentSpaceVectors, tangent_space_vectors};
+use crate::shading::spaces::triangle_inverse_tbn;
 use crate::tangent::TangentMethod;
 pub use pick::project_to_pixel;
 use pick::{Quad, corner_positions, intersect};
@@ -297,18 +297,12 @@ impl ProbeScene {
             clearcoat: coat_sample(slots.clearcoat).map(|t| t.x),
             clearcoat_roughness: coat_sample(slots.clearcoat_roughness).map(|t| t.y),
             clearcoat_normal: coat_sample(slots.clearcoat_normal),
-            tangent_space: frames.map(|f| {
-                // The tangent-space vertex stage at each corner, interpolated as the GPU does.
-                let mirror = if instance.mirrored() { -1.0 } else { 1.0 };
-                let corner = |&i: &u32| {
-                    let i = i as usize;
-                    let tangent = model.transform_vector3(f.tangents[i].truncate()).extend(f.tangents[i].w * mirror);
-                    let normal = normal_matrix.transform_vector3(mesh.normals[i]);
-                    let position = model.transform_point3(mesh.positions[i]);
-                    tangent_space_vectors(position, normal, tangent, params.lights.as_slice(), eye)
-                };
-                let [a, b_, c] = [&corners[0], &corners[1], &corners[2]].map(corner);
-                TangentSpaceVectors::weighted([&a, &b_, &c], b)
+            triangle_frame: corner_positions(mesh, corners, &model).map(|[p0, p1, p2]| {
+                // The triangle's frame from its edges: what the GPU gets from the pixel's
+                // screen-space derivatives (the same differences up to a 2×2 change of basis).
+                let uv = |k: usize| mesh.uvs[corners[k] as usize];
+                let normal = normalize_or(normal_matrix.transform_vector3(at(b)(&mesh.normals)), Vec3::Z) * facing;
+                triangle_inverse_tbn(p1 - p0, p2 - p0, uv(1) - uv(0), uv(2) - uv(0), normal)
             }),
         };
         let chain = shade(instance.bump, material, &surface, params);

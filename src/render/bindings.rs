@@ -224,6 +224,7 @@ mod tests {
             ("MIN_ATTENUATION_DENOMINATOR", crate::shading::lights::MIN_ATTENUATION_DENOMINATOR),
             ("MAX_LIGHT_DISTANCE_M", crate::shading::lights::MAX_LIGHT_DISTANCE_M),
             ("MIN_TBN_DETERMINANT", crate::shading::spaces::MIN_TBN_DETERMINANT),
+            ("MIN_UV_AREA_PER_M2", crate::shading::spaces::MIN_UV_AREA_PER_M2),
         ] {
             let constant = module.constants.iter().map(|(_, c)| c).find(|c| c.name.as_deref() == Some(name));
             let value = constant.map(|c| &module.global_expressions[c.init]);

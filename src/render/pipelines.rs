@@ -48,7 +48,7 @@ pub enum Pass {
         /// without a height map bound for it.
         parallax: Parallax,
         /// The classic model's lighting space (the `LIGHTING_SPACE` constant; tangent space
-        /// adds its own vertex stage); [`LightingSpace::World`] except for normal-mapped
+        /// has its own fragment stage); [`LightingSpace::World`] except for normal-mapped
         /// variants in lit views with the classic model.
         lighting_space: LightingSpace,
     },
@@ -197,7 +197,7 @@ impl Pipelines {
                 Pass::Mesh { variant, cull_back_faces, view, lighting, parallax, lighting_space, .. } => {
                     let (vs, fs, buffers): (_, _, &[_]) = match variant {
                         Variant::NormalMapped if lighting_space == LightingSpace::Tangent => {
-                            ("vs_tangent_space", "fs_normal_mapped_tangent_space", &[POSITION, NORMAL, UV, TANGENT])
+                            ("vs_tangent", "fs_normal_mapped_tangent_space", &[POSITION, NORMAL, UV, TANGENT])
                         }
                         Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
                         Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
@@ -320,7 +320,6 @@ mod tests {
                     "fs_plain",
                     "fs_tangent",
                     "fs_normal_mapped",
-                    "vs_tangent_space",
                     "fs_normal_mapped_tangent_space",
                     "fs_object_space",
                     "fs_height_bump",

@@ -2,8 +2,8 @@
 //! default camera and light, MikkTSpace frames, the brick normal map at strength 1), on the
 //! CPU chain ([`crate::chain::shade`], held equal to the GPU by tests/lighting_spaces.rs).
 //!
-//! Three points per triangle, at barycentric weights (4, 1, 1)/6 and their rotations; the
-//! normal map read at the nearest texel of mip 0. The lit picture is compared in 8-bit sRGB
+//! Three points per triangle, at barycentric weights (4, 1, 1)/6 and their rotations; each
+//! triangle's inverse frame from its edges; the normal map read at the nearest texel of mip 0. The lit picture is compared in 8-bit sRGB
 //! steps; the vectors by the angle between the light direction a space lights with and the
 //! exact one, both in the pixel's own frame — for the diffuse term, the angle between the
 //! shading normal of that space and the one of world space.
@@ -15,7 +15,7 @@ use crate::frame::{BumpKind, FrameParams, LightingSpace, SceneOptions, ShadingSe
 use crate::math::{linear_to_srgb, normal_matrix, normalize_or};
 use crate::prepare::PreparedScene;
 use crate::scene::Scene;
-use crate::shading::spaces::{TangentSpaceVectors, tangent_space_vectors};
+use crate::shading::spaces::triangle_inverse_tbn;
 
 /// One surface, one space against world space.
 #[derive(Debug, Clone, PartialEq)]
@@ -60,7 +60,8 @@ pub fn space_rows(scene: &Scene) -> Vec<SpaceRow> {
         let mut measured = [(0.0f32, 0.0f32, 0.0f32, 0.0f32, 0usize); 2];
         for triangle in mesh.indices.chunks_exact(3) {
             let corners = [0, 1, 2].map(|k| corner(triangle[k] as usize));
-            let vectors = corners.map(|(p, n, t, _)| tangent_space_vectors(p, n, t, params.lights.as_slice(), eye));
+            let [a, b, c] = corners;
+            let face_normal = a.1 + b.1 + c.1;
             for rotation in 0..3 {
                 let mut weights = [1.0 / 6.0; 3];
                 weights[rotation] = 4.0 / 6.0;
@@ -72,11 +73,13 @@ pub fn space_rows(scene: &Scene) -> Vec<SpaceRow> {
                 let uv = corners.iter().zip(weights).fold(Vec2::ZERO, |sum, (c, w)| sum + c.3 * w);
                 let texel = texture
                     .texel((uv.x * texture.width as f32).floor() as i64, (uv.y * texture.height as f32).floor() as i64);
-                let interpolated = TangentSpaceVectors::weighted([&vectors[0], &vectors[1], &vectors[2]], w);
+                let front_facing = normal.dot(eye - position) >= 0.0 || !material.double_sided;
+                let facing = if front_facing { 1.0 } else { -1.0 };
+                let to_tangent = triangle_inverse_tbn(b.0 - a.0, c.0 - a.0, b.3 - a.3, c.3 - a.3, face_normal * facing);
                 let point = SurfaceSample {
                     position,
                     world_normal: normal,
-                    front_facing: normal.dot(eye - position) >= 0.0 || !material.double_sided,
+                    front_facing,
                     world_tangent: Some(tangent),
                     normal_matrix: glam::Mat3::from_mat4(normals),
                     base_color: None,
@@ -90,7 +93,7 @@ pub fn space_rows(scene: &Scene) -> Vec<SpaceRow> {
                     clearcoat: None,
                     clearcoat_roughness: None,
                     clearcoat_normal: None,
-                    tangent_space: Some(interpolated),
+                    triangle_frame: Some(to_tangent),
                 };
                 let shaded = |space: LightingSpace| {
                     let frame =
@@ -103,7 +106,7 @@ pub fn space_rows(scene: &Scene) -> Vec<SpaceRow> {
                     let other = shaded(space);
                     let delta = (bytes(other.color_linear) - bytes(world.color_linear)).abs().max_element();
                     let angle = match space {
-                        LightingSpace::Tangent => tangent_angle_deg(&world, &interpolated),
+                        LightingSpace::Tangent => tangent_angle_deg(&world, to_tangent),
                         _ => 0.0,
                     };
                     let m = &mut measured[slot];
@@ -128,17 +131,17 @@ pub fn space_rows(scene: &Scene) -> Vec<SpaceRow> {
     rows
 }
 
-/// The largest angle over the lights that are on between the interpolated tangent-space light
-/// vector and the exact one (the world direction in the pixel's T, B, N), degrees.
-fn tangent_angle_deg(world: &crate::chain::ChainValues, interpolated: &TangentSpaceVectors) -> f32 {
+/// The largest angle over the lights that are on between the light direction taken by the
+/// triangle's inverse frame and the exact one (the world direction in the pixel's T, B, N),
+/// degrees.
+fn tangent_angle_deg(world: &crate::chain::ChainValues, to_tangent: glam::Mat3) -> f32 {
     let (Some(t), Some(b)) = (world.tangent, world.bitangent) else { return 0.0 };
     let n = world.normal;
     let mut worst = 0f32;
-    for (terms, vector) in world.lights.iter().zip(interpolated.lights) {
-        let Some(terms) = terms else { continue };
+    for terms in world.lights.iter().flatten() {
         let l = terms.direction;
         let exact = Vec3::new(t.dot(l), b.dot(l), n.dot(l));
-        let lit = normalize_or(vector, Vec3::Z);
+        let lit = normalize_or(to_tangent * l, Vec3::Z);
         // atan2 of sine and cosine: acos loses small angles to f32 rounding near 1.
         worst = worst.max(exact.cross(lit).length().atan2(exact.dot(lit)).to_degrees());
     }

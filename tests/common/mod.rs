@@ -126,7 +126,7 @@ pub fn wall_chain(scene: &Scene, params: &FrameParams, size: [u32; 2], x: u32, y
         clearcoat: None,
         clearcoat_roughness: None,
         clearcoat_normal: None,
-        tangent_space: None,
+        triangle_frame: None,
     };
     shade(BumpKind::TangentSpace, material, &surface, params)
 }
