@@ -597,14 +597,14 @@ fn has_glyphs(instance: &scene_gpu::GpuInstance, scene: &GpuScene) -> bool {
 
 /// The pass an instance is drawn with in `shading`'s view: the Difference view has its own
 /// pass for meshes that have tangent frames; else the mesh pass specialised to the view, in a
-/// lit view to the shading model (the frame's override, else the material's) and, where a
-/// height map is bound for it, to the parallax technique.
+/// lit view to the shading model (the frame's override, else the material's), where a
+/// height map is bound for it, to the parallax technique, and to the material's features.
 fn drawn_pass(instance: &scene_gpu::GpuInstance, scene: &GpuScene, shading: &ShadingSettings) -> Pass {
-    let scene_gpu::GpuInstance { variant, cull_back_faces, mirrored, .. } = *instance;
+    let scene_gpu::GpuInstance { variant, cull_back_faces, mirrored, features, .. } = *instance;
     if shading.view == ViewMode::Difference && scene.prepared.meshes[instance.mesh].frames.is_some() {
         return Pass::Difference { variant, cull_back_faces, mirrored };
     }
     let lighting = shading.view.is_lit().then(|| shading.shading_override.unwrap_or(instance.shading_model));
     let parallax = if instance.parallax_height { shading.parallax.technique } else { Parallax::Off };
-    Pass::Mesh { variant, cull_back_faces, mirrored, view: shading.view, lighting, parallax }
+    Pass::Mesh { variant, cull_back_faces, mirrored, view: shading.view, lighting, parallax, features }
 }

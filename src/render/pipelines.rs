@@ -45,6 +45,11 @@ pub enum Pass {
         /// The parallax technique (the `PARALLAX` constant); [`Parallax::Off`] for instances
         /// without a height map bound for it.
         parallax: Parallax,
+        /// The optional textures and lobes the material has (the `MATERIAL_FEATURES` constant,
+        /// [`super::uniforms::MATERIAL_FEATURES`] bits): the code of the others is left out.
+        /// On lavapipe that is what saves their cost, as it runs both sides of a branch on a
+        /// uniform, texture samples included.
+        features: u32,
     },
     /// The Difference view of a mesh with a tangent stream: it adds the reference stream
     /// and binds the same group-1 layout as `variant`.
@@ -188,7 +193,7 @@ impl Pipelines {
         };
         let (module, group1, vs, fs, buffers, cull_mode, constants): (_, _, _, _, &[_], _, Vec<(&str, f64)>) =
             match key.pass {
-                Pass::Mesh { variant, cull_back_faces, view, lighting, parallax, .. } => {
+                Pass::Mesh { variant, cull_back_faces, view, lighting, parallax, features, .. } => {
                     let (vs, fs, buffers): (_, _, &[_]) = match variant {
                         Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
                         Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
@@ -197,7 +202,11 @@ impl Pipelines {
                         Variant::HeightBump => ("vs_plain", "fs_height_bump", &[POSITION, NORMAL, UV]),
                     };
                     let cull = cull_back_faces.then_some(wgpu::Face::Back);
-                    let mut constants = vec![encodes_srgb, ("VIEW", f64::from(view.shader_index()))];
+                    let mut constants = vec![
+                        encodes_srgb,
+                        ("VIEW", f64::from(view.shader_index())),
+                        ("MATERIAL_FEATURES", f64::from(features)),
+                    ];
                     constants.extend(lighting.map(|model| ("SHADING_MODEL", f64::from(model.shader_index()))));
                     if parallax != Parallax::Off {
                         constants.push(("PARALLAX", f64::from(parallax.shader_index())));
@@ -333,6 +342,6 @@ mod tests {
         }
         let mesh = naga::front::wgsl::parse_str(MESH_WGSL).expect("parsed above");
         let overrides: Vec<_> = mesh.overrides.iter().filter_map(|(_, o)| o.name.as_deref()).collect();
-        assert_eq!(overrides, ["PARALLAX", "TARGET_ENCODES_SRGB", "VIEW", "SHADING_MODEL"]);
+        assert_eq!(overrides, ["PARALLAX", "TARGET_ENCODES_SRGB", "VIEW", "SHADING_MODEL", "MATERIAL_FEATURES"]);
     }
 }

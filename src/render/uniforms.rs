@@ -103,6 +103,18 @@ pub(crate) const HAS_PARALLAX_HEIGHT: u32 = 2048;
 pub(crate) const PARALLAX_CLAMP_U: u32 = 4096;
 pub(crate) const PARALLAX_CLAMP_V: u32 = 8192;
 
+/// The bits of `flags` that say which optional textures and lobes a material has: the mesh
+/// pipelines are specialised to them ([`super::pipelines::Pass::Mesh`]'s `features`, the
+/// `MATERIAL_FEATURES` constant), so a pipeline compiles no code for what its material lacks.
+/// The other bits (conventions, parallax clamps) stay uniforms.
+pub(crate) const MATERIAL_FEATURES: u32 = HAS_METALLIC_ROUGHNESS
+    | HAS_GLOSS
+    | HAS_EMISSIVE_TEXTURE
+    | HAS_CLEARCOAT
+    | HAS_CLEARCOAT_TEXTURE
+    | HAS_CLEARCOAT_ROUGHNESS_TEXTURE
+    | HAS_CLEARCOAT_NORMAL;
+
 impl ObjectUniform {
     /// Normals go through the inverse-transpose of the model matrix; tangent `w` is
     /// multiplied by `sign(det(model))` (crate conventions).
@@ -142,5 +154,10 @@ impl ObjectUniform {
                 .map_or([0.0; 4], |c| [c.factor, c.roughness, c.normal_map.as_ref().map_or(1.0, |m| m.scale), 0.0]),
             clearcoat_uv: coat_uv,
         }
+    }
+
+    /// The [`MATERIAL_FEATURES`] bits of `flags`: what the instance's pipeline is specialised to.
+    pub fn features(&self) -> u32 {
+        self.flags & MATERIAL_FEATURES
     }
 }
