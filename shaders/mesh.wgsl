@@ -53,6 +53,7 @@ const TWO_CHANNEL: u32 = 2u;
 const DEPTH_MAP: u32 = 8u;
 const HAS_METALLIC_ROUGHNESS: u32 = 16u;
 const HAS_GLOSS: u32 = 32u;
+const HAS_OCCLUSION_TEXTURE: u32 = 16384u;
 const HAS_EMISSIVE_TEXTURE: u32 = 64u;
 const HAS_CLEARCOAT: u32 = 128u;
 const HAS_CLEARCOAT_TEXTURE: u32 = 256u;
@@ -265,9 +266,9 @@ fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>, n_coat: v
     if has(HAS_METALLIC_ROUGHNESS) {
         metal_rough = textureSample(metallic_roughness_texture, detail_sampler, in.uv);
     }
-    // Without an occlusion texture the strength is 0 and the factor exactly 1.
+    // Without an occlusion texture the factor is exactly 1.
     var occlusion = 1.0;
-    if object.occlusion_strength != 0.0 {
+    if has(HAS_OCCLUSION_TEXTURE) {
         occlusion += object.occlusion_strength * (textureSample(occlusion_texture, detail_sampler, in.uv).r - 1.0);
     }
     var coat = vec2<f32>(0.0); // factor, roughness; 0: no coat
