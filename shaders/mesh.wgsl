@@ -55,6 +55,7 @@ const TWO_CHANNEL: u32 = 2u;
 const DEPTH_MAP: u32 = 8u;
 const HAS_METALLIC_ROUGHNESS: u32 = 16u;
 const HAS_GLOSS: u32 = 32u;
+const HAS_OCCLUSION_TEXTURE: u32 = 16384u;
 const HAS_EMISSIVE_TEXTURE: u32 = 64u;
 const HAS_CLEARCOAT: u32 = 128u;
 const HAS_CLEARCOAT_TEXTURE: u32 = 256u;
@@ -71,6 +72,17 @@ override VIEW: u32 = 0u;
 // The shading model of the lit views (Lit, Over-tilt): ShadingModel::shader_index(), the
 // frame's override or else the material's own.
 override SHADING_MODEL: u32 = 0u;
+
+// The optional textures and lobes the pipeline's material has: the HAS_ bits of
+// MaterialFeatures (src/render/uniforms.rs). Flag tests of these bits go through has(), so a
+// pipeline compiles no code for a feature its material lacks: lavapipe runs both sides of a
+// branch on a uniform, texture samples included.
+override MATERIAL_FEATURES: u32 = 0xffffffffu;
+
+// Whether the material has `feature` (a HAS_ bit of MATERIAL_FEATURES).
+fn has(feature: u32) -> bool {
+    return (object.flags & (MATERIAL_FEATURES & feature)) != 0u;
+}
 
 const VIEW_TANGENT: u32 = 1u;
 const VIEW_BITANGENT: u32 = 2u;
@@ -209,7 +221,7 @@ fn clearcoat_uv(uv: vec2<f32>) -> vec2<f32> {
 // chain::shade's clear-coat normal: the coat's normal map through the frame (OpenGL
 // convention, bump strength times its scale), else the geometric normal.
 fn clearcoat_normal(in: VertexOutput, n: vec3<f32>, frame_tb: TangentFrame) -> vec3<f32> {
-    if (object.flags & HAS_CLEARCOAT_NORMAL) == 0u || frame.bump_enabled == 0u {
+    if !has(HAS_CLEARCOAT_NORMAL) || frame.bump_enabled == 0u {
         return n;
     }
     let texel = textureSample(clearcoat_normal_texture, detail_sampler, clearcoat_uv(in.uv)).rgb;
@@ -221,7 +233,7 @@ fn clearcoat_normal(in: VertexOutput, n: vec3<f32>, frame_tb: TangentFrame) -> v
 fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>, n_coat: vec3<f32>) -> vec3<f32> {
     var albedo = textureSample(base_color_texture, base_color_sampler, in.uv).rgb * object.base_color.rgb;
     var emission = object.emissive.rgb;
-    if (object.flags & HAS_EMISSIVE_TEXTURE) != 0u {
+    if has(HAS_EMISSIVE_TEXTURE) {
         emission *= textureSample(emissive_texture, base_color_sampler, in.uv).rgb;
     }
     if frame.shading_mode == MODE_COLOUR_ONLY {
@@ -233,30 +245,30 @@ fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>, n_coat: v
     }
     if SHADING_MODEL != SHADING_METALLIC_ROUGHNESS {
         var k_s = object.specular.rgb;
-        if (object.flags & HAS_GLOSS) != 0u {
+        if has(HAS_GLOSS) {
             k_s *= textureSample(gloss_texture, detail_sampler, in.uv).rgb;
         }
         return blinn_phong(albedo, k_s, n_geo, n_shading, in.world_position) + emission;
     }
-    // Each texture is sampled only where the material has it (uniform branches): without one
-    // its binding holds a placeholder and the factors stand alone.
+    // Each texture is sampled only where the material has it (has(): the pipeline leaves the
+    // others out): without one its binding holds a placeholder and the factors stand alone.
     var metal_rough = vec4<f32>(1.0);
-    if (object.flags & HAS_METALLIC_ROUGHNESS) != 0u {
+    if has(HAS_METALLIC_ROUGHNESS) {
         metal_rough = textureSample(metallic_roughness_texture, detail_sampler, in.uv);
     }
-    // Without an occlusion texture the strength is 0 and the factor exactly 1.
+    // Without an occlusion texture the factor is exactly 1.
     var occlusion = 1.0;
-    if object.occlusion_strength != 0.0 {
+    if has(HAS_OCCLUSION_TEXTURE) {
         occlusion += object.occlusion_strength * (textureSample(occlusion_texture, detail_sampler, in.uv).r - 1.0);
     }
     var coat = vec2<f32>(0.0); // factor, roughness; 0: no coat
-    if (object.flags & HAS_CLEARCOAT) != 0u {
+    if has(HAS_CLEARCOAT) {
         coat = object.clearcoat.xy;
     }
-    if (object.flags & HAS_CLEARCOAT_TEXTURE) != 0u {
+    if has(HAS_CLEARCOAT_TEXTURE) {
         coat.x *= textureSample(clearcoat_texture, detail_sampler, clearcoat_uv(in.uv)).r;
     }
-    if (object.flags & HAS_CLEARCOAT_ROUGHNESS_TEXTURE) != 0u {
+    if has(HAS_CLEARCOAT_ROUGHNESS_TEXTURE) {
         coat.y *= textureSample(clearcoat_roughness_texture, detail_sampler, clearcoat_uv(in.uv)).g;
     }
     let inputs = PbrInputs(
@@ -267,7 +279,7 @@ fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>, n_coat: v
         n_geo,
         n_shading,
         in.world_position,
-        (object.flags & HAS_CLEARCOAT) != 0u,
+        has(HAS_CLEARCOAT),
         coat.x,
         coat.y,
         n_coat,

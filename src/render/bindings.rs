@@ -124,8 +124,8 @@ mod tests {
     use crate::render::pipelines::{MARKER_WGSL, MESH_WGSL};
     use crate::render::uniforms::{
         DEPTH_MAP, HAS_CLEARCOAT, HAS_CLEARCOAT_NORMAL, HAS_CLEARCOAT_ROUGHNESS_TEXTURE, HAS_CLEARCOAT_TEXTURE,
-        HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS, HAS_PARALLAX_HEIGHT, PARALLAX_CLAMP_U,
-        PARALLAX_CLAMP_V,
+        HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS, HAS_OCCLUSION_TEXTURE, HAS_PARALLAX_HEIGHT,
+        PARALLAX_CLAMP_U, PARALLAX_CLAMP_V,
     };
     use crate::scene::{NormalConvention, ShadingModel, SpecularMode};
 
@@ -189,6 +189,7 @@ mod tests {
         expected.insert("TWO_CHANNEL".into(), NormalConvention::TWO_CHANNEL);
         expected.insert("DEPTH_MAP".into(), DEPTH_MAP);
         expected.insert("HAS_METALLIC_ROUGHNESS".into(), HAS_METALLIC_ROUGHNESS);
+        expected.insert("HAS_OCCLUSION_TEXTURE".into(), HAS_OCCLUSION_TEXTURE);
         expected.insert("HAS_GLOSS".into(), HAS_GLOSS);
         expected.insert("HAS_EMISSIVE_TEXTURE".into(), HAS_EMISSIVE_TEXTURE);
         expected.insert("HAS_CLEARCOAT".into(), HAS_CLEARCOAT);

@@ -609,10 +609,10 @@ fn has_glyphs(instance: &scene_gpu::GpuInstance, scene: &GpuScene) -> bool {
 
 /// The pass an instance is drawn with in `shading`'s view: the Difference view has its own
 /// pass for meshes that have tangent frames; else the mesh pass specialised to the view, in a
-/// lit view to the shading model (the frame's override, else the material's) and, where a
-/// height map is bound for it, to the parallax technique.
+/// lit view to the shading model (the frame's override, else the material's), where a
+/// height map is bound for it, to the parallax technique, and to the material's features.
 fn drawn_pass(instance: &scene_gpu::GpuInstance, scene: &GpuScene, shading: &ShadingSettings) -> Pass {
-    let scene_gpu::GpuInstance { variant, cull_back_faces, mirrored, .. } = *instance;
+    let scene_gpu::GpuInstance { variant, cull_back_faces, mirrored, features, .. } = *instance;
     if shading.view == ViewMode::Difference && scene.prepared.meshes[instance.mesh].frames.is_some() {
         return Pass::Difference { variant, cull_back_faces, mirrored };
     }
@@ -623,5 +623,5 @@ fn drawn_pass(instance: &scene_gpu::GpuInstance, scene: &GpuScene, shading: &Sha
         (Variant::NormalMapped, Some(ShadingModel::BlinnPhong)) => shading.lighting_space,
         _ => LightingSpace::World,
     };
-    Pass::Mesh { variant, cull_back_faces, mirrored, view: shading.view, lighting, parallax, lighting_space }
+    Pass::Mesh { variant, cull_back_faces, mirrored, view: shading.view, lighting, parallax, lighting_space, features }
 }

@@ -51,6 +51,11 @@ pub enum Pass {
         /// has its own fragment stage); [`LightingSpace::World`] except for normal-mapped
         /// variants in lit views with the classic model.
         lighting_space: LightingSpace,
+        /// The optional textures and lobes the material has (the `MATERIAL_FEATURES` constant,
+        /// [`super::uniforms::MATERIAL_FEATURES`] bits): the code of the others is left out.
+        /// On lavapipe that is what saves their cost, as it runs both sides of a branch on a
+        /// uniform, texture samples included.
+        features: u32,
     },
     /// The Difference view of a mesh with a tangent stream: it adds the reference stream
     /// and binds the same group-1 layout as `variant`.
@@ -194,7 +199,7 @@ impl Pipelines {
         };
         let (module, group1, vs, fs, buffers, cull_mode, constants): (_, _, _, _, &[_], _, Vec<(&str, f64)>) =
             match key.pass {
-                Pass::Mesh { variant, cull_back_faces, view, lighting, parallax, lighting_space, .. } => {
+                Pass::Mesh { variant, cull_back_faces, view, lighting, parallax, lighting_space, features, .. } => {
                     let (vs, fs, buffers): (_, _, &[_]) = match variant {
                         Variant::NormalMapped if lighting_space == LightingSpace::Tangent => {
                             ("vs_tangent", "fs_normal_mapped_tangent_space", &[POSITION, NORMAL, UV, TANGENT])
@@ -206,7 +211,11 @@ impl Pipelines {
                         Variant::HeightBump => ("vs_plain", "fs_height_bump", &[POSITION, NORMAL, UV]),
                     };
                     let cull = cull_back_faces.then_some(wgpu::Face::Back);
-                    let mut constants = vec![encodes_srgb, ("VIEW", f64::from(view.shader_index()))];
+                    let mut constants = vec![
+                        encodes_srgb,
+                        ("VIEW", f64::from(view.shader_index())),
+                        ("MATERIAL_FEATURES", f64::from(features)),
+                    ];
                     constants.extend(lighting.map(|model| ("SHADING_MODEL", f64::from(model.shader_index()))));
                     if parallax != Parallax::Off {
                         constants.push(("PARALLAX", f64::from(parallax.shader_index())));
@@ -346,6 +355,6 @@ mod tests {
         }
         let mesh = naga::front::wgsl::parse_str(MESH_WGSL).expect("parsed above");
         let overrides: Vec<_> = mesh.overrides.iter().filter_map(|(_, o)| o.name.as_deref()).collect();
-        assert_eq!(overrides, ["PARALLAX", "LIGHTING_SPACE", "TARGET_ENCODES_SRGB", "VIEW", "SHADING_MODEL"]);
+        assert_eq!(overrides, ["PARALLAX", "LIGHTING_SPACE", "TARGET_ENCODES_SRGB", "VIEW", "SHADING_MODEL", "MATERIAL_FEATURES"]);
     }
 }

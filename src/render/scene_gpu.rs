@@ -41,6 +41,9 @@ pub struct GpuInstance {
     /// A height map is bound for the parallax family (a normal-mapped instance of a material
     /// with a height map, uploaded with [`crate::frame::SceneOptions::parallax`]).
     pub parallax_height: bool,
+    /// The optional textures and lobes its material has ([`super::uniforms::MATERIAL_FEATURES`]
+    /// bits of the object uniform's flags), which its mesh pipelines are specialised to.
+    pub features: u32,
     pub bind_group: wgpu::BindGroup,
 }
 
@@ -237,8 +240,8 @@ pub fn upload(
         .iter()
         .map(|instance| {
             let material = &scene.materials[instance.material];
-            let uniform =
-                buffer(device, "object", &[ObjectUniform::new(instance, material)], wgpu::BufferUsages::UNIFORM);
+            let object = ObjectUniform::new(instance, material);
+            let uniform = buffer(device, "object", &[object], wgpu::BufferUsages::UNIFORM);
             let slots = &instance.textures;
             let base_color = match slots.base_color {
                 Some(t) => textures.get(&prepared, t, counters),
@@ -296,6 +299,7 @@ pub fn upload(
                 mirrored: instance.mirrored(),
                 shading_model: material.shading_model,
                 parallax_height: instance.textures.height.is_some(),
+                features: object.features(),
                 bind_group,
             }
         })

@@ -146,6 +146,21 @@ pub(crate) const HAS_PARALLAX_HEIGHT: u32 = 2048;
 /// Bits of `flags`: the height map's sampler clamps u, v; marched coordinates stay in 0..1.
 pub(crate) const PARALLAX_CLAMP_U: u32 = 4096;
 pub(crate) const PARALLAX_CLAMP_V: u32 = 8192;
+/// Bit of `flags`: binding 6 holds the material's occlusion texture.
+pub(crate) const HAS_OCCLUSION_TEXTURE: u32 = 16384;
+
+/// The bits of `flags` that say which optional textures and lobes a material has: the mesh
+/// pipelines are specialised to them ([`super::pipelines::Pass::Mesh`]'s `features`, the
+/// `MATERIAL_FEATURES` constant), so a pipeline compiles no code for what its material lacks.
+/// The other bits (conventions, parallax clamps) stay uniforms.
+pub(crate) const MATERIAL_FEATURES: u32 = HAS_METALLIC_ROUGHNESS
+    | HAS_OCCLUSION_TEXTURE
+    | HAS_GLOSS
+    | HAS_EMISSIVE_TEXTURE
+    | HAS_CLEARCOAT
+    | HAS_CLEARCOAT_TEXTURE
+    | HAS_CLEARCOAT_ROUGHNESS_TEXTURE
+    | HAS_CLEARCOAT_NORMAL;
 
 impl ObjectUniform {
     /// Normals go through the inverse-transpose of the model matrix; tangent `w` is
@@ -168,6 +183,7 @@ impl ObjectUniform {
             flags: material.normal_map.as_ref().map_or(0, |n| n.convention.flags())
                 | if material.height_map.as_ref().is_some_and(|h| h.depth) { DEPTH_MAP } else { 0 }
                 | if material.metallic_roughness_texture.is_some() { HAS_METALLIC_ROUGHNESS } else { 0 }
+                | bit(slots.occlusion.is_some(), HAS_OCCLUSION_TEXTURE)
                 | if material.gloss_texture.is_some() { HAS_GLOSS } else { 0 }
                 | bit(slots.emissive.is_some(), HAS_EMISSIVE_TEXTURE)
                 | bit(coat.is_some(), HAS_CLEARCOAT)
@@ -186,5 +202,10 @@ impl ObjectUniform {
                 .map_or([0.0; 4], |c| [c.factor, c.roughness, c.normal_map.as_ref().map_or(1.0, |m| m.scale), 0.0]),
             clearcoat_uv: coat_uv,
         }
+    }
+
+    /// The [`MATERIAL_FEATURES`] bits of `flags`: what the instance's pipeline is specialised to.
+    pub fn features(&self) -> u32 {
+        self.flags & MATERIAL_FEATURES
     }
 }
