@@ -267,6 +267,41 @@ impl ParallaxSettings {
     }
 }
 
+/// The most tessellation levels of [`Displacement`]: each triangle becomes at most
+/// `4^MAX_DISPLACEMENT_LEVEL` triangles (the prepare stage lowers the level further when a
+/// scene would exceed [`MAX_DISPLACED_TRIANGLES`]).
+pub const MAX_DISPLACEMENT_LEVEL: u32 = 10;
+/// The most triangles a displaced scene draws (about 48 bytes per vertex, 12 per triangle).
+pub const MAX_DISPLACED_TRIANGLES: usize = 8 << 20;
+
+/// Displacement mapping, the parallax family's ground truth: every instance whose material
+/// has a height map (and whose mesh has texture coordinates) is tessellated on the CPU, each
+/// triangle's edges cut into `2^level` segments, and each vertex moved along its normal by
+/// `(h − 1) · depth` — the same convention as [`Parallax`]: the mesh surface is the top of the
+/// relief, a texel of height `h` lies `(1 − h) · depth` metres below it. It is shaded with the
+/// displaced surface's normals instead of the normal map. A scene option: it makes geometry.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Displacement {
+    /// Tessellation level, 0 (off) to [`MAX_DISPLACEMENT_LEVEL`]: `4^level` triangles per
+    /// triangle.
+    pub level: u32,
+    /// The relief's depth, metres: `None` takes each material's height range. The viewer
+    /// sets it from [`ParallaxSettings::depth_m`] so both mean the same relief.
+    pub depth_m: Option<f32>,
+}
+
+impl Displacement {
+    /// Whether meshes are displaced.
+    pub fn is_on(&self) -> bool {
+        self.level > 0
+    }
+
+    /// A caption: `displacement, level L` or `no displacement`.
+    pub fn caption(&self) -> String {
+        if self.is_on() { format!("displacement, level {}", self.level) } else { "no displacement".to_owned() }
+    }
+}
+
 /// Everything that decides one picture, besides the scene and the target size.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FrameParams {
@@ -403,6 +438,8 @@ pub struct SceneOptions {
     /// technique is chosen (`ViewerState::scene_uploads` sets it), so the height maps are
     /// uploaded only then.
     pub parallax: bool,
+    /// Displaced geometry instead of the normal map where a material has a height map.
+    pub displacement: Displacement,
 }
 
 impl SceneOptions {

@@ -7,7 +7,7 @@ use std::num::NonZeroU32;
 use std::path::PathBuf;
 
 use bumpview::error::LoadWarning;
-use bumpview::frame::{FrameQuality, MAX_PARALLAX_STEPS, Parallax, ViewMode};
+use bumpview::frame::{FrameQuality, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_STEPS, Parallax, ViewMode};
 use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
 use bumpview::render::export::{TileGrid, caption, render_grid};
 use bumpview::render::timing::{TimedPicture, time_frames};
@@ -89,6 +89,12 @@ pub struct RenderArgs {
     /// The relief's depth in metres, 0 or more [default: each material's height range].
     #[arg(long, value_name = "METRES", value_parser = args::parse_finite)]
     parallax_depth: Option<f32>,
+    /// Displacement, the ground truth: meshes whose material has a height map tessellated at
+    /// LEVEL (4^LEVEL triangles per triangle, 0 to 10; 0 is off) and moved along their
+    /// normals by the parallax depth, shaded with the displaced surface's normals. Its vertex
+    /// count and memory go to stderr [default: 0].
+    #[arg(long, value_name = "LEVEL", value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_DISPLACEMENT_LEVEL)))]
+    displacement: Option<u32>,
     /// Hide the light marker.
     #[arg(long)]
     no_light_marker: bool,
@@ -98,8 +104,8 @@ pub struct RenderArgs {
     /// Split view, left │ right, as one image: bump (off │ on), view (lit │ shading-normal),
     /// strength (1 │ 3), mode (colour-only │ bump-colour), tangents (per-face │ mikktspace),
     /// convention (opengl │ directx), bump-source (normal-map │ height-in-shader) or parallax
-    /// (steep │ occlusion)
-    /// [default: the preset's].
+    /// (steep │ occlusion) or displacement (a parallax technique │ displacement at a level,
+    /// `--split-sides occlusion,6`) [default: the preset's].
     #[arg(long, value_name = "KIND", value_parser = args::named::<SplitDifference>(), conflicts_with = "tiles")]
     split: Option<SplitDifference>,
     /// With --split: the two sides instead of the defaults above, e.g. `averaged-uniform,mikktspace`
@@ -149,6 +155,7 @@ impl RenderArgs {
             }
             commands.push(Command::SetParallaxDepth(Some(depth)));
         }
+        commands.extend(self.displacement.map(Command::SetDisplacement));
         if self.no_light_marker {
             commands.push(Command::SetLightMarker(false));
         }
@@ -241,6 +248,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let gpu = Gpu::headless()?;
     let mut renderer = Renderer::from_gpu(&gpu);
     renderer.set_scene_uploads(&scene, &state.scene_uploads());
+    report_displacement(&renderer);
     let options = capture.options(DEFAULT_RENDER_SIZE);
     let params = state.frame_params();
     let image = if let Some(grid) = grid {
@@ -259,6 +267,15 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     Ok(())
 }
 
+/// Tells stderr what displacement drew (per half of a split view drawn from two uploads).
+fn report_displacement(renderer: &Renderer) {
+    for (half, name) in [(false, ""), (true, " (split right)")] {
+        if let Some(stats) = renderer.prepared(half).and_then(|p| p.displacement) {
+            eprintln!("bumpview: displacement{name}: {}", stats.summary());
+        }
+    }
+}
+
 /// `--frames`: times `frames` frames of the picture at `size` (full quality, or as the viewer
 /// draws them while dragging) against the adapter's floor and prints the line.
 fn time(
@@ -271,6 +288,7 @@ fn time(
     let gpu = Gpu::headless()?;
     let mut renderer = Renderer::from_gpu(&gpu);
     renderer.set_scene_uploads(scene, &state.scene_uploads());
+    report_displacement(&renderer);
     let params = state.frame_params();
     let split = state.split_frame();
     let mut picture =

@@ -24,7 +24,6 @@
 //! downscaled a texture larger than the adapter allows, the probe differs from the picture.
 
 mod pick;
-mod sample;
 
 use std::sync::Arc;
 
@@ -35,13 +34,13 @@ use crate::chain::{BumpSample, ChainValues, SurfaceSample, shade};
 use crate::frame::{BumpKind, FrameParams, Parallax, SceneOptions};
 use crate::math::{normal_matrix, normalize_or};
 use crate::prepare::PreparedScene;
+use crate::scene::sample::sample_trilinear;
+pub use crate::scene::sample::{nearest_texel, sample_bilinear};
 use crate::scene::{OrbitCamera, SamplerWrap, Scene, TextureImage, Wrap};
 use crate::shading::height_sample;
 use crate::tangent::TangentMethod;
 pub use pick::project_to_pixel;
 use pick::{Quad, corner_positions, intersect};
-use sample::sample_trilinear;
-pub use sample::{nearest_texel, sample_bilinear};
 
 /// A pinned surface point: a triangle of one instance and barycentric coordinates on it.
 #[derive(Debug, Clone, Copy, PartialEq)]

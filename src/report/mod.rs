@@ -10,6 +10,7 @@ mod convergence;
 mod csv;
 mod markdown;
 pub mod measure;
+pub mod parallax;
 pub mod roundtrip;
 pub mod stiff;
 pub mod surfaces;

@@ -6,6 +6,7 @@ pub mod builtin;
 pub mod camera;
 pub mod material;
 pub mod overrides;
+pub mod sample;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 

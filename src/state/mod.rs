@@ -11,8 +11,8 @@ pub use split::{SplitDifference, SplitView};
 use glam::{Vec2, Vec3};
 
 use crate::frame::{
-    BumpSource, FrameParams, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Msaa, Parallax, STRENGTH_RANGE, SceneOptions,
-    SceneUploads, ShadingMode, ShadingSettings, SplitFrame, ViewMode,
+    BumpSource, FrameParams, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Msaa, Parallax,
+    STRENGTH_RANGE, SceneOptions, SceneUploads, ShadingMode, ShadingSettings, SplitFrame, ViewMode,
 };
 use crate::height::Kernel;
 use crate::scene::{GreenAxis, Light, MaterialOverrides, OrbitCamera, Scene, ShadingModel};
@@ -117,6 +117,12 @@ pub enum Command {
     /// The relief's depth in metres (`None`: each material's height range); a negative or
     /// non-finite depth is ignored.
     SetParallaxDepth(Option<f32>),
+    /// Displacement's tessellation level (0 off), clamped to 0..=[`MAX_DISPLACEMENT_LEVEL`];
+    /// it makes geometry, so it is a scene option.
+    SetDisplacement(u32),
+    /// The split view's [`SplitDifference::Displacement`]: the left half's parallax technique
+    /// and the right half's displacement level (clamped to 1..=[`MAX_DISPLACEMENT_LEVEL`]).
+    SetSplitDisplacement(Parallax, u32),
 }
 
 /// Everything the user can change about the picture.
@@ -165,7 +171,10 @@ impl ViewerState {
         // Height maps are bound for parallax while either picture marches.
         let shown = self.split_frame().map_or(vec![self.shading], |s| vec![s.left, s.right]);
         let parallax = shown.iter().any(|s| s.parallax.technique != Parallax::Off);
-        let options = SceneOptions { parallax, ..self.scene_options.clone() };
+        // Displacement takes the parallax depth, so both draw the same relief.
+        let mut displacement = self.scene_options.displacement;
+        displacement.depth_m = self.shading.parallax.depth_m;
+        let options = SceneOptions { parallax, displacement, ..self.scene_options.clone() };
         if self.split.enabled && self.split.difference.changes_gpu_data() {
             let [left, right] = self.split.scene_options(&options);
             SceneUploads { main: left, split_right: Some(right) }
@@ -256,6 +265,13 @@ impl ViewerState {
             Command::SetParallaxSteps(steps) => self.shading.parallax.steps = steps.min(MAX_PARALLAX_STEPS),
             Command::SetParallaxDepth(Some(d)) if !(d.is_finite() && d >= 0.0) => {}
             Command::SetParallaxDepth(depth) => self.shading.parallax.depth_m = depth,
+            Command::SetDisplacement(level) => {
+                self.scene_options.displacement.level = level.min(MAX_DISPLACEMENT_LEVEL)
+            }
+            Command::SetSplitDisplacement(technique, level) => {
+                self.split.parallax[0] = technique;
+                self.split.displacement_level = level.clamp(1, MAX_DISPLACEMENT_LEVEL);
+            }
             Command::ToggleWireframe => self.shading.wireframe = !self.shading.wireframe,
             Command::SetGlyphs(on) => self.shading.tbn_glyphs = on,
             Command::ToggleGlyphs => self.shading.tbn_glyphs = !self.shading.tbn_glyphs,

@@ -10,7 +10,7 @@ use crate::tangent::TangentMethod;
 /// uniforms, so both halves share one scene upload; the others change GPU data
 /// ([`SplitDifference::changes_gpu_data`]), so the right half is drawn from a second upload of
 /// the scene. Named `bump`, `view`, `strength`, `mode`, `tangents`, `convention`,
-/// `bump-source`, `parallax`.
+/// `bump-source`, `parallax`, `displacement`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
 #[strum(serialize_all = "kebab-case")]
 pub enum SplitDifference {
@@ -31,13 +31,22 @@ pub enum SplitDifference {
     BumpSource,
     /// Two parallax techniques (same layers, steps and depth).
     Parallax,
+    /// The left parallax technique (`parallax[0]`) │ displacement at `displacement_level`, the
+    /// ground truth (same depth).
+    Displacement,
 }
 
 impl SplitDifference {
     /// Whether the halves need different GPU data (tangent streams, material flags, pipeline
     /// variants), not only different uniforms.
     pub fn changes_gpu_data(self) -> bool {
-        matches!(self, SplitDifference::Tangents | SplitDifference::Convention | SplitDifference::BumpSource)
+        matches!(
+            self,
+            SplitDifference::Tangents
+                | SplitDifference::Convention
+                | SplitDifference::BumpSource
+                | SplitDifference::Displacement
+        )
     }
 }
 
@@ -55,6 +64,8 @@ pub struct SplitView {
     pub conventions: [GreenAxis; 2],
     pub bump_sources: [BumpSource; 2],
     pub parallax: [Parallax; 2],
+    /// The right half's displacement level in [`SplitDifference::Displacement`].
+    pub displacement_level: u32,
 }
 
 impl Default for SplitView {
@@ -70,6 +81,7 @@ impl Default for SplitView {
             conventions: [GreenAxis::OpenGl, GreenAxis::DirectX],
             bump_sources: [BumpSource::NormalMap, BumpSource::HeightInShader],
             parallax: [Parallax::Steep, Parallax::Occlusion],
+            displacement_level: 6,
         }
     }
 }
@@ -85,6 +97,8 @@ impl SplitView {
                 SplitDifference::Strength => s.strength = self.strengths[i],
                 SplitDifference::Mode => s.mode = self.modes[i],
                 SplitDifference::Parallax => s.parallax.technique = self.parallax[i],
+                SplitDifference::Displacement if i == 0 => s.parallax.technique = self.parallax[0],
+                SplitDifference::Displacement => {}
                 SplitDifference::Tangents | SplitDifference::Convention | SplitDifference::BumpSource => {}
             }
             s
@@ -108,6 +122,7 @@ impl SplitView {
                     options.per_material.retain(|_, o| !o.is_empty());
                 }
                 SplitDifference::BumpSource => options.bump_source = self.bump_sources[i],
+                SplitDifference::Displacement => options.displacement.level = [0, self.displacement_level][i],
                 SplitDifference::Bump
                 | SplitDifference::View
                 | SplitDifference::Strength
@@ -129,6 +144,8 @@ impl SplitView {
             SplitDifference::Convention => format!("normal map: {}", self.conventions[i].label()),
             SplitDifference::BumpSource => self.bump_sources[i].label().to_owned(),
             SplitDifference::Parallax => self.parallax[i].label().to_owned(),
+            SplitDifference::Displacement if i == 0 => self.parallax[0].label().to_owned(),
+            SplitDifference::Displacement => format!("displacement, level {}", self.displacement_level),
         })
     }
 }

@@ -20,7 +20,10 @@ use std::path::Path;
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
-use crate::frame::{MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, ParallaxSettings, SceneOptions, ShadingSettings};
+use crate::frame::{
+    Displacement, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, ParallaxSettings, SceneOptions,
+    ShadingSettings,
+};
 use crate::height::Kernel;
 use crate::load::SceneFiles;
 use crate::names::{Named, parse_or_auto};
@@ -191,6 +194,10 @@ impl Preset {
             return Err(bad("capture.size", &format!("[{w}, {h}]"), "[width, height], each at least 1"));
         }
         let mode = named("shading.mode", &s.mode)?;
+        if scene.displacement > MAX_DISPLACEMENT_LEVEL {
+            let levels = format!("0 (off) to {MAX_DISPLACEMENT_LEVEL}");
+            return Err(bad("scene.displacement", &scene.displacement.to_string(), &levels));
+        }
         let layers = format!("[min, max], each 1 to {MAX_PARALLAX_LAYERS}");
         if let Some([a, b]) =
             Some(s.parallax_layers).filter(|l| l.iter().any(|n| !(1..=MAX_PARALLAX_LAYERS).contains(n)))
@@ -232,6 +239,7 @@ impl Preset {
                 per_material,
                 // Set by `ViewerState::scene_uploads` from the shading.
                 parallax: false,
+                displacement: Displacement { level: scene.displacement, depth_m: None },
             },
             kernel: self.kernel()?,
             split: self.split.to_split()?,

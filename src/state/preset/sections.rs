@@ -1,7 +1,7 @@
 //! The sections of a preset file, one struct each, and their conversions from and to the
 //! viewer state's values.
 
-use crate::frame::{SceneOptions, ShadingSettings};
+use crate::frame::{MAX_DISPLACEMENT_LEVEL, SceneOptions, ShadingSettings};
 use crate::height::Kernel;
 use crate::names::{Named, name_or_auto};
 use crate::render::Background;
@@ -19,7 +19,7 @@ use super::*;
 pub struct SplitPreset {
     pub enabled: bool,
     /// A [`SplitDifference`] name: `bump`, `view`, `strength`, `mode`, `tangents`,
-    /// `convention` or `bump-source`.
+    /// `convention`, `bump-source`, `parallax` or `displacement`.
     pub difference: String,
     /// The divider, a fraction of the width (0..1).
     pub divider: f32,
@@ -36,6 +36,8 @@ pub struct SplitPreset {
     pub bump_sources: [String; 2],
     /// [`Parallax`](crate::frame::Parallax) technique names, left and right.
     pub parallax: [String; 2],
+    /// The right half's displacement level in the `displacement` split (1 to 10).
+    pub displacement_level: u32,
 }
 
 impl Default for SplitPreset {
@@ -57,6 +59,7 @@ impl From<&SplitView> for SplitPreset {
             conventions: names(s.conventions),
             bump_sources: names(s.bump_sources),
             parallax: names(s.parallax),
+            displacement_level: s.displacement_level,
         }
     }
 }
@@ -70,6 +73,10 @@ impl SplitPreset {
         if let Some(s) = self.strengths.iter().find(|s| !s.is_finite()) {
             return Err(bad("split.strengths", &s.to_string(), "finite numbers"));
         }
+        if !(1..=MAX_DISPLACEMENT_LEVEL).contains(&self.displacement_level) {
+            let levels = format!("1 to {MAX_DISPLACEMENT_LEVEL}");
+            return Err(bad("split.displacement_level", &self.displacement_level.to_string(), &levels));
+        }
         Ok(SplitView {
             // Every field: a new split setting must get a place in the preset format too.
             enabled: self.enabled,
@@ -82,6 +89,7 @@ impl SplitPreset {
             conventions: named_pair("split.conventions", &self.conventions)?,
             bump_sources: named_pair("split.bump_sources", &self.bump_sources)?,
             parallax: named_pair("split.parallax", &self.parallax)?,
+            displacement_level: self.displacement_level,
         })
     }
 }
@@ -164,6 +172,9 @@ pub struct ScenePreset {
     pub materials: OverridesPreset,
     /// Conventions per material, by index into the scene's materials (`"0"`, `"1"`…).
     pub per_material: BTreeMap<String, OverridesPreset>,
+    /// Displacement's tessellation level, 0 (off) to 10: materials with a height map drawn
+    /// as displaced geometry, the depth the parallax depth.
+    pub displacement: u32,
 }
 
 /// [`MaterialOverrides`] by name; a missing key keeps the material's own setting.
@@ -235,6 +246,7 @@ impl ScenePreset {
             kernel: kernel.name().to_owned(),
             materials: OverridesPreset::from(&options.materials),
             per_material: options.per_material.iter().map(|(i, o)| (i.to_string(), o.into())).collect(),
+            displacement: options.displacement.level,
         }
     }
 }
