@@ -28,6 +28,10 @@ use crate::scene::{Instance, Light, Mesh, OrbitCamera, Scene, TextureKind};
 
 /// Largest channel difference, in 8-bit steps, beyond which a pixel counts as off.
 pub const OFF_BY: u8 = 5;
+/// The squares are measured within 0.4 m of their centre: 10 cm inside the border, more
+/// than a 2 cm relief moves it at 80° (2 cm · tan 80° = 11 cm... seen along x, the border
+/// rows and columns of texels).
+pub const MEASURED_HALF_SIZE: f32 = 0.4;
 /// The frame's vertical field of view, degrees.
 const FOV_Y_DEG: f32 = 50.0;
 
@@ -41,6 +45,11 @@ pub struct Specimen {
     pub distance: f32,
     /// The level where its picture has stopped changing (the convergence table shows it).
     pub reference_level: u32,
+    /// For a square in the z = 0 plane: errors count only pixels whose view ray meets the
+    /// plane within this many metres of the centre along x and y (inside the border, where
+    /// displacement lowers the square's edge — a silhouette no parallax technique draws —
+    /// and the border would otherwise outweigh the relief). `None`: every pixel.
+    pub measured_half_size: Option<f32>,
 }
 
 impl Specimen {
@@ -53,6 +62,20 @@ impl Specimen {
             distance: self.distance,
             fov_y: FOV_Y_DEG.to_radians(),
         }
+    }
+
+    /// Which pixels of a `size` picture at `angle_deg` count ([`Self::measured_half_size`]).
+    pub fn mask(&self, angle_deg: f32, size: [u32; 2]) -> Option<Vec<bool>> {
+        let half = self.measured_half_size?;
+        let camera = self.camera(angle_deg);
+        let dims = Vec2::new(size[0] as f32, size[1] as f32);
+        let inside = |x: u32, y: u32| {
+            let (origin, dir) = camera.ray_through_pixel(Vec2::new(x as f32 + 0.5, y as f32 + 0.5), dims);
+            let t = -origin.z / dir.z;
+            let hit = origin + dir * t;
+            dir.z.abs() > 1e-6 && t > 0.0 && hit.x.abs() <= half && hit.y.abs() <= half
+        };
+        Some((0..size[1]).flat_map(|y| (0..size[0]).map(move |x| (x, y))).map(|(x, y)| inside(x, y)).collect())
     }
 
     /// The frame at `angle_deg` with `parallax`, lit from the upper left in front.
@@ -86,13 +109,27 @@ fn bricks_on(mesh: Mesh, material: usize) -> Scene {
 /// spanning 1 cm), seen from 1.3 m.
 pub fn wall() -> Specimen {
     let scene = bricks_on(square_mesh("wall (1 m²)"), 0);
-    Specimen { name: "wall".into(), scene, target: Vec3::ZERO, distance: 1.3, reference_level: 10 }
+    Specimen {
+        name: "wall".into(),
+        scene,
+        target: Vec3::ZERO,
+        distance: 1.3,
+        reference_level: 10,
+        measured_half_size: Some(MEASURED_HALF_SIZE),
+    }
 }
 
 /// The built-in torus (96 × 32 quads, bricks, 1 cm relief) alone, seen from 1.6 m.
 pub fn torus() -> Specimen {
     let scene = bricks_on(torus_mesh(96, 32), 1);
-    Specimen { name: "torus".into(), scene, target: Vec3::ZERO, distance: 1.6, reference_level: 5 }
+    Specimen {
+        name: "torus".into(),
+        scene,
+        target: Vec3::ZERO,
+        distance: 1.6,
+        reference_level: 5,
+        measured_half_size: None,
+    }
 }
 
 /// ambientCG's Rock058 (colour and displacement, white = high; the normal map made from the
@@ -105,7 +142,14 @@ pub fn rock(assets: &Path) -> Result<Specimen, LoadError> {
     scene.materials[0].base_color_texture = Some(0);
     scene.materials[0].name = "Rock058".into();
     add_height_map(&mut scene, &[0], load_texture(&folder.join("displacement.jpg"), TextureKind::Height)?, 2.0);
-    Ok(Specimen { name: "Rock058".into(), scene, target: Vec3::ZERO, distance: 1.3, reference_level: 10 })
+    Ok(Specimen {
+        name: "Rock058".into(),
+        scene,
+        target: Vec3::ZERO,
+        distance: 1.3,
+        reference_level: 10,
+        measured_half_size: Some(MEASURED_HALF_SIZE),
+    })
 }
 
 /// How far a picture is from the reference.
@@ -117,12 +161,17 @@ pub struct ImageError {
     pub off_share: f64,
 }
 
-/// The error of `image` against `reference` (same size, sRGB-encoded RGBA).
-pub fn image_error(image: &image::RgbaImage, reference: &image::RgbaImage) -> ImageError {
+/// The error of `image` against `reference` (same size, sRGB-encoded RGBA) over the pixels
+/// `mask` holds (row by row; `None`: all).
+pub fn image_error(image: &image::RgbaImage, reference: &image::RgbaImage, mask: Option<&[bool]>) -> ImageError {
     assert_eq!(image.dimensions(), reference.dimensions(), "compared pictures differ in size");
     let mut squares = 0.0f64;
-    let mut off = 0usize;
-    for (a, b) in image.pixels().zip(reference.pixels()) {
+    let (mut off, mut pixels) = (0usize, 0usize);
+    for (index, (a, b)) in image.pixels().zip(reference.pixels()).enumerate() {
+        if mask.is_some_and(|m| !m.get(index).copied().unwrap_or(false)) {
+            continue;
+        }
+        pixels += 1;
         let mut largest = 0u8;
         for c in 0..3 {
             let (x, y) = (srgb_to_linear(a[c] as f32 / 255.0), srgb_to_linear(b[c] as f32 / 255.0));
@@ -131,7 +180,7 @@ pub fn image_error(image: &image::RgbaImage, reference: &image::RgbaImage) -> Im
         }
         off += usize::from(largest > OFF_BY);
     }
-    let pixels = (image.width() as usize * image.height() as usize).max(1);
+    let pixels = pixels.max(1);
     ImageError { rmse: (squares / (3 * pixels) as f64).sqrt(), off_share: off as f64 / pixels as f64 }
 }
 
@@ -310,10 +359,11 @@ pub fn measure_specimen(
     let reference_level = specimen.reference_level;
     let mut rows = vec![];
     let mut references = vec![];
-    for &angle in &plan.angles_deg {
+    let masks: Vec<Option<Vec<bool>>> = plan.angles_deg.iter().map(|&a| specimen.mask(a, plan.size)).collect();
+    for (&angle, mask) in plan.angles_deg.iter().zip(&masks) {
         let reference = bench.picture(angle, off, reference_level)?;
         let frame_ms = bench.frame_ms(angle, off, reference_level, plan.frames)?;
-        let error = image_error(&reference, &reference);
+        let error = image_error(&reference, &reference, mask.as_deref());
         let row = ParallaxRow {
             specimen: specimen.name.clone(),
             angle_deg: angle,
@@ -339,14 +389,14 @@ pub fn measure_specimen(
                 technique: DISPLACEMENT,
                 layers: None,
                 level: Some(level),
-                error: image_error(&image, &references[at]),
+                error: image_error(&image, &references[at], masks[at].as_deref()),
                 frame_ms,
             };
             rows.push(row);
             step();
         }
     }
-    for (&angle, reference) in plan.angles_deg.iter().zip(&references) {
+    for ((&angle, reference), mask) in plan.angles_deg.iter().zip(&references).zip(&masks) {
         for (technique, layers) in cases(&plan.layers) {
             let parallax = settings(technique, layers);
             let image = bench.picture(angle, parallax, 0)?;
@@ -357,7 +407,7 @@ pub fn measure_specimen(
                 technique: technique.into(),
                 layers,
                 level: None,
-                error: image_error(&image, reference),
+                error: image_error(&image, reference, mask.as_deref()),
                 frame_ms,
             };
             rows.push(row);
