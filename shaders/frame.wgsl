@@ -17,6 +17,7 @@ struct Frame {
     parallax_layers_max: u32,
     parallax_steps: u32,      // relief's binary-search steps
     parallax_depth_m: f32,    // the relief's depth, metres; negative: each material's height range
+    parallax_shadow_strength: f32, // ParallaxSettings::shadow_strength (0: no self-shadows)
 };
 
 @group(0) @binding(0) var<uniform> frame: Frame;

@@ -195,7 +195,7 @@ fn blinn_phong(albedo: vec3<f32>, k_s: vec3<f32>, n_geo: vec3<f32>, n_shading: v
         specular = pow(n_dot_h, object.specular.a);
     }
     return albedo * frame.ambient.rgb
-        + self_shadow * frame.light_color.rgb * (albedo * n_dot_l + k_s * specular);
+        + self_shadow * parallax_light_visibility(l) * frame.light_color.rgb * (albedo * n_dot_l + k_s * specular);
 }
 
 fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {

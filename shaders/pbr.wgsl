@@ -84,7 +84,7 @@ fn metallic_roughness(p: PbrInputs) -> vec3<f32> {
     let fresnel = fresnel_schlick(f0, dot(v, h));
     let specular = fresnel * ggx_distribution(n_dot_h, alpha) * smith_visibility(n_dot_l, n_dot_v, alpha);
     let diffuse = (vec3<f32>(1.0) - fresnel) * c_diff / PI;
-    let self_shadow = smoothstep(0.0, frame.self_shadow_fade, dot(p.n_geo, l));
+    let self_shadow = smoothstep(0.0, frame.self_shadow_fade, dot(p.n_geo, l)) * parallax_light_visibility(l);
     let direct = PI * (diffuse + specular) * frame.light_color.rgb * n_dot_l * self_shadow;
     let r = normalize_or(2.0 * dot(p.n, v) * p.n - v, p.n);
     let ab = environment_brdf(n_dot_v, roughness);

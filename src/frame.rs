@@ -231,11 +231,25 @@ pub struct ParallaxSettings {
     /// The relief's depth, metres: `None` takes each material's height range
     /// ([`crate::scene::HeightMap::range_m`]). 0 is plain normal mapping.
     pub depth_m: Option<f32>,
+    /// Soft self-shadowing of the searches (Tatarchuk 2006): how dark the relief's own
+    /// shadows are, 0 (off) to [`MAX_PARALLAX_SHADOW_STRENGTH`]; a uniform.
+    pub shadow_strength: f32,
 }
+
+/// The strongest parallax self-shadowing (4 darkens fully where a blocker rises a 32nd of the
+/// depth above the light ray next to the point).
+pub const MAX_PARALLAX_SHADOW_STRENGTH: f32 = 4.0;
 
 impl Default for ParallaxSettings {
     fn default() -> Self {
-        ParallaxSettings { technique: Parallax::Off, layers_min: 8, layers_max: 32, steps: 5, depth_m: None }
+        ParallaxSettings {
+            technique: Parallax::Off,
+            layers_min: 8,
+            layers_max: 32,
+            steps: 5,
+            depth_m: None,
+            shadow_strength: 0.0,
+        }
     }
 }
 
@@ -255,15 +269,22 @@ impl ParallaxSettings {
         (a.min(b), a.max(b))
     }
 
-    /// A caption: the technique and, for searches, its layers (and relief's steps).
+    /// A caption: the technique and, for searches, its layers (and relief's steps, and the
+    /// shadows when on).
     pub fn caption(&self) -> String {
         let (low, high) = self.layer_range();
         let layers = if low == high { format!("{high} layers") } else { format!("{low}–{high} layers") };
+        let shadows = if self.shadows_on() { ", shadows" } else { "" };
         match self.technique {
             Parallax::Off | Parallax::Offset | Parallax::OffsetLimited => self.technique.label().to_owned(),
-            Parallax::Steep | Parallax::Occlusion => format!("{}, {layers}", self.technique.label()),
-            Parallax::Relief => format!("{}, {layers} + {} steps", self.technique.label(), self.steps),
+            Parallax::Steep | Parallax::Occlusion => format!("{}, {layers}{shadows}", self.technique.label()),
+            Parallax::Relief => format!("{}, {layers} + {} steps{shadows}", self.technique.label(), self.steps),
         }
+    }
+
+    /// Whether the searches cast soft self-shadows (a strength above 0).
+    pub fn shadows_on(&self) -> bool {
+        self.shadow_strength > 0.0 && self.shadow_strength.is_finite()
     }
 }
 

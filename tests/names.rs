@@ -26,7 +26,8 @@ fn every_enum_keeps_its_names_in_order() {
     assert_eq!(ViewMode::names(), views);
     assert_eq!(ShadingMode::names(), ["bump-colour", "bump-only", "colour-only"]);
     assert_eq!(BumpSource::names(), ["normal-map", "height-in-shader"]);
-    let differences = ["bump", "view", "strength", "mode", "tangents", "convention", "bump-source", "parallax"];
+    let differences =
+        ["bump", "view", "strength", "mode", "tangents", "convention", "bump-source", "parallax", "displacement"];
     assert_eq!(SplitDifference::names(), differences);
     let methods = [
         "mikktspace",

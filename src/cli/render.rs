@@ -7,7 +7,9 @@ use std::num::NonZeroU32;
 use std::path::PathBuf;
 
 use bumpview::error::LoadWarning;
-use bumpview::frame::{FrameQuality, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_STEPS, Parallax, ViewMode};
+use bumpview::frame::{
+    FrameQuality, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS, Parallax, ViewMode,
+};
 use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
 use bumpview::render::export::{TileGrid, caption, render_grid};
 use bumpview::render::timing::{TimedPicture, time_frames};
@@ -89,6 +91,10 @@ pub struct RenderArgs {
     /// The relief's depth in metres, 0 or more [default: each material's height range].
     #[arg(long, value_name = "METRES", value_parser = args::parse_finite)]
     parallax_depth: Option<f32>,
+    /// Soft self-shadows of the searches (steep, occlusion, relief; Tatarchuk 2006) at
+    /// STRENGTH, 0 (off) to 4 [default without the flag: off; with it and no value: 1].
+    #[arg(long, value_name = "STRENGTH", num_args = 0..=1, default_missing_value = "1", value_parser = args::parse_finite)]
+    parallax_shadows: Option<f32>,
     /// Displacement, the ground truth: meshes whose material has a height map tessellated at
     /// LEVEL (4^LEVEL triangles per triangle, 0 to 10; 0 is off) and moved along their
     /// normals by the parallax depth, shaded with the displaced surface's normals. Its vertex
@@ -154,6 +160,14 @@ impl RenderArgs {
                 return Err(Failure::BadArguments(format!("--parallax-depth {depth}: expected metres, 0 or more")));
             }
             commands.push(Command::SetParallaxDepth(Some(depth)));
+        }
+        if let Some(strength) = self.parallax_shadows {
+            if !(0.0..=MAX_PARALLAX_SHADOW_STRENGTH).contains(&strength) {
+                let message =
+                    format!("--parallax-shadows {strength}: expected a strength, 0 to {MAX_PARALLAX_SHADOW_STRENGTH}");
+                return Err(Failure::BadArguments(message));
+            }
+            commands.push(Command::SetParallaxShadows(strength));
         }
         commands.extend(self.displacement.map(Command::SetDisplacement));
         if self.no_light_marker {

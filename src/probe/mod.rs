@@ -29,7 +29,7 @@ use std::sync::Arc;
 
 use glam::{Mat3, Vec2, Vec3, Vec4};
 
-use crate::chain::parallax::{MarchInputs, march};
+use crate::chain::parallax::{MarchInputs, light_in_tangent_space, march, soft_shadow};
 use crate::chain::{BumpSample, ChainValues, SurfaceSample, shade};
 use crate::frame::{BumpKind, FrameParams, Parallax, SceneOptions};
 use crate::math::{normal_matrix, normalize_or};
@@ -107,6 +107,9 @@ pub struct MarchReadout {
     pub depth: f32,
     /// The height map at the shifted UV, 0..1 (white = high, a depth map flipped).
     pub height: f32,
+    /// The share of the light reaching the point past the relief's own shadow
+    /// ([`crate::chain::parallax::soft_shadow`]; 1 without shadows).
+    pub light_visibility: f32,
 }
 
 impl ProbeReadout {
@@ -237,11 +240,18 @@ impl ProbeScene {
                 let view_dir = normalize_or(eye - p, normal);
                 let inputs =
                     MarchInputs { uv: uv_at(b), normal, view_dir, dp_dx, dp_dy, duv_dx, duv_dy, depth_m, clamp };
-                (march(parallax, &inputs, height), height)
+                (march(parallax, &inputs, height), height, inputs)
             })
         });
         let marched = march_at.as_ref().map(|m| m(b, position));
-        let read_uv = marched.map_or(uv, |(m, _)| m.uv);
+        let read_uv = marched.map_or(uv, |(m, ..)| m.uv);
+        // The relief's soft shadow dims the light (the shaders' parallax_light_visibility).
+        let light_visibility = marched.map_or(1.0, |(m, height, inputs)| {
+            let l = normalize_or(params.light.position - position, inputs.normal);
+            soft_shadow(parallax, &inputs, &m, light_in_tangent_space(&inputs, l), height)
+        });
+        let mut shaded = *params;
+        shaded.light.color *= light_visibility;
         let footprint = match (&march_at, &quad) {
             (Some(m), Some(quad)) => quad.derivatives(|b, p| m(b, p).0.uv),
             _ => interpolated_footprint,
@@ -296,8 +306,8 @@ impl ProbeScene {
             clearcoat_roughness: coat_sample(slots.clearcoat_roughness).map(|t| t.y),
             clearcoat_normal: coat_sample(slots.clearcoat_normal),
         };
-        let chain = shade(instance.bump, material, self.scene().ambient, &surface, params);
-        let march = marched.map(|(m, height)| MarchReadout {
+        let chain = shade(instance.bump, material, self.scene().ambient, &surface, &shaded);
+        let march = marched.map(|(m, height, _)| MarchReadout {
             view_tangent: chain.tangent.zip(chain.bitangent).map(|(t, b)| {
                 Vec3::new(chain.view_dir.dot(t), chain.view_dir.dot(b), chain.view_dir.dot(chain.normal))
             }),
@@ -307,6 +317,7 @@ impl ProbeScene {
             shift: m.shift,
             depth: m.depth,
             height: height(m.uv),
+            light_visibility,
         });
         ProbeReadout {
             point: *point,

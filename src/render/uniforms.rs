@@ -28,8 +28,9 @@ pub struct FrameUniform {
     parallax_layers_max: u32,
     parallax_steps: u32,
     parallax_depth_m: f32,
+    parallax_shadow_strength: f32,
     /// The WGSL struct's size is a multiple of 16 bytes.
-    _padding: [f32; 2],
+    _padding: [f32; 1],
 }
 
 impl FrameUniform {
@@ -51,7 +52,8 @@ impl FrameUniform {
             parallax_layers_max: parallax.layers_max,
             parallax_steps: parallax.steps,
             parallax_depth_m: parallax.depth_m.map_or(-1.0, |d| d.max(0.0)),
-            _padding: [0.0; 2],
+            parallax_shadow_strength: if parallax.shadows_on() { parallax.shadow_strength } else { 0.0 },
+            _padding: [0.0; 1],
         }
     }
 }

@@ -11,8 +11,9 @@ pub use split::{SplitDifference, SplitView};
 use glam::{Vec2, Vec3};
 
 use crate::frame::{
-    BumpSource, FrameParams, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Msaa, Parallax,
-    STRENGTH_RANGE, SceneOptions, SceneUploads, ShadingMode, ShadingSettings, SplitFrame, ViewMode,
+    BumpSource, FrameParams, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS, MAX_PARALLAX_SHADOW_STRENGTH,
+    MAX_PARALLAX_STEPS, Msaa, Parallax, STRENGTH_RANGE, SceneOptions, SceneUploads, ShadingMode, ShadingSettings,
+    SplitFrame, ViewMode,
 };
 use crate::height::Kernel;
 use crate::scene::{GreenAxis, Light, MaterialOverrides, OrbitCamera, Scene, ShadingModel};
@@ -117,6 +118,9 @@ pub enum Command {
     /// The relief's depth in metres (`None`: each material's height range); a negative or
     /// non-finite depth is ignored.
     SetParallaxDepth(Option<f32>),
+    /// The searches' soft self-shadow strength (0 off), clamped to
+    /// 0..=[`MAX_PARALLAX_SHADOW_STRENGTH`]; a non-finite value is ignored.
+    SetParallaxShadows(f32),
     /// Displacement's tessellation level (0 off), clamped to 0..=[`MAX_DISPLACEMENT_LEVEL`];
     /// it makes geometry, so it is a scene option.
     SetDisplacement(u32),
@@ -265,6 +269,10 @@ impl ViewerState {
             Command::SetParallaxSteps(steps) => self.shading.parallax.steps = steps.min(MAX_PARALLAX_STEPS),
             Command::SetParallaxDepth(Some(d)) if !(d.is_finite() && d >= 0.0) => {}
             Command::SetParallaxDepth(depth) => self.shading.parallax.depth_m = depth,
+            Command::SetParallaxShadows(s) if s.is_finite() => {
+                self.shading.parallax.shadow_strength = s.clamp(0.0, MAX_PARALLAX_SHADOW_STRENGTH)
+            }
+            Command::SetParallaxShadows(_) => {}
             Command::SetDisplacement(level) => {
                 self.scene_options.displacement.level = level.min(MAX_DISPLACEMENT_LEVEL)
             }

@@ -1,7 +1,9 @@
 //! The parallax family: technique, depth, the search's layers and relief's steps (uniforms);
 //! displacement, its ground truth: the tessellation level and what it costs.
 
-use bumpview::frame::{MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Parallax};
+use bumpview::frame::{
+    MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS, MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS, Parallax,
+};
 use bumpview::names::Named;
 use bumpview::prepare::displace::DisplacementStats;
 use bumpview::state::{Command, ViewerState};
@@ -43,6 +45,23 @@ pub(super) fn show(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Act
                     .changed();
         if changed {
             actions.push(Command::SetParallaxLayers([min, max]).into());
+        }
+    }
+    if technique.marches() {
+        let mut on = settings.shadows_on();
+        if ui
+            .checkbox(&mut on, "self-shadows")
+            .on_hover_text("Tatarchuk's soft shadows: a ray from the hit towards the light")
+            .changed()
+        {
+            actions.push(Command::SetParallaxShadows(if on { 1.0 } else { 0.0 }).into());
+        }
+        if on {
+            let mut strength = settings.shadow_strength;
+            let slider = egui::Slider::new(&mut strength, 0.0..=MAX_PARALLAX_SHADOW_STRENGTH).text("shadow strength");
+            if ui.add(slider).changed() {
+                actions.push(Command::SetParallaxShadows(strength).into());
+            }
         }
     }
     if technique == Parallax::Relief {

@@ -21,8 +21,8 @@ use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
 use crate::frame::{
-    Displacement, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, ParallaxSettings, SceneOptions,
-    ShadingSettings,
+    Displacement, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS, MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS,
+    ParallaxSettings, SceneOptions, ShadingSettings,
 };
 use crate::height::Kernel;
 use crate::load::SceneFiles;
@@ -208,6 +208,10 @@ impl Preset {
             let steps = format!("0 to {MAX_PARALLAX_STEPS}");
             return Err(bad("shading.parallax_steps", &s.parallax_steps.to_string(), &steps));
         }
+        if !(0.0..=MAX_PARALLAX_SHADOW_STRENGTH).contains(&s.parallax_shadows) {
+            let strengths = format!("0 (off) to {MAX_PARALLAX_SHADOW_STRENGTH}");
+            return Err(bad("shading.parallax_shadows", &s.parallax_shadows.to_string(), &strengths));
+        }
         if let Some(d) = s.parallax_depth_m.filter(|d| !(d.is_finite() && *d >= 0.0)) {
             return Err(bad("shading.parallax_depth_m", &d.to_string(), "metres, 0 or more"));
         }
@@ -229,6 +233,7 @@ impl Preset {
                     layers_max: s.parallax_layers[1],
                     steps: s.parallax_steps,
                     depth_m: s.parallax_depth_m,
+                    shadow_strength: s.parallax_shadows,
                 },
             },
             light_orbit: self.light.orbit,

@@ -156,6 +156,8 @@ pub struct ShadingPreset {
     pub parallax_steps: u32,
     /// The relief's depth, metres; missing: each material's height range.
     pub parallax_depth_m: Option<f32>,
+    /// The searches' soft self-shadows: their strength, 0 (off) to 4.
+    pub parallax_shadows: f32,
 }
 
 /// How the scene is prepared: tangents, bump source, kernel and material conventions.
@@ -228,6 +230,7 @@ impl From<&ShadingSettings> for ShadingPreset {
             parallax_layers: [s.parallax.layers_min, s.parallax.layers_max],
             parallax_steps: s.parallax.steps,
             parallax_depth_m: s.parallax.depth_m,
+            parallax_shadows: s.parallax.shadow_strength,
         }
     }
 }
