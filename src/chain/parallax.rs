@@ -156,15 +156,15 @@ pub fn light_in_tangent_space(inputs: &MarchInputs, l: Vec3) -> Vec3 {
 /// point shadows fully.
 pub const SHADOW_SHARPNESS: f32 = 8.0;
 
-/// Tatarchuk's soft self-shadow for the searches (steep, occlusion, relief): from the point
-/// the view ray hit, at `hit.depth` below the top, a ray rises towards one light given in
+/// Tatarchuk's soft self-shadow for the searches (steep, occlusion, relief): from the relief's
+/// surface at the UV the view ray hit, a ray rises towards one light given in
 /// tangent space (`light_ts`, [`light_in_tangent_space`]) and is sampled at
 /// `settings.layers(N·L)` points up to the top of the relief. Where the relief stands above
 /// the ray by `b` (a fraction of the depth) at step `i` of `n`, it blocks `b · (1 − i/n)`
 /// (nearer blockers cast darker shadows); the light arrives times
 /// `1 − clamp(strength · SHADOW_SHARPNESS · max blocked, 0, 1)`. 1 for other techniques, a
 /// strength of 0, a point at the top, or a light below the surface (the geometric term
-/// darkens that). At most [`crate::frame::MAX_PARALLAX_LAYERS`] height samples.
+/// darkens that). At most 1 + [`crate::frame::MAX_PARALLAX_LAYERS`] height samples.
 pub fn soft_shadow(
     settings: &ParallaxSettings,
     inputs: &MarchInputs,
@@ -172,7 +172,13 @@ pub fn soft_shadow(
     light_ts: Vec3,
     height: impl Fn(Vec2) -> f32,
 ) -> f32 {
-    if !settings.technique.marches() || !settings.shadows_on() || hit.depth <= 0.0 || light_ts.z <= 0.0 {
+    if !settings.technique.marches() || !settings.shadows_on() || light_ts.z <= 0.0 {
+        return 1.0;
+    }
+    // From the relief's surface at the hit's UV: steep's hit lies up to a layer below it,
+    // and a ray starting there would shadow the point by its own layer.
+    let start = 1.0 - height(hit.uv);
+    if start <= 0.0 {
         return 1.0;
     }
     let per_depth = light_ts.truncate() * inputs.depth_m / light_ts.z.max(GRAZING_N_DOT_V);
@@ -180,8 +186,8 @@ pub fn soft_shadow(
     let mut blocked = 0.0f32;
     for i in 1..=samples {
         let f = i as f32 / samples as f32;
-        let ray_depth = hit.depth * (1.0 - f);
-        let surface_depth = 1.0 - height(clamped(inputs, hit.uv + per_depth * (hit.depth * f)));
+        let ray_depth = start * (1.0 - f);
+        let surface_depth = 1.0 - height(clamped(inputs, hit.uv + per_depth * (start * f)));
         blocked = blocked.max((ray_depth - surface_depth) * (1.0 - f));
     }
     1.0 - (settings.shadow_strength * SHADOW_SHARPNESS * blocked).clamp(0.0, 1.0)

@@ -125,7 +125,8 @@ pub struct RenderArgs {
     #[arg(long, group = "tiles")]
     row: bool,
     /// A grid of tiles of --size: rows separated by `;`, tiles by `,`, each NAME[@STRENGTH]
-    /// with NAME flat, bumped, bump-only, colour-only or a view name; without SPEC
+    /// with NAME flat, bumped, bump-only, colour-only, a view name, or a parallax technique
+    /// with an optional fixed layer count (`steep:8,occlusion:8,relief:8`); without SPEC
     /// `flat,bumped,bump-only;tangent,bitangent,shading-normal`.
     #[arg(long, value_name = "SPEC", num_args = 0..=1, default_missing_value = "", group = "tiles")]
     grid: Option<String>,
@@ -261,7 +262,11 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     };
     let gpu = Gpu::headless()?;
     let mut renderer = Renderer::from_gpu(&gpu);
-    renderer.set_scene_uploads(&scene, &state.scene_uploads());
+    let mut uploads = state.scene_uploads();
+    // Tiles naming a parallax technique march the height maps.
+    uploads.main.parallax |=
+        grid.as_ref().is_some_and(|g| g.tiles.iter().any(|t| t.parallax.technique != Parallax::Off));
+    renderer.set_scene_uploads(&scene, &uploads);
     report_displacement(&renderer);
     let options = capture.options(DEFAULT_RENDER_SIZE);
     let params = state.frame_params();
