@@ -274,7 +274,7 @@ impl ParallaxPlan {
             angles_deg: vec![0.0, 45.0, 70.0, 80.0],
             layers: vec![4, 8, 16, 32, 64],
             size: [1280, 720],
-            frames: NonZeroU32::new(5).expect("5"),
+            frames: NonZeroU32::new(3).expect("3"),
             torus: true,
             assets,
             coarser_by: 0,
