@@ -259,4 +259,44 @@ mod tests {
             }
         }
     }
+
+    fn shadowed(technique: Parallax, layers: u32) -> ParallaxSettings {
+        ParallaxSettings { shadow_strength: 1.0, ..settings(technique, layers) }
+    }
+
+    /// A flat floor casts no shadow; a ridge between the point and a low light does, fully at
+    /// strength 1; lights grazing, below the surface, 1 and 256 samples stay in 0..1.
+    #[test]
+    fn soft_shadows_fall_behind_ridges_only_and_stay_in_range() {
+        let face_on = inputs(Vec3::Z);
+        // A floor at half depth; a ridge up to the top at u in 0.52..0.56 (the point is at 0.5).
+        let floor = |_: Vec2| 0.5;
+        let ridge = |uv: Vec2| if (0.52..0.56).contains(&uv.x) { 1.0 } else { 0.5 };
+        let low_light = Vec3::new(1.0, 0.0, 0.3).normalize();
+        for technique in [Parallax::Steep, Parallax::Occlusion, Parallax::Relief] {
+            let hit = march(&shadowed(technique, 16), &face_on, floor);
+            let light_ts = light_in_tangent_space(&face_on, low_light);
+            assert_eq!(soft_shadow(&shadowed(technique, 16), &face_on, &hit, light_ts, floor), 1.0);
+            assert_eq!(soft_shadow(&shadowed(technique, 16), &face_on, &hit, light_ts, ridge), 0.0, "{technique:?}");
+            let away = light_in_tangent_space(&face_on, Vec3::new(-1.0, 0.0, 0.3).normalize());
+            assert_eq!(
+                soft_shadow(&shadowed(technique, 16), &face_on, &hit, away, ridge),
+                1.0,
+                "lit from the other side"
+            );
+            let off = ParallaxSettings { shadow_strength: 0.0, ..shadowed(technique, 16) };
+            assert_eq!(soft_shadow(&off, &face_on, &hit, light_ts, ridge), 1.0);
+            for light in [Vec3::X, Vec3::new(1.0, 0.0, -0.5).normalize(), Vec3::new(0.0, 1.0, 1e-5).normalize()] {
+                for layers in [1, 256] {
+                    let settings = shadowed(technique, layers);
+                    let light_ts = light_in_tangent_space(&face_on, light);
+                    let v = soft_shadow(&settings, &face_on, &hit, light_ts, |uv| 0.5 + 0.5 * (uv.x * 40.0).sin());
+                    assert!((0.0..=1.0).contains(&v), "{technique:?} {light} {layers}: {v}");
+                }
+            }
+        }
+        let offset = march(&shadowed(Parallax::Offset, 16), &face_on, floor);
+        let light_ts = light_in_tangent_space(&face_on, low_light);
+        assert_eq!(soft_shadow(&shadowed(Parallax::Offset, 16), &face_on, &offset, light_ts, ridge), 1.0);
+    }
 }
