@@ -75,7 +75,8 @@ impl HeightLookup<'_> {
 }
 
 /// `scene` with every instance whose material has a height map (and whose mesh has texture
-/// coordinates) drawing a displaced copy of its mesh with a copy of its material without
+/// coordinates and normals per vertex, indices in range; non-finite data is left to the
+/// prepare stage's repair, which drops such triangles) drawing a displaced copy of its mesh with a copy of its material without
 /// normal and height maps; the stats when anything was displaced. Notices say when the
 /// level was lowered.
 pub fn displaced(
@@ -91,7 +92,9 @@ pub fn displaced(
         let map = scene.materials[material].height_map.as_ref();
         map.is_some_and(|m| scene.textures.get(m.texture).is_some_and(|t| t.width > 0 && t.height > 0))
             && mesh.uvs.len() == mesh.positions.len()
+            && mesh.normals.len() == mesh.positions.len()
             && !mesh.indices.is_empty()
+            && mesh.indices.iter().all(|&i| (i as usize) < mesh.positions.len())
     };
     let mut pairs: Vec<(usize, usize)> =
         scene.instances.iter().map(|i| (i.mesh, i.material)).filter(|&(m, mat)| displaceable(m, mat)).collect();

@@ -41,21 +41,33 @@ fn label(row: &ParallaxRow) -> String {
     }
 }
 
-/// The smallest layer count of `technique` on `specimen` at `angle` with an RMSE within
-/// [`WITHIN_RMSE`], and the RMSE at the largest count measured.
-pub fn layers_within(
-    rows: &[ParallaxRow],
-    specimen: &str,
-    angle: f32,
-    technique: Parallax,
-) -> (Option<u32>, Option<f64>) {
-    let mut measured: Vec<&ParallaxRow> = rows
+/// How many layers `technique` needs on `specimen` at `angle`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LayersNeeded {
+    /// The fewest layers with an RMSE within [`WITHIN_RMSE`] of displacement.
+    pub within_rmse: Option<u32>,
+    /// The fewest layers within 1 % of the error at the most layers measured (where the
+    /// technique has converged to what it cannot draw).
+    pub within_converged: Option<u32>,
+    /// The most layers measured and the RMSE there.
+    pub most: Option<(u32, f64)>,
+}
+
+/// [`LayersNeeded`] from the rows.
+pub fn layers_needed(rows: &[ParallaxRow], specimen: &str, angle: f32, technique: Parallax) -> LayersNeeded {
+    let mut measured: Vec<(u32, f64)> = rows
         .iter()
         .filter(|r| r.specimen == specimen && r.angle_deg == angle && r.technique == <&str>::from(technique))
+        .filter_map(|r| r.layers.map(|n| (n, r.error.rmse)))
         .collect();
-    measured.sort_by_key(|r| r.layers);
-    let first = measured.iter().find(|r| r.error.rmse <= WITHIN_RMSE).and_then(|r| r.layers);
-    (first, measured.last().map(|r| r.error.rmse))
+    measured.sort_by_key(|m| m.0);
+    let most = measured.last().copied();
+    let first = |limit: f64| measured.iter().find(|m| m.1 <= limit).map(|m| m.0);
+    LayersNeeded {
+        within_rmse: first(WITHIN_RMSE),
+        within_converged: most.and_then(|(_, rmse)| first(rmse * 1.01)),
+        most,
+    }
 }
 
 /// The markdown section.
@@ -145,23 +157,27 @@ pub fn markdown(page: &ParallaxPage) -> String {
             let _ = writeln!(s, "![{specimen}: RMSE against frame time at {}°]({chart})\n", plan.convergence_angle_deg);
         }
         let angle = plan.convergence_angle_deg;
-        let (first, last) = layers_within(page.rows, specimen, angle, Parallax::Occlusion);
-        let largest = plan.layers.iter().max().copied().unwrap_or(0);
-        match (first, last) {
-            (Some(n), _) => {
-                let _ = writeln!(
-                    s,
-                    "Occlusion needs **{n} layers** to come within {WITHIN_RMSE} RMSE (1 %) of displacement at {angle}°.\n"
-                );
+        let needed = layers_needed(page.rows, specimen, angle, Parallax::Occlusion);
+        if let Some((most, rmse)) = needed.most {
+            match needed.within_rmse {
+                Some(n) => {
+                    let _ = write!(
+                        s,
+                        "Occlusion comes within {WITHIN_RMSE} RMSE (1 %) of displacement at {angle}° with **{n} layers**"
+                    );
+                }
+                None => {
+                    let _ = write!(
+                        s,
+                        "Occlusion does not come within {WITHIN_RMSE} RMSE (1 %) of displacement at {angle}° with up to \
+                         {most} layers (RMSE {rmse:.4} at {most})"
+                    );
+                }
             }
-            (None, Some(rmse)) => {
-                let _ = writeln!(
-                    s,
-                    "Occlusion does not come within {WITHIN_RMSE} RMSE (1 %) of displacement at {angle}° with up to \
-                     {largest} layers (RMSE {rmse:.4} at {largest}).\n"
-                );
+            if let Some(n) = needed.within_converged {
+                let _ = write!(s, "; it comes within 1 % of its error at {most} layers with **{n} layers**");
             }
-            (None, None) => {}
+            s.push_str(".\n\n");
         }
     }
     let _ = writeln!(s, "### Blinn's approximation on a sphere\n");
@@ -198,14 +214,16 @@ pub fn csv(rows: &[ParallaxRow]) -> String {
     s
 }
 
-/// Errors below this RMSE (the reference against itself) are drawn at it.
-const RMSE_FLOOR: f64 = 1e-4;
+/// Errors below this RMSE are drawn at it.
+const RMSE_FLOOR: f64 = 1e-5;
 
 /// The Pareto chart of `specimen` at `angle`: RMSE against frame time, a curve per technique
 /// through its layer counts (displacement through its levels), a point for each technique
 /// without layers.
 pub fn chart(rows: &[ParallaxRow], specimen: &str, angle: f32) -> Result<Vec<u8>, ChartError> {
-    let at: Vec<&ParallaxRow> = rows.iter().filter(|r| r.specimen == specimen && r.angle_deg == angle).collect();
+    // The reference against itself (error 0) has no place on a log scale.
+    let at: Vec<&ParallaxRow> =
+        rows.iter().filter(|r| r.specimen == specimen && r.angle_deg == angle && r.error.rmse > 0.0).collect();
     let mut techniques: Vec<&str> = Parallax::all().iter().map(|&t| t.name()).chain([DISPLACEMENT]).collect();
     techniques.retain(|t| at.iter().any(|r| r.technique == *t));
     let series: Vec<Series> = techniques
@@ -228,4 +246,37 @@ pub fn chart(rows: &[ParallaxRow], specimen: &str, angle: f32) -> Result<Vec<u8>
         .collect();
     let title = format!("{specimen} at {angle}°: image RMSE vs frame time (a point per layer count / level)");
     png(&title, ["median frame time (ms)", "RMSE against displacement, linear RGB"], &series)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::parallax::ImageError;
+
+    fn row(technique: &'static str, layers: u32, rmse: f64) -> ParallaxRow {
+        ParallaxRow {
+            specimen: "wall".into(),
+            angle_deg: 70.0,
+            technique,
+            layers: Some(layers),
+            level: None,
+            error: ImageError { rmse, off_share: 0.0 },
+            frame_ms: 1.0,
+        }
+    }
+
+    #[test]
+    fn layers_needed_finds_the_first_count_within_each_limit() {
+        let rows = [
+            row("occlusion", 16, 0.0164),
+            row("occlusion", 4, 0.019),
+            row("occlusion", 64, 0.0163),
+            row("steep", 4, 0.001),
+        ];
+        let needed = layers_needed(&rows, "wall", 70.0, Parallax::Occlusion);
+        assert_eq!(needed, LayersNeeded { within_rmse: None, within_converged: Some(16), most: Some((64, 0.0163)) });
+        let close = [row("occlusion", 8, 0.02), row("occlusion", 32, 0.009)];
+        assert_eq!(layers_needed(&close, "wall", 70.0, Parallax::Occlusion).within_rmse, Some(32));
+        assert_eq!(layers_needed(&close, "torus", 70.0, Parallax::Occlusion).most, None);
+    }
 }
