@@ -8,7 +8,8 @@ use std::path::PathBuf;
 
 use bumpview::error::LoadWarning;
 use bumpview::frame::{
-    FrameQuality, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS, Parallax, ViewMode,
+    FrameQuality, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS, Parallax, SceneUploads,
+    ViewMode,
 };
 use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
 use bumpview::render::export::{TileGrid, caption, render_grid};
@@ -262,10 +263,11 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     };
     let gpu = Gpu::headless()?;
     let mut renderer = Renderer::from_gpu(&gpu);
-    let mut uploads = state.scene_uploads();
-    // Tiles naming a parallax technique march the height maps.
-    uploads.main.parallax |=
-        grid.as_ref().is_some_and(|g| g.tiles.iter().any(|t| t.parallax.technique != Parallax::Off));
+    let uploads = match &grid {
+        // Tiles are single pictures, some perhaps marching the height maps.
+        Some(grid) => SceneUploads { main: state.scene_options_drawing(&grid.tiles), split_right: None },
+        None => state.scene_uploads(),
+    };
     renderer.set_scene_uploads(&scene, &uploads);
     report_displacement(&renderer);
     let options = capture.options(DEFAULT_RENDER_SIZE);

@@ -172,19 +172,24 @@ impl ViewerState {
     /// in GPU data, the left half's options for the main upload and the right half's for a
     /// second one; else the current options alone.
     pub fn scene_uploads(&self) -> SceneUploads {
-        // Height maps are bound for parallax while either picture marches.
         let shown = self.split_frame().map_or(vec![self.shading], |s| vec![s.left, s.right]);
-        let parallax = shown.iter().any(|s| s.parallax.technique != Parallax::Off);
-        // Displacement takes the parallax depth, so both draw the same relief.
-        let mut displacement = self.scene_options.displacement;
-        displacement.depth_m = self.shading.parallax.depth_m;
-        let options = SceneOptions { parallax, displacement, ..self.scene_options.clone() };
+        let options = self.scene_options_drawing(&shown);
         if self.split.enabled && self.split.difference.changes_gpu_data() {
             let [left, right] = self.split.scene_options(&options);
             SceneUploads { main: left, split_right: Some(right) }
         } else {
             SceneUploads { main: options, split_right: None }
         }
+    }
+
+    /// The scene options pictures with `shown` settings are drawn with: the height maps bound
+    /// for parallax while any of them marches, displacement at the parallax depth (so both
+    /// draw the same relief); the split view aside.
+    pub fn scene_options_drawing(&self, shown: &[ShadingSettings]) -> SceneOptions {
+        let parallax = shown.iter().any(|s| s.parallax.technique != Parallax::Off);
+        let mut displacement = self.scene_options.displacement;
+        displacement.depth_m = self.shading.parallax.depth_m;
+        SceneOptions { parallax, displacement, ..self.scene_options.clone() }
     }
 
     /// The picture at pixel column `column` of a view `width` pixels wide: its parameters, the
