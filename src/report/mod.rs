@@ -9,6 +9,7 @@ pub mod blinn;
 mod chart;
 mod convergence;
 mod csv;
+pub mod gpu_time;
 mod markdown;
 pub mod measure;
 pub mod parallax;
@@ -281,6 +282,7 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
         rows: &study.rows,
         plan: &plan.parallax,
         adapter: &study.adapter,
+        timestamps: study.timestamps,
         notes: &study.notes,
         blinn: &blinn,
         charts: &charts,
@@ -307,6 +309,8 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
 struct ParallaxStudy {
     rows: Vec<parallax::ParallaxRow>,
     adapter: String,
+    /// The device has timestamp queries inside encoders: frames are timed on the GPU.
+    timestamps: bool,
     notes: Vec<String>,
 }
 
@@ -319,7 +323,7 @@ fn parallax_study(plan: &parallax::ParallaxPlan, progress: &mut dyn FnMut(usize,
         Ok(gpu) => gpu,
         Err(e) => {
             notes.push(format!("no GPU: {e}"));
-            return ParallaxStudy { rows: vec![], adapter: "no adapter".into(), notes };
+            return ParallaxStudy { rows: vec![], adapter: "no adapter".into(), timestamps: false, notes };
         }
     };
     let mut renderer = crate::render::Renderer::from_gpu(&gpu);
@@ -336,5 +340,6 @@ fn parallax_study(plan: &parallax::ParallaxPlan, progress: &mut dyn FnMut(usize,
             Err(e) => notes.push(format!("{} left out: {e}", specimen.name)),
         }
     }
-    ParallaxStudy { rows, adapter: gpu.adapter_name(), notes }
+    let timestamps = gpu.device.features().contains(gpu_time::FEATURES);
+    ParallaxStudy { rows, adapter: gpu.adapter_name(), timestamps, notes }
 }

@@ -23,6 +23,7 @@ use crate::math::srgb_to_linear;
 use crate::render::capture::{CaptureOptions, render_capture};
 use crate::render::timing::{TimedPicture, time_frames};
 use crate::render::{Background, Renderer};
+use crate::report::gpu_time::gpu_frame_ms;
 use crate::scene::builtin::{BRICK_TILE_M, teaching_scene, torus_mesh};
 use crate::scene::{Instance, Light, Mesh, OrbitCamera, Scene, TextureKind};
 
@@ -224,7 +225,9 @@ impl<'a> Bench<'a> {
         render_capture(self.renderer, &options, &self.specimen.params(angle_deg, parallax))
     }
 
-    /// The median frame time (ms) of [`Self::picture`]'s frame over `frames` frames.
+    /// The median frame time (ms) of [`Self::picture`]'s frame over `frames` frames: GPU time
+    /// between timestamps where the device has them ([`gpu_frame_ms`]), else wall time with a
+    /// wait ([`time_frames`]).
     pub fn frame_ms(
         &mut self,
         angle_deg: f32,
@@ -234,6 +237,9 @@ impl<'a> Bench<'a> {
     ) -> Result<f64, RenderError> {
         self.upload(level);
         let params = self.specimen.params(angle_deg, parallax);
+        if let Some(ms) = gpu_frame_ms(self.renderer, &params, self.size, frames)? {
+            return Ok(ms);
+        }
         let picture = TimedPicture { params: &params, split: None, view_size: self.size, quality: FrameQuality::FULL };
         Ok(time_frames(self.renderer, &picture, frames)?.frame_ms)
     }

@@ -21,6 +21,8 @@ pub struct ParallaxPage<'a> {
     pub plan: &'a ParallaxPlan,
     /// The adapter's name, or why the GPU study did not run.
     pub adapter: &'a str,
+    /// Frames were timed by GPU timestamps (else wall time with a wait).
+    pub timestamps: bool,
     /// Lines about specimens left out.
     pub notes: &'a [String],
     pub blinn: &'a [BlinnRow],
@@ -79,11 +81,21 @@ pub fn markdown(page: &ParallaxPage) -> String {
         s,
         "Every technique drawn at {}×{} pixels (4× MSAA where the adapter has it) on **{}**, against \
          displacement (the mesh tessellated on the CPU and displaced, its exact normals) at the level \
-         where its picture stopped changing. Error: RMSE of the linear RGB channels over the whole \
-         picture, and the share of pixels with a channel off by more than {OFF_BY}/255. Time: median \
-         wall time of {} full-quality frame(s), each submitted alone and waited for (no timestamp \
-         queries). Relief takes 5 binary-search steps; depth is each material's height range.\n",
-        plan.size[0], plan.size[1], page.adapter, plan.frames,
+         where its picture stopped changing. Error: RMSE of the linear RGB channels, and the share of \
+         pixels with a channel off by more than {OFF_BY}/255, over the picture (on the squares over \
+         the pixels whose view ray meets the surface within {} m of the centre). Time: median of {} \
+         full-quality frame(s), {}. Relief takes 5 binary-search steps; depth is each material's \
+         height range.\n",
+        plan.size[0],
+        plan.size[1],
+        page.adapter,
+        super::parallax::MEASURED_HALF_SIZE,
+        plan.frames,
+        if page.timestamps {
+            "GPU time between timestamps written before and after the frame's passes"
+        } else {
+            "wall time, each submitted alone and waited for (the device has no timestamp queries inside encoders)"
+        },
     );
     for note in page.notes {
         let _ = writeln!(s, "- {note}");
