@@ -28,6 +28,7 @@ struct Frame {
     light_count: u32,
     specular_mode: u32,       // SpecularMode::shader_index(): Blinn, Phong, off
     shininess: f32,           // for every material; negative: each material's own
+    parallax_shadow_strength: f32, // ParallaxSettings::shadow_strength (0: no self-shadows)
     view_rotation: mat3x3<f32>, // world → view space (OrbitCamera::view_rotation)
 };
 

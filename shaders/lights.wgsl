@@ -102,7 +102,9 @@ fn blinn_phong(albedo: vec3<f32>, k_s: vec3<f32>, n_geo: vec3<f32>, n_shading: v
         } else if LIGHTING_SPACE == LIGHTING_VIEW {
             l = frame.view_rotation * l;
         }
-        sum += light_term(albedo, k_s, g, n, l, v, arriving.radiance);
+        // The parallax searches' soft self-shadow of this light (1 without one).
+        let visibility = parallax_light_visibility(arriving.direction);
+        sum += light_term(albedo, k_s, g, n, l, v, arriving.radiance * visibility);
     }
     return sum;
 }

@@ -2,7 +2,8 @@
 // the material's height map before the normal map and the colour are read. The CPU twin is
 // src/chain/parallax.rs, formula for formula; its doc comment states the geometry (reference
 // plane at the top of the relief, UV density from screen-space derivatives) and the bounds.
-// Prepended to mesh.wgsl at build time; fs_normal_mapped calls parallax_uv.
+// Prepended to mesh.wgsl at build time; fs_normal_mapped calls parallax_uv, the lighting
+// multiplies each light by parallax_light_visibility (the searches' soft self-shadows).
 
 @group(1) @binding(12) var height_texture: texture_2d<f32>; // linear: 16-bit height in R (high), G (low)
 
@@ -31,6 +32,21 @@ struct ParallaxRay {
     duv_dy: vec2<f32>,
 };
 
+// Where the search hit, kept for the self-shadows of the lighting (chain::parallax::soft_shadow).
+struct ParallaxHit {
+    ray: ParallaxRay,
+    uv: vec2<f32>,   // the UV there
+    grad_u: vec3<f32>,
+    grad_v: vec3<f32>,
+    n: vec3<f32>,
+    depth_m: f32,
+    marched: u32,    // 1 once a search has run at this pixel
+};
+
+var<private> parallax_hit: ParallaxHit;
+
+const SHADOW_SHARPNESS: f32 = 8.0;
+
 fn parallax_clamp(uv: vec2<f32>) -> vec2<f32> {
     var out = uv;
     if (object.flags & PARALLAX_CLAMP_U) != 0u {
@@ -46,14 +62,26 @@ fn parallax_uv_at(ray: ParallaxRay, t: f32) -> vec2<f32> {
     return parallax_clamp(ray.uv + ray.per_depth * t);
 }
 
-// 1 − height at depth fraction t along the ray, sampled with the pixel's own UV footprint.
-fn parallax_depth_at(ray: ParallaxRay, t: f32) -> f32 {
-    let texel = textureSampleGrad(height_texture, detail_sampler, parallax_uv_at(ray, t), ray.duv_dx, ray.duv_dy);
+// 1 − height at `uv`, sampled with the pixel's UV footprint `duv_dx`, `duv_dy`.
+fn parallax_depth_of(uv: vec2<f32>, duv_dx: vec2<f32>, duv_dy: vec2<f32>) -> f32 {
+    let texel = textureSampleGrad(height_texture, detail_sampler, uv, duv_dx, duv_dy);
     var sample = (texel.r * 65280.0 + texel.g * 255.0) / 65535.0;
     if (object.flags & DEPTH_MAP) != 0u {
         sample = 1.0 - sample;
     }
     return 1.0 - sample;
+}
+
+// 1 − height at depth fraction t along the ray.
+fn parallax_depth_at(ray: ParallaxRay, t: f32) -> f32 {
+    return parallax_depth_of(parallax_uv_at(ray, t), ray.duv_dx, ray.duv_dy);
+}
+
+// ParallaxSettings::layers: floor(max + (min − max)·cos + 0.5), both clamped to 1..=256.
+fn parallax_layers(cos_angle: f32) -> u32 {
+    let low = clamp(min(frame.parallax_layers_min, frame.parallax_layers_max), 1u, MAX_PARALLAX_LAYERS);
+    let high = clamp(max(frame.parallax_layers_min, frame.parallax_layers_max), 1u, MAX_PARALLAX_LAYERS);
+    return u32(floor(f32(high) + (f32(low) - f32(high)) * clamp(cos_angle, 0.0, 1.0) + 0.5));
 }
 
 // chain::parallax::march. Derivatives are taken before any branch (uniform control flow).
@@ -84,10 +112,7 @@ fn parallax_uv(uv: vec2<f32>, n: vec3<f32>, position: vec3<f32>) -> vec2<f32> {
     if PARALLAX == PARALLAX_OFFSET_LIMITED {
         return parallax_clamp(uv + along * parallax_depth_at(ray, 0.0));
     }
-    // ParallaxSettings::layers: floor(max + (min − max)·N·V + 0.5), both clamped to 1..=256.
-    let low = clamp(min(frame.parallax_layers_min, frame.parallax_layers_max), 1u, MAX_PARALLAX_LAYERS);
-    let high = clamp(max(frame.parallax_layers_min, frame.parallax_layers_max), 1u, MAX_PARALLAX_LAYERS);
-    let layers = u32(floor(f32(high) + (f32(low) - f32(high)) * clamp(n_dot_v, 0.0, 1.0) + 0.5));
+    let layers = parallax_layers(n_dot_v);
     var i = 0u;
     var t = 0.0;
     var d = parallax_depth_at(ray, 0.0);
@@ -120,5 +145,39 @@ fn parallax_uv(uv: vec2<f32>, n: vec3<f32>, position: vec3<f32>) -> vec2<f32> {
         }
         t_hit = high_t;
     }
-    return parallax_uv_at(ray, t_hit);
+    let hit_uv = parallax_uv_at(ray, t_hit);
+    parallax_hit = ParallaxHit(ray, hit_uv, grad_u, grad_v, n, depth_m, 1u);
+    return hit_uv;
+}
+
+// chain::parallax::light_in_tangent_space and soft_shadow: the light towards unit direction
+// `l` arrives times this at the pixel (1 without a search, shadows off, or a light below).
+fn parallax_light_visibility(l: vec3<f32>) -> f32 {
+    if PARALLAX < PARALLAX_STEEP || parallax_hit.marched == 0u {
+        return 1.0;
+    }
+    let hit = parallax_hit;
+    return parallax_soft_shadow(vec3<f32>(dot(hit.grad_u, l), dot(hit.grad_v, l), dot(hit.n, l)));
+}
+
+// The soft self-shadow towards one light in tangent space (∇u·l, ∇v·l, N·l).
+fn parallax_soft_shadow(light_ts: vec3<f32>) -> f32 {
+    let hit = parallax_hit;
+    if frame.parallax_shadow_strength <= 0.0 || light_ts.z <= 0.0 {
+        return 1.0;
+    }
+    let start = parallax_depth_of(hit.uv, hit.ray.duv_dx, hit.ray.duv_dy);
+    if start <= 0.0 {
+        return 1.0;
+    }
+    let per_depth = light_ts.xy * hit.depth_m / max(light_ts.z, GRAZING_N_DOT_V);
+    let samples = parallax_layers(light_ts.z);
+    var blocked = 0.0;
+    for (var i = 1u; i <= samples; i += 1u) {
+        let f = f32(i) / f32(samples);
+        let ray_depth = start * (1.0 - f);
+        let surface_depth = parallax_depth_of(parallax_clamp(hit.uv + per_depth * (start * f)), hit.ray.duv_dx, hit.ray.duv_dy);
+        blocked = max(blocked, (ray_depth - surface_depth) * (1.0 - f));
+    }
+    return 1.0 - clamp(frame.parallax_shadow_strength * SHADOW_SHARPNESS * blocked, 0.0, 1.0);
 }

@@ -90,7 +90,7 @@ fn pbr_light(p: PbrInputs, light: Light) -> PbrLight {
     let fresnel = fresnel_schlick(f0, dot(v, h));
     let specular = fresnel * ggx_distribution(n_dot_h, alpha) * smith_visibility(n_dot_l, n_dot_v, alpha);
     let diffuse = (vec3<f32>(1.0) - fresnel) * c_diff / PI;
-    let self_shadow = smoothstep(0.0, frame.self_shadow_fade, dot(p.n_geo, l));
+    let self_shadow = smoothstep(0.0, frame.self_shadow_fade, dot(p.n_geo, l)) * parallax_light_visibility(l);
     let direct = PI * (diffuse + specular) * arriving.radiance * n_dot_l * self_shadow;
     if !p.has_clearcoat {
         return PbrLight(direct, vec3<f32>(0.0));

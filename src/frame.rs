@@ -247,11 +247,25 @@ pub struct ParallaxSettings {
     /// The relief's depth, metres: `None` takes each material's height range
     /// ([`crate::scene::HeightMap::range_m`]). 0 is plain normal mapping.
     pub depth_m: Option<f32>,
+    /// Soft self-shadowing of the searches (Tatarchuk 2006): how dark the relief's own
+    /// shadows are, 0 (off) to [`MAX_PARALLAX_SHADOW_STRENGTH`]; a uniform.
+    pub shadow_strength: f32,
 }
+
+/// The strongest parallax self-shadowing (4 darkens fully where a blocker rises a 32nd of the
+/// depth above the light ray next to the point).
+pub const MAX_PARALLAX_SHADOW_STRENGTH: f32 = 4.0;
 
 impl Default for ParallaxSettings {
     fn default() -> Self {
-        ParallaxSettings { technique: Parallax::Off, layers_min: 8, layers_max: 32, steps: 5, depth_m: None }
+        ParallaxSettings {
+            technique: Parallax::Off,
+            layers_min: 8,
+            layers_max: 32,
+            steps: 5,
+            depth_m: None,
+            shadow_strength: 0.0,
+        }
     }
 }
 
@@ -271,15 +285,57 @@ impl ParallaxSettings {
         (a.min(b), a.max(b))
     }
 
-    /// A caption: the technique and, for searches, its layers (and relief's steps).
+    /// A caption: the technique and, for searches, its layers (and relief's steps, and the
+    /// shadows when on).
     pub fn caption(&self) -> String {
         let (low, high) = self.layer_range();
         let layers = if low == high { format!("{high} layers") } else { format!("{low}–{high} layers") };
+        let shadows = if self.shadows_on() { ", shadows" } else { "" };
         match self.technique {
             Parallax::Off | Parallax::Offset | Parallax::OffsetLimited => self.technique.label().to_owned(),
-            Parallax::Steep | Parallax::Occlusion => format!("{}, {layers}", self.technique.label()),
-            Parallax::Relief => format!("{}, {layers} + {} steps", self.technique.label(), self.steps),
+            Parallax::Steep | Parallax::Occlusion => format!("{}, {layers}{shadows}", self.technique.label()),
+            Parallax::Relief => format!("{}, {layers} + {} steps{shadows}", self.technique.label(), self.steps),
         }
+    }
+
+    /// Whether the searches cast soft self-shadows (a strength above 0).
+    pub fn shadows_on(&self) -> bool {
+        self.shadow_strength > 0.0 && self.shadow_strength.is_finite()
+    }
+}
+
+/// The most tessellation levels of [`Displacement`]: each triangle becomes at most
+/// `4^MAX_DISPLACEMENT_LEVEL` triangles (the prepare stage lowers the level further when a
+/// scene would exceed [`MAX_DISPLACED_TRIANGLES`]).
+pub const MAX_DISPLACEMENT_LEVEL: u32 = 10;
+/// The most triangles a displaced scene draws (about 48 bytes per vertex, 12 per triangle).
+pub const MAX_DISPLACED_TRIANGLES: usize = 8 << 20;
+
+/// Displacement mapping, the parallax family's ground truth: every instance whose material
+/// has a height map (and whose mesh has texture coordinates) is tessellated on the CPU, each
+/// triangle's edges cut into `2^level` segments, and each vertex moved along its normal by
+/// `(h − 1) · depth` — the same convention as [`Parallax`]: the mesh surface is the top of the
+/// relief, a texel of height `h` lies `(1 − h) · depth` metres below it. It is shaded with the
+/// displaced surface's normals instead of the normal map. A scene option: it makes geometry.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Displacement {
+    /// Tessellation level, 0 (off) to [`MAX_DISPLACEMENT_LEVEL`]: `4^level` triangles per
+    /// triangle.
+    pub level: u32,
+    /// The relief's depth, metres: `None` takes each material's height range. The viewer
+    /// sets it from [`ParallaxSettings::depth_m`] so both mean the same relief.
+    pub depth_m: Option<f32>,
+}
+
+impl Displacement {
+    /// Whether meshes are displaced.
+    pub fn is_on(&self) -> bool {
+        self.level > 0
+    }
+
+    /// A caption: `displacement, level L` or `no displacement`.
+    pub fn caption(&self) -> String {
+        if self.is_on() { format!("displacement, level {}", self.level) } else { "no displacement".to_owned() }
     }
 }
 
@@ -420,6 +476,8 @@ pub struct SceneOptions {
     /// technique is chosen (`ViewerState::scene_uploads` sets it), so the height maps are
     /// uploaded only then.
     pub parallax: bool,
+    /// Displaced geometry instead of the normal map where a material has a height map.
+    pub displacement: Displacement,
 }
 
 impl SceneOptions {

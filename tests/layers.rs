@@ -17,7 +17,9 @@ const LAYERS: &[&[&str]] = &[
     &["frame"],
     &["chain"],
     &["prepare"],
-    &["render", "probe", "check", "report"],
+    &["render", "probe", "check"],
+    // The report draws the parallax family on the GPU (render) besides its CPU studies.
+    &["report"],
     &["state"],
 ];
 

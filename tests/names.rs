@@ -27,7 +27,7 @@ fn every_enum_keeps_its_names_in_order() {
     assert_eq!(ShadingMode::names(), ["bump-colour", "bump-only", "colour-only"]);
     assert_eq!(BumpSource::names(), ["normal-map", "height-in-shader"]);
     let differences =
-        ["bump", "view", "strength", "mode", "tangents", "convention", "bump-source", "parallax", "lighting-space"];
+        ["bump", "view", "strength", "mode", "tangents", "convention", "bump-source", "parallax", "lighting-space", "displacement"];
     assert_eq!(SplitDifference::names(), differences);
     let methods = [
         "mikktspace",

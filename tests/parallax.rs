@@ -43,7 +43,8 @@ fn oblique(scene: &Scene, yaw_deg: f32) -> FrameParams {
 /// material's).
 fn with(params: &FrameParams, technique: Parallax, layers: u32, steps: u32, depth_m: Option<f32>) -> FrameParams {
     let mut p = *params;
-    p.shading.parallax = ParallaxSettings { technique, layers_min: layers, layers_max: layers, steps, depth_m };
+    p.shading.parallax =
+        ParallaxSettings { technique, layers_min: layers, layers_max: layers, steps, depth_m, ..Default::default() };
     p
 }
 

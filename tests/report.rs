@@ -163,6 +163,10 @@ fn every_method_gives_unit_orthogonal_frames_with_the_right_handedness_on_mirror
     }
 }
 
+fn markdown_mentions(dir: &std::path::Path, text: &str) -> bool {
+    std::fs::read_to_string(dir.join("report.md")).unwrap().contains(text)
+}
+
 fn temporary_dir(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("bumpview-report-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -186,7 +190,24 @@ fn quick_report_writes_a_row_for_every_method_and_kernel_and_valid_charts() {
     }
     let header_cells = csv.lines().next().unwrap().split(',').count();
     assert!(rows.iter().all(|r| r.len() == header_cells));
-    for chart in ["tangents.png", "kernels.png"] {
+    // The parallax study (wall at 0° and 70°): a row per technique and layer count per angle,
+    // displacement's reference and its convergence, and the chart.
+    let parallax = std::fs::read_to_string(dir.join("parallax.csv")).unwrap();
+    let parallax_rows: Vec<Vec<&str>> = parallax.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    for angle in ["0", "70"] {
+        for technique in ["off", "offset", "offset-limited", "steep", "occlusion", "relief", "displacement"] {
+            let found = parallax_rows.iter().any(|r| r[0] == "wall" && r[1] == angle && r[2] == technique);
+            assert!(found, "wall {angle}° {technique}");
+        }
+    }
+    let rmse = |technique: &str, layers: &str| {
+        let row = parallax_rows.iter().find(|r| r[1] == "70" && r[2] == technique && r[3] == layers).unwrap();
+        row[5].parse::<f64>().unwrap()
+    };
+    // Occlusion beats steep at equal layers, and any search beats no parallax, at 70°.
+    assert!(rmse("occlusion", "8") < rmse("steep", "8") && rmse("steep", "8") < rmse("off", ""), "{parallax}");
+    assert!(markdown_mentions(&dir, "## Parallax: image error against frame time"));
+    for chart in ["tangents.png", "kernels.png", "parallax-wall.png"] {
         let image = image::open(dir.join(chart)).unwrap_or_else(|e| panic!("{chart}: {e}"));
         let rgb = image.to_rgb8();
         let first = *rgb.get_pixel(0, 0);

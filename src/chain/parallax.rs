@@ -59,24 +59,16 @@ pub struct March {
 pub fn march(settings: &ParallaxSettings, inputs: &MarchInputs, height: impl Fn(Vec2) -> f32) -> March {
     let unshifted = March { layers: 0, layer_hit: 0, uv: inputs.uv, shift: Vec2::ZERO, depth: 0.0 };
     let (n, v) = (inputs.normal, inputs.view_dir);
-    let r1 = inputs.dp_dy.cross(n);
-    let r2 = n.cross(inputs.dp_dx);
-    let det = inputs.dp_dx.dot(r1);
-    if settings.technique == Parallax::Off || inputs.depth_m == 0.0 || !inputs.depth_m.is_finite() || det.abs() < 1e-20
-    {
+    let gradients = uv_gradients(inputs);
+    let Some((grad_u, grad_v)) = gradients
+        .filter(|_| settings.technique != Parallax::Off && inputs.depth_m != 0.0 && inputs.depth_m.is_finite())
+    else {
         return unshifted;
-    }
-    let grad_u = (r1 * inputs.duv_dx.x + r2 * inputs.duv_dy.x) / det;
-    let grad_v = (r1 * inputs.duv_dx.y + r2 * inputs.duv_dy.y) / det;
+    };
     let n_dot_v = n.dot(v);
     let along = Vec2::new(-grad_u.dot(v), -grad_v.dot(v)) * inputs.depth_m;
     let per_depth = along / n_dot_v.max(GRAZING_N_DOT_V);
-    let clamp = |uv: Vec2| {
-        Vec2::new(
-            if inputs.clamp[0] { uv.x.clamp(0.0, 1.0) } else { uv.x },
-            if inputs.clamp[1] { uv.y.clamp(0.0, 1.0) } else { uv.y },
-        )
-    };
+    let clamp = |uv: Vec2| clamped(inputs, uv);
     let uv_at = |t: f32| clamp(inputs.uv + per_depth * t);
     let depth_at = |t: f32| 1.0 - height(uv_at(t));
     let done = |layers, layer_hit, uv: Vec2, depth| March { layers, layer_hit, uv, shift: uv - inputs.uv, depth };
@@ -127,6 +119,80 @@ pub fn march(settings: &ParallaxSettings, inputs: &MarchInputs, height: impl Fn(
     }
 }
 
+/// `uv` with the axes `inputs.clamp` names held in 0..1.
+fn clamped(inputs: &MarchInputs, uv: Vec2) -> Vec2 {
+    Vec2::new(
+        if inputs.clamp[0] { uv.x.clamp(0.0, 1.0) } else { uv.x },
+        if inputs.clamp[1] { uv.y.clamp(0.0, 1.0) } else { uv.y },
+    )
+}
+
+/// The world-space gradients `∇u`, `∇v` of the texture coordinates over the surface (UV
+/// units per metre), from the pixel's derivatives; `None` where the surface is seen edge-on
+/// in screen space.
+fn uv_gradients(inputs: &MarchInputs) -> Option<(Vec3, Vec3)> {
+    let n = inputs.normal;
+    let r1 = inputs.dp_dy.cross(n);
+    let r2 = n.cross(inputs.dp_dx);
+    let det = inputs.dp_dx.dot(r1);
+    if det.abs() < 1e-20 || !det.is_finite() {
+        return None;
+    }
+    let grad_u = (r1 * inputs.duv_dx.x + r2 * inputs.duv_dy.x) / det;
+    let grad_v = (r1 * inputs.duv_dx.y + r2 * inputs.duv_dy.y) / det;
+    Some((grad_u, grad_v))
+}
+
+/// A unit world direction `l` (towards a light) in the march's tangent space:
+/// `(∇u·l, ∇v·l, N·l)` — UV units and metres along the normal per metre travelled. Zero where
+/// the surface is edge-on in screen space.
+pub fn light_in_tangent_space(inputs: &MarchInputs, l: Vec3) -> Vec3 {
+    uv_gradients(inputs)
+        .map_or(Vec3::ZERO, |(grad_u, grad_v)| Vec3::new(grad_u.dot(l), grad_v.dot(l), inputs.normal.dot(l)))
+}
+
+/// How much a blocker above the light ray darkens, per unit of shadow strength and of the
+/// relief's depth: at strength 1, a blocker an eighth of the depth above the ray next to the
+/// point shadows fully.
+pub const SHADOW_SHARPNESS: f32 = 8.0;
+
+/// Tatarchuk's soft self-shadow for the searches (steep, occlusion, relief): from the relief's
+/// surface at the UV the view ray hit, a ray rises towards one light given in
+/// tangent space (`light_ts`, [`light_in_tangent_space`]) and is sampled at
+/// `settings.layers(N·L)` points up to the top of the relief. Where the relief stands above
+/// the ray by `b` (a fraction of the depth) at step `i` of `n`, it blocks `b · (1 − i/n)`
+/// (nearer blockers cast darker shadows); the light arrives times
+/// `1 − clamp(strength · SHADOW_SHARPNESS · max blocked, 0, 1)`. 1 for other techniques, a
+/// strength of 0, a point at the top, or a light below the surface (the geometric term
+/// darkens that). At most 1 + [`crate::frame::MAX_PARALLAX_LAYERS`] height samples.
+pub fn soft_shadow(
+    settings: &ParallaxSettings,
+    inputs: &MarchInputs,
+    hit: &March,
+    light_ts: Vec3,
+    height: impl Fn(Vec2) -> f32,
+) -> f32 {
+    if !settings.technique.marches() || !settings.shadows_on() || light_ts.z <= 0.0 {
+        return 1.0;
+    }
+    // From the relief's surface at the hit's UV: steep's hit lies up to a layer below it,
+    // and a ray starting there would shadow the point by its own layer.
+    let start = 1.0 - height(hit.uv);
+    if start <= 0.0 {
+        return 1.0;
+    }
+    let per_depth = light_ts.truncate() * inputs.depth_m / light_ts.z.max(GRAZING_N_DOT_V);
+    let samples = settings.layers(light_ts.z);
+    let mut blocked = 0.0f32;
+    for i in 1..=samples {
+        let f = i as f32 / samples as f32;
+        let ray_depth = start * (1.0 - f);
+        let surface_depth = 1.0 - height(clamped(inputs, hit.uv + per_depth * (start * f)));
+        blocked = blocked.max((ray_depth - surface_depth) * (1.0 - f));
+    }
+    1.0 - (settings.shadow_strength * SHADOW_SHARPNESS * blocked).clamp(0.0, 1.0)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -148,7 +214,7 @@ mod tests {
     }
 
     fn settings(technique: Parallax, layers: u32) -> ParallaxSettings {
-        ParallaxSettings { technique, layers_min: layers, layers_max: layers, steps: 8, depth_m: None }
+        ParallaxSettings { technique, layers_min: layers, layers_max: layers, steps: 8, ..Default::default() }
     }
 
     /// Over a flat floor at half depth (h = 0.5) every technique finds the ray at depth
@@ -192,5 +258,45 @@ mod tests {
                 }
             }
         }
+    }
+
+    fn shadowed(technique: Parallax, layers: u32) -> ParallaxSettings {
+        ParallaxSettings { shadow_strength: 1.0, ..settings(technique, layers) }
+    }
+
+    /// A flat floor casts no shadow; a ridge between the point and a low light does, fully at
+    /// strength 1; lights grazing, below the surface, 1 and 256 samples stay in 0..1.
+    #[test]
+    fn soft_shadows_fall_behind_ridges_only_and_stay_in_range() {
+        let face_on = inputs(Vec3::Z);
+        // A floor at half depth; a ridge up to the top at u in 0.52..0.56 (the point is at 0.5).
+        let floor = |_: Vec2| 0.5;
+        let ridge = |uv: Vec2| if (0.52..0.56).contains(&uv.x) { 1.0 } else { 0.5 };
+        let low_light = Vec3::new(1.0, 0.0, 0.3).normalize();
+        for technique in [Parallax::Steep, Parallax::Occlusion, Parallax::Relief] {
+            let hit = march(&shadowed(technique, 16), &face_on, floor);
+            let light_ts = light_in_tangent_space(&face_on, low_light);
+            assert_eq!(soft_shadow(&shadowed(technique, 16), &face_on, &hit, light_ts, floor), 1.0);
+            assert_eq!(soft_shadow(&shadowed(technique, 16), &face_on, &hit, light_ts, ridge), 0.0, "{technique:?}");
+            let away = light_in_tangent_space(&face_on, Vec3::new(-1.0, 0.0, 0.3).normalize());
+            assert_eq!(
+                soft_shadow(&shadowed(technique, 16), &face_on, &hit, away, ridge),
+                1.0,
+                "lit from the other side"
+            );
+            let off = ParallaxSettings { shadow_strength: 0.0, ..shadowed(technique, 16) };
+            assert_eq!(soft_shadow(&off, &face_on, &hit, light_ts, ridge), 1.0);
+            for light in [Vec3::X, Vec3::new(1.0, 0.0, -0.5).normalize(), Vec3::new(0.0, 1.0, 1e-5).normalize()] {
+                for layers in [1, 256] {
+                    let settings = shadowed(technique, layers);
+                    let light_ts = light_in_tangent_space(&face_on, light);
+                    let v = soft_shadow(&settings, &face_on, &hit, light_ts, |uv| 0.5 + 0.5 * (uv.x * 40.0).sin());
+                    assert!((0.0..=1.0).contains(&v), "{technique:?} {light} {layers}: {v}");
+                }
+            }
+        }
+        let offset = march(&shadowed(Parallax::Offset, 16), &face_on, floor);
+        let light_ts = light_in_tangent_space(&face_on, low_light);
+        assert_eq!(soft_shadow(&shadowed(Parallax::Offset, 16), &face_on, &offset, light_ts, ridge), 1.0);
     }
 }

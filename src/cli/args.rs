@@ -6,7 +6,7 @@ use std::marker::PhantomData;
 
 use clap::builder::{PossibleValue, TypedValueParser};
 
-use bumpview::frame::MAX_PARALLAX_LAYERS;
+use bumpview::frame::{MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS};
 use bumpview::names::{AUTO, Named, parse_or_auto};
 use bumpview::state::{Command, SplitDifference};
 use glam::Vec3;
@@ -136,7 +136,8 @@ fn invalid_value(
 }
 
 /// `"LEFT,RIGHT"` → the command that sets the split view's pair for `difference`: two views,
-/// strengths, modes, tangent methods, conventions (`opengl`, `directx`) or bump sources.
+/// strengths, modes, tangent methods, conventions (`opengl`, `directx`), bump sources,
+/// parallax techniques, or a parallax technique and a displacement level (`occlusion,6`).
 pub fn parse_split_sides(difference: SplitDifference, text: &str) -> Result<Command, String> {
     let (left, right) = text
         .split_once(',')
@@ -153,6 +154,12 @@ pub fn parse_split_sides(difference: SplitDifference, text: &str) -> Result<Comm
         SplitDifference::BumpSource => Command::SetSplitBumpSources(pair(sides, parse_named)?),
         SplitDifference::Parallax => Command::SetSplitParallax(pair(sides, parse_named)?),
         SplitDifference::LightingSpace => Command::SetSplitLightingSpaces(pair(sides, parse_named)?),
+        SplitDifference::Displacement => {
+            let level = right.parse::<u32>().ok().filter(|l| (1..=MAX_DISPLACEMENT_LEVEL).contains(l));
+            let level = level
+                .ok_or_else(|| format!("{right:?}: expected a displacement level, 1 to {MAX_DISPLACEMENT_LEVEL}"))?;
+            Command::SetSplitDisplacement(parse_named(left)?, level)
+        }
     })
 }
 

@@ -7,7 +7,10 @@ use std::num::NonZeroU32;
 use std::path::PathBuf;
 
 use bumpview::error::LoadWarning;
-use bumpview::frame::{FrameQuality, MAX_PARALLAX_STEPS, Parallax, ViewMode};
+use bumpview::frame::{
+    FrameQuality, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS, Parallax, SceneUploads,
+    ViewMode,
+};
 use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
 use bumpview::render::export::{TileGrid, caption, render_grid};
 use bumpview::render::timing::{TimedPicture, time_frames};
@@ -86,6 +89,16 @@ pub struct RenderArgs {
     /// The relief's depth in metres, 0 or more [default: each material's height range].
     #[arg(long, value_name = "METRES", value_parser = args::parse_finite)]
     parallax_depth: Option<f32>,
+    /// Soft self-shadows of the searches (steep, occlusion, relief; Tatarchuk 2006) at
+    /// STRENGTH, 0 (off) to 4 [default without the flag: off; with it and no value: 1].
+    #[arg(long, value_name = "STRENGTH", num_args = 0..=1, default_missing_value = "1", value_parser = args::parse_finite)]
+    parallax_shadows: Option<f32>,
+    /// Displacement, the ground truth: meshes whose material has a height map tessellated at
+    /// LEVEL (4^LEVEL triangles per triangle, 0 to 10; 0 is off) and moved along their
+    /// normals by the parallax depth, shaded with the displaced surface's normals. Its vertex
+    /// count and memory go to stderr [default: 0].
+    #[arg(long, value_name = "LEVEL", value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_DISPLACEMENT_LEVEL)))]
+    displacement: Option<u32>,
     /// Hide the light marker.
     #[arg(long)]
     no_light_marker: bool,
@@ -95,8 +108,8 @@ pub struct RenderArgs {
     /// Split view, left │ right, as one image: bump (off │ on), view (lit │ shading-normal),
     /// strength (1 │ 3), mode (colour-only │ bump-colour), tangents (per-face │ mikktspace),
     /// convention (opengl │ directx), bump-source (normal-map │ height-in-shader), parallax
-    /// (steep │ occlusion) or lighting-space (world │ tangent)
-    /// [default: the preset's].
+    /// (steep │ occlusion), lighting-space (world │ tangent) or displacement (a parallax
+    /// technique │ displacement at a level, `--split-sides occlusion,6`) [default: the preset's].
     #[arg(long, value_name = "KIND", value_parser = args::named::<SplitDifference>(), conflicts_with = "tiles")]
     split: Option<SplitDifference>,
     /// With --split: the two sides instead of the defaults above, e.g. `averaged-uniform,mikktspace`
@@ -110,7 +123,8 @@ pub struct RenderArgs {
     #[arg(long, group = "tiles")]
     row: bool,
     /// A grid of tiles of --size: rows separated by `;`, tiles by `,`, each NAME[@STRENGTH]
-    /// with NAME flat, bumped, bump-only, colour-only or a view name; without SPEC
+    /// with NAME flat, bumped, bump-only, colour-only, a view name, or a parallax technique
+    /// with an optional fixed layer count (`steep:8,occlusion:8,relief:8`); without SPEC
     /// `flat,bumped,bump-only;tangent,bitangent,shading-normal`.
     #[arg(long, value_name = "SPEC", num_args = 0..=1, default_missing_value = "", group = "tiles")]
     grid: Option<String>,
@@ -148,6 +162,15 @@ impl RenderArgs {
             }
             commands.push(Command::SetParallaxDepth(Some(depth)));
         }
+        if let Some(strength) = self.parallax_shadows {
+            if !(0.0..=MAX_PARALLAX_SHADOW_STRENGTH).contains(&strength) {
+                let message =
+                    format!("--parallax-shadows {strength}: expected a strength, 0 to {MAX_PARALLAX_SHADOW_STRENGTH}");
+                return Err(Failure::BadArguments(message));
+            }
+            commands.push(Command::SetParallaxShadows(strength));
+        }
+        commands.extend(self.displacement.map(Command::SetDisplacement));
         if self.no_light_marker {
             commands.push(Command::SetLightMarker(false));
         }
@@ -238,7 +261,13 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     };
     let gpu = Gpu::headless()?;
     let mut renderer = Renderer::from_gpu(&gpu);
-    renderer.set_scene_uploads(&scene, &state.scene_uploads());
+    let uploads = match &grid {
+        // Tiles are single pictures, some perhaps marching the height maps.
+        Some(grid) => SceneUploads { main: state.scene_options_drawing(&grid.tiles), split_right: None },
+        None => state.scene_uploads(),
+    };
+    renderer.set_scene_uploads(&scene, &uploads);
+    report_displacement(&renderer);
     let options = capture.options(DEFAULT_RENDER_SIZE);
     let params = state.frame_params();
     let image = if let Some(grid) = grid {
@@ -257,6 +286,15 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     Ok(())
 }
 
+/// Tells stderr what displacement drew (per half of a split view drawn from two uploads).
+fn report_displacement(renderer: &Renderer) {
+    for (half, name) in [(false, ""), (true, " (split right)")] {
+        if let Some(stats) = renderer.prepared(half).and_then(|p| p.displacement) {
+            eprintln!("bumpview: displacement{name}: {}", stats.summary());
+        }
+    }
+}
+
 /// `--frames`: times `frames` frames of the picture at `size` (full quality, or as the viewer
 /// draws them while dragging) against the adapter's floor and prints the line.
 fn time(
@@ -269,6 +307,7 @@ fn time(
     let gpu = Gpu::headless()?;
     let mut renderer = Renderer::from_gpu(&gpu);
     renderer.set_scene_uploads(scene, &state.scene_uploads());
+    report_displacement(&renderer);
     let params = state.frame_params();
     let split = state.split_frame();
     let mut picture =

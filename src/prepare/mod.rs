@@ -6,6 +6,7 @@
 //! could not honour as notices. The GPU renderer uploads exactly what a prepared scene holds;
 //! the CPU probe samples and shades the same prepared scene, so both draw the same surface.
 
+pub mod displace;
 mod repair;
 
 use std::borrow::Cow;
@@ -161,12 +162,18 @@ pub struct PreparedScene {
     pub tangent_frames_generated: u64,
     /// Per texture of `scene`: its mip chain when made ahead ([`Self::precompute_mip_chains`]).
     pub mip_chains: Vec<Option<Vec<TextureImage>>>,
+    /// The displaced meshes' size when [`SceneOptions::displacement`] is on and anything had
+    /// a height map to displace (those instances then draw displaced copies of their mesh
+    /// and material, appended to `scene`; see [`displace`]).
+    pub displacement: Option<displace::DisplacementStats>,
 }
 
 impl PreparedScene {
     /// Prepares `scene` for drawing with `options`.
     pub fn new(scene: &Scene, options: &SceneOptions) -> PreparedScene {
+        let mut notices: Vec<String> = scene.warnings.iter().map(ToString::to_string).collect();
         let scene = options.materials.applied_with(&options.per_material, scene);
+        let (scene, displacement) = displace::displaced(scene, &options.displacement, &mut notices);
         let instances: Vec<PreparedInstance> = scene
             .instances
             .iter()
@@ -184,7 +191,6 @@ impl PreparedScene {
                 }
             })
             .collect();
-        let mut notices: Vec<String> = scene.warnings.iter().map(ToString::to_string).collect();
         notices.extend(missing_uv_notices(&scene));
         let mut tangent_frames_generated = 0;
         let meshes = scene
@@ -217,6 +223,7 @@ impl PreparedScene {
             notices,
             tangent_frames_generated,
             mip_chains,
+            displacement,
         }
     }
 

@@ -24,25 +24,25 @@
 //! downscaled a texture larger than the adapter allows, the probe differs from the picture.
 
 mod pick;
-mod sample;
 
 use std::sync::Arc;
 
 use glam::{Mat3, Vec2, Vec3, Vec4};
 
-use crate::chain::parallax::{MarchInputs, march};
+use crate::chain::parallax::{MarchInputs, light_in_tangent_space, march, soft_shadow};
 use crate::chain::{BumpSample, ChainValues, SurfaceSample, shade};
 use crate::frame::{BumpKind, FrameParams, Parallax, SceneOptions};
 use crate::math::{normal_matrix, normalize_or};
 use crate::prepare::PreparedScene;
-use crate::scene::{OrbitCamera, SamplerWrap, Scene, TextureImage, Wrap};
+use crate::scene::sample::sample_trilinear;
+pub use crate::scene::sample::{nearest_texel, sample_bilinear};
+use crate::scene::{MAX_LIGHTS, OrbitCamera, SamplerWrap, Scene, TextureImage, Wrap};
 use crate::shading::height_sample;
+use crate::shading::lights::incident;
 use crate::shading::spaces::triangle_inverse_tbn;
 use crate::tangent::TangentMethod;
 pub use pick::project_to_pixel;
 use pick::{Quad, corner_positions, intersect};
-use sample::sample_trilinear;
-pub use sample::{nearest_texel, sample_bilinear};
 
 /// A pinned surface point: a triangle of one instance and barycentric coordinates on it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -109,6 +109,9 @@ pub struct MarchReadout {
     pub depth: f32,
     /// The height map at the shifted UV, 0..1 (white = high, a depth map flipped).
     pub height: f32,
+    /// The share of each of the scene's lights (by index) reaching the point past the relief's
+    /// own shadow ([`crate::chain::parallax::soft_shadow`]; 1 without shadows or light).
+    pub light_visibility: [f32; MAX_LIGHTS],
 }
 
 impl ProbeReadout {
@@ -239,11 +242,21 @@ impl ProbeScene {
                 let view_dir = normalize_or(eye - p, normal);
                 let inputs =
                     MarchInputs { uv: uv_at(b), normal, view_dir, dp_dx, dp_dy, duv_dx, duv_dy, depth_m, clamp };
-                (march(parallax, &inputs, height), height)
+                (march(parallax, &inputs, height), height, inputs)
             })
         });
         let marched = march_at.as_ref().map(|m| m(b, position));
-        let read_uv = marched.map_or(uv, |(m, _)| m.uv);
+        let read_uv = marched.map_or(uv, |(m, ..)| m.uv);
+        // The relief's soft shadow dims each light (the shaders' parallax_light_visibility).
+        let mut shaded = *params;
+        let mut light_visibility = [1.0; MAX_LIGHTS];
+        if let Some((m, height, inputs)) = marched {
+            for (light, visibility) in shaded.lights.as_mut_slice().iter_mut().zip(&mut light_visibility) {
+                let l = incident(light, position, inputs.normal).direction;
+                *visibility = soft_shadow(parallax, &inputs, &m, light_in_tangent_space(&inputs, l), height);
+                light.intensity *= *visibility;
+            }
+        }
         let footprint = match (&march_at, &quad) {
             (Some(m), Some(quad)) => quad.derivatives(|b, p| m(b, p).0.uv),
             _ => interpolated_footprint,
@@ -305,8 +318,8 @@ impl ProbeScene {
                 triangle_inverse_tbn(p1 - p0, p2 - p0, uv(1) - uv(0), uv(2) - uv(0), normal)
             }),
         };
-        let chain = shade(instance.bump, material, &surface, params);
-        let march = marched.map(|(m, height)| MarchReadout {
+        let chain = shade(instance.bump, material, &surface, &shaded);
+        let march = marched.map(|(m, height, _)| MarchReadout {
             view_tangent: chain.tangent.zip(chain.bitangent).map(|(t, b)| {
                 Vec3::new(chain.view_dir.dot(t), chain.view_dir.dot(b), chain.view_dir.dot(chain.normal))
             }),
@@ -316,6 +329,7 @@ impl ProbeScene {
             shift: m.shift,
             depth: m.depth,
             height: height(m.uv),
+            light_visibility,
         });
         ProbeReadout {
             point: *point,

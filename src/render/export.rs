@@ -9,7 +9,8 @@ use super::Renderer;
 use super::capture::{CaptureOptions, render_capture};
 use crate::error::RenderError;
 use crate::frame::{
-    BumpSource, FrameParams, Parallax, STRENGTH_RANGE, SceneOptions, ShadingMode, ShadingSettings, ViewMode,
+    BumpSource, FrameParams, MAX_PARALLAX_LAYERS, Parallax, STRENGTH_RANGE, SceneOptions, ShadingMode, ShadingSettings,
+    ViewMode,
 };
 use crate::names::Named;
 use crate::scene::Scene;
@@ -40,6 +41,10 @@ pub enum TileSpecError {
     Strength { tile: String },
     #[error("tile {tile:?}: expected one of {expected}")]
     Name { tile: String, expected: String },
+    #[error(
+        "tile {tile:?}: expected a parallax technique and its layers, 1 to {MAX_PARALLAX_LAYERS}, e.g. occlusion:8"
+    )]
+    Layers { tile: String },
 }
 
 impl TileGrid {
@@ -56,8 +61,9 @@ impl TileGrid {
 
     /// Tiles from a spec: rows separated by `;`, tiles by `,`, each `NAME[@STRENGTH]`. A name
     /// is `flat` (lit, bump off), `bumped` (lit, bump on), `bump-only` or `colour-only` (lit in
-    /// that mode), or a view name (`tangent`, `shading-normal`, `difference`, ...: that view,
-    /// bump on). Lit tiles keep `current`'s mode unless named otherwise; every tile keeps its
+    /// that mode), a view name (`tangent`, `shading-normal`, `difference`, ...: that view,
+    /// bump on), or a parallax technique (`off`, `offset`, `steep`, ...: lit, bump on),
+    /// optionally with a fixed layer count, `occlusion:8`. Lit tiles keep `current`'s mode unless named otherwise; every tile keeps its
     /// strength unless `@STRENGTH` gives one (clamped to the strength slider's range). Every
     /// row must have as many tiles.
     pub fn parse(spec: &str, current: &ShadingSettings) -> Result<TileGrid, TileSpecError> {
@@ -85,6 +91,28 @@ fn parse_tile(text: &str, current: &ShadingSettings) -> Result<ShadingSettings, 
         None => (text, None),
     };
     let lit = ShadingSettings { view: ViewMode::Lit, bump_enabled: true, ..*current };
+    // A parallax technique, with a fixed layer count after a colon: `occlusion:8`.
+    let (name, layers) = match name.split_once(':') {
+        Some((name, layers)) => {
+            let count = layers.trim().parse::<u32>().ok().filter(|n| (1..=MAX_PARALLAX_LAYERS).contains(n));
+            (name.trim(), Some(count.ok_or_else(|| TileSpecError::Layers { tile: text.to_owned() })?))
+        }
+        None => (name, None),
+    };
+    if let Some(technique) = Parallax::from_name(name) {
+        let mut tile = lit;
+        tile.parallax.technique = technique;
+        if let Some(n) = layers {
+            (tile.parallax.layers_min, tile.parallax.layers_max) = (n, n);
+        }
+        if let Some(strength) = strength {
+            tile.strength = strength.clamp(*STRENGTH_RANGE.start(), *STRENGTH_RANGE.end());
+        }
+        return Ok(tile);
+    }
+    if layers.is_some() {
+        return Err(TileSpecError::Layers { tile: text.to_owned() });
+    }
     let mut tile = match name {
         "flat" => ShadingSettings { bump_enabled: false, ..lit },
         "bumped" => lit,
@@ -93,7 +121,8 @@ fn parse_tile(text: &str, current: &ShadingSettings) -> Result<ShadingSettings, 
         other => match ViewMode::from_name(other) {
             Some(view) => ShadingSettings { view, ..lit },
             None => {
-                let names: Vec<&str> = TILE_NAMES.iter().copied().chain(ViewMode::names()).collect();
+                let names: Vec<&str> =
+                    TILE_NAMES.iter().copied().chain(ViewMode::names()).chain(Parallax::names()).collect();
                 return Err(TileSpecError::Name { tile: other.to_owned(), expected: names.join(", ") });
             }
         },
@@ -145,6 +174,9 @@ pub fn caption(renderer: &Renderer, scene: &Scene, options: &SceneOptions, shadi
     let mut lines = vec![view, bump, format!("normal map: {convention}"), format!("tangents: {tangents}")];
     if shading.parallax.technique != Parallax::Off {
         lines.push(shading.parallax.caption());
+    }
+    if let Some(stats) = renderer.prepared(false).and_then(|p| p.displacement) {
+        lines.push(format!("displacement {}", stats.summary()));
     }
     lines
 }

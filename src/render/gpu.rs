@@ -22,7 +22,11 @@ impl Gpu {
             reason: e.to_string(),
         })?;
         // The wireframe overlay needs line polygon mode; without it the overlay is skipped.
-        let required_features = adapter.features() & wgpu::Features::POLYGON_MODE_LINE;
+        // Timestamps inside encoders time the report's frames on the GPU where available.
+        let wanted = wgpu::Features::POLYGON_MODE_LINE
+            | wgpu::Features::TIMESTAMP_QUERY
+            | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
+        let required_features = adapter.features() & wanted;
         let descriptor = wgpu::DeviceDescriptor {
             label: Some("bumpview"),
             required_features,

@@ -60,8 +60,9 @@ pub struct FrameUniform {
     specular_mode: u32,
     /// The shininess for every material; negative: each material's own.
     shininess: f32,
+    parallax_shadow_strength: f32,
     /// WGSL aligns `view_rotation` (a mat3x3, columns of vec4) to 16 bytes.
-    _padding: [f32; 3],
+    _padding: [f32; 2],
     /// World → view space rotation (columns; w unused), for view-space lighting.
     view_rotation: [[f32; 4]; 3],
 }
@@ -94,7 +95,8 @@ impl FrameUniform {
             light_count,
             specular_mode: params.shading.specular.shader_index(),
             shininess: params.shading.shininess.map_or(-1.0, |s| s.max(1.0)),
-            _padding: [0.0; 3],
+            parallax_shadow_strength: if parallax.shadows_on() { parallax.shadow_strength } else { 0.0 },
+            _padding: [0.0; 2],
             view_rotation: params.camera.view_rotation().to_cols_array_2d().map(|c| [c[0], c[1], c[2], 0.0]),
         }
     }

@@ -14,12 +14,14 @@ use plotters::style::{FontStyle, register_font};
 use super::measure::{Row, Study, Vector};
 use super::surfaces::Region;
 
+/// The x axis of the tangent and kernel charts.
+const SECONDS_PER_SURFACE: &str = "median run time per surface (s)";
 /// Chart size in pixels.
 const SIZE: (u32, u32) = (1100, 760);
 /// Errors below this many degrees (the analytic frame's ≈ 0) are drawn at it.
 pub const ERROR_FLOOR_DEGREES: f64 = 1e-6;
 /// One colour per method, in the order methods first appear.
-const COLOURS: [RGBColor; 7] = [
+pub(super) const COLOURS: [RGBColor; 7] = [
     RGBColor(31, 119, 180),
     RGBColor(255, 127, 14),
     RGBColor(44, 160, 44),
@@ -30,13 +32,13 @@ const COLOURS: [RGBColor; 7] = [
 ];
 
 /// One line of points, resolutions in increasing order.
-struct Series {
-    label: String,
-    colour: RGBColor,
+pub(super) struct Series {
+    pub(super) label: String,
+    pub(super) colour: RGBColor,
     /// Triangles for the torus, circles otherwise.
-    triangles: bool,
-    /// `(median seconds, mean error in degrees)`.
-    points: Vec<(f64, f64)>,
+    pub(super) triangles: bool,
+    /// `(median run time, error)`, positive.
+    pub(super) points: Vec<(f64, f64)>,
 }
 
 /// Why a chart could not be made.
@@ -99,7 +101,7 @@ fn decades(values: impl Iterator<Item = f64>) -> (f64, f64) {
     (10f64.powf(low.log10().floor()) / 1.5, 10f64.powf((high.log10() + 1e-9).ceil()) * 1.5)
 }
 
-fn draw(buffer: &mut [u8], title: &str, y_label: &str, series: &[Series]) -> Result<(), ChartError> {
+fn draw(buffer: &mut [u8], title: &str, axes: [&str; 2], series: &[Series]) -> Result<(), ChartError> {
     let failed = |e: &dyn std::fmt::Display| ChartError::Draw { title: title.to_owned(), reason: e.to_string() };
     let root = BitMapBackend::with_buffer(buffer, SIZE).into_drawing_area();
     root.fill(&WHITE).map_err(|e| failed(&e))?;
@@ -114,8 +116,8 @@ fn draw(buffer: &mut [u8], title: &str, y_label: &str, series: &[Series]) -> Res
         .map_err(|e| failed(&e))?;
     chart
         .configure_mesh()
-        .x_desc("median run time per surface (s)")
-        .y_desc(y_label)
+        .x_desc(axes[0])
+        .y_desc(axes[1])
         .x_label_formatter(&|v| format!("{v:.0e}"))
         .y_label_formatter(&|v| format!("{v:.0e}"))
         .label_style(("sans-serif", 14))
@@ -147,10 +149,11 @@ fn draw(buffer: &mut [u8], title: &str, y_label: &str, series: &[Series]) -> Res
     root.present().map_err(|e| failed(&e))
 }
 
-fn png(title: &str, y_label: &str, series: &[Series]) -> Result<Vec<u8>, ChartError> {
+/// A log-log chart of `series` as PNG bytes; `axes`: the x and y axis labels.
+pub(super) fn png(title: &str, axes: [&str; 2], series: &[Series]) -> Result<Vec<u8>, ChartError> {
     register_hack_font()?;
     let mut rgb = vec![0u8; (SIZE.0 * SIZE.1 * 3) as usize];
-    draw(&mut rgb, title, y_label, series)?;
+    draw(&mut rgb, title, axes, series)?;
     let mut bytes = vec![];
     PngEncoder::new(&mut bytes)
         .write_image(&rgb, SIZE.0, SIZE.1, image::ExtendedColorType::Rgb8)
@@ -163,7 +166,7 @@ fn png(title: &str, y_label: &str, series: &[Series]) -> Result<Vec<u8>, ChartEr
 pub fn tangent_chart(rows: &[Row]) -> Result<Vec<u8>, ChartError> {
     let series = series(rows, Study::Tangents, &["sphere", "torus"], Vector::Tangent);
     let title = "Tangent methods: mean T error vs run time (one point per resolution)";
-    png(title, "mean angular error of T, all vertices (°)", &series)
+    png(title, [SECONDS_PER_SURFACE, "mean angular error of T, all vertices (°)"], &series)
 }
 
 /// Height kernels on the sine-bump plane (float heights, wrapped): mean normal error against
@@ -171,5 +174,5 @@ pub fn tangent_chart(rows: &[Row]) -> Result<Vec<u8>, ChartError> {
 pub fn kernel_chart(rows: &[Row]) -> Result<Vec<u8>, ChartError> {
     let series = series(rows, Study::Kernels, &["plane"], Vector::Normal);
     let title = "Height kernels: mean normal error vs run time (one point per texels/period)";
-    png(title, "mean angular error of N (°)", &series)
+    png(title, [SECONDS_PER_SURFACE, "mean angular error of N (°)"], &series)
 }

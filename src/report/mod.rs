@@ -5,11 +5,15 @@
 //! [`surfaces`] makes the references, [`mod@measure`] the rows, `convergence` the fitted orders,
 //! `markdown`, `csv` and `chart` the files; this module plans the run and writes atomically.
 
+pub mod blinn;
 mod chart;
 mod convergence;
 mod csv;
+pub mod gpu_time;
 mod markdown;
 pub mod measure;
+pub mod parallax;
+pub mod parallax_page;
 pub mod roundtrip;
 pub mod spaces;
 pub mod stiff;
@@ -31,6 +35,7 @@ pub const MARKDOWN: &str = "report.md";
 pub const CSV: &str = "report.csv";
 pub const TANGENT_CHART: &str = "tangents.png";
 pub const KERNEL_CHART: &str = "kernels.png";
+pub const PARALLAX_CSV: &str = "parallax.csv";
 
 /// The sphere (segments, rings) of the MikkTSpace sanity value.
 pub const MIKKTSPACE_SANITY_SPHERE: (u32, u32) = (256, 128);
@@ -68,6 +73,8 @@ pub struct Plan {
     pub repeats: Repeats,
     /// The reduced plan of `--quick`.
     pub quick: bool,
+    /// The parallax family against displacement on the GPU.
+    pub parallax: parallax::ParallaxPlan,
 }
 
 impl Plan {
@@ -83,6 +90,7 @@ impl Plan {
             round_trip_plane: (32, 16),
             repeats: Repeats { runs: 21, budget: Duration::from_secs(2) },
             quick: false,
+            parallax: parallax::ParallaxPlan::full(None),
         }
     }
 
@@ -99,6 +107,7 @@ impl Plan {
             round_trip_plane: (32, 2),
             repeats: Repeats { runs: 3, budget: Duration::from_millis(50) },
             quick: true,
+            parallax: parallax::ParallaxPlan::quick(),
         }
     }
 }
@@ -261,17 +270,78 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
         agreements: &agreements,
         lighting_spaces: &spaces::space_rows(&crate::scene::builtin::teaching_scene()),
     };
+    let study = parallax_study(&plan.parallax, progress);
+    let blinn = blinn::blinn_rows(if plan.quick { 64 } else { 256 });
+    let mut charts = vec![];
+    let mut chart_files = vec![];
+    for specimen in study.rows.iter().map(|r| r.specimen.clone()).collect::<std::collections::BTreeSet<_>>() {
+        let bytes = parallax_page::chart(&study.rows, &specimen, plan.parallax.convergence_angle_deg)?;
+        let name = parallax_page::chart_name(&specimen);
+        charts.push((specimen, name.clone()));
+        chart_files.push((name, bytes));
+    }
+    let parallax_section = parallax_page::markdown(&parallax_page::ParallaxPage {
+        rows: &study.rows,
+        plan: &plan.parallax,
+        adapter: &study.adapter,
+        timestamps: study.timestamps,
+        notes: &study.notes,
+        blinn: &blinn,
+        charts: &charts,
+    });
     let files = [
-        (MARKDOWN, markdown::render(&page).into_bytes()),
-        (CSV, csv::render(&rows, &orders).into_bytes()),
-        (TANGENT_CHART, tangent_png),
-        (KERNEL_CHART, kernel_png),
-    ];
+        (MARKDOWN.to_owned(), (markdown::render(&page) + "\n" + &parallax_section).into_bytes()),
+        (CSV.to_owned(), csv::render(&rows, &orders).into_bytes()),
+        (PARALLAX_CSV.to_owned(), parallax_page::csv(&study.rows).into_bytes()),
+        (TANGENT_CHART.to_owned(), tangent_png),
+        (KERNEL_CHART.to_owned(), kernel_png),
+    ]
+    .into_iter()
+    .chain(chart_files);
     let mut written = vec![];
     for (name, bytes) in files {
-        let path = out.join(name);
+        let path = out.join(&name);
         write_atomically(&path, &bytes)?;
         written.push(path);
     }
     Ok(written)
+}
+
+/// What the GPU study measured, on which adapter, and what it left out.
+struct ParallaxStudy {
+    rows: Vec<parallax::ParallaxRow>,
+    adapter: String,
+    /// The device has timestamp queries inside encoders: frames are timed on the GPU.
+    timestamps: bool,
+    notes: Vec<String>,
+}
+
+/// Runs the parallax study of `plan` on a headless GPU; a missing GPU or a failed picture
+/// becomes a note on the page, not a failed report.
+fn parallax_study(plan: &parallax::ParallaxPlan, progress: &mut dyn FnMut(usize, usize)) -> ParallaxStudy {
+    let (specimens, skipped) = parallax::specimens(plan);
+    let mut notes: Vec<String> = skipped.into_iter().collect();
+    let gpu = match crate::render::Gpu::headless() {
+        Ok(gpu) => gpu,
+        Err(e) => {
+            notes.push(format!("no GPU: {e}"));
+            return ParallaxStudy { rows: vec![], adapter: "no adapter".into(), timestamps: false, notes };
+        }
+    };
+    let mut renderer = crate::render::Renderer::from_gpu(&gpu);
+    let total: usize = specimens.iter().map(|s| parallax::case_count(plan, s.reference_level)).sum();
+    let mut done = 0;
+    let mut rows = vec![];
+    for specimen in &specimens {
+        let mut step = || {
+            done += 1;
+            progress(done, total);
+        };
+        match parallax::measure_specimen(&mut renderer, specimen, plan, &mut step) {
+            Ok(measured) => rows.extend(measured),
+            Err(e) => notes.push(format!("{} left out: {e}", specimen.name)),
+        }
+    }
+    let timestamps = gpu.device.features().contains(gpu_time::FEATURES);
+    ParallaxStudy { rows, adapter: gpu.adapter_name(), timestamps, notes }
 }

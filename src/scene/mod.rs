@@ -7,6 +7,7 @@ pub mod camera;
 pub mod light;
 pub mod material;
 pub mod overrides;
+pub mod sample;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 

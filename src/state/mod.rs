@@ -14,8 +14,9 @@ pub use split::{SplitDifference, SplitView};
 use glam::{Vec2, Vec3};
 
 use crate::frame::{
-    BumpSource, FrameParams, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Msaa, Parallax, STRENGTH_RANGE, SceneOptions,
-    SceneUploads, ShadingMode, ShadingSettings, SplitFrame, ViewMode,
+    BumpSource, FrameParams, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS, MAX_PARALLAX_SHADOW_STRENGTH,
+    MAX_PARALLAX_STEPS, Msaa, Parallax, STRENGTH_RANGE, SceneOptions, SceneUploads, ShadingMode, ShadingSettings,
+    SplitFrame, ViewMode,
 };
 use crate::height::Kernel;
 use crate::math::normalize_or;
@@ -127,6 +128,15 @@ pub enum Command {
     SetParallaxDepth(Option<f32>),
     /// The lights, the ambient light, the specular mode and shininess, the lighting space.
     Lighting(LightCommand),
+    /// The searches' soft self-shadow strength (0 off), clamped to
+    /// 0..=[`MAX_PARALLAX_SHADOW_STRENGTH`]; a non-finite value is ignored.
+    SetParallaxShadows(f32),
+    /// Displacement's tessellation level (0 off), clamped to 0..=[`MAX_DISPLACEMENT_LEVEL`];
+    /// it makes geometry, so it is a scene option.
+    SetDisplacement(u32),
+    /// The split view's [`SplitDifference::Displacement`]: the left half's parallax technique
+    /// and the right half's displacement level (clamped to 1..=[`MAX_DISPLACEMENT_LEVEL`]).
+    SetSplitDisplacement(Parallax, u32),
 }
 
 /// Everything the user can change about the picture.
@@ -177,16 +187,24 @@ impl ViewerState {
     /// in GPU data, the left half's options for the main upload and the right half's for a
     /// second one; else the current options alone.
     pub fn scene_uploads(&self) -> SceneUploads {
-        // Height maps are bound for parallax while either picture marches.
         let shown = self.split_frame().map_or(vec![self.shading], |s| vec![s.left, s.right]);
-        let parallax = shown.iter().any(|s| s.parallax.technique != Parallax::Off);
-        let options = SceneOptions { parallax, ..self.scene_options.clone() };
+        let options = self.scene_options_drawing(&shown);
         if self.split.enabled && self.split.difference.changes_gpu_data() {
             let [left, right] = self.split.scene_options(&options);
             SceneUploads { main: left, split_right: Some(right) }
         } else {
             SceneUploads { main: options, split_right: None }
         }
+    }
+
+    /// The scene options pictures with `shown` settings are drawn with: the height maps bound
+    /// for parallax while any of them marches, displacement at the parallax depth (so both
+    /// draw the same relief); the split view aside.
+    pub fn scene_options_drawing(&self, shown: &[ShadingSettings]) -> SceneOptions {
+        let parallax = shown.iter().any(|s| s.parallax.technique != Parallax::Off);
+        let mut displacement = self.scene_options.displacement;
+        displacement.depth_m = self.shading.parallax.depth_m;
+        SceneOptions { parallax, displacement, ..self.scene_options.clone() }
     }
 
     /// The picture at pixel column `column` of a view `width` pixels wide: its parameters, the
@@ -285,6 +303,17 @@ impl ViewerState {
             Command::SetParallaxSteps(steps) => self.shading.parallax.steps = steps.min(MAX_PARALLAX_STEPS),
             Command::SetParallaxDepth(Some(d)) if !(d.is_finite() && d >= 0.0) => {}
             Command::SetParallaxDepth(depth) => self.shading.parallax.depth_m = depth,
+            Command::SetParallaxShadows(s) if s.is_finite() => {
+                self.shading.parallax.shadow_strength = s.clamp(0.0, MAX_PARALLAX_SHADOW_STRENGTH)
+            }
+            Command::SetParallaxShadows(_) => {}
+            Command::SetDisplacement(level) => {
+                self.scene_options.displacement.level = level.min(MAX_DISPLACEMENT_LEVEL)
+            }
+            Command::SetSplitDisplacement(technique, level) => {
+                self.split.parallax[0] = technique;
+                self.split.displacement_level = level.clamp(1, MAX_DISPLACEMENT_LEVEL);
+            }
             Command::ToggleWireframe => self.shading.wireframe = !self.shading.wireframe,
             Command::SetGlyphs(on) => self.shading.tbn_glyphs = on,
             Command::ToggleGlyphs => self.shading.tbn_glyphs = !self.shading.tbn_glyphs,

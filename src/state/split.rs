@@ -10,7 +10,7 @@ use crate::tangent::TangentMethod;
 /// lighting space are uniforms or pipeline variants, so both halves share one scene upload; the others change GPU data
 /// ([`SplitDifference::changes_gpu_data`]), so the right half is drawn from a second upload of
 /// the scene. Named `bump`, `view`, `strength`, `mode`, `tangents`, `convention`,
-/// `bump-source`, `parallax`, `lighting-space`.
+/// `bump-source`, `parallax`, `lighting-space`, `displacement`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
 #[strum(serialize_all = "kebab-case")]
 pub enum SplitDifference {
@@ -33,13 +33,22 @@ pub enum SplitDifference {
     Parallax,
     /// Two lighting spaces (world │ tangent by default).
     LightingSpace,
+    /// The left parallax technique (`parallax[0]`) │ displacement at `displacement_level`, the
+    /// ground truth (same depth).
+    Displacement,
 }
 
 impl SplitDifference {
     /// Whether the halves need different GPU data (tangent streams, material flags, pipeline
     /// variants), not only different uniforms.
     pub fn changes_gpu_data(self) -> bool {
-        matches!(self, SplitDifference::Tangents | SplitDifference::Convention | SplitDifference::BumpSource)
+        matches!(
+            self,
+            SplitDifference::Tangents
+                | SplitDifference::Convention
+                | SplitDifference::BumpSource
+                | SplitDifference::Displacement
+        )
     }
 }
 
@@ -58,6 +67,8 @@ pub struct SplitView {
     pub bump_sources: [BumpSource; 2],
     pub parallax: [Parallax; 2],
     pub lighting_spaces: [LightingSpace; 2],
+    /// The right half's displacement level in [`SplitDifference::Displacement`].
+    pub displacement_level: u32,
 }
 
 impl Default for SplitView {
@@ -74,6 +85,7 @@ impl Default for SplitView {
             bump_sources: [BumpSource::NormalMap, BumpSource::HeightInShader],
             parallax: [Parallax::Steep, Parallax::Occlusion],
             lighting_spaces: [LightingSpace::World, LightingSpace::Tangent],
+            displacement_level: 6,
         }
     }
 }
@@ -90,6 +102,8 @@ impl SplitView {
                 SplitDifference::Mode => s.mode = self.modes[i],
                 SplitDifference::Parallax => s.parallax.technique = self.parallax[i],
                 SplitDifference::LightingSpace => s.lighting_space = self.lighting_spaces[i],
+                SplitDifference::Displacement if i == 0 => s.parallax.technique = self.parallax[0],
+                SplitDifference::Displacement => {}
                 SplitDifference::Tangents | SplitDifference::Convention | SplitDifference::BumpSource => {}
             }
             s
@@ -113,6 +127,7 @@ impl SplitView {
                     options.per_material.retain(|_, o| !o.is_empty());
                 }
                 SplitDifference::BumpSource => options.bump_source = self.bump_sources[i],
+                SplitDifference::Displacement => options.displacement.level = [0, self.displacement_level][i],
                 SplitDifference::Bump
                 | SplitDifference::View
                 | SplitDifference::Strength
@@ -136,6 +151,8 @@ impl SplitView {
             SplitDifference::BumpSource => self.bump_sources[i].label().to_owned(),
             SplitDifference::Parallax => self.parallax[i].label().to_owned(),
             SplitDifference::LightingSpace => self.lighting_spaces[i].label().to_owned(),
+            SplitDifference::Displacement if i == 0 => self.parallax[0].label().to_owned(),
+            SplitDifference::Displacement => format!("displacement, level {}", self.displacement_level),
         })
     }
 }

@@ -84,7 +84,7 @@ impl Controller {
         };
         // Tiles are single pictures: while a split view's left half has its own upload, the
         // current settings' upload stands in for the export, and the held one comes back after.
-        let current = self.state.scene_options.clone();
+        let current = self.state.scene_options_drawing(&grid.tiles);
         let held = self.renderer.prepared(false).filter(|p| p.options != current).cloned();
         if held.is_some() {
             self.renderer.set_scene(&self.scene, current.clone());

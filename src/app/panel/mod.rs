@@ -39,7 +39,11 @@ pub fn show(
         });
         section(ui, "Lit picture and overlays", true, |ui| picture::show(ui, &controller.state, &mut actions));
         section(ui, "Lights and specular", false, |ui| lights::show(ui, &controller.state, &mut actions));
-        section(ui, "Parallax", false, |ui| parallax::show(ui, &controller.state, &mut actions));
+        section(ui, "Parallax and displacement", false, |ui| {
+            let displaced = [false, true].map(|half| controller.renderer().prepared(half).and_then(|p| p.displacement));
+            parallax::show(ui, &controller.state, &mut actions);
+            parallax::displacement(ui, &controller.state, displaced, &mut actions);
+        });
         section(ui, "Tangent frames and kernels", false, |ui| {
             methods::methods(ui, &controller.state, &controller.facts().measurements, &mut actions);
         });

@@ -1,7 +1,11 @@
-//! The parallax family: technique, depth, the search's layers and relief's steps (uniforms).
+//! The parallax family: technique, depth, the search's layers and relief's steps (uniforms);
+//! displacement, its ground truth: the tessellation level and what it costs.
 
-use bumpview::frame::{MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Parallax};
+use bumpview::frame::{
+    MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS, MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS, Parallax,
+};
 use bumpview::names::Named;
+use bumpview::prepare::displace::DisplacementStats;
 use bumpview::state::{Command, ViewerState};
 
 use crate::app::action::Action;
@@ -43,10 +47,49 @@ pub(super) fn show(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Act
             actions.push(Command::SetParallaxLayers([min, max]).into());
         }
     }
+    if technique.marches() {
+        let mut on = settings.shadows_on();
+        if ui
+            .checkbox(&mut on, "self-shadows")
+            .on_hover_text("Tatarchuk's soft shadows: a ray from the hit towards the light")
+            .changed()
+        {
+            actions.push(Command::SetParallaxShadows(if on { 1.0 } else { 0.0 }).into());
+        }
+        if on {
+            let mut strength = settings.shadow_strength;
+            let slider = egui::Slider::new(&mut strength, 0.0..=MAX_PARALLAX_SHADOW_STRENGTH).text("shadow strength");
+            if ui.add(slider).changed() {
+                actions.push(Command::SetParallaxShadows(strength).into());
+            }
+        }
+    }
     if technique == Parallax::Relief {
         let mut steps = settings.steps;
         if ui.add(egui::Slider::new(&mut steps, 0..=MAX_PARALLAX_STEPS).text("binary steps")).changed() {
             actions.push(Command::SetParallaxSteps(steps).into());
+        }
+    }
+}
+
+/// Displacement's level (0 off) and, per drawn scene (the split view's right half may have its
+/// own), the displaced meshes' vertices, triangles and memory.
+pub(super) fn displacement(
+    ui: &mut egui::Ui,
+    state: &ViewerState,
+    displaced: [Option<DisplacementStats>; 2],
+    actions: &mut Vec<Action>,
+) {
+    let mut level = state.scene_options.displacement.level;
+    let slider = egui::Slider::new(&mut level, 0..=MAX_DISPLACEMENT_LEVEL).text("displacement level");
+    let hint = "the ground truth: height-mapped meshes tessellated (4^level triangles each) and moved along \
+                their normals by the depth above; 0 is off";
+    if ui.add(slider).on_hover_text(hint).changed() {
+        actions.push(Command::SetDisplacement(level).into());
+    }
+    for (stats, half) in displaced.iter().zip(["", "split right: "]) {
+        if let Some(stats) = stats {
+            ui.weak(format!("{half}{}", stats.summary()));
         }
     }
 }

@@ -1,7 +1,7 @@
 //! The top of the panel, always in sight: bump on/off and strength, the view, the split view
 //! and the light.
 
-use bumpview::frame::{BumpSource, LightingSpace, Parallax, STRENGTH_RANGE, ShadingMode, ViewMode};
+use bumpview::frame::{BumpSource, LightingSpace, MAX_DISPLACEMENT_LEVEL, Parallax, STRENGTH_RANGE, ShadingMode, ViewMode};
 use bumpview::names::Named;
 use bumpview::scene::GreenAxis;
 use bumpview::shading::OVER_TILT_LIMIT_DEG;
@@ -109,6 +109,18 @@ fn split(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
         }
         SplitDifference::Parallax => {
             pair_combos(ui, "parallax", split.parallax, Parallax::label).map(Command::SetSplitParallax)
+        }
+        SplitDifference::Displacement => {
+            let [mut technique, _] = split.parallax;
+            egui::ComboBox::from_label("left parallax").selected_text(technique.label()).show_ui(ui, |ui| {
+                for &choice in Parallax::all() {
+                    ui.selectable_value(&mut technique, choice, choice.label());
+                }
+            });
+            let mut level = split.displacement_level;
+            let slider = egui::Slider::new(&mut level, 1..=MAX_DISPLACEMENT_LEVEL).text("right: displacement level");
+            let changed = ui.add(slider).changed();
+            (changed || technique != split.parallax[0]).then_some(Command::SetSplitDisplacement(technique, level))
         }
     };
     actions.extend(command.map(Action::from));

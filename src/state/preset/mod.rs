@@ -20,7 +20,10 @@ use std::path::Path;
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
-use crate::frame::{MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, ParallaxSettings, SceneOptions, ShadingSettings};
+use crate::frame::{
+    Displacement, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS, MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS,
+    ParallaxSettings, SceneOptions, ShadingSettings,
+};
 use crate::height::Kernel;
 use crate::load::SceneFiles;
 use crate::names::{Named, parse_or_auto};
@@ -224,6 +227,10 @@ impl Preset {
             return Err(bad("capture.size", &format!("[{w}, {h}]"), "[width, height], each at least 1"));
         }
         let mode = named("shading.mode", &s.mode)?;
+        if scene.displacement > MAX_DISPLACEMENT_LEVEL {
+            let levels = format!("0 (off) to {MAX_DISPLACEMENT_LEVEL}");
+            return Err(bad("scene.displacement", &scene.displacement.to_string(), &levels));
+        }
         let layers = format!("[min, max], each 1 to {MAX_PARALLAX_LAYERS}");
         if let Some([a, b]) =
             Some(s.parallax_layers).filter(|l| l.iter().any(|n| !(1..=MAX_PARALLAX_LAYERS).contains(n)))
@@ -233,6 +240,10 @@ impl Preset {
         if s.parallax_steps > MAX_PARALLAX_STEPS {
             let steps = format!("0 to {MAX_PARALLAX_STEPS}");
             return Err(bad("shading.parallax_steps", &s.parallax_steps.to_string(), &steps));
+        }
+        if !(0.0..=MAX_PARALLAX_SHADOW_STRENGTH).contains(&s.parallax_shadows) {
+            let strengths = format!("0 (off) to {MAX_PARALLAX_SHADOW_STRENGTH}");
+            return Err(bad("shading.parallax_shadows", &s.parallax_shadows.to_string(), &strengths));
         }
         if let Some(d) = s.parallax_depth_m.filter(|d| !(d.is_finite() && *d >= 0.0)) {
             return Err(bad("shading.parallax_depth_m", &d.to_string(), "metres, 0 or more"));
@@ -255,6 +266,7 @@ impl Preset {
                     layers_max: s.parallax_layers[1],
                     steps: s.parallax_steps,
                     depth_m: s.parallax_depth_m,
+                    shadow_strength: s.parallax_shadows,
                 },
                 specular: named("shading.specular", &s.specular)?,
                 shininess: s.shininess,
@@ -269,6 +281,7 @@ impl Preset {
                 per_material,
                 // Set by `ViewerState::scene_uploads` from the shading.
                 parallax: false,
+                displacement: Displacement { level: scene.displacement, depth_m: None },
             },
             kernel: self.kernel()?,
             split: self.split.to_split()?,

@@ -1,7 +1,7 @@
 //! The sections of a preset file, one struct each, and their conversions from and to the
 //! viewer state's values.
 
-use crate::frame::{SceneOptions, ShadingSettings};
+use crate::frame::{MAX_DISPLACEMENT_LEVEL, SceneOptions, ShadingSettings};
 use crate::height::Kernel;
 use crate::names::{Named, name_or_auto};
 use crate::render::Background;
@@ -20,7 +20,7 @@ use super::*;
 pub struct SplitPreset {
     pub enabled: bool,
     /// A [`SplitDifference`] name: `bump`, `view`, `strength`, `mode`, `tangents`,
-    /// `convention`, `bump-source`, `parallax` or `lighting-space`.
+    /// `convention`, `bump-source`, `parallax`, `lighting-space` or `displacement`.
     pub difference: String,
     /// The divider, a fraction of the width (0..1).
     pub divider: f32,
@@ -39,6 +39,8 @@ pub struct SplitPreset {
     pub parallax: [String; 2],
     /// [`LightingSpace`](crate::frame::LightingSpace) names, left and right.
     pub lighting_spaces: [String; 2],
+    /// The right half's displacement level in the `displacement` split (1 to 10).
+    pub displacement_level: u32,
 }
 
 impl Default for SplitPreset {
@@ -61,6 +63,7 @@ impl From<&SplitView> for SplitPreset {
             bump_sources: names(s.bump_sources),
             parallax: names(s.parallax),
             lighting_spaces: names(s.lighting_spaces),
+            displacement_level: s.displacement_level,
         }
     }
 }
@@ -73,6 +76,10 @@ impl SplitPreset {
         }
         if let Some(s) = self.strengths.iter().find(|s| !s.is_finite()) {
             return Err(bad("split.strengths", &s.to_string(), "finite numbers"));
+        }
+        if !(1..=MAX_DISPLACEMENT_LEVEL).contains(&self.displacement_level) {
+            let levels = format!("1 to {MAX_DISPLACEMENT_LEVEL}");
+            return Err(bad("split.displacement_level", &self.displacement_level.to_string(), &levels));
         }
         Ok(SplitView {
             // Every field: a new split setting must get a place in the preset format too.
@@ -87,6 +94,7 @@ impl SplitPreset {
             bump_sources: named_pair("split.bump_sources", &self.bump_sources)?,
             parallax: named_pair("split.parallax", &self.parallax)?,
             lighting_spaces: named_pair("split.lighting_spaces", &self.lighting_spaces)?,
+            displacement_level: self.displacement_level,
         })
     }
 }
@@ -237,6 +245,8 @@ pub struct ShadingPreset {
     pub shininess: Option<f32>,
     /// A [`LightingSpace`](crate::frame::LightingSpace) name: `world`, `tangent` or `view`.
     pub lighting_space: String,
+    /// The searches' soft self-shadows: their strength, 0 (off) to 4.
+    pub parallax_shadows: f32,
 }
 
 /// How the scene is prepared: tangents, bump source, kernel and material conventions.
@@ -253,6 +263,9 @@ pub struct ScenePreset {
     pub materials: OverridesPreset,
     /// Conventions per material, by index into the scene's materials (`"0"`, `"1"`…).
     pub per_material: BTreeMap<String, OverridesPreset>,
+    /// Displacement's tessellation level, 0 (off) to 10: materials with a height map drawn
+    /// as displaced geometry, the depth the parallax depth.
+    pub displacement: u32,
 }
 
 /// [`MaterialOverrides`] by name; a missing key keeps the material's own setting.
@@ -309,6 +322,7 @@ impl From<&ShadingSettings> for ShadingPreset {
             specular: s.specular.name().to_owned(),
             shininess: s.shininess,
             lighting_space: s.lighting_space.name().to_owned(),
+            parallax_shadows: s.parallax.shadow_strength,
         }
     }
 }
@@ -327,6 +341,7 @@ impl ScenePreset {
             kernel: kernel.name().to_owned(),
             materials: OverridesPreset::from(&options.materials),
             per_material: options.per_material.iter().map(|(i, o)| (i.to_string(), o.into())).collect(),
+            displacement: options.displacement.level,
         }
     }
 }

@@ -4,8 +4,8 @@
 use glam::Vec2;
 use glam::Vec3;
 
+use super::{SamplerWrap, TextureImage, TextureKind, Wrap};
 use crate::math::srgb_to_linear;
-use crate::scene::{SamplerWrap, TextureImage, TextureKind, Wrap};
 
 /// Texture `chain` (mip levels, level 0 first) at `uv` as the GPU's sampler reads it (linear
 /// filtering, linear between mip levels, no anisotropy): level of detail `log2` of the longer
