@@ -47,9 +47,10 @@ struct Object {
 @group(1) @binding(9) var clearcoat_texture: texture_2d<f32>;  // linear: R coat strength
 @group(1) @binding(10) var clearcoat_roughness_texture: texture_2d<f32>; // linear: G coat roughness
 @group(1) @binding(11) var clearcoat_normal_texture: texture_2d<f32>;    // linear: the coat's normal map
+@group(1) @binding(13) var bump_correction_texture: texture_2d<f32>; // linear: X-Ray's bump# (RGB correction)
 
 const FLIP_GREEN: u32 = 1u;
-const TWO_CHANNEL: u32 = 2u;
+const LAYOUT_RG: u32 = 2u;
 const DEPTH_MAP: u32 = 8u;
 const HAS_METALLIC_ROUGHNESS: u32 = 16u;
 const HAS_GLOSS: u32 = 32u;
@@ -58,6 +59,9 @@ const HAS_CLEARCOAT: u32 = 128u;
 const HAS_CLEARCOAT_TEXTURE: u32 = 256u;
 const HAS_CLEARCOAT_ROUGHNESS_TEXTURE: u32 = 512u;
 const HAS_CLEARCOAT_NORMAL: u32 = 1024u;
+const LAYOUT_AG: u32 = 16384u;
+const LAYOUT_XRAY: u32 = 32768u;
+const HAS_BUMP_CORRECTION: u32 = 65536u;
 const SHADING_METALLIC_ROUGHNESS: u32 = 1u;
 
 // True when the target stores sRGB-encoded values (Rgba8UnormSrgb): debug colours are then
@@ -159,23 +163,63 @@ fn tangent_frame(world_tangent: vec4<f32>, n: vec3<f32>) -> TangentFrame {
     return TangentFrame(t, w * cross(n, t), w);
 }
 
+// shading::unpack_normal's RG and AG layouts: z rebuilt from x and y (0..1 each).
+fn rebuilt_z(x01: f32, y01: f32) -> vec3<f32> {
+    let xy = vec2<f32>(x01, y01) * 2.0 - 1.0;
+    let xy2 = dot(xy, xy);
+    let shrink = select(1.0, inverseSqrt(xy2), xy2 > 1.0);
+    return vec3<f32>(xy * shrink, sqrt(max(1.0 - xy2, 0.0)));
+}
+
+// shading::unpack_normal: the signed vector the texel's channels hold by the layout bits;
+// `correction` is X-Ray's bump# RGB (0.5 without one).
+fn unpack_normal(texel: vec4<f32>, correction: vec3<f32>, flags: u32) -> vec3<f32> {
+    if (flags & LAYOUT_RG) != 0u {
+        return rebuilt_z(texel.r, texel.g);
+    }
+    if (flags & LAYOUT_AG) != 0u {
+        return rebuilt_z(texel.a, texel.g);
+    }
+    if (flags & LAYOUT_XRAY) != 0u {
+        return texel.abg + correction - 1.0; // x = A, y = B, z = G (X-Ray's Nu.wzy)
+    }
+    return texel.rgb * 2.0 - 1.0;
+}
+
 // shading::decode_normal
-fn decode_normal(texel: vec3<f32>, flags: u32) -> vec3<f32> {
-    var v = texel * 2.0 - 1.0;
+fn decode_normal(texel: vec4<f32>, correction: vec3<f32>, flags: u32) -> vec3<f32> {
+    var v = unpack_normal(texel, correction, flags);
     if (flags & FLIP_GREEN) != 0u {
         v.y = -v.y;
-    }
-    if (flags & TWO_CHANNEL) != 0u {
-        let xy2 = v.x * v.x + v.y * v.y;
-        let shrink = select(1.0, inverseSqrt(xy2), xy2 > 1.0);
-        v = vec3<f32>(v.xy * shrink, sqrt(max(1.0 - xy2, 0.0)));
     }
     return normalize_or(v, vec3<f32>(0.0, 0.0, 1.0));
 }
 
+// shading::packed_gloss: X-Ray's bump red squared scales k_s (set by the normal-mapped entry
+// points before they shade; 1 elsewhere).
+var<private> packed_gloss: f32 = 1.0;
+
+// The normal map's texel at `uv` with X-Ray's bump# correction where the material has one.
+struct NormalSample {
+    texel: vec4<f32>,
+    correction: vec3<f32>,
+};
+
+fn sample_normal_map(uv: vec2<f32>) -> NormalSample {
+    var correction = vec3<f32>(0.5);
+    if (object.flags & HAS_BUMP_CORRECTION) != 0u {
+        correction = textureSample(bump_correction_texture, detail_sampler, uv).rgb;
+    }
+    let texel = textureSample(bump_texture, detail_sampler, uv);
+    if (object.flags & LAYOUT_XRAY) != 0u {
+        packed_gloss = texel.r * texel.r;
+    }
+    return NormalSample(texel, correction);
+}
+
 // shading::perturbed_normal; `flags` carries the map's convention bits.
-fn perturbed_normal(n: vec3<f32>, frame_tb: TangentFrame, texel: vec3<f32>, strength: f32, flags: u32) -> vec3<f32> {
-    let decoded = decode_normal(texel, flags);
+fn perturbed_normal(n: vec3<f32>, frame_tb: TangentFrame, texel: NormalSample, strength: f32, flags: u32) -> vec3<f32> {
+    let decoded = decode_normal(texel.texel, texel.correction, flags);
     let scaled = vec3<f32>(decoded.xy * strength, max(decoded.z, 0.0));
     let nt = normalize_or(scaled, vec3<f32>(0.0, 0.0, 1.0));
     return normalize_or(frame_tb.t * nt.x + frame_tb.b * nt.y + n * nt.z, n);
@@ -222,8 +266,9 @@ fn clearcoat_normal(in: VertexOutput, n: vec3<f32>, frame_tb: TangentFrame) -> v
     if (object.flags & HAS_CLEARCOAT_NORMAL) == 0u || frame.bump_enabled == 0u {
         return n;
     }
-    let texel = textureSample(clearcoat_normal_texture, detail_sampler, clearcoat_uv(in.uv)).rgb;
-    return perturbed_normal(n, frame_tb, texel, frame.strength * object.clearcoat.z, 0u);
+    let texel = textureSample(clearcoat_normal_texture, detail_sampler, clearcoat_uv(in.uv));
+    let coat = NormalSample(vec4<f32>(texel.rgb, 1.0), vec3<f32>(0.5));
+    return perturbed_normal(n, frame_tb, coat, frame.strength * object.clearcoat.z, 0u);
 }
 
 // The lit colour (chain::shade) in the pipeline's shading model, plus emitted light in the
@@ -246,6 +291,7 @@ fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>, n_coat: v
         if (object.flags & HAS_GLOSS) != 0u {
             k_s *= textureSample(gloss_texture, detail_sampler, in.uv).rgb;
         }
+        k_s *= packed_gloss;
         return blinn_phong(albedo, k_s, n_geo, n_shading, in.world_position) + emission;
     }
     // Each texture is sampled only where the material has it (uniform branches): without one
@@ -368,7 +414,7 @@ fn fs_normal_mapped(vertex: VertexOutput, @builtin(front_facing) front_facing: b
     var in = vertex;
     in.uv = parallax_uv(vertex.uv, n, vertex.world_position);
     let frame_tb = tangent_frame(in.world_tangent, n);
-    let texel = textureSample(bump_texture, detail_sampler, in.uv).rgb;
+    let texel = sample_normal_map(in.uv);
     var n_shading = n;
     if frame.bump_enabled != 0u {
         n_shading = perturbed_normal(n, frame_tb, texel, frame.strength * object.normal_scale, object.flags);
@@ -380,11 +426,11 @@ fn fs_normal_mapped(vertex: VertexOutput, @builtin(front_facing) front_facing: b
 @fragment
 fn fs_object_space(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
-    let texel = textureSample(bump_texture, detail_sampler, in.uv).rgb;
+    let texel = sample_normal_map(in.uv);
     var n_shading = n;
     if frame.bump_enabled != 0u {
         let facing = select(-1.0, 1.0, front_facing);
-        let model_normal = decode_normal(texel, object.flags);
+        let model_normal = decode_normal(texel.texel, texel.correction, object.flags);
         let n_map = facing * normalize_or((object.normal_matrix * vec4<f32>(model_normal, 0.0)).xyz, n);
         n_shading = normalize_or(n + frame.strength * object.normal_scale * (n_map - n), n);
     }

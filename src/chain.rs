@@ -21,8 +21,8 @@ use crate::math::{handedness, linear_to_srgb, normalize_or, orthonormalize_tange
 use crate::scene::{Material, ShadingModel};
 use crate::shading::pbr::{ClearcoatInputs, PbrInputs, metallic_roughness};
 use crate::shading::{
-    LightingInputs, OVER_TILT_COLOR, SELF_SHADOW_FADE, blinn_phong, debug_color, decode_normal, handedness_color,
-    object_space_normal, over_tilted, surface_gradient_normal,
+    LightingInputs, NormalTexel, OVER_TILT_COLOR, SELF_SHADOW_FADE, blinn_phong, debug_color, decode_normal,
+    handedness_color, object_space_normal, over_tilted, packed_gloss, surface_gradient_normal,
 };
 
 /// What the fragment shader reads at one surface point.
@@ -61,8 +61,9 @@ pub struct SurfaceSample {
 /// What the bump texture gives at a point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum BumpSample {
-    /// The normal map's filtered RGB, 0..1, linear (tangent- or object-space maps).
-    NormalMap(Vec3),
+    /// The normal map's filtered texel (and X-Ray's `bump#`), linear (tangent- or
+    /// object-space maps).
+    NormalMap(NormalTexel),
     /// Screen-space derivatives for Blinn's bump from the height map: of the position
     /// (metres per pixel, world space) and of the decoded height sample ([`crate::shading::height_sample`],
     /// full range per pixel, before the depth flip, range and strength).
@@ -160,7 +161,7 @@ pub fn shade(
     let coat_map = coat.and_then(|c| c.normal_map.as_ref());
     let clearcoat_normal = match (shading.bump_enabled, tangent_frame, coat_map, point.clearcoat_normal) {
         (true, Some((t, b, _)), Some(map), Some(texel)) => {
-            let decoded = decode_normal(texel, map.convention);
+            let decoded = decode_normal(NormalTexel::rgb(texel), map.convention);
             let s = shading.strength * map.scale;
             let nt = normalize_or(Vec3::new(decoded.x * s, decoded.y * s, decoded.z.max(0.0)), Vec3::Z);
             normalize_or(t * nt.x + b * nt.y + n * nt.z, n)
@@ -168,6 +169,8 @@ pub fn shade(
         _ => n,
     };
 
+    // X-Ray's bump carries a gloss that scales k_s (1 for the other layouts).
+    let gloss = texel.zip(map).map_or(1.0, |(texel, m)| packed_gloss(texel, m.convention.layout));
     let eye = frame.camera.eye();
     let light_dir = normalize_or(frame.light.position - point.position, n);
     let view_dir = normalize_or(eye - point.position, n);
@@ -190,7 +193,7 @@ pub fn shade(
             eye,
             light: frame.light,
             ambient,
-            specular: material.specular * point.gloss.unwrap_or(Vec3::ONE),
+            specular: material.specular * point.gloss.unwrap_or(Vec3::ONE) * gloss,
             shininess: material.shininess.max(1.0),
         }),
         (_, ShadingModel::MetallicRoughness) => {

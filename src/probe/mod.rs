@@ -36,7 +36,7 @@ use crate::frame::{BumpKind, FrameParams, Parallax, SceneOptions};
 use crate::math::{normal_matrix, normalize_or};
 use crate::prepare::PreparedScene;
 use crate::scene::{OrbitCamera, SamplerWrap, Scene, TextureImage, Wrap};
-use crate::shading::height_sample;
+use crate::shading::{NormalTexel, height_sample};
 use crate::tangent::TangentMethod;
 pub use pick::project_to_pixel;
 use pick::{Quad, corner_positions, intersect};
@@ -81,9 +81,9 @@ pub struct ProbeReadout {
     /// (RGBA, 0–255, before filtering).
     pub texel_xy: Option<[u32; 2]>,
     pub texel_raw: Option<[u8; 4]>,
-    /// The normal map's filtered sample at `uv` (RGB, 0..1, linear; at the mip levels the GPU
-    /// reads): what the shader decodes.
-    pub texel: Option<Vec3>,
+    /// The normal map's filtered sample at `uv` (RGBA, 0..1, linear; at the mip levels the GPU
+    /// reads, with X-Ray's `bump#` correction): what the shader decodes.
+    pub texel: Option<NormalTexel>,
     /// The tangent method the frames come from.
     pub tangent_method: Option<TangentMethod>,
     /// Every value of the shading chain at the point ([`crate::chain::shade`]): the decoded
@@ -229,7 +229,8 @@ impl ProbeScene {
             let (duv_dx, duv_dy) = interpolated_footprint?;
             let flip = height_map.is_some_and(|h| h.depth);
             let height = move |at: Vec2| {
-                let sample = height_sample(sample_trilinear(&self.mips[texture], at, detail, interpolated_footprint));
+                let sample =
+                    height_sample(sample_trilinear(&self.mips[texture], at, detail, interpolated_footprint).truncate());
                 if flip { 1.0 - sample } else { sample }
             };
             let clamp = [detail.u == Wrap::ClampToEdge, detail.v == Wrap::ClampToEdge];
@@ -247,8 +248,9 @@ impl ProbeScene {
             (Some(m), Some(quad)) => quad.derivatives(|b, p| m(b, p).0.uv),
             _ => interpolated_footprint,
         };
-        let sample =
+        let sample_rgba =
             |texture: usize, wrap: SamplerWrap| sample_trilinear(&self.mips[texture], read_uv, wrap, footprint);
+        let sample = |texture: usize, wrap: SamplerWrap| sample_rgba(texture, wrap).truncate();
         let frames = prepared_mesh.frames.as_ref();
         let world_tangent = frames.map(|f| {
             let t = corners.iter().zip(b.to_array()).fold(Vec4::ZERO, |acc, (&i, w)| acc + f.tangents[i as usize] * w);
@@ -263,7 +265,7 @@ impl ProbeScene {
             let linear =
                 |d: Vec2| Vec2::new(coat.uv_transform[0].truncate().dot(d), coat.uv_transform[1].truncate().dot(d));
             let coat_footprint = footprint.map(|(dx, dy)| (linear(dx), linear(dy)));
-            Some(sample_trilinear(&self.mips[texture?], coat.layer_uv(read_uv), detail, coat_footprint))
+            Some(sample_trilinear(&self.mips[texture?], coat.layer_uv(read_uv), detail, coat_footprint).truncate())
         };
         let normal_map = slots.bump.filter(|_| matches!(instance.bump, BumpKind::TangentSpace | BumpKind::ObjectSpace));
         let nearest = normal_map.map(|t| {
@@ -272,10 +274,14 @@ impl ProbeScene {
             (xy, texture.texel(xy[0] as i64, xy[1] as i64))
         });
         let bump = match (instance.bump, slots.bump) {
-            (BumpKind::TangentSpace | BumpKind::ObjectSpace, Some(t)) => Some(BumpSample::NormalMap(sample(t, detail))),
+            (BumpKind::TangentSpace | BumpKind::ObjectSpace, Some(t)) => Some(BumpSample::NormalMap(NormalTexel {
+                rgba: sample_rgba(t, detail),
+                correction: slots.bump_correction.map(|c| sample(c, detail)),
+            })),
             (BumpKind::HeightInShader, Some(t)) => quad.as_ref().and_then(|quad| {
                 // Every pixel of the quad samples at the quad's footprint, as the GPU does.
-                let height_at = |b| height_sample(sample_trilinear(&self.mips[t], uv_at(b), detail, footprint));
+                let height_at =
+                    |b| height_sample(sample_trilinear(&self.mips[t], uv_at(b), detail, footprint).truncate());
                 let (dx, dy) = quad.derivatives(|b, p| p.extend(height_at(b)))?;
                 Some(BumpSample::HeightSlopes { dp_dx: dx.truncate(), dp_dy: dy.truncate(), dh_dx: dx.w, dh_dy: dy.w })
             }),

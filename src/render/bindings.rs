@@ -57,9 +57,13 @@ pub const CLEARCOAT_NORMAL_TEXTURE: Slot = slot(11, "clearcoat_normal_texture", 
 /// The height map the parallax family marches (shaders/parallax.wgsl), linear, through the
 /// detail sampler; a placeholder where the instance has none.
 pub const HEIGHT_TEXTURE: Slot = slot(12, "height_texture", Resource::Texture);
+/// X-Ray's `bump#` texture (RGB: the normal's compression-error correction), linear, through
+/// the detail sampler; only in layouts of variants with a bump texture, a placeholder where
+/// the instance has none.
+pub const BUMP_CORRECTION_TEXTURE: Slot = slot(13, "bump_correction_texture", Resource::Texture);
 
 /// Group 1 of the mesh shader, in binding order.
-pub const MATERIAL: [Slot; 13] = [
+pub const MATERIAL: [Slot; 14] = [
     OBJECT,
     BASE_COLOR_TEXTURE,
     BASE_COLOR_SAMPLER,
@@ -73,6 +77,7 @@ pub const MATERIAL: [Slot; 13] = [
     CLEARCOAT_ROUGHNESS_TEXTURE,
     CLEARCOAT_NORMAL_TEXTURE,
     HEIGHT_TEXTURE,
+    BUMP_CORRECTION_TEXTURE,
 ];
 
 /// Group 1 of the marker shader: the marker's model matrix.
@@ -123,9 +128,9 @@ mod tests {
     use crate::names::Named;
     use crate::render::pipelines::{MARKER_WGSL, MESH_WGSL};
     use crate::render::uniforms::{
-        DEPTH_MAP, HAS_CLEARCOAT, HAS_CLEARCOAT_NORMAL, HAS_CLEARCOAT_ROUGHNESS_TEXTURE, HAS_CLEARCOAT_TEXTURE,
-        HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS, HAS_PARALLAX_HEIGHT, PARALLAX_CLAMP_U,
-        PARALLAX_CLAMP_V,
+        DEPTH_MAP, HAS_BUMP_CORRECTION, HAS_CLEARCOAT, HAS_CLEARCOAT_NORMAL, HAS_CLEARCOAT_ROUGHNESS_TEXTURE,
+        HAS_CLEARCOAT_TEXTURE, HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS, HAS_PARALLAX_HEIGHT,
+        PARALLAX_CLAMP_U, PARALLAX_CLAMP_V,
     };
     use crate::scene::{NormalConvention, ShadingModel};
 
@@ -186,7 +191,10 @@ mod tests {
             expected.insert(constant_name("MODE_", mode.name()), mode.shader_index());
         }
         expected.insert("FLIP_GREEN".into(), NormalConvention::FLIP_GREEN);
-        expected.insert("TWO_CHANNEL".into(), NormalConvention::TWO_CHANNEL);
+        expected.insert("LAYOUT_RG".into(), NormalConvention::LAYOUT_RG);
+        expected.insert("LAYOUT_AG".into(), NormalConvention::LAYOUT_AG);
+        expected.insert("LAYOUT_XRAY".into(), NormalConvention::LAYOUT_XRAY);
+        expected.insert("HAS_BUMP_CORRECTION".into(), HAS_BUMP_CORRECTION);
         expected.insert("DEPTH_MAP".into(), DEPTH_MAP);
         expected.insert("HAS_METALLIC_ROUGHNESS".into(), HAS_METALLIC_ROUGHNESS);
         expected.insert("HAS_GLOSS".into(), HAS_GLOSS);

@@ -89,7 +89,8 @@ impl Layouts {
             let entries: Vec<_> = slots.iter().map(bindings::Slot::layout_entry).collect();
             device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries: &entries })
         };
-        let plain: Vec<_> = bindings::MATERIAL.into_iter().filter(|s| *s != bindings::BUMP_TEXTURE).collect();
+        let bump_only = [bindings::BUMP_TEXTURE, bindings::BUMP_CORRECTION_TEXTURE];
+        let plain: Vec<_> = bindings::MATERIAL.into_iter().filter(|s| !bump_only.contains(s)).collect();
         Layouts {
             frame: layout("frame", &[bindings::FRAME]),
             plain_material: layout("plain material", &plain),

@@ -102,6 +102,9 @@ pub(crate) const HAS_PARALLAX_HEIGHT: u32 = 2048;
 /// Bits of `flags`: the height map's sampler clamps u, v; marched coordinates stay in 0..1.
 pub(crate) const PARALLAX_CLAMP_U: u32 = 4096;
 pub(crate) const PARALLAX_CLAMP_V: u32 = 8192;
+/// Bit of `flags`: binding 13 holds X-Ray's `bump#` correction texture (bits 14 and 15 are
+/// [`crate::scene::NormalConvention`]'s layouts).
+pub(crate) const HAS_BUMP_CORRECTION: u32 = 1 << 16;
 
 impl ObjectUniform {
     /// Normals go through the inverse-transpose of the model matrix; tangent `w` is
@@ -131,6 +134,7 @@ impl ObjectUniform {
                 | bit(slots.clearcoat_roughness.is_some(), HAS_CLEARCOAT_ROUGHNESS_TEXTURE)
                 | bit(slots.clearcoat_normal.is_some(), HAS_CLEARCOAT_NORMAL)
                 | bit(slots.height.is_some(), HAS_PARALLAX_HEIGHT)
+                | bit(slots.bump_correction.is_some(), HAS_BUMP_CORRECTION)
                 | bit(material.detail_wrap.u == Wrap::ClampToEdge, PARALLAX_CLAMP_U)
                 | bit(material.detail_wrap.v == Wrap::ClampToEdge, PARALLAX_CLAMP_V),
             metallic: material.metallic,

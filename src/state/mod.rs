@@ -309,6 +309,7 @@ impl RedrawTracker {
 mod tests {
     use super::*;
     use crate::names::Named;
+    use crate::scene::NormalLayout;
     use crate::scene::builtin::teaching_scene;
 
     #[test]
@@ -411,7 +412,8 @@ mod tests {
     fn a_split_convention_wins_over_per_material_green_and_keeps_other_overrides() {
         let scene = teaching_scene();
         let mut state = ViewerState::new(&scene);
-        let own = MaterialOverrides { green: Some(GreenAxis::OpenGl), two_channel: Some(true), ..Default::default() };
+        let own =
+            MaterialOverrides { green: Some(GreenAxis::OpenGl), layout: Some(NormalLayout::Rg), ..Default::default() };
         state.apply(Command::SetMaterialOverrides { material: Some(0), overrides: own });
         state.apply(Command::SetMaterialOverrides {
             material: Some(1),
@@ -422,7 +424,7 @@ mod tests {
         let [left, right] = state.split.scene_options(&state.scene_options);
         for (options, green) in [(left, GreenAxis::OpenGl), (right, GreenAxis::DirectX)] {
             assert_eq!(options.overrides_in_use(0).green, Some(green));
-            assert_eq!(options.overrides_in_use(0).two_channel, Some(true));
+            assert_eq!(options.overrides_in_use(0).layout, Some(NormalLayout::Rg));
             assert_eq!(options.overrides_in_use(1).green, Some(green));
             assert!(!options.per_material.contains_key(&1), "an emptied record is dropped");
         }

@@ -11,6 +11,7 @@ use bumpview::frame::FrameParams;
 use bumpview::render::{Gpu, Renderer};
 use bumpview::scene::builtin::{WALL_Z, teaching_scene, wall_uv};
 use bumpview::scene::{OrbitCamera, Scene, TextureImage};
+use bumpview::shading::NormalTexel;
 use bumpview::state::ViewerState;
 use glam::{Mat3, Vec2, Vec3, Vec4};
 
@@ -95,7 +96,7 @@ pub fn asset(base: &Path, relative: &str) -> PathBuf {
 /// filter does; sRGB texels are decoded before filtering, as for an sRGB texture view
 /// ([`bumpview::probe::sample_bilinear`]).
 pub fn sample_bilinear(texture: &TextureImage, uv: Vec2) -> Vec3 {
-    bumpview::probe::sample_bilinear(texture, uv, Default::default())
+    bumpview::probe::sample_bilinear(texture, uv, Default::default()).truncate()
 }
 
 /// The value at fraction `p` (0..1) of sorted values.
@@ -118,7 +119,7 @@ pub fn wall_chain(scene: &Scene, params: &FrameParams, size: [u32; 2], x: u32, y
         world_tangent: Some(Vec4::new(1.0, 0.0, 0.0, 1.0)),
         normal_matrix: Mat3::IDENTITY,
         base_color: material.base_color_texture.map(sample),
-        bump: material.normal_map.as_ref().map(|m| BumpSample::NormalMap(sample(m.texture))),
+        bump: material.normal_map.as_ref().map(|m| BumpSample::NormalMap(NormalTexel::rgb(sample(m.texture)))),
         metallic_roughness: None,
         occlusion: None,
         gloss: material.gloss_texture.map(sample),

@@ -6,7 +6,7 @@ use crate::height::Kernel;
 use crate::names::{Named, name_or_auto};
 use crate::render::Background;
 use crate::render::capture::CaptureOptions;
-use crate::scene::MaterialOverrides;
+use crate::scene::{MaterialOverrides, NormalLayout};
 use crate::state::{SplitDifference, SplitView};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -172,6 +172,10 @@ pub struct ScenePreset {
 pub struct OverridesPreset {
     /// `opengl` or `directx`.
     pub normal_convention: Option<String>,
+    /// A [`NormalLayout`](crate::scene::NormalLayout) name: `rgb`, `rg`, `ag`, `xray`.
+    pub normal_layout: Option<String>,
+    /// Older presets' spelling of `normal_layout = "rg"` (true) or `"rgb"` (false); read, never
+    /// written.
     pub two_channel: Option<bool>,
     pub object_space: Option<bool>,
     pub depth_map: Option<bool>,
@@ -257,7 +261,8 @@ impl From<&MaterialOverrides> for OverridesPreset {
     fn from(o: &MaterialOverrides) -> Self {
         OverridesPreset {
             normal_convention: o.green.map(|g| g.name().to_owned()),
-            two_channel: o.two_channel,
+            normal_layout: o.layout.map(|l| l.name().to_owned()),
+            two_channel: None,
             object_space: o.object_space,
             depth_map: o.depth_map,
             height_range_m: o.height_range_m,
@@ -279,7 +284,11 @@ impl OverridesPreset {
         };
         Ok(MaterialOverrides {
             green: self.normal_convention.as_deref().map(|n| named(&key("normal_convention"), n)).transpose()?,
-            two_channel: self.two_channel,
+            layout: match (&self.normal_layout, self.two_channel) {
+                (Some(name), _) => Some(named(&key("normal_layout"), name)?),
+                (None, Some(two)) => Some(if two { NormalLayout::Rg } else { NormalLayout::Rgb }),
+                (None, None) => None,
+            },
             object_space: self.object_space,
             depth_map: self.depth_map,
             height_range_m,
