@@ -16,7 +16,8 @@
 //   vs_wireframe + fs_wireframe   the wireframe overlay (a second pass, PolygonMode::Line)
 //   vs_glyph + fs_glyph           T/B/N glyphs at vertices (a line list, src/render/glyphs.rs)
 //
-// Prepended at build time: frame.wgsl (the Frame uniform, group 0), pbr.wgsl and parallax.wgsl.
+// Prepended at build time: frame.wgsl (the Frame uniform, group 0), pbr.wgsl, parallax.wgsl and
+// mistakes.wgsl (the classic mistakes, the MISTAKE constant).
 
 struct Object {
     model: mat4x4<f32>,
@@ -217,12 +218,13 @@ fn sample_normal_map(uv: vec2<f32>) -> NormalSample {
     return NormalSample(texel, correction);
 }
 
-// shading::perturbed_normal; `flags` carries the map's convention bits.
+// shading::perturbed_normal (through mistakes.wgsl's tangent_to_world); `n` is the base
+// normal, `flags` carries the map's convention bits.
 fn perturbed_normal(n: vec3<f32>, frame_tb: TangentFrame, texel: NormalSample, strength: f32, flags: u32) -> vec3<f32> {
     let decoded = decode_normal(texel.texel, texel.correction, flags);
     let scaled = vec3<f32>(decoded.xy * strength, max(decoded.z, 0.0));
     let nt = normalize_or(scaled, vec3<f32>(0.0, 0.0, 1.0));
-    return normalize_or(frame_tb.t * nt.x + frame_tb.b * nt.y + n * nt.z, n);
+    return tangent_to_world(frame_tb, n, nt);
 }
 
 // shading::blinn_phong
@@ -398,14 +400,16 @@ fn surface_color(
 fn fs_plain(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
     // No tangents: the T and B views show the zero vector (mid grey).
-    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0), 0.0), n, n);
+    let base = base_normal(in.world_normal, front_facing, n);
+    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0), 0.0), base, n);
 }
 
 @fragment
 fn fs_tangent(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
-    let frame_tb = tangent_frame(in.world_tangent, n);
-    return surface_color(in, n, frame_tb, n, clearcoat_normal(in, n, frame_tb));
+    let frame_tb = mistaken_frame(in.world_tangent, n);
+    let base = base_normal(in.world_normal, front_facing, n);
+    return surface_color(in, n, frame_tb, base, clearcoat_normal(in, n, frame_tb));
 }
 
 @fragment
@@ -413,11 +417,12 @@ fn fs_normal_mapped(vertex: VertexOutput, @builtin(front_facing) front_facing: b
     let n = geometric_normal(vertex.world_normal, front_facing);
     var in = vertex;
     in.uv = parallax_uv(vertex.uv, n, vertex.world_position);
-    let frame_tb = tangent_frame(in.world_tangent, n);
-    let texel = sample_normal_map(in.uv);
-    var n_shading = n;
+    let frame_tb = mistaken_frame(in.world_tangent, n);
+    let texel = mistaken_texel(sample_normal_map(in.uv));
+    var n_shading = base_normal(vertex.world_normal, front_facing, n);
     if frame.bump_enabled != 0u {
-        n_shading = perturbed_normal(n, frame_tb, texel, frame.strength * object.normal_scale, object.flags);
+        let strength = frame.strength * object.normal_scale;
+        n_shading = perturbed_normal(n_shading, frame_tb, texel, strength, mistaken_flags(object.flags));
     }
     return surface_color(in, n, frame_tb, n_shading, clearcoat_normal(in, n, frame_tb));
 }
@@ -426,11 +431,11 @@ fn fs_normal_mapped(vertex: VertexOutput, @builtin(front_facing) front_facing: b
 @fragment
 fn fs_object_space(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
-    let texel = sample_normal_map(in.uv);
-    var n_shading = n;
+    let texel = mistaken_texel(sample_normal_map(in.uv));
+    var n_shading = base_normal(in.world_normal, front_facing, n);
     if frame.bump_enabled != 0u {
         let facing = select(-1.0, 1.0, front_facing);
-        let model_normal = decode_normal(texel.texel, texel.correction, object.flags);
+        let model_normal = decode_normal(texel.texel, texel.correction, mistaken_flags(object.flags));
         let n_map = facing * normalize_or((object.normal_matrix * vec4<f32>(model_normal, 0.0)).xyz, n);
         n_shading = normalize_or(n + frame.strength * object.normal_scale * (n_map - n), n);
     }
@@ -454,7 +459,7 @@ fn fs_height_bump(in: VertexOutput, @builtin(front_facing) front_facing: bool) -
     let dp_dy = dpdy(in.world_position);
     let dh_dx = dpdx(height);
     let dh_dy = dpdy(height);
-    var n_shading = n;
+    var n_shading = base_normal(in.world_normal, front_facing, n);
     if frame.bump_enabled != 0u {
         let r1 = cross(dp_dy, n);
         let r2 = cross(n, dp_dx);

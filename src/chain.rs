@@ -12,12 +12,13 @@
 //! stored (what the target holds: sRGB-encoded for the lit picture, `0.5·v + 0.5` for
 //! vector views).
 
+pub mod mistakes;
 pub mod parallax;
 
 use glam::{Mat3, Vec3, Vec4};
 
 use crate::frame::{BumpKind, FrameParams, ShadingMode, ViewMode};
-use crate::math::{handedness, linear_to_srgb, normalize_or, orthonormalize_tangent, smoothstep};
+use crate::math::{linear_to_srgb, normalize_or, smoothstep};
 use crate::scene::{Material, ShadingModel};
 use crate::shading::pbr::{ClearcoatInputs, PbrInputs, metallic_roughness};
 use crate::shading::{
@@ -125,28 +126,26 @@ pub fn shade(
     let shading = &frame.shading;
     let facing = if point.front_facing { 1.0 } else { -1.0 };
     let n = normalize_or(point.world_normal, Vec3::Z) * facing;
-    let tangent_frame = point.world_tangent.map(|world| {
-        let t = orthonormalize_tangent(world.truncate(), n);
-        let w = handedness(world);
-        (t, w * n.cross(t), w)
-    });
+    let mistake = shading.mistake;
+    let tangent_frame = point.world_tangent.map(|world| mistakes::tangent_frame(mistake, world, n));
+    let base = mistakes::base_normal(mistake, point.world_normal, facing, n);
 
     let map = material.normal_map.as_ref().filter(|_| matches!(bump, BumpKind::TangentSpace | BumpKind::ObjectSpace));
     let strength = shading.strength * map.map_or(1.0, |m| m.scale);
     let texel = match point.bump {
-        Some(BumpSample::NormalMap(texel)) => map.map(|_| texel),
+        Some(BumpSample::NormalMap(texel)) => map.map(|_| mistakes::texel_read(mistake, texel)),
         _ => None,
     };
-    let decoded = texel.zip(map).map(|(texel, m)| decode_normal(texel, m.convention));
+    let convention = map.map(|m| mistakes::convention_read(mistake, m.convention));
+    let decoded = texel.zip(convention).map(|(texel, c)| decode_normal(texel, c));
     let after_strength = decoded
         .filter(|_| bump == BumpKind::TangentSpace)
         .map(|d| normalize_or(Vec3::new(d.x * strength, d.y * strength, d.z.max(0.0)), Vec3::Z));
-    let shading_normal = match (shading.bump_enabled, bump, tangent_frame, after_strength, texel, map, point.bump) {
-        (true, BumpKind::TangentSpace, Some((t, b, _)), Some(nt), ..) => {
-            normalize_or(t * nt.x + b * nt.y + n * nt.z, n)
-        }
-        (true, BumpKind::ObjectSpace, _, _, Some(texel), Some(m), _) => {
-            object_space_normal(n, point.normal_matrix, point.front_facing, texel, strength, m.convention)
+    let slopes = point.bump;
+    let shading_normal = match (shading.bump_enabled, bump, tangent_frame, after_strength, texel, convention, slopes) {
+        (true, BumpKind::TangentSpace, Some((t, b, _)), Some(nt), ..) => mistakes::to_world(mistake, t, b, base, nt),
+        (true, BumpKind::ObjectSpace, _, _, Some(texel), Some(c), _) => {
+            object_space_normal(n, point.normal_matrix, point.front_facing, texel, strength, c)
         }
         (true, BumpKind::HeightInShader, .., Some(BumpSample::HeightSlopes { dp_dx, dp_dy, dh_dx, dh_dy })) => {
             let height = material.height_map.as_ref();
@@ -154,7 +153,7 @@ pub fn shade(
             let metres = depth_sign * height.map_or(0.0, |h| h.range_m) * shading.strength;
             surface_gradient_normal(n, dp_dx, dp_dy, dh_dx * metres, dh_dy * metres)
         }
-        _ => n,
+        _ => base,
     };
 
     let coat = material.visible_clearcoat();
@@ -164,13 +163,16 @@ pub fn shade(
             let decoded = decode_normal(NormalTexel::rgb(texel), map.convention);
             let s = shading.strength * map.scale;
             let nt = normalize_or(Vec3::new(decoded.x * s, decoded.y * s, decoded.z.max(0.0)), Vec3::Z);
-            normalize_or(t * nt.x + b * nt.y + n * nt.z, n)
+            mistakes::to_world(mistake, t, b, n, nt)
         }
         _ => n,
     };
 
     // X-Ray's bump carries a gloss that scales k_s (1 for the other layouts).
-    let gloss = texel.zip(map).map_or(1.0, |(texel, m)| packed_gloss(texel, m.convention.layout));
+    let gloss = match point.bump {
+        Some(BumpSample::NormalMap(raw)) => map.map_or(1.0, |m| packed_gloss(raw, m.convention.layout)),
+        _ => 1.0,
+    };
     let eye = frame.camera.eye();
     let light_dir = normalize_or(frame.light.position - point.position, n);
     let view_dir = normalize_or(eye - point.position, n);

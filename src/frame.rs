@@ -112,6 +112,65 @@ impl ShadingMode {
     }
 }
 
+/// A classic mistake to draw the scene with, for the split view against the correct picture
+/// ([`crate::chain::mistakes`], `shaders/mistakes.wgsl`). A pipeline variant (the `MISTAKE`
+/// constant). Named as on the command line (`--mistake`) and in presets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "kebab-case")]
+pub enum Mistake {
+    /// The correct picture.
+    #[default]
+    None,
+    /// Seed 000's transposition typo: the TBN matrix's `[1].z = Normal.z` where `Normal.y`
+    /// belongs, so the world normal's y takes `N.z · n_t.z`.
+    TbnTypo,
+    /// Handedness ignored: `B = N × T`, the tangent's `w` dropped.
+    HandednessIgnored,
+    /// The normal map sampled through an sRGB view: its texels are decoded from sRGB first.
+    SrgbNormalMap,
+    /// No re-normalisation after interpolation: the interpolated normal shades as it comes,
+    /// and the perturbed normal is not normalised.
+    NoRenormalization,
+    /// Averaged tangents without Gram-Schmidt: `T` is used as interpolated, not made
+    /// orthogonal to `N`.
+    NoGramSchmidt,
+    /// Green flipped: the normal map read with the other green convention.
+    GreenFlipped,
+}
+
+impl Mistake {
+    /// The mistake's name for people (labels and captions).
+    pub fn label(self) -> &'static str {
+        match self {
+            Mistake::None => "no mistake",
+            Mistake::TbnTypo => "TBN typo",
+            Mistake::HandednessIgnored => "handedness ignored",
+            Mistake::SrgbNormalMap => "sRGB normal map",
+            Mistake::NoRenormalization => "no re-normalisation",
+            Mistake::NoGramSchmidt => "no Gram-Schmidt",
+            Mistake::GreenFlipped => "green flipped",
+        }
+    }
+
+    /// What goes wrong, in one line (panel and captions).
+    pub fn explanation(self) -> &'static str {
+        match self {
+            Mistake::None => "the correct picture",
+            Mistake::TbnTypo => "TBN[1].z = N.z instead of N.y: walls lean up, floors lose their normal",
+            Mistake::HandednessIgnored => "B = N × T without w: mirrored UV islands light upside down",
+            Mistake::SrgbNormalMap => "sRGB-decoded texels: a flat texel tilts 39° towards −T −B",
+            Mistake::NoRenormalization => "interpolated normals shorter than 1: curved surfaces darken mid-triangle",
+            Mistake::NoGramSchmidt => "T not orthogonal to N: the bump leaks into the normal's own direction",
+            Mistake::GreenFlipped => "the other green convention: the relief lit from the mirrored side",
+        }
+    }
+
+    /// The index the `MISTAKE` pipeline constant takes (shaders/mistakes.wgsl).
+    pub fn shader_index(self) -> u32 {
+        self as u32
+    }
+}
+
 /// The toggles that keep the scene's GPU data: uniforms, except the view, the shading model
 /// and the parallax technique, which pick pipeline variants (each built on first use, then
 /// cached).
@@ -140,6 +199,8 @@ pub struct ShadingSettings {
     /// Parallax mapping of normal-mapped surfaces with a height map: the technique picks a
     /// pipeline variant, layers, steps and depth are uniforms.
     pub parallax: ParallaxSettings,
+    /// Draw with one classic mistake (a pipeline variant).
+    pub mistake: Mistake,
 }
 
 impl Default for ShadingSettings {
@@ -155,6 +216,7 @@ impl Default for ShadingSettings {
             wireframe: false,
             tbn_glyphs: false,
             parallax: ParallaxSettings::default(),
+            mistake: Mistake::None,
         }
     }
 }
@@ -403,6 +465,10 @@ pub struct SceneOptions {
     /// technique is chosen (`ViewerState::scene_uploads` sets it), so the height maps are
     /// uploaded only then.
     pub parallax: bool,
+    /// Draw averaged and supplied tangent frames without Gram-Schmidt against the vertex
+    /// normal ([`crate::tangent::without_gram_schmidt`]): on while a picture shows
+    /// [`Mistake::NoGramSchmidt`] (`ViewerState::scene_uploads` sets it).
+    pub tangents_without_gram_schmidt: bool,
 }
 
 impl SceneOptions {

@@ -152,6 +152,7 @@ pub fn parse_split_sides(difference: SplitDifference, text: &str) -> Result<Comm
         SplitDifference::Convention => Command::SetSplitConventions(pair(sides, parse_named)?),
         SplitDifference::BumpSource => Command::SetSplitBumpSources(pair(sides, parse_named)?),
         SplitDifference::Parallax => Command::SetSplitParallax(pair(sides, parse_named)?),
+        SplitDifference::Mistake => Command::SetSplitMistakes(pair(sides, parse_named)?),
     })
 }
 

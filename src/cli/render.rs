@@ -7,7 +7,7 @@ use std::num::NonZeroU32;
 use std::path::PathBuf;
 
 use bumpview::error::LoadWarning;
-use bumpview::frame::{FrameQuality, MAX_PARALLAX_STEPS, Parallax, ViewMode};
+use bumpview::frame::{FrameQuality, MAX_PARALLAX_STEPS, Mistake, Parallax, ViewMode};
 use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
 use bumpview::render::export::{TileGrid, caption, render_grid};
 use bumpview::render::timing::{TimedPicture, time_frames};
@@ -89,6 +89,13 @@ pub struct RenderArgs {
     /// The relief's depth in metres, 0 or more [default: each material's height range].
     #[arg(long, value_name = "METRES", value_parser = args::parse_finite)]
     parallax_depth: Option<f32>,
+    /// Draw with one classic mistake: tbn-typo (seed 000's TBN[1].z = N.z where N.y
+    /// belongs), handedness-ignored (B = N × T, w dropped), srgb-normal-map (the map sampled
+    /// through an sRGB view), no-renormalization (interpolated normals used as they come),
+    /// no-gram-schmidt (T not made orthogonal to N), green-flipped (the other green
+    /// convention) [default: none].
+    #[arg(long, value_parser = args::named::<Mistake>())]
+    mistake: Option<Mistake>,
     /// Hide the light marker.
     #[arg(long)]
     no_light_marker: bool,
@@ -97,8 +104,8 @@ pub struct RenderArgs {
     glyphs: bool,
     /// Split view, left │ right, as one image: bump (off │ on), view (lit │ shading-normal),
     /// strength (1 │ 3), mode (colour-only │ bump-colour), tangents (per-face │ mikktspace),
-    /// convention (opengl │ directx), bump-source (normal-map │ height-in-shader) or parallax
-    /// (steep │ occlusion)
+    /// convention (opengl │ directx), bump-source (normal-map │ height-in-shader), parallax
+    /// (steep │ occlusion) or mistake (none │ tbn-typo)
     /// [default: the preset's].
     #[arg(long, value_name = "KIND", value_parser = args::named::<SplitDifference>(), conflicts_with = "tiles")]
     split: Option<SplitDifference>,
@@ -141,6 +148,7 @@ impl RenderArgs {
         commands.extend(self.bump.map(Command::SetBump));
         commands.extend(self.strength.map(Command::SetStrength));
         commands.extend(self.parallax.map(Command::SetParallax));
+        commands.extend(self.mistake.map(Command::SetMistake));
         commands.extend(self.parallax_layers.map(Command::SetParallaxLayers));
         commands.extend(self.parallax_steps.map(Command::SetParallaxSteps));
         if let Some(depth) = self.parallax_depth {

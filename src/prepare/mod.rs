@@ -207,7 +207,13 @@ impl PreparedScene {
                 // Per-face frames need a vertex per corner.
                 let per_face = options.tangent_method == Some(TangentMethod::PerFace);
                 let drawn = if per_face { mesh.unwelded() } else { mesh.clone() };
-                let (tangents, method) = tangent::resolve(&drawn, options.tangent_method);
+                let (mut tangents, method) = tangent::resolve(&drawn, options.tangent_method);
+                // The classic mistake: the same frames before their Gram-Schmidt.
+                if options.tangents_without_gram_schmidt
+                    && let Some(raw) = tangent::without_gram_schmidt(&drawn, method)
+                {
+                    tangents = raw;
+                }
                 if method.is_generated() {
                     tangent_frames_generated += tangents.len() as u64;
                 }

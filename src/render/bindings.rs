@@ -123,7 +123,7 @@ mod tests {
     use wgpu::naga;
 
     use super::*;
-    use crate::frame::{MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Parallax};
+    use crate::frame::{MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Mistake, Parallax};
     use crate::frame::{ShadingMode, ViewMode};
     use crate::names::Named;
     use crate::render::pipelines::{MARKER_WGSL, MESH_WGSL};
@@ -204,6 +204,9 @@ mod tests {
         expected.insert("HAS_CLEARCOAT_ROUGHNESS_TEXTURE".into(), HAS_CLEARCOAT_ROUGHNESS_TEXTURE);
         expected.insert("HAS_CLEARCOAT_NORMAL".into(), HAS_CLEARCOAT_NORMAL);
         expected.insert("SHADING_METALLIC_ROUGHNESS".into(), ShadingModel::MetallicRoughness.shader_index());
+        for mistake in Mistake::all().iter().copied().filter(|&m| m != Mistake::None) {
+            expected.insert(constant_name("MISTAKE_", mistake.name()), mistake.shader_index());
+        }
         for technique in Parallax::all().iter().copied().filter(|&p| p != Parallax::Off) {
             expected.insert(constant_name("PARALLAX_", technique.name()), technique.shader_index());
         }

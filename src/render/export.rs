@@ -9,7 +9,7 @@ use super::Renderer;
 use super::capture::{CaptureOptions, render_capture};
 use crate::error::RenderError;
 use crate::frame::{
-    BumpSource, FrameParams, Parallax, STRENGTH_RANGE, SceneOptions, ShadingMode, ShadingSettings, ViewMode,
+    BumpSource, FrameParams, Mistake, Parallax, STRENGTH_RANGE, SceneOptions, ShadingMode, ShadingSettings, ViewMode,
 };
 use crate::names::Named;
 use crate::scene::Scene;
@@ -106,7 +106,8 @@ fn parse_tile(text: &str, current: &ShadingSettings) -> Result<ShadingSettings, 
 
 /// The caption of a tile: view (and mode), bump and strength, the normal-map convention of the
 /// scene's materials (after `options`' overrides) and the tangent frames the renderer drew
-/// with (its current scene, made with `options`); with parallax on, the technique and its layers.
+/// with (its current scene, made with `options`); with parallax on, the technique and its
+/// layers; with a classic mistake, the mistake and what it breaks.
 pub fn caption(renderer: &Renderer, scene: &Scene, options: &SceneOptions, shading: &ShadingSettings) -> Vec<String> {
     let view = match shading.view {
         ViewMode::Lit | ViewMode::OverTilt => format!("{}: {}", shading.view.label(), shading.mode.label()),
@@ -145,6 +146,9 @@ pub fn caption(renderer: &Renderer, scene: &Scene, options: &SceneOptions, shadi
     let mut lines = vec![view, bump, format!("normal map: {convention}"), format!("tangents: {tangents}")];
     if shading.parallax.technique != Parallax::Off {
         lines.push(shading.parallax.caption());
+    }
+    if shading.mistake != Mistake::None {
+        lines.push(format!("mistake: {}: {}", shading.mistake.label(), shading.mistake.explanation()));
     }
     lines
 }

@@ -606,5 +606,5 @@ fn drawn_pass(instance: &scene_gpu::GpuInstance, scene: &GpuScene, shading: &Sha
     }
     let lighting = shading.view.is_lit().then(|| shading.shading_override.unwrap_or(instance.shading_model));
     let parallax = if instance.parallax_height { shading.parallax.technique } else { Parallax::Off };
-    Pass::Mesh { variant, cull_back_faces, mirrored, view: shading.view, lighting, parallax }
+    Pass::Mesh { variant, cull_back_faces, mirrored, view: shading.view, lighting, parallax, mistake: shading.mistake }
 }

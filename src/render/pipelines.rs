@@ -7,16 +7,18 @@ use std::collections::HashMap;
 
 use super::bindings;
 use crate::counters::WorkCounters;
-use crate::frame::{Parallax, ViewMode};
+use crate::frame::{Mistake, Parallax, ViewMode};
 use crate::prepare::Variant;
 use crate::scene::ShadingModel;
 
 /// Shader sources, embedded at build time; frame.wgsl is the shared Frame uniform, pbr.wgsl
-/// the metallic-roughness shading the mesh shader calls, parallax.wgsl the parallax family.
+/// the metallic-roughness shading the mesh shader calls, parallax.wgsl the parallax family,
+/// mistakes.wgsl the classic mistakes.
 pub const MESH_WGSL: &str = concat!(
     include_str!("../../shaders/frame.wgsl"),
     include_str!("../../shaders/pbr.wgsl"),
     include_str!("../../shaders/parallax.wgsl"),
+    include_str!("../../shaders/mistakes.wgsl"),
     include_str!("../../shaders/mesh.wgsl")
 );
 pub const MARKER_WGSL: &str =
@@ -45,6 +47,8 @@ pub enum Pass {
         /// The parallax technique (the `PARALLAX` constant); [`Parallax::Off`] for instances
         /// without a height map bound for it.
         parallax: Parallax,
+        /// The classic mistake drawn (the `MISTAKE` constant).
+        mistake: Mistake,
     },
     /// The Difference view of a mesh with a tangent stream: it adds the reference stream
     /// and binds the same group-1 layout as `variant`.
@@ -189,7 +193,7 @@ impl Pipelines {
         };
         let (module, group1, vs, fs, buffers, cull_mode, constants): (_, _, _, _, &[_], _, Vec<(&str, f64)>) =
             match key.pass {
-                Pass::Mesh { variant, cull_back_faces, view, lighting, parallax, .. } => {
+                Pass::Mesh { variant, cull_back_faces, view, lighting, parallax, mistake, .. } => {
                     let (vs, fs, buffers): (_, _, &[_]) = match variant {
                         Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
                         Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
@@ -202,6 +206,9 @@ impl Pipelines {
                     constants.extend(lighting.map(|model| ("SHADING_MODEL", f64::from(model.shader_index()))));
                     if parallax != Parallax::Off {
                         constants.push(("PARALLAX", f64::from(parallax.shader_index())));
+                    }
+                    if mistake != Mistake::None {
+                        constants.push(("MISTAKE", f64::from(mistake.shader_index())));
                     }
                     (&self.mesh_module, self.layouts.material(variant), vs, fs, buffers, cull, constants)
                 }
@@ -334,6 +341,6 @@ mod tests {
         }
         let mesh = naga::front::wgsl::parse_str(MESH_WGSL).expect("parsed above");
         let overrides: Vec<_> = mesh.overrides.iter().filter_map(|(_, o)| o.name.as_deref()).collect();
-        assert_eq!(overrides, ["PARALLAX", "TARGET_ENCODES_SRGB", "VIEW", "SHADING_MODEL"]);
+        assert_eq!(overrides, ["PARALLAX", "MISTAKE", "TARGET_ENCODES_SRGB", "VIEW", "SHADING_MODEL"]);
     }
 }

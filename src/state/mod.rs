@@ -11,8 +11,8 @@ pub use split::{SplitDifference, SplitView};
 use glam::{Vec2, Vec3};
 
 use crate::frame::{
-    BumpSource, FrameParams, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Msaa, Parallax, STRENGTH_RANGE, SceneOptions,
-    SceneUploads, ShadingMode, ShadingSettings, SplitFrame, ViewMode,
+    BumpSource, FrameParams, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Mistake, Msaa, Parallax, STRENGTH_RANGE,
+    SceneOptions, SceneUploads, ShadingMode, ShadingSettings, SplitFrame, ViewMode,
 };
 use crate::height::Kernel;
 use crate::scene::{GreenAxis, Light, MaterialOverrides, OrbitCamera, Scene, ShadingModel};
@@ -108,6 +108,10 @@ pub enum Command {
     SetSplitBumpSources([BumpSource; 2]),
     /// The two techniques of [`SplitDifference::Parallax`].
     SetSplitParallax([Parallax; 2]),
+    /// The two mistakes of [`SplitDifference::Mistake`].
+    SetSplitMistakes([Mistake; 2]),
+    /// Draw with a classic mistake (a pipeline variant).
+    SetMistake(Mistake),
     /// The parallax technique (a uniform).
     SetParallax(Parallax),
     /// The search's layers `[min, max]`, each clamped to 1..=[`MAX_PARALLAX_LAYERS`].
@@ -166,11 +170,22 @@ impl ViewerState {
         let shown = self.split_frame().map_or(vec![self.shading], |s| vec![s.left, s.right]);
         let parallax = shown.iter().any(|s| s.parallax.technique != Parallax::Off);
         let options = SceneOptions { parallax, ..self.scene_options.clone() };
+        // Frames without Gram-Schmidt for the pictures that show that mistake; the split
+        // view's halves then differ in GPU data when only one shows it.
+        let raw = |s: &ShadingSettings| s.mistake == Mistake::NoGramSchmidt;
+        let with_frames = |options: SceneOptions, s: &ShadingSettings| SceneOptions {
+            tangents_without_gram_schmidt: raw(s),
+            ..options
+        };
+        let first = shown[0];
+        let last = *shown.last().expect("one or two pictures");
         if self.split.enabled && self.split.difference.changes_gpu_data() {
             let [left, right] = self.split.scene_options(&options);
-            SceneUploads { main: left, split_right: Some(right) }
+            SceneUploads { main: with_frames(left, &first), split_right: Some(with_frames(right, &last)) }
+        } else if raw(&first) != raw(&last) {
+            SceneUploads { main: with_frames(options.clone(), &first), split_right: Some(with_frames(options, &last)) }
         } else {
-            SceneUploads { main: options, split_right: None }
+            SceneUploads { main: with_frames(options, &first), split_right: None }
         }
     }
 
@@ -274,6 +289,8 @@ impl ViewerState {
             Command::SetSplitConventions(conventions) => self.split.conventions = conventions,
             Command::SetSplitBumpSources(sources) => self.split.bump_sources = sources,
             Command::SetSplitParallax(techniques) => self.split.parallax = techniques,
+            Command::SetSplitMistakes(mistakes) => self.split.mistakes = mistakes,
+            Command::SetMistake(mistake) => self.shading.mistake = mistake,
         }
     }
 }
@@ -445,6 +462,27 @@ mod tests {
         state.apply(Command::SetSplitDifference(SplitDifference::BumpSource));
         assert_eq!(state.picture_at(25, 100).1.bump_source, BumpSource::NormalMap);
         assert_eq!(state.picture_at(26, 100).1.bump_source, BumpSource::HeightInShader);
+    }
+
+    /// A mistake is a pipeline variant (one upload), except no Gram-Schmidt, whose frames are
+    /// GPU data: a split against it uploads the right half's frames without Gram-Schmidt.
+    #[test]
+    fn split_mistakes_share_an_upload_unless_frames_differ() {
+        let scene = teaching_scene();
+        let mut state = ViewerState::new(&scene);
+        state.apply(Command::SetSplit(true));
+        state.apply(Command::SetSplitDifference(SplitDifference::Mistake));
+        let [left, right] = state.split_frame().map(|s| [s.left.mistake, s.right.mistake]).unwrap();
+        assert_eq!([left, right], [Mistake::None, Mistake::TbnTypo]);
+        assert_eq!(state.scene_uploads().split_right, None);
+        state.apply(Command::SetSplitMistakes([Mistake::None, Mistake::NoGramSchmidt]));
+        let uploads = state.scene_uploads();
+        assert!(!uploads.main.tangents_without_gram_schmidt);
+        assert!(uploads.split_right.is_some_and(|o| o.tangents_without_gram_schmidt));
+        state.apply(Command::SetSplit(false));
+        state.apply(Command::SetMistake(Mistake::NoGramSchmidt));
+        let uploads = state.scene_uploads();
+        assert!(uploads.main.tangents_without_gram_schmidt && uploads.split_right.is_none());
     }
 
     #[test]

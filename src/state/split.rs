@@ -1,7 +1,7 @@
 //! The split view: two pictures side by side that differ in one thing, in uniforms (one scene
 //! upload) or in GPU data (a second upload for the right half).
 
-use crate::frame::{BumpSource, Parallax, SceneOptions, ShadingMode, ShadingSettings, ViewMode};
+use crate::frame::{BumpSource, Mistake, Parallax, SceneOptions, ShadingMode, ShadingSettings, ViewMode};
 use crate::names::Named;
 use crate::scene::GreenAxis;
 use crate::tangent::TangentMethod;
@@ -10,7 +10,7 @@ use crate::tangent::TangentMethod;
 /// uniforms, so both halves share one scene upload; the others change GPU data
 /// ([`SplitDifference::changes_gpu_data`]), so the right half is drawn from a second upload of
 /// the scene. Named `bump`, `view`, `strength`, `mode`, `tangents`, `convention`,
-/// `bump-source`, `parallax`.
+/// `bump-source`, `parallax`, `mistake`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
 #[strum(serialize_all = "kebab-case")]
 pub enum SplitDifference {
@@ -31,6 +31,8 @@ pub enum SplitDifference {
     BumpSource,
     /// Two parallax techniques (same layers, steps and depth).
     Parallax,
+    /// Two classic mistakes, e.g. none │ TBN typo (pipeline variants, one upload).
+    Mistake,
 }
 
 impl SplitDifference {
@@ -55,6 +57,7 @@ pub struct SplitView {
     pub conventions: [GreenAxis; 2],
     pub bump_sources: [BumpSource; 2],
     pub parallax: [Parallax; 2],
+    pub mistakes: [Mistake; 2],
 }
 
 impl Default for SplitView {
@@ -70,6 +73,7 @@ impl Default for SplitView {
             conventions: [GreenAxis::OpenGl, GreenAxis::DirectX],
             bump_sources: [BumpSource::NormalMap, BumpSource::HeightInShader],
             parallax: [Parallax::Steep, Parallax::Occlusion],
+            mistakes: [Mistake::None, Mistake::TbnTypo],
         }
     }
 }
@@ -85,6 +89,7 @@ impl SplitView {
                 SplitDifference::Strength => s.strength = self.strengths[i],
                 SplitDifference::Mode => s.mode = self.modes[i],
                 SplitDifference::Parallax => s.parallax.technique = self.parallax[i],
+                SplitDifference::Mistake => s.mistake = self.mistakes[i],
                 SplitDifference::Tangents | SplitDifference::Convention | SplitDifference::BumpSource => {}
             }
             s
@@ -112,7 +117,8 @@ impl SplitView {
                 | SplitDifference::View
                 | SplitDifference::Strength
                 | SplitDifference::Mode
-                | SplitDifference::Parallax => {}
+                | SplitDifference::Parallax
+                | SplitDifference::Mistake => {}
             }
             options
         })
@@ -129,6 +135,10 @@ impl SplitView {
             SplitDifference::Convention => format!("normal map: {}", self.conventions[i].label()),
             SplitDifference::BumpSource => self.bump_sources[i].label().to_owned(),
             SplitDifference::Parallax => self.parallax[i].label().to_owned(),
+            SplitDifference::Mistake => match self.mistakes[i] {
+                Mistake::None => "correct".to_owned(),
+                mistake => format!("{}: {}", mistake.label(), mistake.explanation()),
+            },
         })
     }
 }

@@ -6,6 +6,7 @@
 
 mod files;
 mod methods;
+mod mistakes;
 mod output;
 mod parallax;
 mod picture;
@@ -38,6 +39,7 @@ pub fn show(
         });
         section(ui, "Lit picture and overlays", true, |ui| picture::show(ui, &controller.state, &mut actions));
         section(ui, "Parallax", false, |ui| parallax::show(ui, &controller.state, &mut actions));
+        section(ui, "Classic mistakes", false, |ui| mistakes::show(ui, &controller.state, &mut actions));
         section(ui, "Tangent frames and kernels", false, |ui| {
             methods::methods(ui, &controller.state, &controller.facts().measurements, &mut actions);
         });

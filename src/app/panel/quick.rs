@@ -1,7 +1,7 @@
 //! The top of the panel, always in sight: bump on/off and strength, the view, the split view
 //! and the light.
 
-use bumpview::frame::{BumpSource, Parallax, STRENGTH_RANGE, ShadingMode, ViewMode};
+use bumpview::frame::{BumpSource, Mistake, Parallax, STRENGTH_RANGE, ShadingMode, ViewMode};
 use bumpview::names::Named;
 use bumpview::scene::GreenAxis;
 use bumpview::shading::OVER_TILT_LIMIT_DEG;
@@ -105,6 +105,13 @@ fn split(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
         }
         SplitDifference::Parallax => {
             pair_combos(ui, "parallax", split.parallax, Parallax::label).map(Command::SetSplitParallax)
+        }
+        SplitDifference::Mistake => {
+            let chosen = pair_combos(ui, "mistake", split.mistakes, Mistake::label).map(Command::SetSplitMistakes);
+            for (side, mistake) in ["left", "right"].into_iter().zip(split.mistakes) {
+                ui.weak(format!("{side}: {}", mistake.explanation()));
+            }
+            chosen
         }
     };
     actions.extend(command.map(Action::from));

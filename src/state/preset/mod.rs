@@ -223,6 +223,7 @@ impl Preset {
                     steps: s.parallax_steps,
                     depth_m: s.parallax_depth_m,
                 },
+                mistake: named("shading.mistake", &s.mistake)?,
             },
             light_orbit: self.light.orbit,
             scene_options: SceneOptions {
@@ -232,6 +233,7 @@ impl Preset {
                 per_material,
                 // Set by `ViewerState::scene_uploads` from the shading.
                 parallax: false,
+                tangents_without_gram_schmidt: false,
             },
             kernel: self.kernel()?,
             split: self.split.to_split()?,

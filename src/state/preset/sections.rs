@@ -36,6 +36,8 @@ pub struct SplitPreset {
     pub bump_sources: [String; 2],
     /// [`Parallax`](crate::frame::Parallax) technique names, left and right.
     pub parallax: [String; 2],
+    /// [`Mistake`](crate::frame::Mistake) names, left and right.
+    pub mistakes: [String; 2],
 }
 
 impl Default for SplitPreset {
@@ -57,6 +59,7 @@ impl From<&SplitView> for SplitPreset {
             conventions: names(s.conventions),
             bump_sources: names(s.bump_sources),
             parallax: names(s.parallax),
+            mistakes: names(s.mistakes),
         }
     }
 }
@@ -82,6 +85,7 @@ impl SplitPreset {
             conventions: named_pair("split.conventions", &self.conventions)?,
             bump_sources: named_pair("split.bump_sources", &self.bump_sources)?,
             parallax: named_pair("split.parallax", &self.parallax)?,
+            mistakes: named_pair("split.mistakes", &self.mistakes)?,
         })
     }
 }
@@ -148,6 +152,8 @@ pub struct ShadingPreset {
     pub parallax_steps: u32,
     /// The relief's depth, metres; missing: each material's height range.
     pub parallax_depth_m: Option<f32>,
+    /// A [`Mistake`](crate::frame::Mistake) name: `none`, `tbn-typo`, `green-flipped`, ….
+    pub mistake: String,
 }
 
 /// How the scene is prepared: tangents, bump source, kernel and material conventions.
@@ -221,6 +227,7 @@ impl From<&ShadingSettings> for ShadingPreset {
             parallax_layers: [s.parallax.layers_min, s.parallax.layers_max],
             parallax_steps: s.parallax.steps,
             parallax_depth_m: s.parallax.depth_m,
+            mistake: s.mistake.name().to_owned(),
         }
     }
 }

@@ -1,0 +1,189 @@
+//! The classic mistakes (`--mistake`): each draws on the GPU as the CPU chain does (the probe)
+//! and changes the picture the documented way, measured against the correct picture.
+
+mod common;
+
+use bumpview::frame::{FrameParams, Mistake, SceneOptions, ViewMode};
+use bumpview::names::Named;
+use bumpview::probe::ProbeScene;
+use bumpview::render::capture::render_image;
+use bumpview::scene::Scene;
+use common::*;
+use glam::{Mat4, Vec3, Vec4};
+
+const SIZE: [u32; 2] = [128, 128];
+
+/// Steps of 8 bits the GPU's shading-normal and lit pictures may differ from the probe: on the
+/// close wall 2 and 3 (tests/probe.rs); on the torus, 6 for both (tests/probe.rs on the
+/// asset meshes).
+const WALL: [f32; 2] = [2.0, 3.0];
+const CURVED: [f32; 2] = [6.0, 6.0];
+
+/// The probe's shading normals on a grid of pixels under `mistake`, after checking that the
+/// GPU's shading-normal and lit pictures equal them within `tolerance` (normal, lit). `None`
+/// where the ray meets nothing.
+fn shading_normals(scene: &Scene, params: &FrameParams, mistake: Mistake, tolerance: [f32; 2]) -> Vec<Option<Vec3>> {
+    let mut params = *params;
+    params.shading.mistake = mistake;
+    // As ViewerState::scene_uploads prepares it: frames without Gram-Schmidt for that mistake.
+    let options =
+        SceneOptions { tangents_without_gram_schmidt: mistake == Mistake::NoGramSchmidt, ..Default::default() };
+    let probe = ProbeScene::new(scene, &options);
+    let mut renderer = renderer_for(scene);
+    renderer.set_scene(scene, options);
+    let lit = render_image(&mut renderer, SIZE, &params).unwrap();
+    let mut normal_params = params;
+    normal_params.shading.view = ViewMode::ShadingNormal;
+    let normals = render_image(&mut renderer, SIZE, &normal_params).unwrap();
+    let mut worst = [0.0f32; 2];
+    let mut out = vec![];
+    for y in (3..SIZE[1]).step_by(9) {
+        for x in (4..SIZE[0]).step_by(9) {
+            let Some(readout) = probe.probe(&params, SIZE, [x, y]) else {
+                out.push(None);
+                continue;
+            };
+            // Silhouettes blend two surfaces in the picture: pixels whose neighbours see
+            // another instance (or nothing) are left out.
+            let instance = |dx: i32, dy: i32| {
+                let pixel = [(x as i32 + dx) as u32, (y as i32 + dy) as u32];
+                probe.pick(&params.camera, SIZE, pixel).map(|p| p.instance)
+            };
+            let neighbours = [(-1, -1), (0, -1), (1, -1), (-1, 0), (1, 0), (-1, 1), (0, 1), (1, 1)];
+            if neighbours.iter().any(|&(dx, dy)| instance(dx, dy) != Some(readout.point.instance)) {
+                out.push(None);
+                continue;
+            }
+            let cpu = readout.shown_bytes().unwrap();
+            let gpu = lit.get_pixel(x, y);
+            let lit_diff = (0..3).map(|c| (gpu[c] as f32 - cpu[c]).abs()).fold(0.0, f32::max);
+            let expected = (readout.chain.shading_normal * 0.5 + 0.5) * 255.0;
+            let stored = normals.get_pixel(x, y);
+            let normal_diff = (0..3).map(|c| (stored[c] as f32 - expected[c]).abs()).fold(0.0, f32::max);
+            worst = [worst[0].max(lit_diff), worst[1].max(normal_diff)];
+            assert!(normal_diff <= tolerance[0], "{mistake:?} ({x},{y}): GPU {stored:?} vs CPU {expected}");
+            assert!(lit_diff <= tolerance[1], "{mistake:?} ({x},{y}): GPU {gpu:?} vs CPU {cpu}");
+            out.push(Some(readout.chain.shading_normal));
+        }
+    }
+    println!("{}: GPU against CPU, worst lit {} steps, shading normal {} steps", mistake.name(), worst[0], worst[1]);
+    out
+}
+
+/// Pairs of (correct, mistaken) shading normals where both exist.
+fn pairs(scene: &Scene, params: &FrameParams, mistake: Mistake, tolerance: [f32; 2]) -> Vec<(Vec3, Vec3)> {
+    let correct = shading_normals(scene, params, Mistake::None, tolerance);
+    let wrong = shading_normals(scene, params, mistake, tolerance);
+    correct.into_iter().zip(wrong).filter_map(|(a, b)| a.zip(b)).collect()
+}
+
+fn median(mut values: Vec<f32>) -> f32 {
+    values.sort_by(f32::total_cmp);
+    values[values.len() / 2]
+}
+
+fn wall_scene() -> (Scene, FrameParams) {
+    let scene = scene();
+    let params = close_wall_params(&scene, 0.3);
+    (scene, params)
+}
+
+/// Seed 000's typo on the wall (N = +Z, T = +X, B = +Y): the world y takes `N.z · n_t.z`, so
+/// every normal leans up by about 45° (exactly 45° for a flat texel).
+#[test]
+fn the_tbn_typo_leans_the_wall_up() {
+    let (scene, params) = wall_scene();
+    let found = pairs(&scene, &params, Mistake::TbnTypo, WALL);
+    let lean = median(found.iter().map(|(_, wrong)| wrong.y.atan2(wrong.z).to_degrees()).collect());
+    let correct = median(found.iter().map(|(right, _)| right.y.atan2(right.z).to_degrees()).collect());
+    println!("median lean towards +Y: {lean:.1}° (correct {correct:.1}°)");
+    assert!((lean - 45.0).abs() < 2.0 && correct.abs() < 2.0, "{lean} {correct}");
+}
+
+/// Through an sRGB view the flat texel (128, 128, 255) decodes 38.8° off the surface normal,
+/// towards −T −B: the median angle to the correct normal on the bricks (mostly flat faces).
+#[test]
+fn an_srgb_view_tilts_flat_normals_by_39_degrees_towards_minus_t_minus_b() {
+    let (scene, params) = wall_scene();
+    let found = pairs(&scene, &params, Mistake::SrgbNormalMap, WALL);
+    let angle = median(found.iter().map(|(right, wrong)| right.angle_between(*wrong).to_degrees()).collect());
+    let towards = median(found.iter().map(|(_, wrong)| wrong.x + wrong.y).collect());
+    println!("median tilt {angle:.1}°, median x + y {towards:.3}");
+    assert!((angle - 38.8).abs() < 1.0 && towards < -0.8, "{angle} {towards}");
+}
+
+/// Green flipped mirrors the relief's lighting across the T-N plane: each shading normal's B
+/// (here y) component changes sign, T and N stay.
+#[test]
+fn green_flipped_mirrors_the_bitangent_component() {
+    let (scene, params) = wall_scene();
+    let found = pairs(&scene, &params, Mistake::GreenFlipped, WALL);
+    let worst = found.iter().map(|(r, w)| (*w - Vec3::new(r.x, -r.y, r.z)).abs().max_element()).fold(0.0, f32::max);
+    let moved = found.iter().filter(|(r, _)| r.y.abs() > 0.05).count();
+    println!("green flipped: worst {worst:.2e} off the mirrored normal, {moved} of {} pixels sloped in y", found.len());
+    assert!(worst < 1e-4 && moved > 10, "{worst} {moved}");
+}
+
+/// Handedness ignored changes nothing where w = +1 and mirrors B where w = −1: on the wall
+/// drawn through a mirroring transform (x → −x), the mistaken normals have the B component
+/// (here y) negated.
+#[test]
+fn ignored_handedness_flips_only_mirrored_surfaces() {
+    let (scene, params) = wall_scene();
+    let same = pairs(&scene, &params, Mistake::HandednessIgnored, WALL);
+    assert!(same.iter().all(|(r, w)| (*r - *w).length() < 1e-6));
+    let mut mirrored = scene.clone();
+    mirrored.instances[0].transform = Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0));
+    let found = pairs(&mirrored, &params, Mistake::HandednessIgnored, WALL);
+    let worst = found.iter().map(|(r, w)| (*w - Vec3::new(r.x, -r.y, r.z)).abs().max_element()).fold(0.0, f32::max);
+    let moved = found.iter().filter(|(r, _)| r.y.abs() > 0.05).count();
+    println!("handedness ignored on the mirrored wall: worst {worst:.2e}, {moved} pixels sloped in y");
+    assert!(worst < 1e-4 && moved > 10, "{worst} {moved}");
+}
+
+/// Without Gram-Schmidt a supplied tangent leaning 30° out of the wall stays leaning: the
+/// correct picture ignores the lean (equal to the wall with plain tangents), the mistaken one
+/// tips sloped normals towards T's lean (its z grows where the slope along T is positive).
+#[test]
+fn without_gram_schmidt_a_leaning_tangent_tips_the_bump() {
+    let (mut scene, params) = wall_scene();
+    let plain = shading_normals(&scene, &params, Mistake::None, WALL);
+    let lean = 30f32.to_radians();
+    let count = scene.meshes[0].positions.len();
+    scene.meshes[0].tangents = Some(vec![Vec4::new(lean.cos(), 0.0, lean.sin(), 1.0); count]);
+    let found = pairs(&scene, &params, Mistake::NoGramSchmidt, WALL);
+    let correct: Vec<Vec3> = found.iter().map(|p| p.0).collect();
+    let expected: Vec<Vec3> = plain.into_iter().flatten().collect();
+    assert!(correct.iter().zip(&expected).all(|(a, b)| (*a - *b).length() < 1e-5), "Gram-Schmidt removes the lean");
+    // T = (cos 30°, 0, sin 30°): the mistaken normal is T·x + B·y + N·z, normalised.
+    let worst = found
+        .iter()
+        .map(|(r, w)| {
+            let t = Vec3::new(lean.cos(), 0.0, lean.sin());
+            let b = Vec3::Z.cross(t);
+            let expected = (t * r.x + b * r.y + Vec3::Z * r.z).normalize();
+            (*w - expected).length()
+        })
+        .fold(0.0, f32::max);
+    let changed = found.iter().filter(|(r, w)| r.angle_between(*w) > 1f32.to_radians()).count();
+    println!("no Gram-Schmidt: worst {worst:.2e} off T·x + B·y + N·z, {changed} pixels moved > 1°");
+    assert!(worst < 1e-4 && changed > 10, "{worst} {changed}");
+}
+
+/// No re-normalisation changes nothing on the flat wall (its interpolated normal is unit) and
+/// shortens the torus's normals between vertices: the shortest interpolated normal is
+/// about `cos(half the angle between neighbouring vertex normals)`.
+#[test]
+fn no_renormalisation_shortens_normals_only_where_they_bend() {
+    let (scene, params) = wall_scene();
+    let same = pairs(&scene, &params, Mistake::NoRenormalization, WALL);
+    assert!(same.iter().all(|(r, w)| (*r - *w).length() < 1e-5));
+    let mut params = default_params(&scene);
+    params.camera.target = bumpview::scene::builtin::TORUS_CENTER;
+    params.camera.distance = 1.2;
+    let found = pairs(&scene, &params, Mistake::NoRenormalization, CURVED);
+    let shortest = found.iter().map(|(_, w)| w.length()).fold(f32::INFINITY, f32::min);
+    let short = found.iter().filter(|(_, w)| w.length() < 0.999).count();
+    println!("no re-normalisation on the torus: shortest normal {shortest:.4}, {short} of {} below 0.999", found.len());
+    assert!(shortest < 0.999 && short > 10, "{shortest} {short}");
+}
