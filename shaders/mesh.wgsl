@@ -16,8 +16,9 @@
 //   vs_wireframe + fs_wireframe   the wireframe overlay (a second pass, PolygonMode::Line)
 //   vs_glyph + fs_glyph           T/B/N glyphs at vertices (a line list, src/render/glyphs.rs)
 //
-// Prepended at build time: frame.wgsl (the Frame uniform, group 0), pbr.wgsl, parallax.wgsl and
-// mistakes.wgsl (the classic mistakes, the MISTAKE constant).
+// Prepended at build time: frame.wgsl (the Frame uniform, group 0), pbr.wgsl, parallax.wgsl,
+// mistakes.wgsl (the classic mistakes, the MISTAKE constant) and legacy.wgsl (the legacy
+// looks, the LEGACY constant).
 
 struct Object {
     model: mat4x4<f32>,
@@ -94,6 +95,8 @@ struct VertexOutput {
     @location(1) world_normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) world_tangent: vec4<f32>,
+    @location(4) vertex_light: vec3<f32>, // legacy.wgsl's vertex_vectors, interpolated
+    @location(5) vertex_half: vec3<f32>,
 };
 
 fn to_world(position: vec3<f32>, normal: vec3<f32>, uv: vec2<f32>, tangent: vec4<f32>) -> VertexOutput {
@@ -104,6 +107,9 @@ fn to_world(position: vec3<f32>, normal: vec3<f32>, uv: vec2<f32>, tangent: vec4
     out.world_normal = (object.normal_matrix * vec4<f32>(normal, 0.0)).xyz;
     out.uv = uv;
     out.world_tangent = vec4<f32>((object.model * vec4<f32>(tangent.xyz, 0.0)).xyz, tangent.w * object.handedness);
+    let vectors = vertex_vectors(out.world_position, out.world_normal);
+    out.vertex_light = vectors[0];
+    out.vertex_half = vectors[1];
     return out;
 }
 
@@ -230,8 +236,8 @@ fn perturbed_normal(n: vec3<f32>, frame_tb: TangentFrame, texel: NormalSample, s
 // shading::blinn_phong
 // k_s: the material's specular colour, times its gloss map where it has one.
 fn blinn_phong(albedo: vec3<f32>, k_s: vec3<f32>, n_geo: vec3<f32>, n_shading: vec3<f32>, position: vec3<f32>) -> vec3<f32> {
-    let l = normalize_or(frame.light_pos.xyz - position, n_geo);
-    let v = normalize_or(frame.camera_pos.xyz - position, n_geo);
+    let l = normalize_or(light_seen - position, n_geo);
+    let v = normalize_or(eye_seen - position, n_geo);
     let h = normalize_or(l + v, n_geo);
     let self_shadow = smoothstep(0.0, frame.self_shadow_fade, dot(n_geo, l));
     let n_dot_l = max(dot(n_shading, l), 0.0);
@@ -390,9 +396,9 @@ fn surface_color(
             if dot(n_shading, n_geo) < frame.over_tilt_cos {
                 return stored(vec3<f32>(1.0, 0.0, 0.0));
             }
-            return vec4<f32>(lit_color(in, n_geo, n_shading, n_coat), 1.0);
+            return vec4<f32>(lit_or_legacy(in, n_geo, frame_tb, n_shading, n_coat), 1.0);
         }
-        default: { return vec4<f32>(lit_color(in, n_geo, n_shading, n_coat), 1.0); }
+        default: { return vec4<f32>(lit_or_legacy(in, n_geo, frame_tb, n_shading, n_coat), 1.0); }
     }
 }
 

@@ -10,6 +10,8 @@ const MISTAKE_SRGB_NORMAL_MAP: u32 = 3u;
 const MISTAKE_NO_RENORMALIZATION: u32 = 4u;
 const MISTAKE_NO_GRAM_SCHMIDT: u32 = 5u;
 const MISTAKE_GREEN_FLIPPED: u32 = 6u;
+const MISTAKE_HALF_VECTOR_PER_VERTEX: u32 = 7u;
+const MISTAKE_LIGHT_PER_VERTEX: u32 = 8u;
 
 // mistakes::texel_read: through an sRGB view the colour channels arrive sRGB-decoded.
 fn mistaken_texel(texel: NormalSample) -> NormalSample {
@@ -60,4 +62,27 @@ fn tangent_to_world(frame_tb: TangentFrame, base: vec3<f32>, nt: vec3<f32>) -> v
         return sum;
     }
     return normalize_or(sum, base);
+}
+
+// Where the lighting sees the light and the eye from (mistakes::seen_positions), set by
+// lit_or_legacy (legacy.wgsl) before anything is lit: the true positions, but the light moved
+// onto the interpolated per-vertex light direction, or the eye onto l mirrored about the
+// interpolated per-vertex half vector.
+var<private> light_seen: vec3<f32>;
+var<private> eye_seen: vec3<f32>;
+
+fn set_seen_positions(in: VertexOutput, n: vec3<f32>) {
+    light_seen = frame.light_pos.xyz;
+    eye_seen = frame.camera_pos.xyz;
+    let p = in.world_position;
+    if MISTAKE == MISTAKE_LIGHT_PER_VERTEX {
+        let l = normalize_or(in.vertex_light, n);
+        light_seen = p + l * length(frame.light_pos.xyz - p);
+    }
+    if MISTAKE == MISTAKE_HALF_VECTOR_PER_VERTEX {
+        let h = normalize_or(in.vertex_half, n);
+        let l = normalize_or(frame.light_pos.xyz - p, n);
+        let v = h * (2.0 * dot(h, l)) - l;
+        eye_seen = p + v * length(frame.camera_pos.xyz - p);
+    }
 }

@@ -70,8 +70,8 @@ const CLEARCOAT_F0: f32 = 0.04;
 
 // pbr::metallic_roughness; normalize_or and the self-shadow fade come from mesh.wgsl.
 fn metallic_roughness(p: PbrInputs) -> vec3<f32> {
-    let l = normalize_or(frame.light_pos.xyz - p.position, p.n_geo);
-    let v = normalize_or(frame.camera_pos.xyz - p.position, p.n_geo);
+    let l = normalize_or(light_seen - p.position, p.n_geo); // mistakes.wgsl
+    let v = normalize_or(eye_seen - p.position, p.n_geo);
     let h = normalize_or(l + v, p.n_geo);
     let roughness = clamp(p.roughness, MIN_ROUGHNESS, 1.0);
     let alpha = roughness * roughness;

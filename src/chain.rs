@@ -12,14 +12,15 @@
 //! stored (what the target holds: sRGB-encoded for the lit picture, `0.5·v + 0.5` for
 //! vector views).
 
+pub mod legacy;
 pub mod mistakes;
 pub mod parallax;
 
 use glam::{Mat3, Vec3, Vec4};
 
-use crate::frame::{BumpKind, FrameParams, ShadingMode, ViewMode};
+use crate::frame::{BumpKind, FrameParams, LegacyLook, ShadingMode, ViewMode};
 use crate::math::{linear_to_srgb, normalize_or, smoothstep};
-use crate::scene::{Material, ShadingModel};
+use crate::scene::{Light, Material, ShadingModel};
 use crate::shading::pbr::{ClearcoatInputs, PbrInputs, metallic_roughness};
 use crate::shading::{
     LightingInputs, NormalTexel, OVER_TILT_COLOR, SELF_SHADOW_FADE, blinn_phong, debug_color, decode_normal,
@@ -57,6 +58,13 @@ pub struct SurfaceSample {
     pub clearcoat: Option<f32>,
     pub clearcoat_roughness: Option<f32>,
     pub clearcoat_normal: Option<Vec3>,
+    /// The per-vertex light direction and half vector ([`legacy::vertex_vectors`]),
+    /// interpolated (perspective-correct) as the vertex stage passes them on.
+    pub vertex_light: Vec3,
+    pub vertex_half: Vec3,
+    /// The height map's neighbours for the emboss look; `None` where no height map is bound
+    /// (only normal-mapped surfaces with a height map, uploaded for parallax or emboss).
+    pub emboss: Option<legacy::EmbossSample>,
 }
 
 /// What the bump texture gives at a point.
@@ -173,27 +181,54 @@ pub fn shade(
         Some(BumpSample::NormalMap(raw)) => map.map_or(1.0, |m| packed_gloss(raw, m.convention.layout)),
         _ => 1.0,
     };
-    let eye = frame.camera.eye();
-    let light_dir = normalize_or(frame.light.position - point.position, n);
+    let (light_position, eye) = mistakes::seen_positions(
+        mistake,
+        frame.light.position,
+        frame.camera.eye(),
+        point.position,
+        point.vertex_light,
+        point.vertex_half,
+        n,
+    );
+    let light = Light { position: light_position, ..frame.light };
+    let light_dir = normalize_or(light.position - point.position, n);
     let view_dir = normalize_or(eye - point.position, n);
     let half = normalize_or(light_dir + view_dir, n);
     let albedo = point.base_color.unwrap_or(Vec3::ONE) * material.base_color_factor.truncate();
     let shading_model = shading.shading_override.unwrap_or(material.shading_model);
     let lit_albedo = if shading.mode == ShadingMode::BumpOnly { Vec3::ONE } else { albedo };
-    // Emitted light shows in the bump × colour picture only.
+    let legacy = shading.legacy;
+    // Emitted light shows in the bump × colour picture only (not in the legacy looks).
     let emission = match shading.mode {
+        _ if legacy.look != LegacyLook::Off => Vec3::ZERO,
         ShadingMode::BumpTimesColour => material.emissive_factor * point.emissive.unwrap_or(Vec3::ONE),
         ShadingMode::BumpOnly | ShadingMode::ColourOnly => Vec3::ZERO,
     };
     let lit_color = match (shading.mode, shading_model) {
         (ShadingMode::ColourOnly, _) => albedo,
+        _ if legacy.look == LegacyLook::Dot3 => {
+            let l = match legacy.cube_map_in_use() {
+                Some(size) => legacy::cube_map_lookup(&legacy::cube_map(size), size, point.vertex_light),
+                None => point.vertex_light,
+            };
+            legacy::dot3_color(lit_albedo, light.color, shading_normal, l)
+        }
+        _ if legacy.look == LegacyLook::Emboss => match (point.emboss, tangent_frame) {
+            (Some(sample), Some((t, b, _))) => {
+                let offset =
+                    legacy::emboss_light_offset(t, b, light.position - point.position, sample.texels_per_metre);
+                let strength = if shading.bump_enabled { shading.strength } else { 0.0 };
+                legacy::emboss_color(lit_albedo, light.color, &sample, offset, strength)
+            }
+            _ => lit_albedo * ambient,
+        },
         (_, ShadingModel::BlinnPhong) => blinn_phong(&LightingInputs {
             albedo: lit_albedo,
             geometric_normal: n,
             shading_normal,
             position: point.position,
             eye,
-            light: frame.light,
+            light,
             ambient,
             specular: material.specular * point.gloss.unwrap_or(Vec3::ONE) * gloss,
             shininess: material.shininess.max(1.0),
@@ -210,7 +245,7 @@ pub fn shade(
                 shading_normal,
                 position: point.position,
                 eye,
-                light: frame.light,
+                light,
                 clearcoat: coat.map(|c| ClearcoatInputs {
                     factor: c.factor * point.clearcoat.unwrap_or(1.0),
                     roughness: c.roughness * point.clearcoat_roughness.unwrap_or(1.0),

@@ -136,6 +136,12 @@ pub enum Mistake {
     NoGramSchmidt,
     /// Green flipped: the normal map read with the other green convention.
     GreenFlipped,
+    /// The half vector computed per vertex and interpolated instead of per pixel (Cg
+    /// tutorial 8.1.4): highlights smear and shrink across large triangles.
+    HalfVectorPerVertex,
+    /// The light vector normalised per vertex before interpolation (seed 003's vertex
+    /// shader): the interpolated direction bends where the light is near large triangles.
+    LightPerVertex,
 }
 
 impl Mistake {
@@ -149,6 +155,8 @@ impl Mistake {
             Mistake::NoRenormalization => "no re-normalisation",
             Mistake::NoGramSchmidt => "no Gram-Schmidt",
             Mistake::GreenFlipped => "green flipped",
+            Mistake::HalfVectorPerVertex => "half vector per vertex",
+            Mistake::LightPerVertex => "light normalised per vertex",
         }
     }
 
@@ -162,12 +170,83 @@ impl Mistake {
             Mistake::NoRenormalization => "interpolated normals shorter than 1: curved surfaces darken mid-triangle",
             Mistake::NoGramSchmidt => "T not orthogonal to N: the bump leaks into the normal's own direction",
             Mistake::GreenFlipped => "the other green convention: the relief lit from the mirrored side",
+            Mistake::HalfVectorPerVertex => "H interpolated from the vertices: highlights smear across triangles",
+            Mistake::LightPerVertex => "unit L interpolated from the vertices: wrong direction near the light",
         }
     }
 
     /// The index the `MISTAKE` pipeline constant takes (shaders/mistakes.wgsl).
     pub fn shader_index(self) -> u32 {
         self as u32
+    }
+}
+
+/// A legacy look (seed 004's history) as a lit mode, a pipeline variant (the `LEGACY`
+/// constant, shaders/legacy.wgsl; [`crate::chain::legacy`]). Named `off`, `dot3`, `emboss`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "kebab-case")]
+pub enum LegacyLook {
+    /// Today's lighting.
+    #[default]
+    Off,
+    /// DOT3 bump mapping: diffuse `albedo · light · max(N·L, 0)` alone, no ambient, no
+    /// specular; `L` normalised per vertex and interpolated (not re-normalised), or
+    /// re-normalised through a normalization cube map ([`LegacySettings::cube_map_size`]).
+    Dot3,
+    /// The Pascal seed's 2D light-map bump on surfaces with a height map: the slope from
+    /// neighbouring height differences (in height-map steps of 1/255), the colour read from a
+    /// precomputed light map at `(n.x − (light.x − x), n.y − (light.y − y))`, in texels of
+    /// the height map, `x` right and `y` down the image.
+    Emboss,
+}
+
+impl LegacyLook {
+    /// A look's name for people (labels and captions).
+    pub fn label(self) -> &'static str {
+        match self {
+            LegacyLook::Off => "off",
+            LegacyLook::Dot3 => "DOT3 (N·L only)",
+            LegacyLook::Emboss => "emboss (2D light map)",
+        }
+    }
+}
+
+/// The face sizes a normalization cube map may have (Cg tutorial 8.1.3).
+pub const CUBE_MAP_SIZES: [u32; 4] = [8, 16, 32, 64];
+
+/// The legacy look and its settings.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct LegacySettings {
+    pub look: LegacyLook,
+    /// DOT3's normalization cube map face size (one of [`CUBE_MAP_SIZES`]); `None`: the
+    /// interpolated light vector is used as it comes.
+    pub cube_map_size: Option<u32>,
+}
+
+impl LegacySettings {
+    /// The index the `LEGACY` pipeline constant takes: 0 off, 1 DOT3 per vertex, 2 DOT3
+    /// through the cube map, 3 emboss.
+    pub fn shader_index(self) -> u32 {
+        match (self.look, self.cube_map_size) {
+            (LegacyLook::Off, _) => 0,
+            (LegacyLook::Dot3, None) => 1,
+            (LegacyLook::Dot3, Some(_)) => 2,
+            (LegacyLook::Emboss, _) => 3,
+        }
+    }
+
+    /// The cube map face size in use (DOT3 with a cube map only).
+    pub fn cube_map_in_use(self) -> Option<u32> {
+        self.cube_map_size.filter(|_| self.look == LegacyLook::Dot3)
+    }
+
+    /// A caption, e.g. "DOT3 (N·L only), cube map 32²".
+    pub fn caption(self) -> String {
+        match self.cube_map_in_use() {
+            Some(size) => format!("{}, cube map {size}²", self.look.label()),
+            None if self.look == LegacyLook::Dot3 => format!("{}, L per vertex", self.look.label()),
+            None => self.look.label().to_owned(),
+        }
     }
 }
 
@@ -201,6 +280,8 @@ pub struct ShadingSettings {
     pub parallax: ParallaxSettings,
     /// Draw with one classic mistake (a pipeline variant).
     pub mistake: Mistake,
+    /// A legacy look instead of today's lighting in the lit views (a pipeline variant).
+    pub legacy: LegacySettings,
 }
 
 impl Default for ShadingSettings {
@@ -217,6 +298,7 @@ impl Default for ShadingSettings {
             tbn_glyphs: false,
             parallax: ParallaxSettings::default(),
             mistake: Mistake::None,
+            legacy: LegacySettings::default(),
         }
     }
 }
@@ -461,9 +543,9 @@ pub struct SceneOptions {
     /// Per material (index into the scene's materials): conventions that win over
     /// `materials` field by field.
     pub per_material: PerMaterialOverrides,
-    /// Bind each normal-mapped material's height map for the parallax family: on while a
-    /// technique is chosen (`ViewerState::scene_uploads` sets it), so the height maps are
-    /// uploaded only then.
+    /// Bind each normal-mapped material's height map for the parallax family and the emboss
+    /// look: on while a technique or emboss is chosen (`ViewerState::scene_uploads` sets it),
+    /// so the height maps are uploaded only then.
     pub parallax: bool,
     /// Draw averaged and supplied tangent frames without Gram-Schmidt against the vertex
     /// normal ([`crate::tangent::without_gram_schmidt`]): on while a picture shows

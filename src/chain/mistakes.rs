@@ -80,6 +80,36 @@ pub fn to_world(mistake: Mistake, t: Vec3, b: Vec3, base: Vec3, nt: Vec3) -> Vec
     }
 }
 
+/// Where the lighting sees the light and the eye from `position`: their true positions, but
+/// for [`Mistake::LightPerVertex`] the light moved onto the interpolated per-vertex light
+/// direction `vertex_light` (same distance), and for [`Mistake::HalfVectorPerVertex`] the eye
+/// moved onto `l` mirrored about the interpolated per-vertex half vector `vertex_half`, so that
+/// `normalize(l + v)` is that half vector. `n` is the fallback direction. The lighting then
+/// runs unchanged.
+pub fn seen_positions(
+    mistake: Mistake,
+    light: Vec3,
+    eye: Vec3,
+    position: Vec3,
+    vertex_light: Vec3,
+    vertex_half: Vec3,
+    n: Vec3,
+) -> (Vec3, Vec3) {
+    match mistake {
+        Mistake::LightPerVertex => {
+            let l = normalize_or(vertex_light, n);
+            (position + l * (light - position).length(), eye)
+        }
+        Mistake::HalfVectorPerVertex => {
+            let h = normalize_or(vertex_half, n);
+            let l = normalize_or(light - position, n);
+            let v = h * (2.0 * h.dot(l)) - l;
+            (light, position + v * (eye - position).length())
+        }
+        _ => (light, eye),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -30,11 +30,13 @@ use std::sync::Arc;
 
 use glam::{Mat3, Vec2, Vec3, Vec4};
 
+use crate::chain::legacy::{EmbossSample, vertex_vectors};
 use crate::chain::parallax::{MarchInputs, march};
 use crate::chain::{BumpSample, ChainValues, SurfaceSample, shade};
 use crate::frame::{BumpKind, FrameParams, Parallax, SceneOptions};
 use crate::math::{normal_matrix, normalize_or};
 use crate::prepare::PreparedScene;
+use crate::scene::material::TEXTURE_SPAN_M;
 use crate::scene::{OrbitCamera, SamplerWrap, Scene, TextureImage, Wrap};
 use crate::shading::{NormalTexel, height_sample};
 use crate::tangent::TangentMethod;
@@ -287,6 +289,31 @@ impl ProbeScene {
             }),
             _ => None,
         };
+        // The vertex stage's per-vertex light and half vectors, interpolated.
+        let (vertex_light, vertex_half) =
+            corners.iter().zip(b.to_array()).fold((Vec3::ZERO, Vec3::ZERO), |(l, h), (&i, weight)| {
+                let p = model.transform_point3(mesh.positions[i as usize]);
+                let n = normal_matrix.transform_vector3(mesh.normals[i as usize]);
+                let (vl, vh) = vertex_vectors(p, n, params.light.position, eye);
+                (l + vl * weight, h + vh * weight)
+            });
+        // The emboss look's height neighbours at mip 0, where a height map is bound.
+        let emboss = slots.height.map(|texture| {
+            let level = &self.mips[texture][0];
+            let flip = height_map.is_some_and(|h| h.depth);
+            let texel = Vec2::new(level.width as f32, level.height as f32).recip();
+            let height = |offset: Vec2| {
+                let sample = height_sample(sample_bilinear(level, read_uv + offset, detail).truncate());
+                if flip { 1.0 - sample } else { sample }
+            };
+            EmbossSample {
+                left: height(Vec2::new(-texel.x, 0.0)),
+                right: height(Vec2::new(texel.x, 0.0)),
+                up: height(Vec2::new(0.0, -texel.y)),
+                down: height(Vec2::new(0.0, texel.y)),
+                texels_per_metre: level.width as f32 / TEXTURE_SPAN_M,
+            }
+        });
         let surface = SurfaceSample {
             position,
             world_normal: normal_matrix.transform_vector3(at(b)(&mesh.normals)),
@@ -302,6 +329,9 @@ impl ProbeScene {
             clearcoat: coat_sample(slots.clearcoat).map(|t| t.x),
             clearcoat_roughness: coat_sample(slots.clearcoat_roughness).map(|t| t.y),
             clearcoat_normal: coat_sample(slots.clearcoat_normal),
+            vertex_light,
+            vertex_half,
+            emboss,
         };
         let chain = shade(instance.bump, material, self.scene().ambient, &surface, params);
         let march = marched.map(|(m, height)| MarchReadout {

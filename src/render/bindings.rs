@@ -12,6 +12,8 @@ pub enum Resource {
     Uniform,
     /// A filterable 2D float texture, read by the fragment stage.
     Texture,
+    /// A filterable 2D array float texture, read by the fragment stage.
+    TextureArray,
     /// A filtering sampler, used by the fragment stage.
     Sampler,
 }
@@ -30,6 +32,14 @@ const fn slot(binding: u32, wgsl_name: &'static str, resource: Resource) -> Slot
 
 /// Group 0: the `Frame` uniform (shaders/frame.wgsl).
 pub const FRAME: Slot = slot(0, "frame", Resource::Uniform);
+/// Group 0: DOT3's normalization cube map, its six faces as layers (shaders/legacy.wgsl,
+/// `chain::legacy::normalization_cube_map`), linear; a 1×1 placeholder while unused.
+pub const NORMALIZATION_CUBE_MAP: Slot = slot(1, "normalization_cube_map", Resource::TextureArray);
+/// Group 0: the emboss look's light map (`chain::legacy::emboss_light_map`), linear; a 1×1
+/// placeholder while unused.
+pub const EMBOSS_LIGHT_MAP: Slot = slot(2, "emboss_light_map", Resource::Texture);
+/// Group 0, in binding order.
+pub const FRAME_GROUP: [Slot; 3] = [FRAME, NORMALIZATION_CUBE_MAP, EMBOSS_LIGHT_MAP];
 
 /// Group 1 of the mesh shader: the `Object` uniform.
 pub const OBJECT: Slot = slot(0, "object", Resource::Uniform);
@@ -95,11 +105,15 @@ impl Slot {
                     min_binding_size: None,
                 },
             ),
-            Resource::Texture => (
+            Resource::Texture | Resource::TextureArray => (
                 wgpu::ShaderStages::FRAGMENT,
                 wgpu::BindingType::Texture {
                     sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                    view_dimension: wgpu::TextureViewDimension::D2,
+                    view_dimension: if self.resource == Resource::Texture {
+                        wgpu::TextureViewDimension::D2
+                    } else {
+                        wgpu::TextureViewDimension::D2Array
+                    },
                     multisampled: false,
                 },
             ),
@@ -123,7 +137,7 @@ mod tests {
     use wgpu::naga;
 
     use super::*;
-    use crate::frame::{MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Mistake, Parallax};
+    use crate::frame::{LegacyLook, LegacySettings, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Mistake, Parallax};
     use crate::frame::{ShadingMode, ViewMode};
     use crate::names::Named;
     use crate::render::pipelines::{MARKER_WGSL, MESH_WGSL};
@@ -166,7 +180,7 @@ mod tests {
         let mesh = wgsl_bindings(&module(MESH_WGSL));
         let mut expected: BTreeMap<String, (u32, u32)> =
             MATERIAL.iter().map(|s| (s.wgsl_name.to_owned(), (1, s.binding))).collect();
-        expected.insert(FRAME.wgsl_name.to_owned(), (0, FRAME.binding));
+        expected.extend(FRAME_GROUP.iter().map(|s| (s.wgsl_name.to_owned(), (0, s.binding))));
         assert_eq!(mesh, expected, "shaders/mesh.wgsl against render::bindings");
         let marker = wgsl_bindings(&module(MARKER_WGSL));
         let expected = BTreeMap::from([
@@ -204,6 +218,13 @@ mod tests {
         expected.insert("HAS_CLEARCOAT_ROUGHNESS_TEXTURE".into(), HAS_CLEARCOAT_ROUGHNESS_TEXTURE);
         expected.insert("HAS_CLEARCOAT_NORMAL".into(), HAS_CLEARCOAT_NORMAL);
         expected.insert("SHADING_METALLIC_ROUGHNESS".into(), ShadingModel::MetallicRoughness.shader_index());
+        for (name, legacy) in [
+            ("LEGACY_DOT3", LegacySettings { look: LegacyLook::Dot3, cube_map_size: None }),
+            ("LEGACY_DOT3_CUBE_MAP", LegacySettings { look: LegacyLook::Dot3, cube_map_size: Some(32) }),
+            ("LEGACY_EMBOSS", LegacySettings { look: LegacyLook::Emboss, cube_map_size: None }),
+        ] {
+            expected.insert(name.into(), legacy.shader_index());
+        }
         for mistake in Mistake::all().iter().copied().filter(|&m| m != Mistake::None) {
             expected.insert(constant_name("MISTAKE_", mistake.name()), mistake.shader_index());
         }

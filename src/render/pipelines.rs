@@ -7,18 +7,19 @@ use std::collections::HashMap;
 
 use super::bindings;
 use crate::counters::WorkCounters;
-use crate::frame::{Mistake, Parallax, ViewMode};
+use crate::frame::{LegacyLook, LegacySettings, Mistake, Parallax, ViewMode};
 use crate::prepare::Variant;
 use crate::scene::ShadingModel;
 
 /// Shader sources, embedded at build time; frame.wgsl is the shared Frame uniform, pbr.wgsl
 /// the metallic-roughness shading the mesh shader calls, parallax.wgsl the parallax family,
-/// mistakes.wgsl the classic mistakes.
+/// mistakes.wgsl the classic mistakes, legacy.wgsl the legacy looks.
 pub const MESH_WGSL: &str = concat!(
     include_str!("../../shaders/frame.wgsl"),
     include_str!("../../shaders/pbr.wgsl"),
     include_str!("../../shaders/parallax.wgsl"),
     include_str!("../../shaders/mistakes.wgsl"),
+    include_str!("../../shaders/legacy.wgsl"),
     include_str!("../../shaders/mesh.wgsl")
 );
 pub const MARKER_WGSL: &str =
@@ -49,6 +50,8 @@ pub enum Pass {
         parallax: Parallax,
         /// The classic mistake drawn (the `MISTAKE` constant).
         mistake: Mistake,
+        /// The legacy look of a lit view (the `LEGACY` constant); off in the other views.
+        legacy: LegacySettings,
     },
     /// The Difference view of a mesh with a tangent stream: it adds the reference stream
     /// and binds the same group-1 layout as `variant`.
@@ -96,7 +99,7 @@ impl Layouts {
         let bump_only = [bindings::BUMP_TEXTURE, bindings::BUMP_CORRECTION_TEXTURE];
         let plain: Vec<_> = bindings::MATERIAL.into_iter().filter(|s| !bump_only.contains(s)).collect();
         Layouts {
-            frame: layout("frame", &[bindings::FRAME]),
+            frame: layout("frame", &bindings::FRAME_GROUP),
             plain_material: layout("plain material", &plain),
             normal_mapped_material: layout("normal-mapped material", &bindings::MATERIAL),
             marker: layout("light marker", &[bindings::MARKER_MODEL]),
@@ -193,7 +196,7 @@ impl Pipelines {
         };
         let (module, group1, vs, fs, buffers, cull_mode, constants): (_, _, _, _, &[_], _, Vec<(&str, f64)>) =
             match key.pass {
-                Pass::Mesh { variant, cull_back_faces, view, lighting, parallax, mistake, .. } => {
+                Pass::Mesh { variant, cull_back_faces, view, lighting, parallax, mistake, legacy, .. } => {
                     let (vs, fs, buffers): (_, _, &[_]) = match variant {
                         Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
                         Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
@@ -209,6 +212,9 @@ impl Pipelines {
                     }
                     if mistake != Mistake::None {
                         constants.push(("MISTAKE", f64::from(mistake.shader_index())));
+                    }
+                    if legacy.look != LegacyLook::Off {
+                        constants.push(("LEGACY", f64::from(legacy.shader_index())));
                     }
                     (&self.mesh_module, self.layouts.material(variant), vs, fs, buffers, cull, constants)
                 }
@@ -341,6 +347,6 @@ mod tests {
         }
         let mesh = naga::front::wgsl::parse_str(MESH_WGSL).expect("parsed above");
         let overrides: Vec<_> = mesh.overrides.iter().filter_map(|(_, o)| o.name.as_deref()).collect();
-        assert_eq!(overrides, ["PARALLAX", "MISTAKE", "TARGET_ENCODES_SRGB", "VIEW", "SHADING_MODEL"]);
+        assert_eq!(overrides, ["PARALLAX", "MISTAKE", "LEGACY", "SHADING_MODEL", "TARGET_ENCODES_SRGB", "VIEW"]);
     }
 }

@@ -11,8 +11,8 @@ pub use split::{SplitDifference, SplitView};
 use glam::{Vec2, Vec3};
 
 use crate::frame::{
-    BumpSource, FrameParams, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Mistake, Msaa, Parallax, STRENGTH_RANGE,
-    SceneOptions, SceneUploads, ShadingMode, ShadingSettings, SplitFrame, ViewMode,
+    BumpSource, FrameParams, LegacyLook, LegacySettings, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Mistake, Msaa,
+    Parallax, STRENGTH_RANGE, SceneOptions, SceneUploads, ShadingMode, ShadingSettings, SplitFrame, ViewMode,
 };
 use crate::height::Kernel;
 use crate::scene::{GreenAxis, Light, MaterialOverrides, OrbitCamera, Scene, ShadingModel};
@@ -112,6 +112,9 @@ pub enum Command {
     SetSplitMistakes([Mistake; 2]),
     /// Draw with a classic mistake (a pipeline variant).
     SetMistake(Mistake),
+    /// A legacy look and DOT3's cube map face size (one of [`crate::frame::CUBE_MAP_SIZES`],
+    /// else none).
+    SetLegacy(LegacySettings),
     /// The parallax technique (a uniform).
     SetParallax(Parallax),
     /// The search's layers `[min, max]`, each clamped to 1..=[`MAX_PARALLAX_LAYERS`].
@@ -166,9 +169,10 @@ impl ViewerState {
     /// in GPU data, the left half's options for the main upload and the right half's for a
     /// second one; else the current options alone.
     pub fn scene_uploads(&self) -> SceneUploads {
-        // Height maps are bound for parallax while either picture marches.
+        // Height maps are bound while either picture marches or embosses.
         let shown = self.split_frame().map_or(vec![self.shading], |s| vec![s.left, s.right]);
-        let parallax = shown.iter().any(|s| s.parallax.technique != Parallax::Off);
+        let parallax =
+            shown.iter().any(|s| s.parallax.technique != Parallax::Off || s.legacy.look == LegacyLook::Emboss);
         let options = SceneOptions { parallax, ..self.scene_options.clone() };
         // Frames without Gram-Schmidt for the pictures that show that mistake; the split
         // view's halves then differ in GPU data when only one shows it.
@@ -291,6 +295,10 @@ impl ViewerState {
             Command::SetSplitParallax(techniques) => self.split.parallax = techniques,
             Command::SetSplitMistakes(mistakes) => self.split.mistakes = mistakes,
             Command::SetMistake(mistake) => self.shading.mistake = mistake,
+            Command::SetLegacy(legacy) => {
+                let size = legacy.cube_map_size.filter(|s| crate::frame::CUBE_MAP_SIZES.contains(s));
+                self.shading.legacy = LegacySettings { cube_map_size: size, ..legacy };
+            }
         }
     }
 }

@@ -127,6 +127,11 @@ pub fn wall_chain(scene: &Scene, params: &FrameParams, size: [u32; 2], x: u32, y
         clearcoat: None,
         clearcoat_roughness: None,
         clearcoat_normal: None,
+        // The wall is flat and the light and eye vectors are only read by the legacy looks and
+        // the per-vertex mistakes: the values at the point itself.
+        vertex_light: (params.light.position - p).normalize(),
+        vertex_half: ((params.light.position - p).normalize() + (params.camera.eye() - p).normalize()).normalize(),
+        emboss: None,
     };
     shade(BumpKind::TangentSpace, material, scene.ambient, &surface, params)
 }

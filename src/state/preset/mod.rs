@@ -20,7 +20,10 @@ use std::path::Path;
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
-use crate::frame::{MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, ParallaxSettings, SceneOptions, ShadingSettings};
+use crate::frame::{
+    CUBE_MAP_SIZES, LegacySettings, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, ParallaxSettings, SceneOptions,
+    ShadingSettings,
+};
 use crate::height::Kernel;
 use crate::load::SceneFiles;
 use crate::names::{Named, parse_or_auto};
@@ -201,6 +204,11 @@ impl Preset {
             let steps = format!("0 to {MAX_PARALLAX_STEPS}");
             return Err(bad("shading.parallax_steps", &s.parallax_steps.to_string(), &steps));
         }
+        let cube_map_size = match s.cube_map_size {
+            0 => None,
+            size if CUBE_MAP_SIZES.contains(&size) => Some(size),
+            size => return Err(bad("shading.cube_map_size", &size.to_string(), "0 (none), 8, 16, 32 or 64")),
+        };
         if let Some(d) = s.parallax_depth_m.filter(|d| !(d.is_finite() && *d >= 0.0)) {
             return Err(bad("shading.parallax_depth_m", &d.to_string(), "metres, 0 or more"));
         }
@@ -224,6 +232,7 @@ impl Preset {
                     depth_m: s.parallax_depth_m,
                 },
                 mistake: named("shading.mistake", &s.mistake)?,
+                legacy: LegacySettings { look: named("shading.legacy", &s.legacy)?, cube_map_size },
             },
             light_orbit: self.light.orbit,
             scene_options: SceneOptions {

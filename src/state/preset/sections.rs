@@ -154,6 +154,10 @@ pub struct ShadingPreset {
     pub parallax_depth_m: Option<f32>,
     /// A [`Mistake`](crate::frame::Mistake) name: `none`, `tbn-typo`, `green-flipped`, ….
     pub mistake: String,
+    /// A [`LegacyLook`](crate::frame::LegacyLook) name: `off`, `dot3`, `emboss`.
+    pub legacy: String,
+    /// DOT3's normalization cube map face size: 8, 16, 32 or 64; 0: none (L per vertex).
+    pub cube_map_size: u32,
 }
 
 /// How the scene is prepared: tangents, bump source, kernel and material conventions.
@@ -228,6 +232,8 @@ impl From<&ShadingSettings> for ShadingPreset {
             parallax_steps: s.parallax.steps,
             parallax_depth_m: s.parallax.depth_m,
             mistake: s.mistake.name().to_owned(),
+            legacy: s.legacy.look.name().to_owned(),
+            cube_map_size: s.legacy.cube_map_size.unwrap_or(0),
         }
     }
 }
