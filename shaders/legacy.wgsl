@@ -9,7 +9,7 @@ const LEGACY_DOT3: u32 = 1u;
 const LEGACY_DOT3_CUBE_MAP: u32 = 2u;
 const LEGACY_EMBOSS: u32 = 3u;
 const LIGHT_MAP_SIZE: f32 = 256.0;       // chain::legacy::LIGHT_MAP_SIZE
-const TEXTURE_SPAN_M: f32 = 1.0;         // scene::material::TEXTURE_SPAN_M, metres per UV unit
+const EMBOSS_PIXELS_PER_M: f32 = 100.0;  // chain::legacy::EMBOSS_PIXELS_PER_M
 
 // The normalization cube map, six faces as layers (chain::legacy::normalization_cube_map),
 // and the emboss light map (chain::legacy::emboss_light_map); 1×1 placeholders while unused.
@@ -99,6 +99,6 @@ fn lit_or_legacy(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_s
     let strength = select(0.0, frame.strength, frame.bump_enabled != 0u);
     let slope = vec2<f32>(right - left, down - up) * 255.0 * strength;
     let to_light = light_seen - in.world_position;
-    let light = vec2<f32>(dot(frame_tb.t, to_light), -dot(frame_tb.b, to_light)) * (size.x / TEXTURE_SPAN_M);
+    let light = vec2<f32>(dot(frame_tb.t, to_light), -dot(frame_tb.b, to_light)) * EMBOSS_PIXELS_PER_M;
     return albedo * frame.light_color.rgb * emboss_brightness(slope, light);
 }

@@ -106,6 +106,11 @@ pub struct ChainValues {
     pub light_dir: Vec3,
     pub view_dir: Vec3,
     pub half: Vec3,
+    /// The per-vertex light direction as interpolated ([`SurfaceSample::vertex_light`]), and
+    /// the light vector DOT3 lit with: that one, or it through the normalization cube map;
+    /// `None` outside DOT3.
+    pub vertex_light: Vec3,
+    pub dot3_light: Option<Vec3>,
     /// `N·L` and `N·H` with the shading normal, signed (the shading uses `max(·, 0)`).
     pub n_dot_l: f32,
     pub n_dot_h: f32,
@@ -204,19 +209,18 @@ pub fn shade(
         ShadingMode::BumpTimesColour => material.emissive_factor * point.emissive.unwrap_or(Vec3::ONE),
         ShadingMode::BumpOnly | ShadingMode::ColourOnly => Vec3::ZERO,
     };
+    let dot3_light = (legacy.look == LegacyLook::Dot3).then(|| match legacy.cube_map_in_use() {
+        Some(size) => legacy::cube_map_lookup(&legacy::cube_map(size), size, point.vertex_light),
+        None => point.vertex_light,
+    });
     let lit_color = match (shading.mode, shading_model) {
         (ShadingMode::ColourOnly, _) => albedo,
         _ if legacy.look == LegacyLook::Dot3 => {
-            let l = match legacy.cube_map_in_use() {
-                Some(size) => legacy::cube_map_lookup(&legacy::cube_map(size), size, point.vertex_light),
-                None => point.vertex_light,
-            };
-            legacy::dot3_color(lit_albedo, light.color, shading_normal, l)
+            legacy::dot3_color(lit_albedo, light.color, shading_normal, dot3_light.unwrap_or(Vec3::ZERO))
         }
         _ if legacy.look == LegacyLook::Emboss => match (point.emboss, tangent_frame) {
             (Some(sample), Some((t, b, _))) => {
-                let offset =
-                    legacy::emboss_light_offset(t, b, light.position - point.position, sample.texels_per_metre);
+                let offset = legacy::emboss_light_offset(t, b, light.position - point.position);
                 let strength = if shading.bump_enabled { shading.strength } else { 0.0 };
                 legacy::emboss_color(lit_albedo, light.color, &sample, offset, strength)
             }
@@ -282,6 +286,8 @@ pub fn shade(
         light_dir,
         view_dir,
         half,
+        vertex_light: point.vertex_light,
+        dot3_light,
         n_dot_l: shading_normal.dot(light_dir),
         n_dot_h: shading_normal.dot(half),
         self_shadow: smoothstep(0.0, SELF_SHADOW_FADE, n.dot(light_dir)),

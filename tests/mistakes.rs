@@ -3,71 +3,32 @@
 
 mod common;
 
-use bumpview::frame::{FrameParams, Mistake, SceneOptions, ViewMode};
+use bumpview::frame::{FrameParams, Mistake, SceneOptions};
 use bumpview::names::Named;
-use bumpview::probe::ProbeScene;
-use bumpview::render::capture::render_image;
 use bumpview::scene::Scene;
 use common::*;
 use glam::{Mat4, Vec3, Vec4};
 
 const SIZE: [u32; 2] = [128, 128];
 
-/// Steps of 8 bits the GPU's shading-normal and lit pictures may differ from the probe: on the
-/// close wall 2 and 3 (tests/probe.rs); on the torus, 6 for both (tests/probe.rs on the
-/// asset meshes).
-const WALL: [f32; 2] = [2.0, 3.0];
+/// Steps of 8 bits the GPU's lit and shading-normal pictures may differ from the probe: on the
+/// close wall 3 and 2 (tests/probe.rs); on the torus, 6 for both (tests/probe.rs on the asset
+/// meshes).
+const WALL: [f32; 2] = [3.0, 2.0];
 const CURVED: [f32; 2] = [6.0, 6.0];
 
-/// The probe's shading normals on a grid of pixels under `mistake`, after checking that the
-/// GPU's shading-normal and lit pictures equal them within `tolerance` (normal, lit). `None`
-/// where the ray meets nothing.
+/// The probe's shading normals on a grid of pixels under `mistake` (as ViewerState's uploads
+/// prepare it: frames without Gram-Schmidt for that mistake), after checking the GPU equals
+/// them; `None` where a pixel is left out.
 fn shading_normals(scene: &Scene, params: &FrameParams, mistake: Mistake, tolerance: [f32; 2]) -> Vec<Option<Vec3>> {
     let mut params = *params;
     params.shading.mistake = mistake;
-    // As ViewerState::scene_uploads prepares it: frames without Gram-Schmidt for that mistake.
     let options =
         SceneOptions { tangents_without_gram_schmidt: mistake == Mistake::NoGramSchmidt, ..Default::default() };
-    let probe = ProbeScene::new(scene, &options);
-    let mut renderer = renderer_for(scene);
-    renderer.set_scene(scene, options);
-    let lit = render_image(&mut renderer, SIZE, &params).unwrap();
-    let mut normal_params = params;
-    normal_params.shading.view = ViewMode::ShadingNormal;
-    let normals = render_image(&mut renderer, SIZE, &normal_params).unwrap();
-    let mut worst = [0.0f32; 2];
-    let mut out = vec![];
-    for y in (3..SIZE[1]).step_by(9) {
-        for x in (4..SIZE[0]).step_by(9) {
-            let Some(readout) = probe.probe(&params, SIZE, [x, y]) else {
-                out.push(None);
-                continue;
-            };
-            // Silhouettes blend two surfaces in the picture: pixels whose neighbours see
-            // another instance (or nothing) are left out.
-            let instance = |dx: i32, dy: i32| {
-                let pixel = [(x as i32 + dx) as u32, (y as i32 + dy) as u32];
-                probe.pick(&params.camera, SIZE, pixel).map(|p| p.instance)
-            };
-            let neighbours = [(-1, -1), (0, -1), (1, -1), (-1, 0), (1, 0), (-1, 1), (0, 1), (1, 1)];
-            if neighbours.iter().any(|&(dx, dy)| instance(dx, dy) != Some(readout.point.instance)) {
-                out.push(None);
-                continue;
-            }
-            let cpu = readout.shown_bytes().unwrap();
-            let gpu = lit.get_pixel(x, y);
-            let lit_diff = (0..3).map(|c| (gpu[c] as f32 - cpu[c]).abs()).fold(0.0, f32::max);
-            let expected = (readout.chain.shading_normal * 0.5 + 0.5) * 255.0;
-            let stored = normals.get_pixel(x, y);
-            let normal_diff = (0..3).map(|c| (stored[c] as f32 - expected[c]).abs()).fold(0.0, f32::max);
-            worst = [worst[0].max(lit_diff), worst[1].max(normal_diff)];
-            assert!(normal_diff <= tolerance[0], "{mistake:?} ({x},{y}): GPU {stored:?} vs CPU {expected}");
-            assert!(lit_diff <= tolerance[1], "{mistake:?} ({x},{y}): GPU {gpu:?} vs CPU {cpu}");
-            out.push(Some(readout.chain.shading_normal));
-        }
-    }
-    println!("{}: GPU against CPU, worst lit {} steps, shading normal {} steps", mistake.name(), worst[0], worst[1]);
-    out
+    println!("{}:", mistake.name());
+    let readouts = gpu_against_probe(scene, &options, &params, SIZE, 9, tolerance);
+    let grid = (4..SIZE[1] - 1).step_by(9).flat_map(|y| (4..SIZE[0] - 1).step_by(9).map(move |x| [x, y]));
+    grid.map(|pixel| readouts.iter().find(|(p, _)| *p == pixel).map(|(_, r)| r.chain.shading_normal)).collect()
 }
 
 /// Pairs of (correct, mistaken) shading normals where both exist.
@@ -186,4 +147,49 @@ fn no_renormalisation_shortens_normals_only_where_they_bend() {
     let short = found.iter().filter(|(_, w)| w.length() < 0.999).count();
     println!("no re-normalisation on the torus: shortest normal {shortest:.4}, {short} of {} below 0.999", found.len());
     assert!(shortest < 0.999 && short > 10, "{shortest} {short}");
+}
+
+/// The readouts on the close wall (the light 0.35 m in front of it, each triangle about as
+/// large) for `mistake`, after checking the GPU equals them; every 6 pixels from (4, 4), so
+/// (64, 64), next to the wall's vertex at (0, 1.5), is among them.
+fn wall_readouts(mistake: Mistake) -> Vec<([u32; 2], bumpview::probe::ProbeReadout)> {
+    let (scene, mut params) = wall_scene();
+    params.shading.mistake = mistake;
+    println!("{}:", mistake.name());
+    gpu_against_probe(&scene, &SceneOptions::default(), &params, SIZE, 6, WALL)
+}
+
+/// The largest angle (degrees) between the correct and the mistaken vector `of` a readout,
+/// next to a vertex (largest barycentric weight above 0.99) and anywhere.
+fn turned(mistake: Mistake, of: fn(&bumpview::chain::ChainValues) -> Vec3) -> (f32, f32) {
+    let correct = wall_readouts(Mistake::None);
+    let wrong = wall_readouts(mistake);
+    let (mut near_vertex, mut anywhere, mut near) = (0.0f32, 0.0f32, 0);
+    for ((_, right), (_, r)) in correct.iter().zip(&wrong) {
+        let angle = of(&right.chain).angle_between(of(&r.chain)).to_degrees();
+        anywhere = anywhere.max(angle);
+        if r.point.barycentric.max_element() > 0.99 {
+            near_vertex = near_vertex.max(angle);
+            near += 1;
+        }
+    }
+    println!("{}: turned up to {anywhere:.2}°, {near_vertex:.3}° at {near} pixels next to vertices", mistake.name());
+    assert!(near > 0, "no pixel next to a vertex");
+    (near_vertex, anywhere)
+}
+
+/// The light vector normalised per vertex and interpolated points the right way at the
+/// vertices and turns away from the light between them.
+#[test]
+fn the_light_normalised_per_vertex_turns_between_vertices() {
+    let (near_vertex, anywhere) = turned(Mistake::LightPerVertex, |c| c.light_dir);
+    assert!(near_vertex < 0.3 && anywhere > 3.0, "{near_vertex} {anywhere}");
+}
+
+/// The half vector per vertex, interpolated, is right at the vertices and turns between them,
+/// so the highlight moves and smears (Cg tutorial 8.1.4).
+#[test]
+fn the_half_vector_per_vertex_turns_between_vertices() {
+    let (near_vertex, anywhere) = turned(Mistake::HalfVectorPerVertex, |c| c.half);
+    assert!(near_vertex < 0.3 && anywhere > 3.0, "{near_vertex} {anywhere}");
 }

@@ -132,8 +132,8 @@ pub fn light_map() -> &'static [[u8; 4]] {
 /// The emboss brightness 0..1: the light map ([`emboss_light_map`]) at
 /// `(slope.x − light.x, slope.y − light.y)` from its centre, the nearest texel, 0 off the map.
 /// `slope` is the height difference of the texels right and left, below and above (in steps
-/// of 1/255 of the full range), `light` the light's offset from the point in texels of the
-/// height map (x right, y down the image).
+/// of 1/255 of the full range), `light` the light's offset from the point in the demo's
+/// pixels ([`emboss_light_offset`]).
 pub fn emboss_brightness(light_map: &[[u8; 4]], slope: Vec2, light: Vec2) -> f32 {
     let at = (slope - light + LIGHT_MAP_SIZE as f32 / 2.0).floor();
     let inside = at.cmpge(Vec2::ZERO).all() && at.cmplt(Vec2::splat(LIGHT_MAP_SIZE as f32)).all();
@@ -144,21 +144,23 @@ pub fn emboss_brightness(light_map: &[[u8; 4]], slope: Vec2, light: Vec2) -> f32
 }
 
 /// What the emboss look reads at a point: the height map's samples (mip 0, bilinear) one
-/// texel left, right, above and below (0..1 of the full range, after the depth flip), and the
-/// map's texels per metre (its width over [`crate::scene::material::TEXTURE_SPAN_M`]).
+/// texel left, right, above and below (0..1 of the full range, after the depth flip).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EmbossSample {
     pub left: f32,
     pub right: f32,
     pub up: f32,
     pub down: f32,
-    pub texels_per_metre: f32,
 }
 
-/// The light's offset from the point in texels of the height map, x right and y down the
-/// image: `(T·to_light, −B·to_light) · texels per metre` (B points up the image).
-pub fn emboss_light_offset(t: Vec3, b: Vec3, to_light: Vec3, texels_per_metre: f32) -> Vec2 {
-    Vec2::new(t.dot(to_light), -b.dot(to_light)) * texels_per_metre
+/// The 2D demo's pixels per metre of surface: positions `x, y` are centimetres, so the light
+/// map's spot (128 of its texels) spans 1.28 m around the light.
+pub const EMBOSS_PIXELS_PER_M: f32 = 100.0;
+
+/// The light's offset from the point in the 2D demo's pixels ([`EMBOSS_PIXELS_PER_M`]), x
+/// right and y down the image: `(T·to_light, −B·to_light) · 100` (B points up the image).
+pub fn emboss_light_offset(t: Vec3, b: Vec3, to_light: Vec3) -> Vec2 {
+    Vec2::new(t.dot(to_light), -b.dot(to_light)) * EMBOSS_PIXELS_PER_M
 }
 
 /// The emboss colour: `albedo · light · brightness` ([`emboss_brightness`]), the slope in

@@ -7,7 +7,7 @@ use std::num::NonZeroU32;
 use std::path::PathBuf;
 
 use bumpview::error::LoadWarning;
-use bumpview::frame::{FrameQuality, MAX_PARALLAX_STEPS, Mistake, Parallax, ViewMode};
+use bumpview::frame::{FrameQuality, LegacyLook, LegacySettings, MAX_PARALLAX_STEPS, Mistake, Parallax, ViewMode};
 use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
 use bumpview::render::export::{TileGrid, caption, render_grid};
 use bumpview::render::timing::{TimedPicture, time_frames};
@@ -89,11 +89,21 @@ pub struct RenderArgs {
     /// The relief's depth in metres, 0 or more [default: each material's height range].
     #[arg(long, value_name = "METRES", value_parser = args::parse_finite)]
     parallax_depth: Option<f32>,
+    /// A legacy look in the lit views: dot3 (diffuse N·L alone, L normalised per vertex and
+    /// interpolated) or emboss (the 2D light-map bump on surfaces with a height map)
+    /// [default: off].
+    #[arg(long, value_parser = args::named::<LegacyLook>())]
+    legacy: Option<LegacyLook>,
+    /// With --legacy dot3: re-normalise L through a normalization cube map of this face size
+    /// (8, 16, 32 or 64).
+    #[arg(long, value_name = "N", requires = "legacy", value_parser = clap::builder::PossibleValuesParser::new(["8", "16", "32", "64"]))]
+    cube_map_size: Option<String>,
     /// Draw with one classic mistake: tbn-typo (seed 000's TBN[1].z = N.z where N.y
     /// belongs), handedness-ignored (B = N × T, w dropped), srgb-normal-map (the map sampled
     /// through an sRGB view), no-renormalization (interpolated normals used as they come),
     /// no-gram-schmidt (T not made orthogonal to N), green-flipped (the other green
-    /// convention) [default: none].
+    /// convention), half-vector-per-vertex (H interpolated, Cg 8.1.4), light-per-vertex (L
+    /// normalised per vertex before interpolation, seed 003) [default: none].
     #[arg(long, value_parser = args::named::<Mistake>())]
     mistake: Option<Mistake>,
     /// Hide the light marker.
@@ -149,6 +159,10 @@ impl RenderArgs {
         commands.extend(self.strength.map(Command::SetStrength));
         commands.extend(self.parallax.map(Command::SetParallax));
         commands.extend(self.mistake.map(Command::SetMistake));
+        if let Some(look) = self.legacy {
+            let cube_map_size = self.cube_map_size.as_deref().and_then(|n| n.parse().ok());
+            commands.push(Command::SetLegacy(LegacySettings { look, cube_map_size }));
+        }
         commands.extend(self.parallax_layers.map(Command::SetParallaxLayers));
         commands.extend(self.parallax_steps.map(Command::SetParallaxSteps));
         if let Some(depth) = self.parallax_depth {

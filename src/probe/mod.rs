@@ -36,7 +36,6 @@ use crate::chain::{BumpSample, ChainValues, SurfaceSample, shade};
 use crate::frame::{BumpKind, FrameParams, Parallax, SceneOptions};
 use crate::math::{normal_matrix, normalize_or};
 use crate::prepare::PreparedScene;
-use crate::scene::material::TEXTURE_SPAN_M;
 use crate::scene::{OrbitCamera, SamplerWrap, Scene, TextureImage, Wrap};
 use crate::shading::{NormalTexel, height_sample};
 use crate::tangent::TangentMethod;
@@ -311,7 +310,6 @@ impl ProbeScene {
                 right: height(Vec2::new(texel.x, 0.0)),
                 up: height(Vec2::new(0.0, -texel.y)),
                 down: height(Vec2::new(0.0, texel.y)),
-                texels_per_metre: level.width as f32 / TEXTURE_SPAN_M,
             }
         });
         let surface = SurfaceSample {

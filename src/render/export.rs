@@ -9,7 +9,8 @@ use super::Renderer;
 use super::capture::{CaptureOptions, render_capture};
 use crate::error::RenderError;
 use crate::frame::{
-    BumpSource, FrameParams, Mistake, Parallax, STRENGTH_RANGE, SceneOptions, ShadingMode, ShadingSettings, ViewMode,
+    BumpSource, FrameParams, LegacyLook, Mistake, Parallax, STRENGTH_RANGE, SceneOptions, ShadingMode, ShadingSettings,
+    ViewMode,
 };
 use crate::names::Named;
 use crate::scene::Scene;
@@ -146,6 +147,9 @@ pub fn caption(renderer: &Renderer, scene: &Scene, options: &SceneOptions, shadi
     let mut lines = vec![view, bump, format!("normal map: {convention}"), format!("tangents: {tangents}")];
     if shading.parallax.technique != Parallax::Off {
         lines.push(shading.parallax.caption());
+    }
+    if shading.legacy.look != LegacyLook::Off && shading.view.is_lit() {
+        lines.push(format!("legacy look: {}", shading.legacy.caption()));
     }
     if shading.mistake != Mistake::None {
         lines.push(format!("mistake: {}: {}", shading.mistake.label(), shading.mistake.explanation()));

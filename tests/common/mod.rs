@@ -7,7 +7,9 @@ use std::path::{Path, PathBuf};
 
 use bumpview::chain::{BumpSample, ChainValues, SurfaceSample, shade};
 use bumpview::frame::BumpKind;
-use bumpview::frame::FrameParams;
+use bumpview::frame::{FrameParams, SceneOptions, ViewMode};
+use bumpview::probe::{ProbeReadout, ProbeScene};
+use bumpview::render::capture::render_image;
 use bumpview::render::{Gpu, Renderer};
 use bumpview::scene::builtin::{WALL_Z, teaching_scene, wall_uv};
 use bumpview::scene::{OrbitCamera, Scene, TextureImage};
@@ -182,4 +184,57 @@ pub fn assert_sane(scene: &Scene, what: &str) {
             texture.name
         );
     }
+}
+
+/// The probe's readouts (with their pixels) on a grid of pixels (every `step`, from (4, 4)) of a `size` picture of
+/// `scene` prepared with `options`, after checking that the GPU's lit and shading-normal
+/// pictures equal them within `tolerance` steps of 8 bits (lit, shading normal). Pixels whose
+/// neighbours see another instance or nothing are left out (silhouettes blend two surfaces).
+pub fn gpu_against_probe(
+    scene: &Scene,
+    options: &SceneOptions,
+    params: &FrameParams,
+    size: [u32; 2],
+    step: usize,
+    tolerance: [f32; 2],
+) -> Vec<([u32; 2], ProbeReadout)> {
+    let probe = ProbeScene::new(scene, options);
+    let mut renderer = renderer_for(scene);
+    renderer.set_scene(scene, options.clone());
+    let lit = render_image(&mut renderer, size, params).unwrap();
+    let mut normal_params = *params;
+    normal_params.shading.view = ViewMode::ShadingNormal;
+    let normals = render_image(&mut renderer, size, &normal_params).unwrap();
+    let mut worst = [0.0f32; 2];
+    let mut readouts = vec![];
+    for y in (4..size[1] - 1).step_by(step) {
+        for x in (4..size[0] - 1).step_by(step) {
+            let Some(readout) = probe.probe(params, size, [x, y]) else { continue };
+            let instance = |dx: i32, dy: i32| {
+                let pixel = [(x as i32 + dx) as u32, (y as i32 + dy) as u32];
+                probe.pick(&params.camera, size, pixel).map(|p| p.instance)
+            };
+            let neighbours = [(-1, -1), (0, -1), (1, -1), (-1, 0), (1, 0), (-1, 1), (0, 1), (1, 1)];
+            if neighbours.iter().any(|&(dx, dy)| instance(dx, dy) != Some(readout.point.instance)) {
+                continue;
+            }
+            let cpu = readout.shown_bytes().unwrap();
+            let gpu = lit.get_pixel(x, y);
+            let lit_diff = (0..3).map(|c| (gpu[c] as f32 - cpu[c]).abs()).fold(0.0, f32::max);
+            let expected = (readout.chain.shading_normal * 0.5 + 0.5) * 255.0;
+            let stored = normals.get_pixel(x, y);
+            let normal_diff = (0..3).map(|c| (stored[c] as f32 - expected[c]).abs()).fold(0.0, f32::max);
+            worst = [worst[0].max(lit_diff), worst[1].max(normal_diff)];
+            assert!(lit_diff <= tolerance[0], "({x},{y}): GPU {gpu:?} vs CPU {cpu}");
+            assert!(normal_diff <= tolerance[1], "({x},{y}): GPU {stored:?} vs CPU {expected}");
+            readouts.push(([x, y], readout));
+        }
+    }
+    println!(
+        "GPU against CPU at {} pixels: worst lit {} steps, shading normal {} steps",
+        readouts.len(),
+        worst[0],
+        worst[1]
+    );
+    readouts
 }

@@ -40,6 +40,7 @@ pub fn show(
         section(ui, "Lit picture and overlays", true, |ui| picture::show(ui, &controller.state, &mut actions));
         section(ui, "Parallax", false, |ui| parallax::show(ui, &controller.state, &mut actions));
         section(ui, "Classic mistakes", false, |ui| mistakes::show(ui, &controller.state, &mut actions));
+        section(ui, "Legacy looks", false, |ui| mistakes::legacy(ui, &controller.state, &mut actions));
         section(ui, "Tangent frames and kernels", false, |ui| {
             methods::methods(ui, &controller.state, &controller.facts().measurements, &mut actions);
         });
