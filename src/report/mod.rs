@@ -8,6 +8,7 @@
 mod chart;
 mod convergence;
 mod csv;
+pub mod cube_map;
 mod markdown;
 pub mod measure;
 pub mod roundtrip;
@@ -133,6 +134,9 @@ impl Machine {
     }
 }
 
+/// Directions the normalization cube maps are measured over (a tenth with `--quick`).
+pub const CUBE_MAP_DIRECTIONS: usize = 400_000;
+
 /// The surface name of the large torus's rows.
 pub const LARGE_TORUS: &str = "large torus";
 /// The surface name of the large plane's rows.
@@ -247,6 +251,7 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
     let acos_f32 = plan.spheres.contains(&MIKKTSPACE_SANITY_SPHERE).then(|| {
         measure::acos_f32_means(TangentMethod::MikkTSpace, &uv_sphere(segments, rings), surfaces::Region::Interior)
     });
+    let cube_maps = cube_map::cube_map_rows(if plan.quick { CUBE_MAP_DIRECTIONS / 10 } else { CUBE_MAP_DIRECTIONS });
     let page = markdown::Page {
         rows: &rows,
         orders: &orders,
@@ -258,6 +263,7 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
         stability: &stiff::stability_rows(),
         round_trips: &round_trips,
         agreements: &agreements,
+        cube_maps: &cube_maps,
     };
     let files = [
         (MARKDOWN, markdown::render(&page).into_bytes()),
