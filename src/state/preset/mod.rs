@@ -295,9 +295,10 @@ fn degrees(radians: f32) -> f64 {
 mod tests {
     use super::*;
     use crate::frame::{BumpSource, ShadingMode, ViewMode};
+    use crate::frame::{LegacyLook, Mistake};
     use crate::height::Border;
     use crate::scene::builtin::teaching_scene;
-    use crate::scene::{GreenAxis, MaterialOverrides, ShadingModel};
+    use crate::scene::{GreenAxis, MaterialOverrides, NormalLayout, ShadingModel};
     use crate::state::Command;
     use crate::tangent::TangentMethod;
 
@@ -313,10 +314,15 @@ mod tests {
         state.apply(Command::SetLightMarker(false));
         state.apply(Command::SetTangentMethod(Some(TangentMethod::PerFace)));
         state.apply(Command::SetKernel(Kernel::Sobel5));
-        let overrides =
-            MaterialOverrides { green: Some(GreenAxis::DirectX), height_range_m: Some(0.0123), ..Default::default() };
+        let overrides = MaterialOverrides {
+            green: Some(GreenAxis::DirectX),
+            height_range_m: Some(0.0123),
+            layout: Some(NormalLayout::Ag),
+            ..Default::default()
+        };
         state.apply(Command::SetMaterialOverrides { material: None, overrides });
-        let own = MaterialOverrides { border: Some(Border::Clamp), ..Default::default() };
+        let own =
+            MaterialOverrides { border: Some(Border::Clamp), layout: Some(NormalLayout::Xray), ..Default::default() };
         state.apply(Command::SetMaterialOverrides { material: Some(1), overrides: own });
         state.apply(Command::SetShadingOverride(Some(ShadingModel::MetallicRoughness)));
         state.apply(Command::SetShadingMode(ShadingMode::BumpOnly));
@@ -331,11 +337,24 @@ mod tests {
         state.apply(Command::SetSplitTangentMethods([TangentMethod::Analytic, TangentMethod::PerFace]));
         state.apply(Command::SetSplitConventions([GreenAxis::DirectX, GreenAxis::OpenGl]));
         state.apply(Command::SetSplitBumpSources([BumpSource::HeightInShader, BumpSource::NormalMap]));
+        state.apply(Command::SetSplitMistakes([Mistake::GreenFlipped, Mistake::LightPerVertex]));
+        state.apply(Command::SetMistake(Mistake::SrgbNormalMap));
+        state.apply(Command::SetLegacy(LegacySettings { look: LegacyLook::Dot3, cube_map_size: Some(16) }));
         let files = SceneFiles { height: Some("/x/h.png".into()), ..Default::default() };
         let text = Preset::from_state(&state, files.clone()).to_toml();
         let back = Preset::from_toml(&text).unwrap();
         assert_eq!(back.files, files);
         assert_eq!(back.to_state(&scene).unwrap(), state, "{text}");
+    }
+
+    /// Older presets' `two_channel = true` reads as the RG layout; a bad layout names its key.
+    #[test]
+    fn two_channel_reads_as_the_rg_layout() {
+        let scene = teaching_scene();
+        let state = Preset::from_toml("[scene.materials]\ntwo_channel = true\n").unwrap().to_state(&scene).unwrap();
+        assert_eq!(state.scene_options.materials.layout, Some(NormalLayout::Rg));
+        let bad = Preset::from_toml("[scene.materials]\nnormal_layout = \"bc7\"\n").and_then(|p| p.to_state(&scene));
+        assert!(bad.unwrap_err().to_string().contains("scene.materials.normal_layout"));
     }
 
     #[test]
