@@ -56,7 +56,7 @@ pub fn cube_texel_direction(face: usize, i: u32, j: u32, size: u32) -> Vec3 {
     let uv = (Vec2::new(i as f32, j as f32) + 0.5) / size as f32 * 2.0 - 1.0;
     let axis = face / 2;
     let mut c = [0.0; 3];
-    c[axis] = if face % 2 == 0 { 1.0 } else { -1.0 };
+    c[axis] = if face.is_multiple_of(2) { 1.0 } else { -1.0 };
     c[(axis + 1) % 3] = uv.x;
     c[(axis + 2) % 3] = uv.y;
     Vec3::from_array(c).normalize()
