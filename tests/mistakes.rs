@@ -12,10 +12,12 @@ use glam::{Mat4, Vec3, Vec4};
 const SIZE: [u32; 2] = [128, 128];
 
 /// Steps of 8 bits the GPU's lit and shading-normal pictures may differ from the probe: on the
-/// close wall 3 and 2 (tests/probe.rs); on the torus, 6 for both (tests/probe.rs on the asset
-/// meshes).
+/// close wall 3 and 2 (tests/probe.rs); on the torus 10 and 6: its minified, steeply seen
+/// bricks leave the probe's mip level estimate off the GPU's at a few pixels (measured up to
+/// 7.4 steps lit, 4.3 normal, the same with and without the mistake), as tests/probe.rs allows
+/// 6 on the asset meshes.
 const WALL: [f32; 2] = [3.0, 2.0];
-const CURVED: [f32; 2] = [6.0, 6.0];
+const CURVED: [f32; 2] = [10.0, 6.0];
 
 /// The probe's shading normals on a grid of pixels under `mistake` (as ViewerState's uploads
 /// prepare it: frames without Gram-Schmidt for that mistake), after checking the GPU equals
