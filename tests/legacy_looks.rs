@@ -110,3 +110,28 @@ fn emboss_is_the_light_map_spot_moved_by_the_slopes() {
     println!("emboss, bump on: {moved} pixels changed, {still} unchanged");
     assert!(moved > 10 && still > 10, "{moved} {still}");
 }
+
+/// The cube map and the light map are uploaded when a picture first needs them, once while
+/// it does, and again only after a picture without them dropped them; pictures without a
+/// legacy look upload neither.
+#[test]
+fn legacy_textures_are_uploaded_only_while_used() {
+    let (scene, mut params) = wall(LegacySettings::default());
+    let mut renderer = renderer_for(&scene);
+    let uploads = |renderer: &bumpview::render::Renderer| renderer.counters().textures_uploaded;
+    let mut draw = |renderer: &mut bumpview::render::Renderer, legacy| {
+        params.shading.legacy = legacy;
+        bumpview::render::capture::render_image(renderer, [32, 32], &params).unwrap();
+    };
+    draw(&mut renderer, LegacySettings::default());
+    let scene_textures = uploads(&renderer);
+    let cube = LegacySettings { look: LegacyLook::Dot3, cube_map_size: Some(32) };
+    draw(&mut renderer, cube);
+    draw(&mut renderer, cube);
+    assert_eq!(uploads(&renderer), scene_textures + 1, "the cube map, once");
+    draw(&mut renderer, LegacySettings { look: LegacyLook::Emboss, cube_map_size: None });
+    assert_eq!(uploads(&renderer), scene_textures + 2, "the light map; the cube map dropped");
+    draw(&mut renderer, LegacySettings::default());
+    draw(&mut renderer, cube);
+    assert_eq!(uploads(&renderer), scene_textures + 3, "the cube map again, after it was dropped");
+}
