@@ -116,9 +116,11 @@ impl ShadingMode {
     }
 }
 
-/// The toggles that keep the scene's GPU data: uniforms, except the view, the shading model
-/// and the parallax technique, which pick pipeline variants (each built on first use, then
-/// cached).
+/// The toggles that keep the scene's GPU data: uniforms, except the view, the shading model,
+/// the parallax technique, the mistake and the legacy look, which pick pipeline variants (each
+/// built on first use, then cached). Two of them bring GPU data of their own: emboss binds the
+/// height maps ([`SceneOptions::parallax`]) and no Gram-Schmidt uploads other frames
+/// ([`SceneOptions::tangents_without_gram_schmidt`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShadingSettings {
     pub bump_enabled: bool,
