@@ -16,11 +16,14 @@ const EMBOSS_PIXELS_PER_M: f32 = 100.0;  // chain::legacy::EMBOSS_PIXELS_PER_M
 @group(0) @binding(1) var normalization_cube_map: texture_2d_array<f32>;
 @group(0) @binding(2) var emboss_light_map: texture_2d<f32>;
 
-// chain::legacy::vertex_vectors: the unit direction to the light and the half vector at a
-// vertex, for interpolation.
+// chain::legacy::vertex_vectors: the unit direction to the first light that is on (the normal
+// without one) and the half vector at a vertex, for interpolation.
 fn vertex_vectors(position: vec3<f32>, normal: vec3<f32>) -> array<vec3<f32>, 2> {
     let n = normalize_or(normal, vec3<f32>(0.0, 0.0, 1.0));
-    let l = normalize_or(frame.light_pos.xyz - position, n);
+    var l = n;
+    if frame.light_count > 0u {
+        l = incident_light(frame.lights[0], position, n).direction;
+    }
     let v = normalize_or(frame.camera_pos.xyz - position, n);
     return array<vec3<f32>, 2>(l, normalize_or(l + v, n));
 }
@@ -68,10 +71,11 @@ fn emboss_height(uv: vec2<f32>, offset: vec2<f32>) -> f32 {
     return select(sample, 1.0 - sample, (object.flags & DEPTH_MAP) != 0u);
 }
 
-// chain::shade's legacy branch: DOT3's or emboss's colour, else today's lighting (lit_color)
-// seen from where the mistakes put the light and the eye (mistakes.wgsl).
+// chain::shade's legacy branch: DOT3's or emboss's colour lit by the first light that is on
+// (the ambient light alone without one), else today's lighting (lit_color), whose light loop
+// reads the per-vertex vectors through the mistakes' hooks (mistakes.wgsl).
 fn lit_or_legacy(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_shading: vec3<f32>, n_coat: vec3<f32>) -> vec3<f32> {
-    set_seen_positions(in, n_geo);
+    per_vertex = PerVertexVectors(in.vertex_light, in.vertex_half);
     if LEGACY == 0u || frame.shading_mode == MODE_COLOUR_ONLY {
         return lit_color(in, n_geo, n_shading, n_coat);
     }
@@ -79,12 +83,17 @@ fn lit_or_legacy(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_s
     if frame.shading_mode != MODE_BUMP_ONLY {
         albedo = textureSample(base_color_texture, base_color_sampler, in.uv).rgb * object.base_color.rgb;
     }
+    if frame.light_count == 0u {
+        return albedo * frame.ambient.rgb;
+    }
+    let first = frame.lights[0];
+    let arriving = incident_light(first, in.world_position, n_geo);
     if LEGACY == LEGACY_DOT3 || LEGACY == LEGACY_DOT3_CUBE_MAP {
         var l = in.vertex_light;
         if LEGACY == LEGACY_DOT3_CUBE_MAP {
             l = cube_map_lookup(in.vertex_light);
         }
-        return albedo * frame.light_color.rgb * max(dot(n_shading, l), 0.0);
+        return albedo * arriving.radiance * max(dot(n_shading, l), 0.0);
     }
     // Emboss, where a height map is bound and the surface has a tangent frame.
     if (object.flags & HAS_PARALLAX_HEIGHT) == 0u || frame_tb.w == 0.0 {
@@ -98,7 +107,11 @@ fn lit_or_legacy(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_s
     let down = emboss_height(in.uv, vec2<f32>(0.0, step.y));
     let strength = select(0.0, frame.strength, frame.bump_enabled != 0u);
     let slope = vec2<f32>(right - left, down - up) * 255.0 * strength;
-    let to_light = light_seen - in.world_position;
+    // chain::legacy::emboss_to_light: to a point light (w = 1), a directional one's unit direction.
+    var to_light = arriving.direction;
+    if first.position.w != 0.0 {
+        to_light = first.position.xyz - in.world_position;
+    }
     let light = vec2<f32>(dot(frame_tb.t, to_light), -dot(frame_tb.b, to_light)) * EMBOSS_PIXELS_PER_M;
-    return albedo * frame.light_color.rgb * emboss_brightness(slope, light);
+    return albedo * arriving.radiance * emboss_brightness(slope, light);
 }

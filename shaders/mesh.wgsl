@@ -10,6 +10,7 @@
 //   vs_tangent + fs_tangent       mesh with tangents, material without normal map
 //   vs_tangent + fs_normal_mapped mesh with tangents and a tangent-space normal map, read at
 //                                 the UV the parallax family shifts (parallax.wgsl)
+//   vs_tangent + fs_normal_mapped_tangent_space  the same, lit in tangent space (seed 003)
 //   vs_plain  + fs_object_space   object-space normal map, no tangents
 //   vs_plain  + fs_height_bump    bump from the height map in screen space, no tangents
 //   vs_difference + fs_difference the Difference view: a mesh's frames against reference frames
@@ -17,8 +18,8 @@
 //   vs_glyph + fs_glyph           T/B/N glyphs at vertices (a line list, src/render/glyphs.rs)
 //
 // Prepended at build time: frame.wgsl (the Frame uniform, group 0), pbr.wgsl, parallax.wgsl,
-// mistakes.wgsl (the classic mistakes, the MISTAKE constant) and legacy.wgsl (the legacy
-// looks, the LEGACY constant).
+// mistakes.wgsl (the classic mistakes, the MISTAKE constant), legacy.wgsl (the legacy looks,
+// the LEGACY constant) and lights.wgsl (the lights and the classic model's lighting spaces).
 
 struct Object {
     model: mat4x4<f32>,
@@ -56,14 +57,15 @@ const LAYOUT_RG: u32 = 2u;
 const DEPTH_MAP: u32 = 8u;
 const HAS_METALLIC_ROUGHNESS: u32 = 16u;
 const HAS_GLOSS: u32 = 32u;
+const HAS_OCCLUSION_TEXTURE: u32 = 16384u;
 const HAS_EMISSIVE_TEXTURE: u32 = 64u;
 const HAS_CLEARCOAT: u32 = 128u;
 const HAS_CLEARCOAT_TEXTURE: u32 = 256u;
 const HAS_CLEARCOAT_ROUGHNESS_TEXTURE: u32 = 512u;
 const HAS_CLEARCOAT_NORMAL: u32 = 1024u;
-const LAYOUT_AG: u32 = 16384u;
-const LAYOUT_XRAY: u32 = 32768u;
-const HAS_BUMP_CORRECTION: u32 = 65536u;
+const LAYOUT_AG: u32 = 32768u;
+const LAYOUT_XRAY: u32 = 65536u;
+const HAS_BUMP_CORRECTION: u32 = 131072u;
 const SHADING_METALLIC_ROUGHNESS: u32 = 1u;
 
 // True when the target stores sRGB-encoded values (Rgba8UnormSrgb): debug colours are then
@@ -75,6 +77,17 @@ override VIEW: u32 = 0u;
 // The shading model of the lit views (Lit, Over-tilt): ShadingModel::shader_index(), the
 // frame's override or else the material's own.
 override SHADING_MODEL: u32 = 0u;
+
+// The optional textures and lobes the pipeline's material has: the HAS_ bits of
+// MaterialFeatures (src/render/uniforms.rs). Flag tests of these bits go through has(), so a
+// pipeline compiles no code for a feature its material lacks: lavapipe runs both sides of a
+// branch on a uniform, texture samples included.
+override MATERIAL_FEATURES: u32 = 0xffffffffu;
+
+// Whether the material has `feature` (a HAS_ bit of MATERIAL_FEATURES).
+fn has(feature: u32) -> bool {
+    return (object.flags & (MATERIAL_FEATURES & feature)) != 0u;
+}
 
 const VIEW_TANGENT: u32 = 1u;
 const VIEW_BITANGENT: u32 = 2u;
@@ -214,7 +227,7 @@ struct NormalSample {
 
 fn sample_normal_map(uv: vec2<f32>) -> NormalSample {
     var correction = vec3<f32>(0.5);
-    if (object.flags & HAS_BUMP_CORRECTION) != 0u {
+    if has(HAS_BUMP_CORRECTION) {
         correction = textureSample(bump_correction_texture, detail_sampler, uv).rgb;
     }
     let texel = textureSample(bump_texture, detail_sampler, uv);
@@ -224,30 +237,18 @@ fn sample_normal_map(uv: vec2<f32>) -> NormalSample {
     return NormalSample(texel, correction);
 }
 
+// shading::tangent_space_normal: the decoded texel after strength, z ≥ 0, in tangent space.
+fn tangent_space_normal(texel: NormalSample, strength: f32, flags: u32) -> vec3<f32> {
+    let decoded = decode_normal(texel.texel, texel.correction, flags);
+    let scaled = vec3<f32>(decoded.xy * strength, max(decoded.z, 0.0));
+    return normalize_or(scaled, vec3<f32>(0.0, 0.0, 1.0));
+}
+
 // shading::perturbed_normal (through mistakes.wgsl's tangent_to_world); `n` is the base
 // normal, `flags` carries the map's convention bits.
 fn perturbed_normal(n: vec3<f32>, frame_tb: TangentFrame, texel: NormalSample, strength: f32, flags: u32) -> vec3<f32> {
-    let decoded = decode_normal(texel.texel, texel.correction, flags);
-    let scaled = vec3<f32>(decoded.xy * strength, max(decoded.z, 0.0));
-    let nt = normalize_or(scaled, vec3<f32>(0.0, 0.0, 1.0));
+    let nt = tangent_space_normal(texel, strength, flags);
     return tangent_to_world(frame_tb, n, nt);
-}
-
-// shading::blinn_phong
-// k_s: the material's specular colour, times its gloss map where it has one.
-fn blinn_phong(albedo: vec3<f32>, k_s: vec3<f32>, n_geo: vec3<f32>, n_shading: vec3<f32>, position: vec3<f32>) -> vec3<f32> {
-    let l = normalize_or(light_seen - position, n_geo);
-    let v = normalize_or(eye_seen - position, n_geo);
-    let h = normalize_or(l + v, n_geo);
-    let self_shadow = smoothstep(0.0, frame.self_shadow_fade, dot(n_geo, l));
-    let n_dot_l = max(dot(n_shading, l), 0.0);
-    let n_dot_h = max(dot(n_shading, h), 0.0);
-    var specular = 0.0;
-    if n_dot_l > 0.0 && n_dot_h > 0.0 {
-        specular = pow(n_dot_h, object.specular.a);
-    }
-    return albedo * frame.ambient.rgb
-        + self_shadow * frame.light_color.rgb * (albedo * n_dot_l + k_s * specular);
 }
 
 fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
@@ -271,7 +272,7 @@ fn clearcoat_uv(uv: vec2<f32>) -> vec2<f32> {
 // chain::shade's clear-coat normal: the coat's normal map through the frame (OpenGL
 // convention, bump strength times its scale), else the geometric normal.
 fn clearcoat_normal(in: VertexOutput, n: vec3<f32>, frame_tb: TangentFrame) -> vec3<f32> {
-    if (object.flags & HAS_CLEARCOAT_NORMAL) == 0u || frame.bump_enabled == 0u {
+    if !has(HAS_CLEARCOAT_NORMAL) || frame.bump_enabled == 0u {
         return n;
     }
     let texel = textureSample(clearcoat_normal_texture, detail_sampler, clearcoat_uv(in.uv));
@@ -284,7 +285,7 @@ fn clearcoat_normal(in: VertexOutput, n: vec3<f32>, frame_tb: TangentFrame) -> v
 fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>, n_coat: vec3<f32>) -> vec3<f32> {
     var albedo = textureSample(base_color_texture, base_color_sampler, in.uv).rgb * object.base_color.rgb;
     var emission = object.emissive.rgb;
-    if (object.flags & HAS_EMISSIVE_TEXTURE) != 0u {
+    if has(HAS_EMISSIVE_TEXTURE) {
         emission *= textureSample(emissive_texture, base_color_sampler, in.uv).rgb;
     }
     if frame.shading_mode == MODE_COLOUR_ONLY {
@@ -296,31 +297,31 @@ fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>, n_coat: v
     }
     if SHADING_MODEL != SHADING_METALLIC_ROUGHNESS {
         var k_s = object.specular.rgb;
-        if (object.flags & HAS_GLOSS) != 0u {
+        if has(HAS_GLOSS) {
             k_s *= textureSample(gloss_texture, detail_sampler, in.uv).rgb;
         }
         k_s *= packed_gloss;
         return blinn_phong(albedo, k_s, n_geo, n_shading, in.world_position) + emission;
     }
-    // Each texture is sampled only where the material has it (uniform branches): without one
-    // its binding holds a placeholder and the factors stand alone.
+    // Each texture is sampled only where the material has it (has(): the pipeline leaves the
+    // others out): without one its binding holds a placeholder and the factors stand alone.
     var metal_rough = vec4<f32>(1.0);
-    if (object.flags & HAS_METALLIC_ROUGHNESS) != 0u {
+    if has(HAS_METALLIC_ROUGHNESS) {
         metal_rough = textureSample(metallic_roughness_texture, detail_sampler, in.uv);
     }
-    // Without an occlusion texture the strength is 0 and the factor exactly 1.
+    // Without an occlusion texture the factor is exactly 1.
     var occlusion = 1.0;
-    if object.occlusion_strength != 0.0 {
+    if has(HAS_OCCLUSION_TEXTURE) {
         occlusion += object.occlusion_strength * (textureSample(occlusion_texture, detail_sampler, in.uv).r - 1.0);
     }
     var coat = vec2<f32>(0.0); // factor, roughness; 0: no coat
-    if (object.flags & HAS_CLEARCOAT) != 0u {
+    if has(HAS_CLEARCOAT) {
         coat = object.clearcoat.xy;
     }
-    if (object.flags & HAS_CLEARCOAT_TEXTURE) != 0u {
+    if has(HAS_CLEARCOAT_TEXTURE) {
         coat.x *= textureSample(clearcoat_texture, detail_sampler, clearcoat_uv(in.uv)).r;
     }
-    if (object.flags & HAS_CLEARCOAT_ROUGHNESS_TEXTURE) != 0u {
+    if has(HAS_CLEARCOAT_ROUGHNESS_TEXTURE) {
         coat.y *= textureSample(clearcoat_roughness_texture, detail_sampler, clearcoat_uv(in.uv)).g;
     }
     let inputs = PbrInputs(
@@ -331,7 +332,7 @@ fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>, n_coat: v
         n_geo,
         n_shading,
         in.world_position,
-        (object.flags & HAS_CLEARCOAT) != 0u,
+        has(HAS_CLEARCOAT),
         coat.x,
         coat.y,
         n_coat,
@@ -429,6 +430,35 @@ fn fs_normal_mapped(vertex: VertexOutput, @builtin(front_facing) front_facing: b
     if frame.bump_enabled != 0u {
         let strength = frame.strength * object.normal_scale;
         n_shading = perturbed_normal(n_shading, frame_tb, texel, strength, mistaken_flags(object.flags));
+    }
+    return surface_color(in, n, frame_tb, n_shading, clearcoat_normal(in, n, frame_tb));
+}
+
+// fs_normal_mapped lit in tangent space (blinn_phong's LIGHTING_TANGENT branch): the same
+// normal, frame and views, with the light and view vectors taken by the triangle's inverse
+// frame from screen-space derivatives (seed 003 takes light − P per vertex and interpolates;
+// with one frame per triangle that is the frame times light − P at the pixel, exactly).
+@fragment
+fn fs_normal_mapped_tangent_space(vertex: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    let n = geometric_normal(vertex.world_normal, front_facing);
+    tangent_space.to_tangent = triangle_inverse_tbn(
+        dpdx(vertex.world_position),
+        dpdy(vertex.world_position),
+        dpdx(vertex.uv),
+        dpdy(vertex.uv),
+        n,
+    );
+    var in = vertex;
+    in.uv = parallax_uv(vertex.uv, n, vertex.world_position);
+    let frame_tb = mistaken_frame(in.world_tangent, n);
+    let texel = mistaken_texel(sample_normal_map(in.uv));
+    var n_shading = base_normal(vertex.world_normal, front_facing, n);
+    tangent_space.normal = vec3<f32>(0.0, 0.0, 1.0);
+    if frame.bump_enabled != 0u {
+        let strength = frame.strength * object.normal_scale;
+        let flags = mistaken_flags(object.flags);
+        n_shading = perturbed_normal(n_shading, frame_tb, texel, strength, flags);
+        tangent_space.normal = tangent_space_normal(texel, strength, flags);
     }
     return surface_color(in, n, frame_tb, n_shading, clearcoat_normal(in, n, frame_tb));
 }

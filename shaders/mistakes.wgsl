@@ -64,25 +64,31 @@ fn tangent_to_world(frame_tb: TangentFrame, base: vec3<f32>, nt: vec3<f32>) -> v
     return normalize_or(sum, base);
 }
 
-// Where the lighting sees the light and the eye from (mistakes::seen_positions), set by
-// lit_or_legacy (legacy.wgsl) before anything is lit: the true positions, but the light moved
-// onto the interpolated per-vertex light direction, or the eye onto l mirrored about the
-// interpolated per-vertex half vector.
-var<private> light_seen: vec3<f32>;
-var<private> eye_seen: vec3<f32>;
+// The vertex stage's per-vertex light direction and half vector as interpolated, set by
+// lit_or_legacy (legacy.wgsl) before anything is lit; the hooks below read them.
+struct PerVertexVectors {
+    light: vec3<f32>,
+    half: vec3<f32>,
+};
+var<private> per_vertex: PerVertexVectors;
 
-fn set_seen_positions(in: VertexOutput, n: vec3<f32>) {
-    light_seen = frame.light_pos.xyz;
-    eye_seen = frame.camera_pos.xyz;
-    let p = in.world_position;
-    if MISTAKE == MISTAKE_LIGHT_PER_VERTEX {
-        let l = normalize_or(in.vertex_light, n);
-        light_seen = p + l * length(frame.light_pos.xyz - p);
+// mistakes::seen_light_direction: the direction towards light `i` (of the lights that are on)
+// the lighting uses; the first light's is the interpolated per-vertex one, re-normalised,
+// under light-per-vertex.
+fn seen_light_direction(i: u32, l: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    if MISTAKE == MISTAKE_LIGHT_PER_VERTEX && i == 0u {
+        return normalize_or(per_vertex.light, n);
     }
-    if MISTAKE == MISTAKE_HALF_VECTOR_PER_VERTEX {
-        let h = normalize_or(in.vertex_half, n);
-        let l = normalize_or(frame.light_pos.xyz - p, n);
-        let v = h * (2.0 * dot(h, l)) - l;
-        eye_seen = p + v * length(frame.camera_pos.xyz - p);
+    return l;
+}
+
+// mistakes::seen_view_direction: the direction towards the eye light `i`'s highlight uses;
+// the first light's is l mirrored about the interpolated per-vertex half vector under
+// half-vector-per-vertex, so that normalize(l + v) is that half vector.
+fn seen_view_direction(i: u32, l: vec3<f32>, v: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    if MISTAKE == MISTAKE_HALF_VECTOR_PER_VERTEX && i == 0u {
+        let h = normalize_or(per_vertex.half, n);
+        return h * (2.0 * dot(h, l)) - l;
     }
+    return v;
 }

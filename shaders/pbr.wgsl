@@ -1,4 +1,4 @@
-// glTF 2.0 metallic-roughness (spec appendix B) with the point light and a procedural sky.
+// glTF 2.0 metallic-roughness (spec appendix B) with every light and a procedural sky.
 // CPU twin: src/shading/pbr.rs (constants and functions line for line; keep them in step).
 // Prepended after frame.wgsl and before mesh.wgsl.
 
@@ -68,10 +68,17 @@ struct PbrInputs {
 
 const CLEARCOAT_F0: f32 = 0.04;
 
-// pbr::metallic_roughness; normalize_or and the self-shadow fade come from mesh.wgsl.
-fn metallic_roughness(p: PbrInputs) -> vec3<f32> {
-    let l = normalize_or(light_seen - p.position, p.n_geo); // mistakes.wgsl
-    let v = normalize_or(eye_seen - p.position, p.n_geo);
+// pbr::pbr_light: one light's base and clear-coat highlights; `i` counts the lights that are
+// on, for the per-vertex mistakes' hooks (mistakes.wgsl).
+struct PbrLight {
+    base: vec3<f32>,
+    coat: vec3<f32>,
+};
+
+fn pbr_light(p: PbrInputs, i: u32, light: Light) -> PbrLight {
+    let arriving = incident_light(light, p.position, p.n_geo);
+    let l = seen_light_direction(i, arriving.direction, p.n_geo);
+    let v = seen_view_direction(i, l, normalize_or(frame.camera_pos.xyz - p.position, p.n_geo), p.n_geo);
     let h = normalize_or(l + v, p.n_geo);
     let roughness = clamp(p.roughness, MIN_ROUGHNESS, 1.0);
     let alpha = roughness * roughness;
@@ -85,7 +92,37 @@ fn metallic_roughness(p: PbrInputs) -> vec3<f32> {
     let specular = fresnel * ggx_distribution(n_dot_h, alpha) * smith_visibility(n_dot_l, n_dot_v, alpha);
     let diffuse = (vec3<f32>(1.0) - fresnel) * c_diff / PI;
     let self_shadow = smoothstep(0.0, frame.self_shadow_fade, dot(p.n_geo, l));
-    let direct = PI * (diffuse + specular) * frame.light_color.rgb * n_dot_l * self_shadow;
+    let direct = PI * (diffuse + specular) * arriving.radiance * n_dot_l * self_shadow;
+    if !p.has_clearcoat {
+        return PbrLight(direct, vec3<f32>(0.0));
+    }
+    let nc = p.n_coat;
+    let coat_roughness = clamp(p.clearcoat_roughness, MIN_ROUGHNESS, 1.0);
+    let coat_alpha = coat_roughness * coat_roughness;
+    let nc_dot_l = max(dot(nc, l), 0.0);
+    let nc_dot_v = max(dot(nc, v), 1e-4);
+    let highlight = fresnel_schlick(vec3<f32>(CLEARCOAT_F0), dot(v, h))
+        * ggx_distribution(max(dot(nc, h), 0.0), coat_alpha)
+        * smith_visibility(nc_dot_l, nc_dot_v, coat_alpha);
+    return PbrLight(direct, PI * highlight * arriving.radiance * nc_dot_l * self_shadow);
+}
+
+// pbr::metallic_roughness; normalize_or, incident_light and the self-shadow fade come from
+// mesh.wgsl.
+fn metallic_roughness(p: PbrInputs) -> vec3<f32> {
+    var direct = vec3<f32>(0.0);
+    var coat_direct = vec3<f32>(0.0);
+    for (var i = 0u; i < min(frame.light_count, MAX_LIGHTS); i++) {
+        let terms = pbr_light(p, i, frame.lights[i]);
+        direct += terms.base;
+        coat_direct += terms.coat;
+    }
+    let v = normalize_or(frame.camera_pos.xyz - p.position, p.n_geo);
+    let roughness = clamp(p.roughness, MIN_ROUGHNESS, 1.0);
+    let metallic = clamp(p.metallic, 0.0, 1.0);
+    let c_diff = mix(p.base_color, vec3<f32>(0.0), metallic);
+    let f0 = mix(vec3<f32>(0.04), p.base_color, metallic);
+    let n_dot_v = max(dot(p.n, v), 1e-4);
     let r = normalize_or(2.0 * dot(p.n, v) * p.n - v, p.n);
     let ab = environment_brdf(n_dot_v, roughness);
     let ambient = c_diff * sky_average(p.n) + reflected_sky(r, roughness) * (f0 * ab.x + ab.y);
@@ -94,18 +131,12 @@ fn metallic_roughness(p: PbrInputs) -> vec3<f32> {
     if !p.has_clearcoat {
         return base;
     }
-    // pbr::metallic_roughness's clear coat: its own highlight and sky reflection, over the
+    // pbr::metallic_roughness's clear coat: its own highlights and sky reflection, over the
     // base dimmed by what the layer reflects towards the eye.
     let nc = p.n_coat;
     let coat_roughness = clamp(p.clearcoat_roughness, MIN_ROUGHNESS, 1.0);
-    let coat_alpha = coat_roughness * coat_roughness;
-    let nc_dot_l = max(dot(nc, l), 0.0);
     let nc_dot_v = max(dot(nc, v), 1e-4);
     let f0_coat = vec3<f32>(CLEARCOAT_F0);
-    let highlight = fresnel_schlick(f0_coat, dot(v, h))
-        * ggx_distribution(max(dot(nc, h), 0.0), coat_alpha)
-        * smith_visibility(nc_dot_l, nc_dot_v, coat_alpha);
-    let coat_direct = PI * highlight * frame.light_color.rgb * nc_dot_l * self_shadow;
     let rc = normalize_or(2.0 * dot(nc, v) * nc - v, nc);
     let coat_ab = environment_brdf(nc_dot_v, coat_roughness);
     let coat_sky = reflected_sky(rc, coat_roughness) * (CLEARCOAT_F0 * coat_ab.x + coat_ab.y);

@@ -18,13 +18,16 @@ pub mod parallax;
 
 use glam::{Mat3, Vec3, Vec4};
 
-use crate::frame::{BumpKind, FrameParams, LegacyLook, ShadingMode, ViewMode};
+use crate::frame::{BumpKind, FrameParams, LegacyLook, LightingSpace, ShadingMode, ViewMode};
 use crate::math::{linear_to_srgb, normalize_or, smoothstep};
-use crate::scene::{Light, Material, ShadingModel};
+use crate::scene::{MAX_LIGHTS, Material, ShadingModel};
+use crate::shading::lights::incident;
 use crate::shading::pbr::{ClearcoatInputs, PbrInputs, metallic_roughness};
+use crate::shading::spaces::{inverse_tbn, tangent_lighting_vectors, view_lighting_vectors};
 use crate::shading::{
     LightingInputs, NormalTexel, OVER_TILT_COLOR, SELF_SHADOW_FADE, blinn_phong, debug_color, decode_normal,
-    handedness_color, object_space_normal, over_tilted, packed_gloss, surface_gradient_normal,
+    handedness_color, object_space_normal, over_tilted, packed_gloss, surface_gradient_normal, tangent_space_normal,
+    world_vectors,
 };
 
 /// What the fragment shader reads at one surface point.
@@ -65,6 +68,11 @@ pub struct SurfaceSample {
     /// The height map's neighbours for the emboss look; `None` where no height map is bound
     /// (only normal-mapped surfaces with a height map, uploaded for parallax or emboss).
     pub emboss: Option<legacy::EmbossSample>,
+    /// The triangle's inverse frame (world → tangent space) for tangent-space lighting
+    /// ([`crate::shading::spaces::triangle_inverse_tbn`], from screen-space derivatives on the
+    /// GPU); `None`: the inverse of the point's own T, B, N (the same where the frame is the
+    /// triangle's, as on the flat wall).
+    pub triangle_frame: Option<Mat3>,
 }
 
 /// What the bump texture gives at a point.
@@ -102,24 +110,25 @@ pub struct ChainValues {
     pub shading_normal: Vec3,
     /// The clear-coat layer's normal (its normal map through T, B, N; else `normal`).
     pub clearcoat_normal: Vec3,
-    /// Unit directions from the point to the light and the eye, and their half vector.
-    pub light_dir: Vec3,
+    /// Unit direction from the point to the eye.
     pub view_dir: Vec3,
-    pub half: Vec3,
     /// The per-vertex light direction as interpolated ([`SurfaceSample::vertex_light`]), and
     /// the light vector DOT3 lit with: that one, or it through the normalization cube map;
     /// `None` outside DOT3.
     pub vertex_light: Vec3,
     pub dot3_light: Option<Vec3>,
-    /// `N·L` and `N·H` with the shading normal, signed (the shading uses `max(·, 0)`).
-    pub n_dot_l: f32,
-    pub n_dot_h: f32,
-    /// The geometric self-shadow fade `smoothstep(0, SELF_SHADOW_FADE, N_geo·L)`, 0..1.
-    pub self_shadow: f32,
+    /// Each of the frame's lights at the point, in the frame's order; `None` for a light
+    /// that is off and past the last light. Under the per-vertex mistakes the first light
+    /// that is on has the direction and half vector the mistake sees
+    /// ([`mistakes::seen_light_direction`], [`mistakes::seen_view_direction`]).
+    pub lights: [Option<LightTerms>; MAX_LIGHTS],
     /// Linear albedo: base colour texture times the factor.
     pub albedo: Vec3,
     /// The model the point is lit with (the frame's override, else the material's).
     pub shading_model: ShadingModel,
+    /// The space the point is lit in: the frame's for the classic model on tangent-space
+    /// normal-mapped surfaces with a tangent frame, else world space.
+    pub lighting_space: LightingSpace,
     /// The lit colour in the frame's shading mode, linear RGB.
     pub color_linear: Vec3,
     /// What the frame's view stores, 0..1; `None` for the Difference and UV check views,
@@ -127,15 +136,28 @@ pub struct ChainValues {
     pub shown: Option<Vec3>,
 }
 
+/// One light at one point of the chain.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LightTerms {
+    /// Unit direction from the point to the light, and its half vector with the view direction.
+    pub direction: Vec3,
+    pub half: Vec3,
+    /// `N·L`, `N·H` and `R·V` (`R = 2(N·L)N − L`) with the shading normal, signed (the
+    /// shading uses `max(·, 0)`).
+    pub n_dot_l: f32,
+    pub n_dot_h: f32,
+    pub r_dot_v: f32,
+    /// The geometric self-shadow fade `smoothstep(0, SELF_SHADOW_FADE, N_geo·L)`, 0..1.
+    pub self_shadow: f32,
+    /// The distance attenuation (1 for a directional light) and the radiance arriving,
+    /// `color · intensity · attenuation`, linear RGB.
+    pub attenuation: f32,
+    pub radiance: Vec3,
+}
+
 /// The shading chain at one point of an instance bumped by `bump`, drawn with `material`
-/// under `frame` in a scene with `ambient` light.
-pub fn shade(
-    bump: BumpKind,
-    material: &Material,
-    ambient: Vec3,
-    point: &SurfaceSample,
-    frame: &FrameParams,
-) -> ChainValues {
+/// under `frame` (whose lights carry the ambient light).
+pub fn shade(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &FrameParams) -> ChainValues {
     let shading = &frame.shading;
     let facing = if point.front_facing { 1.0 } else { -1.0 };
     let n = normalize_or(point.world_normal, Vec3::Z) * facing;
@@ -151,9 +173,7 @@ pub fn shade(
     };
     let convention = map.map(|m| mistakes::convention_read(mistake, m.convention));
     let decoded = texel.zip(convention).map(|(texel, c)| decode_normal(texel, c));
-    let after_strength = decoded
-        .filter(|_| bump == BumpKind::TangentSpace)
-        .map(|d| normalize_or(Vec3::new(d.x * strength, d.y * strength, d.z.max(0.0)), Vec3::Z));
+    let after_strength = decoded.filter(|_| bump == BumpKind::TangentSpace).map(|d| tangent_space_normal(d, strength));
     let slopes = point.bump;
     let shading_normal = match (shading.bump_enabled, bump, tangent_frame, after_strength, texel, convention, slopes) {
         (true, BumpKind::TangentSpace, Some((t, b, _)), Some(nt), ..) => mistakes::to_world(mistake, t, b, base, nt),
@@ -174,8 +194,7 @@ pub fn shade(
     let clearcoat_normal = match (shading.bump_enabled, tangent_frame, coat_map, point.clearcoat_normal) {
         (true, Some((t, b, _)), Some(map), Some(texel)) => {
             let decoded = decode_normal(NormalTexel::rgb(texel), map.convention);
-            let s = shading.strength * map.scale;
-            let nt = normalize_or(Vec3::new(decoded.x * s, decoded.y * s, decoded.z.max(0.0)), Vec3::Z);
+            let nt = tangent_space_normal(decoded, shading.strength * map.scale);
             mistakes::to_world(mistake, t, b, n, nt)
         }
         _ => n,
@@ -186,22 +205,48 @@ pub fn shade(
         Some(BumpSample::NormalMap(raw)) => map.map_or(1.0, |m| packed_gloss(raw, m.convention.layout)),
         _ => 1.0,
     };
-    let (light_position, eye) = mistakes::seen_positions(
-        mistake,
-        frame.light.position,
-        frame.camera.eye(),
-        point.position,
-        point.vertex_light,
-        point.vertex_half,
-        n,
-    );
-    let light = Light { position: light_position, ..frame.light };
-    let light_dir = normalize_or(light.position - point.position, n);
+    let eye = frame.camera.eye();
     let view_dir = normalize_or(eye - point.position, n);
-    let half = normalize_or(light_dir + view_dir, n);
     let albedo = point.base_color.unwrap_or(Vec3::ONE) * material.base_color_factor.truncate();
-    let shading_model = shading.shading_override.unwrap_or(material.shading_model);
     let lit_albedo = if shading.mode == ShadingMode::BumpOnly { Vec3::ONE } else { albedo };
+    let inputs = LightingInputs {
+        albedo: lit_albedo,
+        geometric_normal: n,
+        shading_normal,
+        position: point.position,
+        eye,
+        lights: frame.lights,
+        specular: material.specular * point.gloss.unwrap_or(Vec3::ONE) * gloss,
+        shininess: shading.shininess.unwrap_or(material.shininess).max(1.0),
+        specular_mode: shading.specular,
+    };
+    // The world-space directions the lighting sees: the per-vertex mistakes replace the first
+    // light's (mistakes::seen_vectors).
+    let seen =
+        mistakes::seen_vectors(mistake, world_vectors(&inputs), &frame.lights, point.vertex_light, point.vertex_half);
+    let mut lights = [None; MAX_LIGHTS];
+    let on = lights.iter_mut().zip(frame.lights.as_slice()).enumerate().filter(|(_, (_, light))| light.enabled);
+    for (k, (terms, light)) in on {
+        let arriving = incident(light, point.position, n);
+        let (l, v) = (seen.lights[k], seen.views[k]);
+        let n_dot_l = shading_normal.dot(l);
+        let half = normalize_or(l + v, n);
+        *terms = Some(LightTerms {
+            direction: l,
+            half,
+            n_dot_l,
+            n_dot_h: shading_normal.dot(half),
+            r_dot_v: (2.0 * n_dot_l * shading_normal - l).dot(v),
+            self_shadow: smoothstep(0.0, SELF_SHADOW_FADE, n.dot(l)),
+            attenuation: arriving.attenuation,
+            radiance: arriving.radiance,
+        });
+    }
+    let shading_model = shading.shading_override.unwrap_or(material.shading_model);
+    let lighting_space = match (bump, tangent_frame, shading_model) {
+        (BumpKind::TangentSpace, Some(_), ShadingModel::BlinnPhong) => shading.lighting_space,
+        _ => LightingSpace::World,
+    };
     let legacy = shading.legacy;
     // Emitted light shows in the bump × colour picture only (not in the legacy looks).
     let emission = match shading.mode {
@@ -209,34 +254,42 @@ pub fn shade(
         ShadingMode::BumpTimesColour => material.emissive_factor * point.emissive.unwrap_or(Vec3::ONE),
         ShadingMode::BumpOnly | ShadingMode::ColourOnly => Vec3::ZERO,
     };
+    let first = frame.lights.first_on().map(|light| (light, incident(light, point.position, n)));
     let dot3_light = (legacy.look == LegacyLook::Dot3).then(|| match legacy.cube_map_in_use() {
         Some(size) => legacy::cube_map_lookup(&legacy::cube_map(size), size, point.vertex_light),
         None => point.vertex_light,
     });
     let lit_color = match (shading.mode, shading_model) {
         (ShadingMode::ColourOnly, _) => albedo,
-        _ if legacy.look == LegacyLook::Dot3 => {
-            legacy::dot3_color(lit_albedo, light.color, shading_normal, dot3_light.unwrap_or(Vec3::ZERO))
-        }
-        _ if legacy.look == LegacyLook::Emboss => match (point.emboss, tangent_frame) {
-            (Some(sample), Some((t, b, _))) => {
-                let offset = legacy::emboss_light_offset(t, b, light.position - point.position);
-                let strength = if shading.bump_enabled { shading.strength } else { 0.0 };
-                legacy::emboss_color(lit_albedo, light.color, &sample, offset, strength)
+        // The legacy looks light with the first light that is on (the ambient light alone
+        // without one), seen from where it is, whatever the mistake.
+        _ if legacy.look == LegacyLook::Dot3 => match first {
+            Some((_, arriving)) => {
+                legacy::dot3_color(lit_albedo, arriving.radiance, shading_normal, dot3_light.unwrap_or(Vec3::ZERO))
             }
-            _ => lit_albedo * ambient,
+            None => lit_albedo * frame.lights.ambient(),
         },
-        (_, ShadingModel::BlinnPhong) => blinn_phong(&LightingInputs {
-            albedo: lit_albedo,
-            geometric_normal: n,
-            shading_normal,
-            position: point.position,
-            eye,
-            light,
-            ambient,
-            specular: material.specular * point.gloss.unwrap_or(Vec3::ONE) * gloss,
-            shininess: material.shininess.max(1.0),
-        }),
+        _ if legacy.look == LegacyLook::Emboss => match (point.emboss, tangent_frame, first) {
+            (Some(sample), Some((t, b, _)), Some((light, arriving))) => {
+                let offset = legacy::emboss_light_offset(t, b, legacy::emboss_to_light(light, point.position, n));
+                let strength = if shading.bump_enabled { shading.strength } else { 0.0 };
+                legacy::emboss_color(lit_albedo, arriving.radiance, &sample, offset, strength)
+            }
+            _ => lit_albedo * frame.lights.ambient(),
+        },
+        (_, ShadingModel::BlinnPhong) => {
+            let vectors = match lighting_space {
+                LightingSpace::World => seen,
+                LightingSpace::Tangent => {
+                    let own = tangent_frame.map_or(Mat3::IDENTITY, |(t, b, _)| inverse_tbn(t, b, n));
+                    let tangent_normal = if shading.bump_enabled { after_strength } else { None };
+                    let to_tangent = point.triangle_frame.unwrap_or(own);
+                    tangent_lighting_vectors(&seen, to_tangent, tangent_normal.unwrap_or(Vec3::Z))
+                }
+                LightingSpace::View => view_lighting_vectors(&seen, frame.camera.view_rotation()),
+            };
+            blinn_phong(&inputs, &vectors)
+        }
         (_, ShadingModel::MetallicRoughness) => {
             let metal_rough = point.metallic_roughness.unwrap_or(Vec3::ONE);
             let occlusion_strength = material.occlusion.as_ref().map_or(0.0, |o| o.strength);
@@ -249,7 +302,8 @@ pub fn shade(
                 shading_normal,
                 position: point.position,
                 eye,
-                light,
+                lights: frame.lights,
+                seen: Some(seen),
                 clearcoat: coat.map(|c| ClearcoatInputs {
                     factor: c.factor * point.clearcoat.unwrap_or(1.0),
                     roughness: c.roughness * point.clearcoat_roughness.unwrap_or(1.0),
@@ -283,16 +337,13 @@ pub fn shade(
         normal: n,
         shading_normal,
         clearcoat_normal,
-        light_dir,
         view_dir,
-        half,
         vertex_light: point.vertex_light,
         dot3_light,
-        n_dot_l: shading_normal.dot(light_dir),
-        n_dot_h: shading_normal.dot(half),
-        self_shadow: smoothstep(0.0, SELF_SHADOW_FADE, n.dot(light_dir)),
+        lights,
         albedo,
         shading_model,
+        lighting_space,
         color_linear,
         shown,
     }

@@ -4,12 +4,16 @@
 //! how an instance is bumped ([`bump_kind`]). Everything above this layer — the prepare
 //! stage, the GPU renderer, the CPU probe, the viewer state — describes a picture with these.
 
+mod lighting;
 mod looks;
 
+pub use lighting::LightingSpace;
 pub use looks::{CUBE_MAP_SIZES, LegacyLook, LegacySettings, Mistake};
 
 use crate::names::Named;
-use crate::scene::{Light, MaterialOverrides, NormalSpace, OrbitCamera, PerMaterialOverrides, Scene, ShadingModel};
+use crate::scene::{
+    Lights, MaterialOverrides, NormalSpace, OrbitCamera, PerMaterialOverrides, Scene, ShadingModel, SpecularMode,
+};
 use crate::tangent::TangentMethod;
 
 /// The bump strength's range (the slider's; typed values outside it are clamped).
@@ -150,6 +154,13 @@ pub struct ShadingSettings {
     pub mistake: Mistake,
     /// A legacy look instead of today's lighting in the lit views (a pipeline variant).
     pub legacy: LegacySettings,
+    /// The classic model's highlight: Blinn, Phong or none (a uniform).
+    pub specular: SpecularMode,
+    /// The classic model's shininess exponent for every material (`None`: each material's
+    /// own); at least 1 (a uniform).
+    pub shininess: Option<f32>,
+    /// Where the lit views light tangent-space normal-mapped surfaces (a pipeline variant).
+    pub lighting_space: LightingSpace,
 }
 
 impl Default for ShadingSettings {
@@ -167,6 +178,9 @@ impl Default for ShadingSettings {
             parallax: ParallaxSettings::default(),
             mistake: Mistake::None,
             legacy: LegacySettings::default(),
+            specular: SpecularMode::Blinn,
+            shininess: None,
+            lighting_space: LightingSpace::World,
         }
     }
 }
@@ -283,11 +297,12 @@ impl ParallaxSettings {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FrameParams {
     pub camera: OrbitCamera,
-    pub light: Light,
+    /// The lights and the ambient light.
+    pub lights: Lights,
     pub shading: ShadingSettings,
 }
 
-/// The split view's two pictures: the same camera and light, `left` shading left of the
+/// The split view's two pictures: the same camera and lights, `left` shading left of the
 /// divider and `right` shading right of it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SplitFrame {
@@ -312,7 +327,7 @@ pub enum Msaa {
     /// format, else 1: screenshots, exports and the frame shown once input stops.
     #[default]
     X4,
-    /// 1 sample per pixel: frames drawn while the user drags or the light orbits.
+    /// 1 sample per pixel: frames drawn while the user drags or a light orbits.
     Off,
 }
 

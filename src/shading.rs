@@ -7,12 +7,15 @@
 //! GPU and compare against them. All vectors are world space and unit length unless stated;
 //! colours are linear RGB.
 
+pub mod lights;
 pub mod pbr;
+pub mod spaces;
 
 use glam::{Mat3, Vec3, Vec4};
 
 use crate::math::{handedness, normalize_or, orthonormalize_tangent, smoothstep};
-use crate::scene::{GreenAxis, Light, NormalConvention, NormalLayout};
+use crate::scene::{GreenAxis, Lights, MAX_LIGHTS, NormalConvention, NormalLayout, SpecularMode};
+use lights::{incident, specular_power};
 
 /// Width of the self-shadow fade in units of `N_geo · L` (a cosine): the light fades in
 /// smoothly from grazing (0) to `N_geo · L = 0.1` (about 84° from the normal).
@@ -71,6 +74,12 @@ pub fn packed_gloss(texel: NormalTexel, layout: NormalLayout) -> f32 {
     }
 }
 
+/// A decoded tangent-space normal after strength `s`: `normalize(x·s, y·s, max(z, 0))` (a
+/// tangent-space normal never points into the surface).
+pub fn tangent_space_normal(decoded: Vec3, strength: f32) -> Vec3 {
+    normalize_or(Vec3::new(decoded.x * strength, decoded.y * strength, decoded.z.max(0.0)), Vec3::Z)
+}
+
 /// The normal after a tangent-space normal map: decode the texel ([`decode_normal`]), clamp
 /// `z ≥ 0` (a tangent-space normal never points into the surface), scale by `(s, s, 1)`,
 /// normalise, take it from tangent to world space with `T` (Gram-Schmidt against `n_geo`)
@@ -82,9 +91,7 @@ pub fn perturbed_normal(
     strength: f32,
     convention: NormalConvention,
 ) -> Vec3 {
-    let decoded = decode_normal(texel, convention);
-    let scaled = Vec3::new(decoded.x * strength, decoded.y * strength, decoded.z.max(0.0));
-    let n_tangent = normalize_or(scaled, Vec3::Z);
+    let n_tangent = tangent_space_normal(decode_normal(texel, convention), strength);
     let t = orthonormalize_tangent(tangent.truncate(), n_geo);
     let b = handedness(tangent) * n_geo.cross(t);
     normalize_or(t * n_tangent.x + b * n_tangent.y + n_geo * n_tangent.z, n_geo)
@@ -108,7 +115,7 @@ pub fn object_space_normal(
     normalize_or(n_geo + strength * (n_map - n_geo), n_geo)
 }
 
-/// Everything Blinn-Phong needs at one surface point.
+/// Everything the classic model needs at one surface point.
 #[derive(Debug, Clone, Copy)]
 pub struct LightingInputs {
     /// Linear albedo (base colour texture × factor).
@@ -120,27 +127,67 @@ pub struct LightingInputs {
     /// Point position, metres.
     pub position: Vec3,
     pub eye: Vec3,
-    pub light: Light,
-    pub ambient: Vec3,
+    /// Every light (switched-off ones bring nothing) and the ambient light.
+    pub lights: Lights,
     /// k_s, linear: the material's specular colour times its gloss map's texel where it has one.
     pub specular: Vec3,
     pub shininess: f32,
+    pub specular_mode: SpecularMode,
 }
 
-/// Blinn-Phong with ambient, diffuse and specular, and geometric self-shadowing:
-/// `albedo·ambient + fade(N_geo·L) · light · (albedo·max(N·L, 0) + k_s·max(N·H, 0)^shininess)`,
-/// where `fade` is `smoothstep(0, SELF_SHADOW_FADE, ·)` and the specular term is zero
-/// where `N·L ≤ 0`. Degenerate directions (light or eye on the point) fall back to `N_geo`.
-pub fn blinn_phong(p: &LightingInputs) -> Vec3 {
+/// The unit vectors the classic model lights with at one point, all in one lighting space
+/// ([`spaces`]): world space ([`world_vectors`]), tangent space or view space.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LightingVectors {
+    pub geometric_normal: Vec3,
+    pub shading_normal: Vec3,
+    /// Towards each light, by the frame's light index (lights that are off: unused).
+    pub lights: [Vec3; MAX_LIGHTS],
+    /// Towards the eye as each light's highlight sees it, by the frame's light index: the
+    /// true direction for every light but where a per-vertex mistake of the chain
+    /// ([`crate::chain::mistakes::seen_view_direction`]) replaces the first light's.
+    pub views: [Vec3; MAX_LIGHTS],
+}
+
+/// The world-space vectors of `p`: its normals, and the directions to the eye and to each
+/// light ([`lights::incident`]); degenerate directions fall back to `N_geo`.
+pub fn world_vectors(p: &LightingInputs) -> LightingVectors {
     let n_geo = p.geometric_normal;
-    let l = normalize_or(p.light.position - p.position, n_geo);
-    let v = normalize_or(p.eye - p.position, n_geo);
-    let h = normalize_or(l + v, n_geo);
+    let mut lights = [n_geo; MAX_LIGHTS];
+    for (l, light) in lights.iter_mut().zip(p.lights.as_slice()) {
+        *l = incident(light, p.position, n_geo).direction;
+    }
+    LightingVectors {
+        geometric_normal: n_geo,
+        shading_normal: p.shading_normal,
+        lights,
+        views: [normalize_or(p.eye - p.position, n_geo); MAX_LIGHTS],
+    }
+}
+
+/// The classic model with the vectors of one lighting space: `albedo·ambient` plus
+/// [`light_term`] of every light that is on, each bringing its radiance
+/// ([`lights::incident`], attenuated by its world-space distance).
+pub fn blinn_phong(p: &LightingInputs, space: &LightingVectors) -> Vec3 {
+    let mut sum = p.albedo * p.lights.ambient();
+    let directions = space.lights.iter().zip(&space.views);
+    for ((l, v), light) in directions.zip(p.lights.as_slice()).filter(|(_, light)| light.enabled) {
+        sum += light_term(p, space, *l, *v, incident(light, p.position, p.geometric_normal).radiance);
+    }
+    sum
+}
+
+/// What one light adds in the classic model from unit direction `l` with `radiance`, seen
+/// from unit direction `v`, with geometric self-shadowing: `fade(N_geo·L) · radiance ·
+/// (albedo·max(N·L, 0) + k_s·specular)`, where `fade` is `smoothstep(0, SELF_SHADOW_FADE, ·)`
+/// and the specular term comes from [`lights::specular_power`] in the frame's mode; the
+/// normals from `space`.
+pub fn light_term(p: &LightingInputs, space: &LightingVectors, l: Vec3, v: Vec3, radiance: Vec3) -> Vec3 {
+    let (n_geo, n) = (space.geometric_normal, space.shading_normal);
     let self_shadow = smoothstep(0.0, SELF_SHADOW_FADE, n_geo.dot(l));
-    let n_dot_l = p.shading_normal.dot(l).max(0.0);
-    let n_dot_h = p.shading_normal.dot(h).max(0.0);
-    let specular = if n_dot_l > 0.0 && n_dot_h > 0.0 { n_dot_h.powf(p.shininess) } else { 0.0 };
-    p.albedo * p.ambient + self_shadow * p.light.color * (p.albedo * n_dot_l + p.specular * specular)
+    let n_dot_l = n.dot(l).max(0.0);
+    let specular = specular_power(p.specular_mode, n, n_geo, l, v, p.shininess);
+    self_shadow * radiance * (p.albedo * n_dot_l + p.specular * specular)
 }
 
 /// A height map's filtered texel as a height sample, 0..1 of the full range: 16 bits in red
@@ -226,7 +273,7 @@ pub fn debug_color(v: Vec3) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::NormalSpace;
+    use crate::scene::{Light, NormalSpace};
 
     const GL: NormalConvention =
         NormalConvention { green: GreenAxis::OpenGl, layout: NormalLayout::Rgb, space: NormalSpace::Tangent };
@@ -239,10 +286,10 @@ mod tests {
             shading_normal: Vec3::Z,
             position: Vec3::ZERO,
             eye: Vec3::new(0.0, 0.0, 2.0),
-            light: Light { position: Vec3::new(0.0, 0.0, 3.0), color: Vec3::ONE },
-            ambient: Vec3::splat(0.1),
+            lights: Lights::one(Light::point(Vec3::new(0.0, 0.0, 3.0), Vec3::ONE), Vec3::splat(0.1)),
             specular: Vec3::splat(0.2),
             shininess: 16.0,
+            specular_mode: SpecularMode::Blinn,
         }
     }
 
@@ -250,15 +297,15 @@ mod tests {
     fn head_on_light_gives_ambient_plus_full_diffuse_and_specular() {
         let p = inputs();
         let expected = p.albedo * 0.1 + p.albedo + Vec3::splat(0.2);
-        assert!((blinn_phong(&p) - expected).length() < 1e-6);
+        assert!((blinn_phong(&p, &world_vectors(&p)) - expected).length() < 1e-6);
     }
 
     #[test]
     fn light_below_the_geometric_surface_leaves_only_ambient_even_if_bumped_towards_it() {
         let mut p = inputs();
-        p.light.position = Vec3::new(3.0, 0.0, -0.1);
+        p.lights[0].position = Vec3::new(3.0, 0.0, -0.1);
         p.shading_normal = Vec3::new(1.0, 0.0, 0.2).normalize();
-        assert!((blinn_phong(&p) - p.albedo * 0.1).length() < 1e-7);
+        assert!((blinn_phong(&p, &world_vectors(&p)) - p.albedo * 0.1).length() < 1e-7);
     }
 
     #[test]

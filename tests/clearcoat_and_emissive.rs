@@ -13,7 +13,7 @@ use bumpview::names::Named;
 use bumpview::probe::ProbeScene;
 use bumpview::render::Background;
 use bumpview::render::capture::{CaptureOptions, render_capture, render_image};
-use bumpview::scene::{Instance, Light, Scene};
+use bumpview::scene::{Instance, Light, Lights, Scene};
 use bumpview::shading::pbr::{ClearcoatInputs, PbrInputs, metallic_roughness};
 use common::*;
 use glam::Vec3;
@@ -105,7 +105,11 @@ fn a_coat_is_the_dimmed_base_plus_a_black_dielectric() {
             shading_normal: n,
             position: Vec3::ZERO,
             eye: Vec3::new(t.cos() * 2.0, 1.0 + (t * 0.5).sin(), t.sin() * 2.0),
-            light: Light { position: Vec3::new(-1.0, 2.0, (t * 0.9).cos()), color: Vec3::new(1.0, 0.9, 0.8) },
+            lights: Lights::one(
+                Light::point(Vec3::new(-1.0, 2.0, (t * 0.9).cos()), Vec3::new(1.0, 0.9, 0.8)),
+                Vec3::ZERO,
+            ),
+            seen: None,
             clearcoat: None,
         };
         let factor = (t * 0.13).fract();

@@ -47,7 +47,7 @@ fn render_writes_a_png_of_the_requested_size() {
 /// Bad flags and values exit 2, failures of the work itself 1; either prints one line.
 #[test]
 fn failures_exit_non_zero_with_one_line() {
-    let cases: [(&[&str], i32); 14] = [
+    let cases: [(&[&str], i32); 20] = [
         (&["render", "--out", "x.png", "--frobnicate"], 2),
         (&["render", "--out", "x.png", "--view", "sideways"], 2),
         (&["render", "--out", "x.png", "--size", "0x10"], 2),
@@ -61,6 +61,19 @@ fn failures_exit_non_zero_with_one_line() {
         (&["render", "--out", "x.png", "--grid", "flat,shiny"], 2),
         (&["render", "--out", "x.png", "--grid", "flat;bumped,tangent"], 2),
         (&["render", "--out", "x.png", "--row", "--grid"], 2),
+        (&["render", "--out", "x.png", "--light", "1,2,3:1,1,1:-1"], 2),
+        (&["render", "--out", "x.png", "--attenuation", "0,0,0"], 2),
+        (&["render", "--out", "x.png", "--shininess", "0.5"], 2),
+        (&["render", "--out", "x.png", "--specular", "shiny"], 2),
+        (&["render", "--out", "x.png", "--directional-light", "0,0,0"], 2),
+        (
+            &[
+                "render", "--out", "x.png", "--light", "0,1,0", "--light", "0,1,0", "--light", "0,1,0", "--light",
+                "0,1,0", "--light", "0,1,0", "--light", "0,1,0", "--light", "0,1,0", "--light", "0,1,0", "--light",
+                "0,1,0",
+            ],
+            2,
+        ),
         (&["render", "--out", "/nonexistent-dir/x.png", "--size", "16x16"], 1),
     ];
     for (args, code) in cases {

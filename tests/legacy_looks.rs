@@ -39,10 +39,10 @@ fn dot3_with_l_per_vertex_is_shorter_between_vertices() {
     for (_, r) in &readouts {
         let l = r.chain.dot3_light.unwrap();
         assert_eq!(l, r.chain.vertex_light);
-        let expected = params.light.color * r.chain.shading_normal.dot(l).max(0.0);
+        let expected = params.lights[0].color * params.lights[0].intensity * r.chain.shading_normal.dot(l).max(0.0);
         assert!((r.chain.color_linear - expected).abs().max_element() < 1e-5);
         shortest = shortest.min(l.length());
-        turned = turned.max(l.angle_between(r.chain.light_dir).to_degrees());
+        turned = turned.max(l.angle_between(r.chain.lights[0].unwrap().direction).to_degrees());
         if r.point.barycentric.max_element() > 0.99 {
             near_vertex = near_vertex.max(1.0 - l.length());
             near += 1;
@@ -87,7 +87,7 @@ fn emboss_is_the_light_map_spot_moved_by_the_slopes() {
     let options = SceneOptions { parallax: true, ..Default::default() };
     params.shading.bump_enabled = false;
     let flat = gpu_against_probe(&scene, &options, &params, SIZE, 7, WALL);
-    let foot = Vec3::new(params.light.position.x, params.light.position.y, WALL_Z);
+    let foot = Vec3::new(params.lights[0].position.x, params.lights[0].position.y, WALL_Z);
     let worst = flat
         .iter()
         .map(|(_, r)| {
@@ -134,4 +134,38 @@ fn legacy_textures_are_uploaded_only_while_used() {
     draw(&mut renderer, LegacySettings::default());
     draw(&mut renderer, cube);
     assert_eq!(uploads(&renderer), scene_textures + 3, "the cube map again, after it was dropped");
+}
+
+/// The legacy looks light with the first light that is on, whatever its kind: DOT3 under a
+/// directional light is `radiance · max(N·L, 0)` with L its direction (the same at every
+/// vertex, so interpolation leaves it unit); with every light off, DOT3 and emboss show the
+/// ambient light alone. The GPU draws each as the probe.
+#[test]
+fn legacy_looks_use_the_first_light_and_the_ambient_light_without_one() {
+    let (scene, mut params) = wall(LegacySettings { look: LegacyLook::Dot3, cube_map_size: None });
+    let mut sun = bumpview::scene::Light::directional(Vec3::new(0.3, 0.4, 1.0), Vec3::new(1.0, 0.8, 0.6));
+    sun.intensity = 0.9;
+    params.lights[0].enabled = false;
+    params.lights.push(sun).unwrap();
+    let readouts = gpu_against_probe(&scene, &SceneOptions::default(), &params, SIZE, 7, WALL);
+    let l = sun.position.normalize();
+    let worst = readouts
+        .iter()
+        .map(|(_, r)| {
+            let expected = sun.color * sun.intensity * r.chain.shading_normal.dot(l).max(0.0);
+            (r.chain.color_linear - expected).abs().max_element()
+        })
+        .fold(0.0f32, f32::max);
+    println!("DOT3 under a directional light: worst {worst:.2e} off radiance · max(N·L, 0)");
+    assert!(worst < 1e-5 && !readouts.is_empty(), "{worst}");
+    params.lights[1].enabled = false;
+    let options = SceneOptions { parallax: true, ..Default::default() };
+    for look in [LegacyLook::Dot3, LegacyLook::Emboss] {
+        params.shading.legacy = LegacySettings { look, cube_map_size: None };
+        let readouts = gpu_against_probe(&scene, &options, &params, SIZE, 7, WALL);
+        let ambient = params.lights.ambient();
+        let exact = readouts.iter().all(|(_, r)| r.chain.color_linear == ambient);
+        println!("{look:?} with every light off: {} pixels, each the ambient light: {exact}", readouts.len());
+        assert!(exact && !readouts.is_empty());
+    }
 }

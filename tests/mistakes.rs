@@ -180,11 +180,16 @@ fn turned(mistake: Mistake, of: fn(&bumpview::chain::ChainValues) -> Vec3) -> (f
     (near_vertex, anywhere)
 }
 
+/// The first light's terms (the close wall's only light).
+fn first_light(chain: &bumpview::chain::ChainValues) -> bumpview::chain::LightTerms {
+    chain.lights[0].expect("the first light is on")
+}
+
 /// The light vector normalised per vertex and interpolated points the right way at the
 /// vertices and turns away from the light between them.
 #[test]
 fn the_light_normalised_per_vertex_turns_between_vertices() {
-    let (near_vertex, anywhere) = turned(Mistake::LightPerVertex, |c| c.light_dir);
+    let (near_vertex, anywhere) = turned(Mistake::LightPerVertex, |c| first_light(c).direction);
     assert!(near_vertex < 0.3 && anywhere > 3.0, "{near_vertex} {anywhere}");
 }
 
@@ -192,6 +197,44 @@ fn the_light_normalised_per_vertex_turns_between_vertices() {
 /// so the highlight moves and smears (Cg tutorial 8.1.4).
 #[test]
 fn the_half_vector_per_vertex_turns_between_vertices() {
-    let (near_vertex, anywhere) = turned(Mistake::HalfVectorPerVertex, |c| c.half);
+    let (near_vertex, anywhere) = turned(Mistake::HalfVectorPerVertex, |c| first_light(c).half);
     assert!(near_vertex < 0.3 && anywhere > 3.0, "{near_vertex} {anywhere}");
+}
+
+/// The per-vertex mistakes concern the first light that is on (the shader's
+/// `frame.lights[0]`): with a second light, that one stays correct, exactly; with the first
+/// light switched off, the second is the first that is on and turns instead. The GPU draws
+/// each as the probe.
+#[test]
+fn the_per_vertex_mistakes_turn_only_the_first_light_that_is_on() {
+    let (scene, mut params) = wall_scene();
+    let mut second = params.lights[0];
+    second.position = bumpview::scene::builtin::WALL_Z * Vec3::Z + Vec3::new(-0.15, 1.4, 0.3);
+    second.color = Vec3::new(0.4, 0.5, 0.6);
+    params.lights.push(second).unwrap();
+    let options = SceneOptions::default();
+    let readouts = |params: &FrameParams, mistake| {
+        let mut params = *params;
+        params.shading.mistake = mistake;
+        println!("{}:", mistake.name());
+        gpu_against_probe(&scene, &options, &params, SIZE, 6, WALL)
+    };
+    let largest_turn = |a: &[([u32; 2], bumpview::probe::ProbeReadout)], b: &[([u32; 2], _)], light: usize| {
+        let pairs = a.iter().zip(b).map(|((_, r), (_, w)): (_, &([u32; 2], bumpview::probe::ProbeReadout))| {
+            r.chain.lights[light].unwrap().direction.angle_between(w.chain.lights[light].unwrap().direction)
+        });
+        pairs.fold(0.0f32, f32::max).to_degrees()
+    };
+    let correct = readouts(&params, Mistake::None);
+    let wrong = readouts(&params, Mistake::LightPerVertex);
+    let (first, other) = (largest_turn(&correct, &wrong, 0), largest_turn(&correct, &wrong, 1));
+    println!("both on: the first light turned up to {first:.2}°, the second {other:.2}°");
+    assert!(first > 3.0 && other == 0.0, "{first} {other}");
+    params.lights[0].enabled = false;
+    let correct = readouts(&params, Mistake::LightPerVertex);
+    let off = correct.iter().all(|(_, r)| r.chain.lights[0].is_none());
+    let right = readouts(&params, Mistake::None);
+    let turned = largest_turn(&right, &correct, 1);
+    println!("the first light off: the second turned up to {turned:.2}°");
+    assert!(off && turned > 3.0, "{off} {turned}");
 }

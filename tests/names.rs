@@ -2,10 +2,10 @@
 //! them, so they must stay as they are. Each enum derives its names ([`bumpview::names`]);
 //! this pins every one, in order (the panel's, `--help`'s and the reports' order).
 
-use bumpview::frame::{BumpSource, LegacyLook, Mistake, Parallax, ShadingMode, ViewMode};
+use bumpview::frame::{BumpSource, LegacyLook, LightingSpace, Mistake, Parallax, ShadingMode, ViewMode};
 use bumpview::height::{Border, Kernel};
 use bumpview::names::Named;
-use bumpview::scene::{GreenAxis, NormalLayout, ShadingModel};
+use bumpview::scene::{GreenAxis, LightKind, NormalLayout, ShadingModel, SpecularMode};
 use bumpview::state::SplitDifference;
 use bumpview::tangent::TangentMethod;
 
@@ -26,8 +26,18 @@ fn every_enum_keeps_its_names_in_order() {
     assert_eq!(ViewMode::names(), views);
     assert_eq!(ShadingMode::names(), ["bump-colour", "bump-only", "colour-only"]);
     assert_eq!(BumpSource::names(), ["normal-map", "height-in-shader"]);
-    let differences =
-        ["bump", "view", "strength", "mode", "tangents", "convention", "bump-source", "parallax", "mistake"];
+    let differences = [
+        "bump",
+        "view",
+        "strength",
+        "mode",
+        "tangents",
+        "convention",
+        "bump-source",
+        "parallax",
+        "mistake",
+        "lighting-space",
+    ];
     assert_eq!(SplitDifference::names(), differences);
     let methods = [
         "mikktspace",
@@ -59,6 +69,9 @@ fn every_enum_keeps_its_names_in_order() {
     ];
     assert_eq!(Mistake::names(), mistakes);
     assert_eq!(LegacyLook::names(), ["off", "dot3", "emboss"]);
+    assert_eq!(LightKind::names(), ["point", "directional"]);
+    assert_eq!(SpecularMode::names(), ["blinn", "phong", "off"]);
+    assert_eq!(LightingSpace::names(), ["world", "tangent", "view"]);
 }
 
 #[test]
@@ -72,6 +85,9 @@ fn every_name_reads_back_as_its_value() {
     round_trip::<ShadingMode>();
     round_trip::<BumpSource>();
     round_trip::<SplitDifference>();
+    round_trip::<LightKind>();
+    round_trip::<SpecularMode>();
+    round_trip::<LightingSpace>();
     round_trip::<TangentMethod>();
     round_trip::<Kernel>();
     round_trip::<GreenAxis>();

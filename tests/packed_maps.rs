@@ -128,7 +128,7 @@ fn the_gpu_draws_packed_layouts_as_the_cpu_chain() {
     for layout in [NormalLayout::Rg, NormalLayout::Ag, NormalLayout::Xray] {
         let scene = packed_scene(layout);
         let mut params = close_wall_params(&scene, 0.3);
-        params.light.position = glam::Vec3::new(0.02, 1.52, -0.7);
+        params.lights[0].position = glam::Vec3::new(0.02, 1.52, -0.7);
         // X-Ray sums two filtered textures before normalising, so the GPU's filter rounding
         // enters twice: 3 steps for its normals (measured 2.4 at most), against 2 for one.
         let normal_tolerance = if layout == NormalLayout::Xray { 3.0 } else { 2.0 };

@@ -12,10 +12,41 @@ use bumpview::shading::pbr::{PbrInputs, metallic_roughness};
 use common::*;
 use glam::{Mat4, Vec3, Vec4};
 
+/// An occlusion texture of one grey `level` (linear 8-bit data) at `strength`; the reference
+/// is given the factor `cpu`.
+struct Occluded {
+    level: u8,
+    strength: f32,
+    cpu: f32,
+}
+
 /// Sorted per-pixel max-channel differences |GPU − CPU| in 8-bit steps over a pixel grid.
 /// `cpu_roughness` lets a test feed the reference a wrong value.
 fn differences(metallic: f32, roughness: f32, cpu_roughness: f32, by_override: bool) -> Vec<f32> {
+    differences_occluded(metallic, roughness, cpu_roughness, by_override, None)
+}
+
+/// [`differences`] with the wall's material given an occlusion texture.
+fn differences_occluded(
+    metallic: f32,
+    roughness: f32,
+    cpu_roughness: f32,
+    by_override: bool,
+    occluded: Option<&Occluded>,
+) -> Vec<f32> {
     let mut scene = scene();
+    if let Some(occluded) = occluded {
+        let (width, height) = (8u32, 8u32);
+        scene.textures.push(bumpview::scene::TextureImage {
+            name: "occlusion".into(),
+            width,
+            height,
+            kind: bumpview::scene::TextureKind::Data,
+            rgba: [occluded.level, occluded.level, occluded.level, 255].repeat((width * height) as usize),
+        });
+        let texture = scene.textures.len() - 1;
+        scene.materials[0].occlusion = Some(bumpview::scene::Occlusion { texture, strength: occluded.strength });
+    }
     scene.instances = vec![Instance { mesh: 0, material: 0, transform: Mat4::IDENTITY }];
     let material = &mut scene.materials[0];
     material.base_color_texture = None;
@@ -40,12 +71,13 @@ fn differences(metallic: f32, roughness: f32, cpu_roughness: f32, by_override: b
                 base_color,
                 metallic,
                 roughness: cpu_roughness,
-                occlusion: 1.0,
+                occlusion: occluded.map_or(1.0, |o| o.cpu),
                 geometric_normal: Vec3::Z,
                 shading_normal: Vec3::Z,
                 position,
                 eye: params.camera.eye(),
-                light: params.light,
+                lights: params.lights,
+                seen: None,
                 clearcoat: None,
             });
             let cpu = linear.map(|c| linear_to_srgb(c) * 255.0);
@@ -89,4 +121,22 @@ fn wrong_roughness_is_detected() {
     let max = *diffs.last().unwrap();
     println!("wrong roughness: max {max}");
     assert!(max > 10.0, "max {max} steps");
+}
+
+/// An occlusion texture darkens the picture by 1 + strength · (texel − 1) as the CPU
+/// reference does (same tolerance), and the comparison can fail: a reference without it is
+/// far off.
+#[test]
+fn occlusion_texture_matches_cpu_metallic_roughness() {
+    let (level, strength) = (32u8, 1.0);
+    let factor = 1.0 + strength * (f32::from(level) / 255.0 - 1.0);
+    let occluded = Occluded { level, strength, cpu: factor };
+    let diffs = differences_occluded(0.0, 0.5, 0.5, false, Some(&occluded));
+    let max = *diffs.last().unwrap();
+    println!("occlusion {factor}: median {} p99 {} max {max}", percentile(&diffs, 0.5), percentile(&diffs, 0.99));
+    assert!(max <= 1.0, "max {max} steps");
+    let ignored = differences_occluded(0.0, 0.5, 0.5, false, Some(&Occluded { cpu: 1.0, ..occluded }));
+    let worst = *ignored.last().unwrap();
+    println!("occlusion ignored by the reference: max {worst}");
+    assert!(worst > 10.0, "max {worst} steps");
 }

@@ -95,18 +95,22 @@ fn moving_the_light_changes_n_dot_l_at_the_pinned_point() {
     let probe_scene = ProbeScene::new(&scene, &SceneOptions::default());
     let point = probe_scene.pick(&params.camera, SIZE, [90, 140]).unwrap();
     let before = probe_scene.readout(&point, &params, SIZE);
-    params.light.position = Vec3::new(-0.4, 1.2, WALL_Z + 0.2);
+    params.lights[0].position = Vec3::new(-0.4, 1.2, WALL_Z + 0.2);
     params.camera.yaw = 0.3; // the camera may move too: the point stays pinned
     let after = probe_scene.readout(&point, &params, SIZE);
     assert_eq!(before.position, after.position);
     assert_eq!(before.chain.shading_normal, after.chain.shading_normal);
-    let expected = after.chain.shading_normal.dot((params.light.position - after.position).normalize());
-    assert!((after.chain.n_dot_l - expected).abs() < 1e-6, "{} vs {expected}", after.chain.n_dot_l);
+    let expected = after.chain.shading_normal.dot((params.lights[0].position - after.position).normalize());
     assert!(
-        (after.chain.n_dot_l - before.chain.n_dot_l).abs() > 0.05,
+        (after.chain.lights[0].unwrap().n_dot_l - expected).abs() < 1e-6,
+        "{} vs {expected}",
+        after.chain.lights[0].unwrap().n_dot_l
+    );
+    assert!(
+        (after.chain.lights[0].unwrap().n_dot_l - before.chain.lights[0].unwrap().n_dot_l).abs() > 0.05,
         "{} vs {}",
-        after.chain.n_dot_l,
-        before.chain.n_dot_l
+        after.chain.lights[0].unwrap().n_dot_l,
+        before.chain.lights[0].unwrap().n_dot_l
     );
     assert_ne!(before.chain.color_linear, after.chain.color_linear);
 }

@@ -54,7 +54,7 @@ fn light_on_the_surface_stays_finite() {
     for light in [Vec3::new(0.0, 1.5, WALL_Z), Vec3::new(0.5, 0.0, 0.5)] {
         for params in [default_params(&scene), close_wall_params(&scene, 0.3)] {
             let mut params = params;
-            params.light.position = light;
+            params.lights[0].position = light;
             assert_finite_in_every_view(&mut renderer, params, &format!("light at {light}"));
         }
     }
@@ -84,11 +84,11 @@ fn light_behind_the_wall_leaves_ambient_only() {
     let scene = scene();
     let mut renderer = renderer_for(&scene);
     let mut behind = close_wall_params(&scene, 0.3);
-    behind.light.position = Vec3::new(0.1, 1.6, WALL_Z - 0.5);
+    behind.lights[0].position = Vec3::new(0.1, 1.6, WALL_Z - 0.5);
     let mut dark = behind;
-    dark.light.color = Vec3::ZERO;
+    dark.lights[0].color = Vec3::ZERO;
     let mut front = behind;
-    front.light.position.z = WALL_Z + 0.5;
+    front.lights[0].position.z = WALL_Z + 0.5;
     let [behind, dark, front] = [behind, dark, front].map(|p| render_image(&mut renderer, [128, 128], &p).unwrap());
     let max_difference = |a: &image::RgbaImage, b: &image::RgbaImage| {
         a.pixels().zip(b.pixels()).map(|(p, q)| (0..3).map(|c| p[c].abs_diff(q[c])).max().unwrap()).max().unwrap()
@@ -104,7 +104,7 @@ fn float_target_shows_nan_when_the_shader_makes_it() {
     let scene = scene();
     let mut renderer = renderer_for(&scene);
     let mut params = default_params(&scene);
-    params.light.color = Vec3::NAN;
+    params.lights[0].color = Vec3::NAN;
     let image = render_float(&mut renderer, [64, 48], &params).unwrap();
     assert!(image.pixels.iter().any(|p| p.iter().any(|c| c.is_nan())));
 }

@@ -121,7 +121,7 @@ fn grazing_light_is_faded_and_never_lights_from_below() {
     let mut params = close_wall_params(&scene, 0.3);
     params.shading.strength = 4.0; // steep bevels lean far towards a grazing light
     let mut dark = params;
-    dark.light.color = Vec3::ZERO;
+    dark.lights[0].color = Vec3::ZERO;
     let ambient = render_image(&mut renderer, [96, 96], &dark).unwrap();
     let brightness = |p: &FrameParams, renderer: &mut Renderer| {
         let image = render_image(renderer, [96, 96], p).unwrap();
@@ -132,13 +132,13 @@ fn grazing_light_is_faded_and_never_lights_from_below() {
             .sum::<u32>()
     };
     let mut below = params;
-    below.light.position = Vec3::new(3.0, 1.5, WALL_Z - 1e-3);
+    below.lights[0].position = Vec3::new(3.0, 1.5, WALL_Z - 1e-3);
     assert_eq!(brightness(&below, &mut renderer), 0, "light below the surface adds nothing");
     assert_finite(&mut renderer, &below, "grazing from below");
     let mut above = params;
-    above.light.position = Vec3::new(3.0, 1.5, WALL_Z + 0.05);
+    above.lights[0].position = Vec3::new(3.0, 1.5, WALL_Z + 0.05);
     let mut frontal = params;
-    frontal.light.position = Vec3::new(0.0, 1.5, WALL_Z + 0.5);
+    frontal.lights[0].position = Vec3::new(0.0, 1.5, WALL_Z + 0.5);
     let (grazing, full) = (brightness(&above, &mut renderer), brightness(&frontal, &mut renderer));
     println!("light added: grazing {grazing}, frontal {full}");
     assert!(grazing > 0 && grazing * 4 < full, "grazing {grazing} vs frontal {full}");

@@ -259,3 +259,33 @@ fn parallax_techniques_are_variants_built_once() {
     }
     assert_eq!(renderer.counters().pipelines_built - before, built, "back and forth builds nothing");
 }
+
+/// Mesh pipelines are specialised to the optional textures and lobes their material has (the
+/// `MATERIAL_FEATURES` constant), so a pipeline compiles no sample its material lacks: the
+/// built-in bricks have none, and a gloss map given to the wall and floor's material gives
+/// their pipeline that one feature while the torus's keeps none, with as many pipelines.
+#[test]
+fn mesh_pipelines_are_specialised_to_the_materials_features() {
+    let features = |scene: &bumpview::scene::Scene| {
+        let mut renderer = renderer_for(scene);
+        render_image(&mut renderer, [64, 48], &default_params(scene)).unwrap();
+        let mut features: Vec<_> = renderer
+            .built_pipelines()
+            .into_iter()
+            .filter_map(|k| match k.pass {
+                Pass::Mesh { cull_back_faces, features, .. } => Some((cull_back_faces, features)),
+                _ => None,
+            })
+            .collect();
+        features.sort();
+        features
+    };
+    assert_eq!(features(&scene()), [(false, 0), (true, 0)], "wall and floor, torus: nothing optional");
+    let mut glossy = scene();
+    glossy.materials[0].gloss_texture = glossy.materials[0].base_color_texture;
+    assert!(glossy.materials[0].gloss_texture.is_some() && glossy.materials[0].double_sided);
+    let glossy_features = features(&glossy);
+    assert_eq!(glossy_features.len(), 2);
+    assert!(!glossy_features[0].0 && glossy_features[0].1 != 0, "wall and floor: the gloss map");
+    assert_eq!(glossy_features[1], (true, 0), "the torus: nothing optional");
+}

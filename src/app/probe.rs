@@ -184,10 +184,17 @@ fn lines(r: &ProbeReadout, mesh_name: &str) -> String {
         format!("w        {}", r.chain.w.map_or_else(|| "—".to_owned(), |w| format!("{w:+.0}"))),
         format!("frames   {}", r.tangent_method.map_or("none", |m| m.name())),
         format!("N'       {}  (world)", v3(r.chain.shading_normal)),
-        format!("L        {}", v3(r.chain.light_dir)),
-        format!("H        {}", v3(r.chain.half)),
-        format!("N'·L     {:6.3}   N'·H {:6.3}", r.chain.n_dot_l, r.chain.n_dot_h),
-        format!("fade     {:6.3}  (N·L self-shadow)", r.chain.self_shadow),
+    ]);
+    for (i, light) in r.chain.lights.iter().enumerate() {
+        let Some(light) = light else { continue };
+        text.extend([
+            format!("light {}  L {}  H {}", i + 1, v3(light.direction), v3(light.half)),
+            format!("  N'·L {:6.3}  N'·H {:6.3}  R·V {:6.3}", light.n_dot_l, light.n_dot_h, light.r_dot_v),
+            format!("  fade {:6.3}  att {:6.3}  in {}", light.self_shadow, light.attenuation, v3(light.radiance)),
+        ]);
+    }
+    text.extend([
+        format!("lit in   {}", r.chain.lighting_space.label()),
         format!("albedo   {}  linear", v3(r.chain.albedo)),
         format!("colour   {}  linear", v3(r.chain.color_linear)),
         format!("sRGB     {:.0} {:.0} {:.0}  (0–255)", srgb.x, srgb.y, srgb.z),

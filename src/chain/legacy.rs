@@ -13,22 +13,28 @@ use std::sync::OnceLock;
 #[cfg(doc)]
 use crate::frame::{LegacyLook, Mistake};
 use crate::math::normalize_or;
+#[cfg(doc)]
+use crate::scene::Lights;
+use crate::scene::{Light, LightKind};
+use crate::shading::lights::incident;
 
 /// At a vertex at `position` (world space) with normal `normal` (not necessarily unit): the
-/// unit direction to the light and the unit half vector between it and the direction to the
-/// eye. The vertex stage passes both on for interpolation (DOT3, [`Mistake::LightPerVertex`],
-/// [`Mistake::HalfVectorPerVertex`]).
-pub fn vertex_vectors(position: Vec3, normal: Vec3, light: Vec3, eye: Vec3) -> (Vec3, Vec3) {
+/// unit direction to `light` (the first light that is on, [`Lights::first_on`]; a point or a
+/// directional light, [`incident`]; the normal without one) and the unit half vector between
+/// it and the direction to the eye. The vertex stage passes both on for interpolation (DOT3,
+/// [`Mistake::LightPerVertex`], [`Mistake::HalfVectorPerVertex`]).
+pub fn vertex_vectors(position: Vec3, normal: Vec3, light: Option<&Light>, eye: Vec3) -> (Vec3, Vec3) {
     let n = normalize_or(normal, Vec3::Z);
-    let l = normalize_or(light - position, n);
+    let l = light.map_or(n, |light| incident(light, position, n).direction);
     let v = normalize_or(eye - position, n);
     (l, normalize_or(l + v, n))
 }
 
-/// DOT3's colour: `albedo · light · max(N·L, 0)` with `l` as given (unnormalised where it was
-/// interpolated): no ambient, no specular, no self-shadowing.
-pub fn dot3_color(albedo: Vec3, light_color: Vec3, n_shading: Vec3, l: Vec3) -> Vec3 {
-    albedo * light_color * n_shading.dot(l).max(0.0)
+/// DOT3's colour: `albedo · radiance · max(N·L, 0)` with `l` as given (unnormalised where it
+/// was interpolated) and the radiance arriving from the first light ([`incident`]): no
+/// ambient, no specular, no self-shadowing.
+pub fn dot3_color(albedo: Vec3, radiance: Vec3, n_shading: Vec3, l: Vec3) -> Vec3 {
+    albedo * radiance * n_shading.dot(l).max(0.0)
 }
 
 /// The face of a cube map `d` points at and its coordinates on it: the major axis `a`
@@ -157,17 +163,28 @@ pub struct EmbossSample {
 /// map's spot (128 of its texels) spans 1.28 m around the light.
 pub const EMBOSS_PIXELS_PER_M: f32 = 100.0;
 
+/// The vector from `position` towards `light` the emboss look places its light map with: to
+/// a point light's position (metres); a directional light's unit direction ([`incident`],
+/// `n` the fallback), as if it were 1 m away.
+pub fn emboss_to_light(light: &Light, position: Vec3, n: Vec3) -> Vec3 {
+    match light.kind {
+        LightKind::Point => light.position - position,
+        LightKind::Directional => incident(light, position, n).direction,
+    }
+}
+
 /// The light's offset from the point in the 2D demo's pixels ([`EMBOSS_PIXELS_PER_M`]), x
 /// right and y down the image: `(T·to_light, −B·to_light) · 100` (B points up the image).
 pub fn emboss_light_offset(t: Vec3, b: Vec3, to_light: Vec3) -> Vec2 {
     Vec2::new(t.dot(to_light), -b.dot(to_light)) * EMBOSS_PIXELS_PER_M
 }
 
-/// The emboss colour: `albedo · light · brightness` ([`emboss_brightness`]), the slope in
-/// steps of 1/255 times `strength` (the bump strength, 0 with bump off).
-pub fn emboss_color(albedo: Vec3, light_color: Vec3, sample: &EmbossSample, light: Vec2, strength: f32) -> Vec3 {
+/// The emboss colour: `albedo · radiance · brightness` ([`emboss_brightness`]) with the
+/// radiance arriving from the first light ([`incident`]), the slope in steps of 1/255 times
+/// `strength` (the bump strength, 0 with bump off).
+pub fn emboss_color(albedo: Vec3, radiance: Vec3, sample: &EmbossSample, light: Vec2, strength: f32) -> Vec3 {
     let slope = Vec2::new(sample.right - sample.left, sample.down - sample.up) * 255.0 * strength;
-    albedo * light_color * emboss_brightness(light_map(), slope, light)
+    albedo * radiance * emboss_brightness(light_map(), slope, light)
 }
 
 #[cfg(test)]

@@ -10,8 +10,8 @@ use glam::{Vec3, Vec4};
 
 use crate::frame::Mistake;
 use crate::math::{any_perpendicular, handedness, normalize_or, orthonormalize_tangent, srgb_to_linear};
-use crate::scene::{GreenAxis, NormalConvention};
-use crate::shading::NormalTexel;
+use crate::scene::{GreenAxis, Lights, NormalConvention};
+use crate::shading::{LightingVectors, NormalTexel};
 
 /// The texel as the shader reads it: through an sRGB view ([`Mistake::SrgbNormalMap`]) its
 /// colour channels are decoded from sRGB (alpha and `bump#` stay linear); else as filtered.
@@ -80,34 +80,52 @@ pub fn to_world(mistake: Mistake, t: Vec3, b: Vec3, base: Vec3, nt: Vec3) -> Vec
     }
 }
 
-/// Where the lighting sees the light and the eye from `position`: their true positions, but
-/// for [`Mistake::LightPerVertex`] the light moved onto the interpolated per-vertex light
-/// direction `vertex_light` (same distance), and for [`Mistake::HalfVectorPerVertex`] the eye
-/// moved onto `l` mirrored about the interpolated per-vertex half vector `vertex_half`, so that
-/// `normalize(l + v)` is that half vector. `n` is the fallback direction. The lighting then
-/// runs unchanged.
-pub fn seen_positions(
+/// The direction towards light `i` (counted among the lights that are on, so 0 is the
+/// shader's `frame.lights[0]`) the lighting uses, given the true unit direction `l`: for
+/// [`Mistake::LightPerVertex`] the first light's is the interpolated per-vertex light
+/// direction `vertex_light` re-normalised (`n` the fallback); else `l`.
+pub fn seen_light_direction(mistake: Mistake, i: usize, l: Vec3, vertex_light: Vec3, n: Vec3) -> Vec3 {
+    match (mistake, i) {
+        (Mistake::LightPerVertex, 0) => normalize_or(vertex_light, n),
+        _ => l,
+    }
+}
+
+/// The direction towards the eye light `i`'s highlight uses (`i` as in
+/// [`seen_light_direction`]), given the unit direction to the light `l` and the true one to
+/// the eye `v`: for [`Mistake::HalfVectorPerVertex`] the first light's is `l` mirrored about
+/// the interpolated per-vertex half vector `h` re-normalised, `h·2(h·l) − l`, so that
+/// `normalize(l + v)` is that half vector (`n` the fallback); else `v`.
+pub fn seen_view_direction(mistake: Mistake, i: usize, l: Vec3, v: Vec3, vertex_half: Vec3, n: Vec3) -> Vec3 {
+    match (mistake, i) {
+        (Mistake::HalfVectorPerVertex, 0) => {
+            let h = normalize_or(vertex_half, n);
+            h * (2.0 * h.dot(l)) - l
+        }
+        _ => v,
+    }
+}
+
+/// The world-space vectors ([`crate::shading::world_vectors`]) with the direction to each
+/// light that is on and to the eye as the lighting sees them ([`seen_light_direction`],
+/// [`seen_view_direction`]), light `k` of `lights` counted among those that are on. Applied
+/// before any lighting space takes the vectors (the mistakes are defined in world space).
+pub fn seen_vectors(
     mistake: Mistake,
-    light: Vec3,
-    eye: Vec3,
-    position: Vec3,
+    world: LightingVectors,
+    lights: &Lights,
     vertex_light: Vec3,
     vertex_half: Vec3,
-    n: Vec3,
-) -> (Vec3, Vec3) {
-    match mistake {
-        Mistake::LightPerVertex => {
-            let l = normalize_or(vertex_light, n);
-            (position + l * (light - position).length(), eye)
-        }
-        Mistake::HalfVectorPerVertex => {
-            let h = normalize_or(vertex_half, n);
-            let l = normalize_or(light - position, n);
-            let v = h * (2.0 * h.dot(l)) - l;
-            (light, position + v * (eye - position).length())
-        }
-        _ => (light, eye),
+) -> LightingVectors {
+    let n = world.geometric_normal;
+    let mut seen = world;
+    let on = lights.as_slice().iter().enumerate().filter(|(_, light)| light.enabled).map(|(k, _)| k);
+    for (i, k) in on.enumerate() {
+        let l = seen_light_direction(mistake, i, world.lights[k], vertex_light, n);
+        seen.lights[k] = l;
+        seen.views[k] = seen_view_direction(mistake, i, l, world.views[k], vertex_half, n);
     }
+    seen
 }
 
 #[cfg(test)]

@@ -7,6 +7,7 @@ pub mod args;
 mod bake;
 mod check;
 mod inputs;
+mod lights;
 mod methods;
 mod progress;
 mod render;

@@ -15,11 +15,11 @@ use bumpview::render::{Gpu, Renderer};
 use bumpview::state::interactive::InteractiveQuality;
 use bumpview::state::preset::{CapturePreset, Preset};
 use bumpview::state::{Command, SplitDifference, ViewerState};
-use glam::Vec3;
 
 use super::Failure;
 use super::args;
 use super::inputs::InputArgs;
+use super::lights::LightArgs;
 use super::methods::MethodArgs;
 use super::start::{Started, start};
 
@@ -67,9 +67,6 @@ pub struct RenderArgs {
     /// viewer's slider [default: 1].
     #[arg(long, value_parser = args::parse_finite, allow_hyphen_values = true)]
     strength: Option<f32>,
-    /// Light position X,Y,Z in metres (world space, +Y up).
-    #[arg(long, value_parser = args::parse_vec3, allow_hyphen_values = true)]
-    light: Option<Vec3>,
     /// Camera YAW,PITCH,DISTANCE: degrees about +Y (0 looks along −Z), degrees above the
     /// target (clamped to ±89), metres from it (positive; clamped to 0.05…500).
     #[arg(long, value_parser = args::parse_triple, allow_hyphen_values = true)]
@@ -115,7 +112,7 @@ pub struct RenderArgs {
     /// Split view, left │ right, as one image: bump (off │ on), view (lit │ shading-normal),
     /// strength (1 │ 3), mode (colour-only │ bump-colour), tangents (per-face │ mikktspace),
     /// convention (opengl │ directx), bump-source (normal-map │ height-in-shader), parallax
-    /// (steep │ occlusion) or mistake (none │ tbn-typo)
+    /// (steep │ occlusion), mistake (none │ tbn-typo) or lighting-space (world │ tangent)
     /// [default: the preset's].
     #[arg(long, value_name = "KIND", value_parser = args::named::<SplitDifference>(), conflicts_with = "tiles")]
     split: Option<SplitDifference>,
@@ -143,6 +140,8 @@ pub struct RenderArgs {
     #[arg(long)]
     strict: bool,
     #[command(flatten)]
+    lights: LightArgs,
+    #[command(flatten)]
     methods: MethodArgs,
     #[command(flatten)]
     inputs: InputArgs,
@@ -152,8 +151,8 @@ impl RenderArgs {
     /// The picture flags as the viewer's commands, in the order they apply. Values no command
     /// takes (a camera distance that is not positive, a divider outside the view) are bad
     /// arguments, as the README says; the others are clamped by the commands.
-    fn commands(&self) -> Result<Vec<Command>, Failure> {
-        let mut commands = Vec::new();
+    fn commands(&self, state: &ViewerState) -> Result<Vec<Command>, Failure> {
+        let mut commands = self.lights.commands(state.lights.as_slice())?;
         commands.extend(self.view.map(Command::SetView));
         commands.extend(self.bump.map(Command::SetBump));
         commands.extend(self.strength.map(Command::SetStrength));
@@ -177,7 +176,6 @@ impl RenderArgs {
         if self.glyphs {
             commands.push(Command::SetGlyphs(true));
         }
-        commands.extend(self.light.map(Command::SetLightPosition));
         if let Some([yaw, pitch, distance]) = self.camera {
             if distance <= 0.0 {
                 return Err(Failure::BadArguments(format!("--camera: distance {distance} must be positive")));
@@ -239,7 +237,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     if args.strict && unreadable > 0 {
         return Err(Failure::Failed(format!("--strict: the model opened without {unreadable} texture(s)")));
     }
-    for command in args.commands()? {
+    for command in args.commands(&state)? {
         state.apply(command);
     }
     let capture = args.capture(capture);

@@ -55,6 +55,6 @@ pub fn frame_scene(scene: &mut Scene) {
     let distance = points.filter(|p| p.is_finite()).map(needed).fold(radius * 0.1, f32::max);
     camera.distance = distance;
     scene.default_camera = camera;
-    scene.default_light = Light { position: center + radius * Vec3::new(-0.8, 1.2, 1.6), color: Vec3::ONE };
+    scene.default_light = Light::point(center + radius * Vec3::new(-0.8, 1.2, 1.6), Vec3::ONE);
     scene.ambient = Vec3::splat(AMBIENT);
 }

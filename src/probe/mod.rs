@@ -37,6 +37,7 @@ use crate::frame::{BumpKind, FrameParams, Parallax, SceneOptions};
 use crate::math::{normal_matrix, normalize_or};
 use crate::prepare::PreparedScene;
 use crate::scene::{OrbitCamera, SamplerWrap, Scene, TextureImage, Wrap};
+use crate::shading::spaces::triangle_inverse_tbn;
 use crate::shading::{NormalTexel, height_sample};
 use crate::tangent::TangentMethod;
 pub use pick::project_to_pixel;
@@ -293,7 +294,7 @@ impl ProbeScene {
             corners.iter().zip(b.to_array()).fold((Vec3::ZERO, Vec3::ZERO), |(l, h), (&i, weight)| {
                 let p = model.transform_point3(mesh.positions[i as usize]);
                 let n = normal_matrix.transform_vector3(mesh.normals[i as usize]);
-                let (vl, vh) = vertex_vectors(p, n, params.light.position, eye);
+                let (vl, vh) = vertex_vectors(p, n, params.lights.first_on(), eye);
                 (l + vl * weight, h + vh * weight)
             });
         // The emboss look's height neighbours at mip 0, where a height map is bound.
@@ -330,8 +331,15 @@ impl ProbeScene {
             vertex_light,
             vertex_half,
             emboss,
+            triangle_frame: corner_positions(mesh, corners, &model).map(|[p0, p1, p2]| {
+                // The triangle's frame from its edges: what the GPU gets from the pixel's
+                // screen-space derivatives (the same differences up to a 2×2 change of basis).
+                let uv = |k: usize| mesh.uvs[corners[k] as usize];
+                let normal = normalize_or(normal_matrix.transform_vector3(at(b)(&mesh.normals)), Vec3::Z) * facing;
+                triangle_inverse_tbn(p1 - p0, p2 - p0, uv(1) - uv(0), uv(2) - uv(0), normal)
+            }),
         };
-        let chain = shade(instance.bump, material, self.scene().ambient, &surface, params);
+        let chain = shade(instance.bump, material, &surface, params);
         let march = marched.map(|(m, height)| MarchReadout {
             view_tangent: chain.tangent.zip(chain.bitangent).map(|(t, b)| {
                 Vec3::new(chain.view_dir.dot(t), chain.view_dir.dot(b), chain.view_dir.dot(chain.normal))

@@ -3,7 +3,7 @@
 //! its view, mode and flag constants) to the Rust side.
 //!
 //! Group 0 is the frame ([`FRAME`]); group 1 is the drawn object and its material
-//! ([`MATERIAL`]), or the light marker's model matrix ([`MARKER_MODEL`]).
+//! ([`MATERIAL`]), or the light markers' centres and colours ([`MARKERS`]).
 
 /// What a slot holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -90,8 +90,8 @@ pub const MATERIAL: [Slot; 14] = [
     BUMP_CORRECTION_TEXTURE,
 ];
 
-/// Group 1 of the marker shader: the marker's model matrix.
-pub const MARKER_MODEL: Slot = slot(0, "marker_model", Resource::Uniform);
+/// Group 1 of the marker shader: each light's marker centre and colour.
+pub const MARKERS: Slot = slot(0, "markers", Resource::Uniform);
 
 impl Slot {
     /// The layout entry of this slot.
@@ -138,15 +138,15 @@ mod tests {
 
     use super::*;
     use crate::frame::{LegacyLook, LegacySettings, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Mistake, Parallax};
-    use crate::frame::{ShadingMode, ViewMode};
+    use crate::frame::{LightingSpace, ShadingMode, ViewMode};
     use crate::names::Named;
     use crate::render::pipelines::{MARKER_WGSL, MESH_WGSL};
     use crate::render::uniforms::{
         DEPTH_MAP, HAS_BUMP_CORRECTION, HAS_CLEARCOAT, HAS_CLEARCOAT_NORMAL, HAS_CLEARCOAT_ROUGHNESS_TEXTURE,
-        HAS_CLEARCOAT_TEXTURE, HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS, HAS_PARALLAX_HEIGHT,
-        PARALLAX_CLAMP_U, PARALLAX_CLAMP_V,
+        HAS_CLEARCOAT_TEXTURE, HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS, HAS_OCCLUSION_TEXTURE,
+        HAS_PARALLAX_HEIGHT, PARALLAX_CLAMP_U, PARALLAX_CLAMP_V,
     };
-    use crate::scene::{NormalConvention, ShadingModel};
+    use crate::scene::{NormalConvention, ShadingModel, SpecularMode};
 
     fn module(source: &str) -> naga::Module {
         naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)))
@@ -185,7 +185,7 @@ mod tests {
         let marker = wgsl_bindings(&module(MARKER_WGSL));
         let expected = BTreeMap::from([
             (FRAME.wgsl_name.to_owned(), (0, FRAME.binding)),
-            (MARKER_MODEL.wgsl_name.to_owned(), (1, MARKER_MODEL.binding)),
+            (MARKERS.wgsl_name.to_owned(), (1, MARKERS.binding)),
         ]);
         assert_eq!(marker, expected, "shaders/marker.wgsl against render::bindings");
         let numbers: Vec<u32> = MATERIAL.iter().map(|s| s.binding).collect();
@@ -211,6 +211,7 @@ mod tests {
         expected.insert("HAS_BUMP_CORRECTION".into(), HAS_BUMP_CORRECTION);
         expected.insert("DEPTH_MAP".into(), DEPTH_MAP);
         expected.insert("HAS_METALLIC_ROUGHNESS".into(), HAS_METALLIC_ROUGHNESS);
+        expected.insert("HAS_OCCLUSION_TEXTURE".into(), HAS_OCCLUSION_TEXTURE);
         expected.insert("HAS_GLOSS".into(), HAS_GLOSS);
         expected.insert("HAS_EMISSIVE_TEXTURE".into(), HAS_EMISSIVE_TEXTURE);
         expected.insert("HAS_CLEARCOAT".into(), HAS_CLEARCOAT);
@@ -236,17 +237,32 @@ mod tests {
         expected.insert("HAS_PARALLAX_HEIGHT".into(), HAS_PARALLAX_HEIGHT);
         expected.insert("PARALLAX_CLAMP_U".into(), PARALLAX_CLAMP_U);
         expected.insert("PARALLAX_CLAMP_V".into(), PARALLAX_CLAMP_V);
+        expected.insert("MAX_LIGHTS".into(), crate::scene::MAX_LIGHTS as u32);
+        for space in LightingSpace::all().iter().copied().filter(|&s| s != LightingSpace::default()) {
+            expected.insert(constant_name("LIGHTING_", space.name()), space.shader_index());
+        }
+        for mode in SpecularMode::all().iter().copied().filter(|&m| m != SpecularMode::default()) {
+            expected.insert(constant_name("SPECULAR_", mode.name()), mode.shader_index());
+        }
         assert_eq!(constants, expected, "u32 constants of shaders/mesh.wgsl against the Rust side");
     }
 
-    /// The parallax march's grazing floor is one number on both sides (shaders/parallax.wgsl,
-    /// chain::parallax).
+    /// The parallax march's grazing floor (shaders/parallax.wgsl, chain::parallax) and the
+    /// attenuation's bounds (shading::lights) are one number on both sides.
     #[test]
-    fn the_wgsl_grazing_floor_is_the_rust_one() {
+    fn the_wgsl_float_constants_are_the_rust_ones() {
         let module = module(MESH_WGSL);
-        let floor = module.constants.iter().map(|(_, c)| c).find(|c| c.name.as_deref() == Some("GRAZING_N_DOT_V"));
-        let value = floor.map(|c| &module.global_expressions[c.init]);
-        let expected = crate::chain::parallax::GRAZING_N_DOT_V;
-        assert!(matches!(value, Some(naga::Expression::Literal(naga::Literal::F32(v))) if *v == expected), "{value:?}");
+        for (name, expected) in [
+            ("GRAZING_N_DOT_V", crate::chain::parallax::GRAZING_N_DOT_V),
+            ("MIN_ATTENUATION_DENOMINATOR", crate::shading::lights::MIN_ATTENUATION_DENOMINATOR),
+            ("MAX_LIGHT_DISTANCE_M", crate::shading::lights::MAX_LIGHT_DISTANCE_M),
+            ("MIN_TBN_DETERMINANT", crate::shading::spaces::MIN_TBN_DETERMINANT),
+            ("MIN_UV_AREA_PER_M2", crate::shading::spaces::MIN_UV_AREA_PER_M2),
+        ] {
+            let constant = module.constants.iter().map(|(_, c)| c).find(|c| c.name.as_deref() == Some(name));
+            let value = constant.map(|c| &module.global_expressions[c.init]);
+            let literal = matches!(value, Some(naga::Expression::Literal(naga::Literal::F32(v))) if *v == expected);
+            assert!(literal, "{name}: {value:?}");
+        }
     }
 }

@@ -18,19 +18,21 @@ mod uniforms;
 
 use std::sync::Arc;
 
-use glam::Mat4;
+use bytemuck::Zeroable;
+use glam::Vec3;
 
 use crate::counters::WorkCounters;
 use crate::error::RenderError;
 use crate::frame::{
-    FrameParams, LegacySettings, Msaa, Parallax, SceneOptions, SceneUploads, ShadingSettings, SplitFrame, ViewMode,
+    FrameParams, LegacySettings, LightingSpace, Msaa, Parallax, SceneOptions, SceneUploads, ShadingSettings,
+    SplitFrame, ViewMode,
 };
-use crate::prepare::PreparedScene;
-use crate::scene::Scene;
+use crate::prepare::{PreparedScene, Variant};
+use crate::scene::{MAX_LIGHTS, Scene, ShadingModel};
 use crate::tangent::TangentMethod;
 pub use gpu::Gpu;
 use pipelines::{DEPTH_FORMAT, Pass, PipelineKey, Pipelines};
-use scene_gpu::GpuScene;
+use scene_gpu::{GpuScene, MarkerUniform};
 use uniforms::FrameUniform;
 
 /// Where to draw: a view of a 2D texture of `format`, `size` pixels.
@@ -438,12 +440,19 @@ impl Renderer {
             }
         }
         let aspect = target.size[0] as f32 / target.size[1] as f32;
-        let marker_model = Mat4::from_translation(params.light.position);
+        let mut markers = [MarkerUniform::zeroed(); MAX_LIGHTS];
+        for (i, (marker, light)) in markers.iter_mut().zip(params.lights.as_slice()).enumerate() {
+            let centre = params.marker_position(i);
+            *marker = MarkerUniform {
+                centre: centre.extend(1.0).to_array(),
+                color: light.color.clamp(Vec3::ZERO, Vec3::ONE).extend(1.0).to_array(),
+            };
+        }
         for (half, buffer) in halves.iter().zip([&self.frame_uniform, &self.split_uniform]) {
             let scene = self.scene_in(half.scene).ok_or(RenderError::NoScene)?;
             let frame = FrameParams { shading: half.shading, ..*params };
-            self.queue.write_buffer(buffer, 0, bytemuck::bytes_of(&FrameUniform::new(&frame, scene.ambient, aspect)));
-            self.queue.write_buffer(&scene.marker.model, 0, bytemuck::bytes_of(&marker_model.to_cols_array()));
+            self.queue.write_buffer(buffer, 0, bytemuck::bytes_of(&FrameUniform::new(&frame, aspect)));
+            self.queue.write_buffer(&scene.marker.lights, 0, bytemuck::bytes_of(&markers));
         }
 
         self.bind_legacy_textures(halves);
@@ -531,7 +540,9 @@ impl Renderer {
                 pass.set_bind_group(1, &marker.bind_group, &[]);
                 pass.set_vertex_buffer(0, marker.positions.slice(..));
                 pass.set_index_buffer(marker.indices.slice(..), wgpu::IndexFormat::Uint32);
-                pass.draw_indexed(0..marker.index_count, 0, 0..1);
+                for (i, _) in params.lights.as_slice().iter().enumerate().filter(|(_, light)| light.enabled) {
+                    pass.draw_indexed(0..marker.index_count, 0, i as u32..i as u32 + 1);
+                }
             }
         }
         drop(pass);
@@ -627,10 +638,10 @@ fn has_glyphs(instance: &scene_gpu::GpuInstance, scene: &GpuScene) -> bool {
 
 /// The pass an instance is drawn with in `shading`'s view: the Difference view has its own
 /// pass for meshes that have tangent frames; else the mesh pass specialised to the view, in a
-/// lit view to the shading model (the frame's override, else the material's) and, where a
-/// height map is bound for it, to the parallax technique.
+/// lit view to the shading model (the frame's override, else the material's), where a
+/// height map is bound for it, to the parallax technique, and to the material's features.
 fn drawn_pass(instance: &scene_gpu::GpuInstance, scene: &GpuScene, shading: &ShadingSettings) -> Pass {
-    let scene_gpu::GpuInstance { variant, cull_back_faces, mirrored, .. } = *instance;
+    let scene_gpu::GpuInstance { variant, cull_back_faces, mirrored, features, .. } = *instance;
     if shading.view == ViewMode::Difference && scene.prepared.meshes[instance.mesh].frames.is_some() {
         return Pass::Difference { variant, cull_back_faces, mirrored };
     }
@@ -638,5 +649,21 @@ fn drawn_pass(instance: &scene_gpu::GpuInstance, scene: &GpuScene, shading: &Sha
     let parallax = if instance.parallax_height { shading.parallax.technique } else { Parallax::Off };
     let legacy = if shading.view.is_lit() { shading.legacy } else { LegacySettings::default() };
     let (view, mistake) = (shading.view, shading.mistake);
-    Pass::Mesh { variant, cull_back_faces, mirrored, view, lighting, parallax, mistake, legacy }
+    // As chain::shade decides: the classic model on tangent-space normal-mapped surfaces.
+    let lighting_space = match (variant, lighting) {
+        (Variant::NormalMapped, Some(ShadingModel::BlinnPhong)) => shading.lighting_space,
+        _ => LightingSpace::World,
+    };
+    Pass::Mesh {
+        variant,
+        cull_back_faces,
+        mirrored,
+        view,
+        lighting,
+        parallax,
+        mistake,
+        legacy,
+        lighting_space,
+        features,
+    }
 }

@@ -7,19 +7,21 @@ use std::collections::HashMap;
 
 use super::bindings;
 use crate::counters::WorkCounters;
-use crate::frame::{LegacyLook, LegacySettings, Mistake, Parallax, ViewMode};
+use crate::frame::{LegacyLook, LegacySettings, LightingSpace, Mistake, Parallax, ViewMode};
 use crate::prepare::Variant;
 use crate::scene::ShadingModel;
 
 /// Shader sources, embedded at build time; frame.wgsl is the shared Frame uniform, pbr.wgsl
 /// the metallic-roughness shading the mesh shader calls, parallax.wgsl the parallax family,
-/// mistakes.wgsl the classic mistakes, legacy.wgsl the legacy looks.
+/// lights.wgsl the lights and the classic model's lighting spaces, mistakes.wgsl the classic
+/// mistakes, legacy.wgsl the legacy looks.
 pub const MESH_WGSL: &str = concat!(
     include_str!("../../shaders/frame.wgsl"),
     include_str!("../../shaders/pbr.wgsl"),
     include_str!("../../shaders/parallax.wgsl"),
     include_str!("../../shaders/mistakes.wgsl"),
     include_str!("../../shaders/legacy.wgsl"),
+    include_str!("../../shaders/lights.wgsl"),
     include_str!("../../shaders/mesh.wgsl")
 );
 pub const MARKER_WGSL: &str =
@@ -52,6 +54,15 @@ pub enum Pass {
         mistake: Mistake,
         /// The legacy look of a lit view (the `LEGACY` constant); off in the other views.
         legacy: LegacySettings,
+        /// The classic model's lighting space (the `LIGHTING_SPACE` constant; tangent space
+        /// has its own fragment stage); [`LightingSpace::World`] except for normal-mapped
+        /// variants in lit views with the classic model.
+        lighting_space: LightingSpace,
+        /// The optional textures and lobes the material has (the `MATERIAL_FEATURES` constant,
+        /// [`super::uniforms::MATERIAL_FEATURES`] bits): the code of the others is left out.
+        /// On lavapipe that is what saves their cost, as it runs both sides of a branch on a
+        /// uniform, texture samples included.
+        features: u32,
     },
     /// The Difference view of a mesh with a tangent stream: it adds the reference stream
     /// and binds the same group-1 layout as `variant`.
@@ -102,7 +113,7 @@ impl Layouts {
             frame: layout("frame", &bindings::FRAME_GROUP),
             plain_material: layout("plain material", &plain),
             normal_mapped_material: layout("normal-mapped material", &bindings::MATERIAL),
-            marker: layout("light marker", &[bindings::MARKER_MODEL]),
+            marker: layout("light marker", &[bindings::MARKERS]),
         }
     }
 
@@ -196,8 +207,22 @@ impl Pipelines {
         };
         let (module, group1, vs, fs, buffers, cull_mode, constants): (_, _, _, _, &[_], _, Vec<(&str, f64)>) =
             match key.pass {
-                Pass::Mesh { variant, cull_back_faces, view, lighting, parallax, mistake, legacy, .. } => {
+                Pass::Mesh {
+                    variant,
+                    cull_back_faces,
+                    view,
+                    lighting,
+                    parallax,
+                    mistake,
+                    legacy,
+                    lighting_space,
+                    features,
+                    ..
+                } => {
                     let (vs, fs, buffers): (_, _, &[_]) = match variant {
+                        Variant::NormalMapped if lighting_space == LightingSpace::Tangent => {
+                            ("vs_tangent", "fs_normal_mapped_tangent_space", &[POSITION, NORMAL, UV, TANGENT])
+                        }
                         Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
                         Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
                         Variant::NormalMapped => ("vs_tangent", "fs_normal_mapped", &[POSITION, NORMAL, UV, TANGENT]),
@@ -205,7 +230,11 @@ impl Pipelines {
                         Variant::HeightBump => ("vs_plain", "fs_height_bump", &[POSITION, NORMAL, UV]),
                     };
                     let cull = cull_back_faces.then_some(wgpu::Face::Back);
-                    let mut constants = vec![encodes_srgb, ("VIEW", f64::from(view.shader_index()))];
+                    let mut constants = vec![
+                        encodes_srgb,
+                        ("VIEW", f64::from(view.shader_index())),
+                        ("MATERIAL_FEATURES", f64::from(features)),
+                    ];
                     constants.extend(lighting.map(|model| ("SHADING_MODEL", f64::from(model.shader_index()))));
                     if parallax != Parallax::Off {
                         constants.push(("PARALLAX", f64::from(parallax.shader_index())));
@@ -215,6 +244,9 @@ impl Pipelines {
                     }
                     if legacy.look != LegacyLook::Off {
                         constants.push(("LEGACY", f64::from(legacy.shader_index())));
+                    }
+                    if lighting_space != LightingSpace::World {
+                        constants.push(("LIGHTING_SPACE", f64::from(lighting_space.shader_index())));
                     }
                     (&self.mesh_module, self.layouts.material(variant), vs, fs, buffers, cull, constants)
                 }
@@ -322,6 +354,7 @@ mod tests {
                     "fs_plain",
                     "fs_tangent",
                     "fs_normal_mapped",
+                    "fs_normal_mapped_tangent_space",
                     "fs_object_space",
                     "fs_height_bump",
                     "vs_difference",
@@ -347,6 +380,18 @@ mod tests {
         }
         let mesh = naga::front::wgsl::parse_str(MESH_WGSL).expect("parsed above");
         let overrides: Vec<_> = mesh.overrides.iter().filter_map(|(_, o)| o.name.as_deref()).collect();
-        assert_eq!(overrides, ["PARALLAX", "MISTAKE", "LEGACY", "SHADING_MODEL", "TARGET_ENCODES_SRGB", "VIEW"]);
+        assert_eq!(
+            overrides,
+            [
+                "MISTAKE",
+                "PARALLAX",
+                "LEGACY",
+                "MATERIAL_FEATURES",
+                "SHADING_MODEL",
+                "LIGHTING_SPACE",
+                "TARGET_ENCODES_SRGB",
+                "VIEW"
+            ]
+        );
     }
 }

@@ -13,7 +13,7 @@ use super::pipelines::Layouts;
 use super::uniforms::ObjectUniform;
 use crate::counters::WorkCounters;
 use crate::prepare::{PreparedMesh, PreparedScene, Variant};
-use crate::scene::{SamplerWrap, ShadingModel, TextureImage, TextureKind, Wrap};
+use crate::scene::{MAX_LIGHTS, SamplerWrap, ShadingModel, TextureImage, TextureKind, Wrap};
 use crate::tangent;
 
 pub struct GpuMesh {
@@ -41,16 +41,31 @@ pub struct GpuInstance {
     /// A height map is bound for the parallax family (a normal-mapped instance of a material
     /// with a height map, uploaded with [`crate::frame::SceneOptions::parallax`]).
     pub parallax_height: bool,
+    /// The optional textures and lobes its material has ([`super::uniforms::MATERIAL_FEATURES`]
+    /// bits of the object uniform's flags), which its mesh pipelines are specialised to.
+    pub features: u32,
     pub bind_group: wgpu::BindGroup,
 }
 
-/// The light marker: an octahedron whose model matrix follows the light.
+/// The light markers: an octahedron drawn once per light that is on, at its centre in its
+/// colour ([`MarkerUniform`]).
 pub struct GpuMarker {
     pub positions: wgpu::Buffer,
     pub indices: wgpu::Buffer,
     pub index_count: u32,
-    pub model: wgpu::Buffer,
+    /// `[MarkerUniform; MAX_LIGHTS]`, by the frame's light index.
+    pub lights: wgpu::Buffer,
     pub bind_group: wgpu::BindGroup,
+}
+
+/// WGSL `Marker` (shaders/marker.wgsl): one light's marker.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct MarkerUniform {
+    /// World space, metres ([`crate::frame::FrameParams::marker_position`]); w unused.
+    pub centre: [f32; 4],
+    /// The light's colour with each channel at most 1; a unused.
+    pub color: [f32; 4],
 }
 
 pub struct GpuScene {
@@ -59,7 +74,6 @@ pub struct GpuScene {
     pub meshes: Vec<GpuMesh>,
     pub instances: Vec<GpuInstance>,
     pub marker: GpuMarker,
-    pub ambient: Vec3,
     /// What was uploaded: kept for what is made on first use (reference frames, glyphs), and
     /// for the probe of the picture drawn from it.
     pub prepared: Arc<PreparedScene>,
@@ -226,8 +240,8 @@ pub fn upload(
         .iter()
         .map(|instance| {
             let material = &scene.materials[instance.material];
-            let uniform =
-                buffer(device, "object", &[ObjectUniform::new(instance, material)], wgpu::BufferUsages::UNIFORM);
+            let object = ObjectUniform::new(instance, material);
+            let uniform = buffer(device, "object", &[object], wgpu::BufferUsages::UNIFORM);
             let slots = &instance.textures;
             let base_color = match slots.base_color {
                 Some(t) => textures.get(&prepared, t, counters),
@@ -287,32 +301,33 @@ pub fn upload(
                 mirrored: instance.mirrored(),
                 shading_model: material.shading_model,
                 parallax_height: instance.textures.height.is_some(),
+                features: object.features(),
                 bind_group,
             }
         })
         .collect();
 
     let (positions, indices) = octahedron();
-    let model = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("light marker model"),
-        size: 64,
+    let lights = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("light markers"),
+        size: std::mem::size_of::<[MarkerUniform; MAX_LIGHTS]>() as u64,
         usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
     let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("light marker"),
         layout: &layouts.marker,
-        entries: &[bindings::MARKER_MODEL.entry(model.as_entire_binding())],
+        entries: &[bindings::MARKERS.entry(lights.as_entire_binding())],
     });
     let marker = GpuMarker {
         positions: buffer(device, "marker positions", &positions, wgpu::BufferUsages::VERTEX),
         indices: buffer(device, "marker indices", &indices, wgpu::BufferUsages::INDEX),
         index_count: indices.len() as u32,
-        model,
+        lights,
         bind_group,
     };
     let notices = prepared.notices.iter().cloned().chain(textures.notices).collect();
-    GpuScene { meshes, instances, marker, ambient: scene.ambient, notices, prepared }
+    GpuScene { meshes, instances, marker, notices, prepared }
 }
 
 /// Uploads a prepared mesh's streams (already repaired and one entry per vertex).

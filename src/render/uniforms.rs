@@ -1,13 +1,40 @@
 //! Uniform blocks, laid out exactly as the WGSL structs in `shaders/frame.wgsl` and `shaders/mesh.wgsl`.
 
 use bytemuck::{Pod, Zeroable};
-use glam::Vec3;
 
 use crate::frame::FrameParams;
 use crate::math::normal_matrix;
 use crate::prepare::PreparedInstance;
-use crate::scene::{Clearcoat, Material, Wrap};
+use crate::scene::{Clearcoat, Light, LightKind, MAX_LIGHTS, Material, Wrap};
 use crate::shading::SELF_SHADOW_FADE;
+
+/// WGSL `Light`: one light that is on.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+pub struct LightUniform {
+    /// xyz: a point light's position (w = 1) or a directional light's direction towards the
+    /// light (w = 0), world space.
+    position: [f32; 4],
+    /// rgb: colour × intensity, linear.
+    radiance: [f32; 4],
+    /// The attenuation coefficients c, l, q; unused.
+    attenuation: [f32; 4],
+}
+
+impl LightUniform {
+    fn new(light: &Light) -> Self {
+        let w = match light.kind {
+            LightKind::Point => 1.0,
+            LightKind::Directional => 0.0,
+        };
+        let [c, l, q] = light.attenuation.to_array();
+        LightUniform {
+            position: light.position.extend(w).to_array(),
+            radiance: (light.color * light.intensity).extend(1.0).to_array(),
+            attenuation: [c, l, q, 0.0],
+        }
+    }
+}
 
 /// WGSL `Frame`.
 #[repr(C)]
@@ -15,8 +42,9 @@ use crate::shading::SELF_SHADOW_FADE;
 pub struct FrameUniform {
     view_proj: [[f32; 4]; 4],
     camera_pos: [f32; 4],
-    light_pos: [f32; 4],
-    light_color: [f32; 4],
+    /// The lights that are on, in order, the first `light_count` used.
+    lights: [LightUniform; MAX_LIGHTS],
+    /// Colour × strength, linear.
     ambient: [f32; 4],
     strength: f32,
     bump_enabled: u32,
@@ -28,19 +56,31 @@ pub struct FrameUniform {
     parallax_layers_max: u32,
     parallax_steps: u32,
     parallax_depth_m: f32,
-    /// The WGSL struct's size is a multiple of 16 bytes.
-    _padding: [f32; 2],
+    light_count: u32,
+    specular_mode: u32,
+    /// The shininess for every material; negative: each material's own.
+    shininess: f32,
+    /// WGSL aligns `view_rotation` (a mat3x3, columns of vec4) to 16 bytes.
+    _padding: [f32; 3],
+    /// World → view space rotation (columns; w unused), for view-space lighting.
+    view_rotation: [[f32; 4]; 3],
 }
 
 impl FrameUniform {
-    pub fn new(params: &FrameParams, ambient: Vec3, aspect: f32) -> Self {
+    pub fn new(params: &FrameParams, aspect: f32) -> Self {
         let parallax = params.shading.parallax;
+        let mut lights = [LightUniform::zeroed(); MAX_LIGHTS];
+        let on = params.lights.as_slice().iter().filter(|light| light.enabled);
+        let mut light_count = 0;
+        for (slot, light) in lights.iter_mut().zip(on) {
+            *slot = LightUniform::new(light);
+            light_count += 1;
+        }
         FrameUniform {
             view_proj: params.camera.view_projection(aspect).to_cols_array_2d(),
             camera_pos: params.camera.eye().extend(1.0).to_array(),
-            light_pos: params.light.position.extend(1.0).to_array(),
-            light_color: params.light.color.extend(1.0).to_array(),
-            ambient: ambient.extend(1.0).to_array(),
+            lights,
+            ambient: params.lights.ambient().extend(1.0).to_array(),
             strength: params.shading.strength,
             bump_enabled: params.shading.bump_enabled as u32,
             self_shadow_fade: SELF_SHADOW_FADE,
@@ -51,7 +91,11 @@ impl FrameUniform {
             parallax_layers_max: parallax.layers_max,
             parallax_steps: parallax.steps,
             parallax_depth_m: parallax.depth_m.map_or(-1.0, |d| d.max(0.0)),
-            _padding: [0.0; 2],
+            light_count,
+            specular_mode: params.shading.specular.shader_index(),
+            shininess: params.shading.shininess.map_or(-1.0, |s| s.max(1.0)),
+            _padding: [0.0; 3],
+            view_rotation: params.camera.view_rotation().to_cols_array_2d().map(|c| [c[0], c[1], c[2], 0.0]),
         }
     }
 }
@@ -102,9 +146,25 @@ pub(crate) const HAS_PARALLAX_HEIGHT: u32 = 2048;
 /// Bits of `flags`: the height map's sampler clamps u, v; marched coordinates stay in 0..1.
 pub(crate) const PARALLAX_CLAMP_U: u32 = 4096;
 pub(crate) const PARALLAX_CLAMP_V: u32 = 8192;
-/// Bit of `flags`: binding 13 holds X-Ray's `bump#` correction texture (bits 14 and 15 are
+/// Bit of `flags`: binding 6 holds the material's occlusion texture.
+pub(crate) const HAS_OCCLUSION_TEXTURE: u32 = 16384;
+/// Bit of `flags`: binding 13 holds X-Ray's `bump#` correction texture (bits 15 and 16 are
 /// [`crate::scene::NormalConvention`]'s layouts).
-pub(crate) const HAS_BUMP_CORRECTION: u32 = 1 << 16;
+pub(crate) const HAS_BUMP_CORRECTION: u32 = 1 << 17;
+
+/// The bits of `flags` that say which optional textures and lobes a material has: the mesh
+/// pipelines are specialised to them ([`super::pipelines::Pass::Mesh`]'s `features`, the
+/// `MATERIAL_FEATURES` constant), so a pipeline compiles no code for what its material lacks.
+/// The other bits (conventions, parallax clamps) stay uniforms.
+pub(crate) const MATERIAL_FEATURES: u32 = HAS_METALLIC_ROUGHNESS
+    | HAS_OCCLUSION_TEXTURE
+    | HAS_GLOSS
+    | HAS_EMISSIVE_TEXTURE
+    | HAS_CLEARCOAT
+    | HAS_CLEARCOAT_TEXTURE
+    | HAS_CLEARCOAT_ROUGHNESS_TEXTURE
+    | HAS_CLEARCOAT_NORMAL
+    | HAS_BUMP_CORRECTION;
 
 impl ObjectUniform {
     /// Normals go through the inverse-transpose of the model matrix; tangent `w` is
@@ -127,6 +187,7 @@ impl ObjectUniform {
             flags: material.normal_map.as_ref().map_or(0, |n| n.convention.flags())
                 | if material.height_map.as_ref().is_some_and(|h| h.depth) { DEPTH_MAP } else { 0 }
                 | if material.metallic_roughness_texture.is_some() { HAS_METALLIC_ROUGHNESS } else { 0 }
+                | bit(slots.occlusion.is_some(), HAS_OCCLUSION_TEXTURE)
                 | if material.gloss_texture.is_some() { HAS_GLOSS } else { 0 }
                 | bit(slots.emissive.is_some(), HAS_EMISSIVE_TEXTURE)
                 | bit(coat.is_some(), HAS_CLEARCOAT)
@@ -146,5 +207,10 @@ impl ObjectUniform {
                 .map_or([0.0; 4], |c| [c.factor, c.roughness, c.normal_map.as_ref().map_or(1.0, |m| m.scale), 0.0]),
             clearcoat_uv: coat_uv,
         }
+    }
+
+    /// The [`MATERIAL_FEATURES`] bits of `flags`: what the instance's pipeline is specialised to.
+    pub fn features(&self) -> u32 {
+        self.flags & MATERIAL_FEATURES
     }
 }

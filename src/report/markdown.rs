@@ -7,6 +7,7 @@ use super::convergence::{NOISE_FLOOR_DEGREES, Order};
 use super::cube_map::CubeMapRow;
 use super::measure::{Row, Study, Vector};
 use super::roundtrip::{Agreement, RoundTrip};
+use super::spaces::SpaceRow;
 use super::stiff::StabilityRow;
 use super::surfaces::{POLE_DEGREES, Region};
 use super::{LARGE_PLANE, LARGE_TORUS, MIKKTSPACE_SANITY_SPHERE, Machine, Plan};
@@ -34,6 +35,8 @@ pub struct Page<'a> {
     pub agreements: &'a [Agreement],
     /// DOT3's normalization cube maps against exact normalisation, per face size.
     pub cube_maps: &'a [CubeMapRow],
+    /// Tangent- and view-space lighting against world space per surface of the built-in scene.
+    pub lighting_spaces: &'a [SpaceRow],
 }
 
 /// Degrees with three significant digits (scientific below 10⁻⁴).
@@ -248,6 +251,7 @@ pub fn render(page: &Page) -> String {
     speed(page, &mut out);
     round_trips(page, &mut out);
     cube_maps(page, &mut out);
+    lighting_spaces(page, &mut out);
     orders(page, &mut out);
     stability(page, &mut out);
     tables(page, &mut out);
@@ -319,6 +323,36 @@ fn speed(page: &Page, out: &mut String) {
 }
 
 /// Heights → normals → heights (`bumpview bake --to-height`).
+/// Tangent- and view-space lighting against world space, per surface.
+fn lighting_spaces(page: &Page, out: &mut String) {
+    out.push_str(
+        "## Lighting spaces\n\n\
+         The built-in scene from its default camera and light, the classic model, the brick map at strength 1, \
+         MikkTSpace frames; three points per triangle, the normal map's nearest texel (the CPU chain, which the \
+         GPU matches: tests/lighting_spaces.rs). Tangent space (seed 003): light and view vectors through the \
+         inverse of each triangle's frame (T = ∂P/∂u, B = −∂P/∂v, N the face normal). View space (seed 000): the world vectors rotated by the \
+         camera. Angle: between the light direction a space lights with and the exact one in the pixel's frame \
+         (for the diffuse term, the angle between that space's shading normal and world space's). ΔRGB: the \
+         largest channel difference from world space, 8-bit sRGB steps.\n\n\
+         | surface | space | points | angle mean | angle max | ΔRGB mean | ΔRGB max |\n\
+         | --- | --- | --- | --- | --- | --- | --- |\n",
+    );
+    for row in page.lighting_spaces {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {:.3}° | {:.3}° | {:.3} | {:.2} |",
+            row.surface,
+            row.space.name(),
+            row.points,
+            row.mean_angle_deg,
+            row.max_angle_deg,
+            row.mean_delta,
+            row.max_delta
+        );
+    }
+    out.push('\n');
+}
+
 fn round_trips(page: &Page, out: &mut String) {
     let Some(first) = page.round_trips.first() else { return };
     let side = (first.texels as f64).sqrt().round();

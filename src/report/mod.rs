@@ -12,6 +12,7 @@ pub mod cube_map;
 mod markdown;
 pub mod measure;
 pub mod roundtrip;
+pub mod spaces;
 pub mod stiff;
 pub mod surfaces;
 pub mod timing;
@@ -264,6 +265,7 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
         round_trips: &round_trips,
         agreements: &agreements,
         cube_maps: &cube_maps,
+        lighting_spaces: &spaces::space_rows(&crate::scene::builtin::teaching_scene()),
     };
     let files = [
         (MARKDOWN, markdown::render(&page).into_bytes()),

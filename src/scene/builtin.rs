@@ -122,7 +122,7 @@ pub fn default_camera() -> OrbitCamera {
 }
 
 pub fn default_light() -> Light {
-    Light { position: Vec3::new(-0.8, 2.0, 1.2), color: Vec3::ONE }
+    Light::point(Vec3::new(-0.8, 2.0, 1.2), Vec3::ONE)
 }
 
 /// Builds the whole scene with the brick normal map made by the central-difference kernel

@@ -34,6 +34,11 @@ impl OrbitCamera {
         look_at_mat4(self.eye(), self.target, Vec3::Y)
     }
 
+    /// The rotation part of [`Self::view`]: world → view space directions.
+    pub fn view_rotation(&self) -> glam::Mat3 {
+        glam::Mat3::from_mat4(self.view())
+    }
+
     /// Right-handed perspective projection with wgpu's NDC: depth 0..1, Y up.
     pub fn projection(&self, aspect: f32) -> Mat4 {
         directx::perspective(self.fov_y, aspect.max(1e-6), NEAR_PLANE, FAR_PLANE)

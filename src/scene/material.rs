@@ -97,9 +97,9 @@ impl NormalConvention {
     /// Bit of [`NormalConvention::flags`]: object-space map.
     pub const OBJECT_SPACE: u32 = 4;
     /// Bit of [`NormalConvention::flags`]: the AG (DXT5nm) layout.
-    pub const LAYOUT_AG: u32 = 1 << 14;
+    pub const LAYOUT_AG: u32 = 1 << 15;
     /// Bit of [`NormalConvention::flags`]: the X-Ray pair layout.
-    pub const LAYOUT_XRAY: u32 = 1 << 15;
+    pub const LAYOUT_XRAY: u32 = 1 << 16;
 
     /// The convention bits of the shader's `object.flags`.
     pub fn flags(self) -> u32 {

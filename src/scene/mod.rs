@@ -4,6 +4,7 @@
 pub mod bricks;
 pub mod builtin;
 pub mod camera;
+pub mod light;
 pub mod material;
 pub mod overrides;
 
@@ -12,6 +13,7 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 use crate::error::LoadWarning;
 
 pub use camera::OrbitCamera;
+pub use light::{Attenuation, Light, LightKind, Lights, LightsError, MAX_LIGHTS, SpecularMode};
 pub use material::{
     Clearcoat, GreenAxis, HeightMap, Material, NormalConvention, NormalLayout, NormalMap, NormalSpace, Occlusion,
     SamplerWrap, ShadingModel, Wrap,
@@ -48,15 +50,6 @@ pub struct Instance {
     pub transform: Mat4,
 }
 
-/// A point light without distance falloff (the classic lecture model): radiance `color`
-/// arrives from `position` (world space, metres).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Light {
-    pub position: Vec3,
-    /// Linear RGB.
-    pub color: Vec3,
-}
-
 /// Everything the renderer draws.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
@@ -67,7 +60,7 @@ pub struct Scene {
     /// Linear RGB ambient light, multiplied by the albedo (Blinn-Phong; metallic-roughness
     /// materials take their ambient light from the procedural sky instead).
     pub ambient: Vec3,
-    /// The light a new view starts with.
+    /// The light a new view starts with (alone: see [`Scene::default_lights`]).
     pub default_light: Light,
     /// The camera a new view starts with and that "reset camera" returns to.
     pub default_camera: OrbitCamera,
@@ -76,6 +69,13 @@ pub struct Scene {
     pub files: Vec<std::path::PathBuf>,
     /// What the loader could not read or honour (the scene opened without it).
     pub warnings: Vec<LoadWarning>,
+}
+
+impl Scene {
+    /// The lights a new view starts with: the default light alone, with the scene's ambient.
+    pub fn default_lights(&self) -> Lights {
+        Lights::one(self.default_light, self.ambient)
+    }
 }
 
 impl Mesh {

@@ -1,17 +1,19 @@
-//! glTF 2.0 metallic-roughness shading (the BRDF of the glTF spec, appendix B) with the point
+//! glTF 2.0 metallic-roughness shading (the BRDF of the glTF spec, appendix B) with every
 //! light and a procedural sky for image-based reflections; CPU twin of `shaders/pbr.wgsl`.
 //!
-//! Units: the point light's `color` is treated as the irradiance `E/π` of a surface facing
-//! it, so a white Lambertian surface lit head-on shows `color`, as in the Blinn-Phong model.
+//! Units: a light's radiance ([`super::lights::incident`]) is treated as the irradiance `E/π`
+//! of a surface facing it, so a white Lambertian surface lit head-on shows it, as in the
+//! Blinn-Phong model. The frame's ambient light is not used: the sky is the ambient light.
 //! The sky is radiance (linear RGB) by direction, world space.
 
 use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
-use super::SELF_SHADOW_FADE;
+use super::lights::incident;
+use super::{LightingVectors, SELF_SHADOW_FADE};
 use crate::math::{normalize_or, smoothstep};
-use crate::scene::Light;
+use crate::scene::{Light, Lights};
 
 /// Sky radiance straight up.
 pub const SKY_ZENITH: Vec3 = Vec3::new(0.12, 0.22, 0.45);
@@ -96,7 +98,12 @@ pub struct PbrInputs {
     /// Point position, metres.
     pub position: Vec3,
     pub eye: Vec3,
-    pub light: Light,
+    /// Every light (switched-off ones bring nothing); their ambient light is not used.
+    pub lights: Lights,
+    /// The world-space directions to each light and to the eye as the lighting sees them
+    /// ([`super::world_vectors`], where the chain's per-vertex mistakes may replace the first
+    /// light's); `None`: the true ones.
+    pub seen: Option<LightingVectors>,
     /// The clear-coat layer over the base, if any.
     pub clearcoat: Option<ClearcoatInputs>,
 }
@@ -115,17 +122,56 @@ pub struct ClearcoatInputs {
 /// Reflectance of the clear coat at normal incidence (index of refraction 1.5).
 pub const CLEARCOAT_F0: f32 = 0.04;
 
-/// Outgoing linear radiance: the point light through the glTF BRDF
-/// `π · ((1 − F) · c_diff/π + F · D · V) · light · max(n·l, 0)`, faded by the same geometric
-/// self-shadow as Blinn-Phong, plus the sky: `occlusion · (c_diff · sky_average(n) +
-/// reflected_sky(r, roughness) · (F0 · A + B))` with `(A, B)` from [`environment_brdf`].
-/// A clear coat (`KHR_materials_clearcoat`) adds its own highlight and sky reflection with its
-/// roughness and normal, F0 = 0.04, and dims the base by `1 − factor · F(N_c·V)`.
+/// Outgoing linear radiance: every light that is on through the glTF BRDF ([`pbr_light`]),
+/// plus the sky: `occlusion · (c_diff · sky_average(n) + reflected_sky(r, roughness) · (F0 · A +
+/// B))` with `(A, B)` from [`environment_brdf`]. A clear coat (`KHR_materials_clearcoat`)
+/// adds its own highlights and sky reflection with its roughness and normal, F0 = 0.04, and
+/// dims the base by `1 − factor · F(N_c·V)`.
 pub fn metallic_roughness(p: &PbrInputs) -> Vec3 {
+    let n = p.shading_normal;
+    let v = normalize_or(p.eye - p.position, p.geometric_normal);
+    let lit = p.lights.as_slice().iter().enumerate().filter(|(_, light)| light.enabled);
+    let terms = lit.map(|(k, light)| {
+        let (l, v) = match &p.seen {
+            Some(seen) => (seen.lights[k], seen.views[k]),
+            None => (incident(light, p.position, p.geometric_normal).direction, v),
+        };
+        pbr_light(p, light, l, v)
+    });
+    let (direct, coat_direct) = terms.fold((Vec3::ZERO, Vec3::ZERO), |(a, b), (c, d)| (a + c, b + d));
+    let roughness = p.roughness.clamp(MIN_ROUGHNESS, 1.0);
+    let metallic = p.metallic.clamp(0.0, 1.0);
+    let c_diff = p.base_color.lerp(Vec3::ZERO, metallic);
+    let f0 = Vec3::splat(0.04).lerp(p.base_color, metallic);
+    let n_dot_v = n.dot(v).max(1e-4);
+    let r = normalize_or(2.0 * n.dot(v) * n - v, n);
+    let ab = environment_brdf(n_dot_v, roughness);
+    let ambient = c_diff * sky_average(n) + reflected_sky(r, roughness) * (f0 * ab.x + ab.y);
+    let occlusion = p.occlusion.clamp(0.0, 1.0);
+    let base = direct + occlusion * ambient;
+    let Some(coat) = p.clearcoat else { return base };
+    // The layer as the Khronos sample viewer shades it: its own GGX highlights and sky
+    // reflection, over the base dimmed by what the layer reflects towards the eye.
+    let nc = coat.normal;
+    let roughness = coat.roughness.clamp(MIN_ROUGHNESS, 1.0);
+    let nc_dot_v = nc.dot(v).max(1e-4);
+    let f0 = Vec3::splat(CLEARCOAT_F0);
+    let rc = normalize_or(2.0 * nc.dot(v) * nc - v, nc);
+    let ab = environment_brdf(nc_dot_v, roughness);
+    let coat_sky = reflected_sky(rc, roughness) * (CLEARCOAT_F0 * ab.x + ab.y);
+    let through = fresnel_schlick(f0, nc_dot_v);
+    base * (Vec3::ONE - coat.factor * through) + coat.factor * (coat_direct + occlusion * coat_sky)
+}
+
+/// What one light adds through the glTF BRDF, `(base, clear coat)`:
+/// `π · ((1 − F) · c_diff/π + F · D · V) · radiance · max(n·l, 0)` faded by the same
+/// geometric self-shadow as Blinn-Phong, and the coat's `π · F_c · D_c · V_c · radiance ·
+/// max(n_c·l, 0)` with the same fade (zero without a coat); `l` and `v` are the unit
+/// directions to the light and to the eye the lighting sees ([`PbrInputs::seen`]).
+pub fn pbr_light(p: &PbrInputs, light: &Light, l: Vec3, v: Vec3) -> (Vec3, Vec3) {
     let n_geo = p.geometric_normal;
     let n = p.shading_normal;
-    let l = normalize_or(p.light.position - p.position, n_geo);
-    let v = normalize_or(p.eye - p.position, n_geo);
+    let incident = incident(light, p.position, n_geo);
     let h = normalize_or(l + v, n_geo);
     let roughness = p.roughness.clamp(MIN_ROUGHNESS, 1.0);
     let alpha = roughness * roughness;
@@ -139,30 +185,17 @@ pub fn metallic_roughness(p: &PbrInputs) -> Vec3 {
     let specular = fresnel * ggx_distribution(n_dot_h, alpha) * smith_visibility(n_dot_l, n_dot_v, alpha);
     let diffuse = (Vec3::ONE - fresnel) * c_diff / PI;
     let self_shadow = smoothstep(0.0, SELF_SHADOW_FADE, n_geo.dot(l));
-    let direct = PI * (diffuse + specular) * p.light.color * n_dot_l * self_shadow;
-    let r = normalize_or(2.0 * n.dot(v) * n - v, n);
-    let ab = environment_brdf(n_dot_v, roughness);
-    let ambient = c_diff * sky_average(n) + reflected_sky(r, roughness) * (f0 * ab.x + ab.y);
-    let occlusion = p.occlusion.clamp(0.0, 1.0);
-    let base = direct + occlusion * ambient;
-    let Some(coat) = p.clearcoat else { return base };
-    // The layer as the Khronos sample viewer shades it: its own GGX highlight and sky
-    // reflection, over the base dimmed by what the layer reflects towards the eye.
+    let direct = PI * (diffuse + specular) * incident.radiance * n_dot_l * self_shadow;
+    let Some(coat) = p.clearcoat else { return (direct, Vec3::ZERO) };
     let nc = coat.normal;
     let roughness = coat.roughness.clamp(MIN_ROUGHNESS, 1.0);
     let alpha = roughness * roughness;
     let nc_dot_l = nc.dot(l).max(0.0);
     let nc_dot_v = nc.dot(v).max(1e-4);
-    let f0 = Vec3::splat(CLEARCOAT_F0);
-    let highlight = fresnel_schlick(f0, v.dot(h))
+    let highlight = fresnel_schlick(Vec3::splat(CLEARCOAT_F0), v.dot(h))
         * ggx_distribution(nc.dot(h).max(0.0), alpha)
         * smith_visibility(nc_dot_l, nc_dot_v, alpha);
-    let coat_direct = PI * highlight * p.light.color * nc_dot_l * self_shadow;
-    let rc = normalize_or(2.0 * nc.dot(v) * nc - v, nc);
-    let ab = environment_brdf(nc_dot_v, roughness);
-    let coat_sky = reflected_sky(rc, roughness) * (CLEARCOAT_F0 * ab.x + ab.y);
-    let through = fresnel_schlick(f0, nc_dot_v);
-    base * (Vec3::ONE - coat.factor * through) + coat.factor * (coat_direct + occlusion * coat_sky)
+    (direct, PI * highlight * incident.radiance * nc_dot_l * self_shadow)
 }
 
 #[cfg(test)]
@@ -204,7 +237,8 @@ mod tests {
             shading_normal: Vec3::X,
             position: Vec3::ZERO,
             eye: Vec3::new(0.0, 1e-7, 1.0),
-            light: Light { position: Vec3::new(1.0, 1e-7, 0.0), color: Vec3::ONE },
+            lights: Lights::one(Light::point(Vec3::new(1.0, 1e-7, 0.0), Vec3::ONE), Vec3::ZERO),
+            seen: None,
             clearcoat: Some(ClearcoatInputs { factor: 1.0, roughness: 0.0, normal: Vec3::Z }),
         };
         assert!(metallic_roughness(&p).is_finite());

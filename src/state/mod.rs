@@ -3,8 +3,11 @@
 //! `render` command and the tests all describe a picture the same way: a [`FrameParams`].
 
 pub mod interactive;
+mod lighting;
 pub mod preset;
 mod split;
+
+pub use lighting::LightCommand;
 
 pub use split::{SplitDifference, SplitView};
 
@@ -15,12 +18,13 @@ use crate::frame::{
     Parallax, STRENGTH_RANGE, SceneOptions, SceneUploads, ShadingMode, ShadingSettings, SplitFrame, ViewMode,
 };
 use crate::height::Kernel;
-use crate::scene::{GreenAxis, Light, MaterialOverrides, OrbitCamera, Scene, ShadingModel};
+use crate::math::normalize_or;
+use crate::scene::{GreenAxis, LightKind, Lights, MaterialOverrides, OrbitCamera, Scene, ShadingModel};
 use crate::tangent::TangentMethod;
 
 /// Allowed colour-scale spans of the Difference view, degrees.
 pub const DIFFERENCE_RANGE: std::ops::Range<f32> = 0.01..180.0;
-/// Orbit animation speed of the light, radians per second about the scene's vertical axis.
+/// Orbit animation speed of the lights, radians per second about the scene's vertical axis.
 pub const LIGHT_ORBIT_SPEED: f32 = 0.8;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -32,9 +36,11 @@ pub enum Command {
     StepStrength(f32),
     SetView(ViewMode),
     CycleView,
+    /// Moves the selected light (a directional light: the direction towards it).
     SetLightPosition(Vec3),
-    /// Moves the light parallel to the screen by a drag of `pixels` in a viewport
-    /// `viewport_height` pixels tall, keeping its depth from the eye.
+    /// Moves the selected light's marker ([`FrameParams::marker_position`]) parallel to the
+    /// screen by a drag of `pixels` in a viewport `viewport_height` pixels tall, keeping its
+    /// depth from the eye; a directional light then points from the target to the marker.
     DragLight {
         pixels: Vec2,
         viewport_height: f32,
@@ -115,6 +121,8 @@ pub enum Command {
     /// A legacy look and DOT3's cube map face size (one of [`crate::frame::CUBE_MAP_SIZES`],
     /// else none).
     SetLegacy(LegacySettings),
+    /// The two spaces of [`SplitDifference::LightingSpace`].
+    SetSplitLightingSpaces([crate::frame::LightingSpace; 2]),
     /// The parallax technique (a uniform).
     SetParallax(Parallax),
     /// The search's layers `[min, max]`, each clamped to 1..=[`MAX_PARALLAX_LAYERS`].
@@ -124,6 +132,8 @@ pub enum Command {
     /// The relief's depth in metres (`None`: each material's height range); a negative or
     /// non-finite depth is ignored.
     SetParallaxDepth(Option<f32>),
+    /// The lights, the ambient light, the specular mode and shininess, the lighting space.
+    Lighting(LightCommand),
 }
 
 /// Everything the user can change about the picture.
@@ -131,7 +141,11 @@ pub enum Command {
 pub struct ViewerState {
     pub camera: OrbitCamera,
     pub default_camera: OrbitCamera,
-    pub light: Light,
+    /// The lights and the ambient light.
+    pub lights: Lights,
+    /// Index into `lights` of the light that sliders and Ctrl-drag move
+    /// ([`Self::selected_light`] keeps it in range).
+    selected_light: usize,
     pub shading: ShadingSettings,
     pub light_orbit: bool,
     /// Tangent method, bump source and material overrides; a change means re-making the
@@ -148,7 +162,8 @@ impl ViewerState {
         ViewerState {
             camera: scene.default_camera,
             default_camera: scene.default_camera,
-            light: scene.default_light,
+            lights: scene.default_lights(),
+            selected_light: 0,
             shading: ShadingSettings::default(),
             light_orbit: false,
             scene_options: SceneOptions::default(),
@@ -210,7 +225,7 @@ impl ViewerState {
 
     /// What the renderer needs to draw the current picture.
     pub fn frame_params(&self) -> FrameParams {
-        FrameParams { camera: self.camera, light: self.light, shading: self.shading }
+        FrameParams { camera: self.camera, lights: self.lights, shading: self.shading }
     }
 
     /// Whether frames must keep coming without input.
@@ -229,13 +244,23 @@ impl ViewerState {
             Command::StepStrength(delta) => self.apply(Command::SetStrength(self.shading.strength + delta)),
             Command::SetView(view) => self.shading.view = view,
             Command::CycleView => self.shading.view = self.shading.view.next(),
-            Command::SetLightPosition(p) if p.is_finite() => self.light.position = p,
+            Command::SetLightPosition(p) if p.is_finite() => {
+                let selected = self.selected_light();
+                self.lights[selected].position = p
+            }
             Command::SetLightPosition(_) => {}
             Command::DragLight { pixels, viewport_height } => {
-                let depth = (self.light.position - self.camera.eye()).length();
+                let selected = self.selected_light();
+                let marker = self.frame_params().marker_position(selected);
+                let depth = (marker - self.camera.eye()).length();
                 let (right, up) = self.camera.right_up();
                 let scale = self.camera.metres_per_pixel(depth, viewport_height);
-                self.light.position += (pixels.x * right - pixels.y * up) * scale;
+                let moved = marker + (pixels.x * right - pixels.y * up) * scale;
+                let light = &mut self.lights[selected];
+                light.position = match light.kind {
+                    LightKind::Point => moved,
+                    LightKind::Directional => normalize_or(moved - self.camera.target, light.position),
+                };
             }
             Command::SetLightOrbit(on) => self.light_orbit = on,
             Command::ToggleLightOrbit => self.light_orbit = !self.light_orbit,
@@ -246,11 +271,15 @@ impl ViewerState {
             Command::ResetCamera => self.camera = self.default_camera,
             Command::PointCamera { yaw, pitch, distance } => self.camera.point(yaw, pitch, distance),
             Command::Tick(seconds) if self.light_orbit && seconds.is_finite() => {
-                // Rotate the light about the vertical axis through the camera target.
+                // Turn every light about the vertical axis through the camera target.
                 let rotation = glam::Quat::from_rotation_y(LIGHT_ORBIT_SPEED * seconds);
                 let target = self.camera.target;
-                let offset = self.light.position - target;
-                self.light.position = target + rotation * offset;
+                for light in self.lights.as_mut_slice() {
+                    light.position = match light.kind {
+                        LightKind::Point => target + rotation * (light.position - target),
+                        LightKind::Directional => rotation * light.position,
+                    };
+                }
             }
             Command::Tick(_) => {}
             Command::SetTangentMethod(method) => self.scene_options.tangent_method = method,
@@ -299,6 +328,8 @@ impl ViewerState {
                 let size = legacy.cube_map_size.filter(|s| crate::frame::CUBE_MAP_SIZES.contains(s));
                 self.shading.legacy = LegacySettings { cube_map_size: size, ..legacy };
             }
+            Command::SetSplitLightingSpaces(spaces) => self.split.lighting_spaces = spaces,
+            Command::Lighting(command) => self.apply_lighting(command),
         }
     }
 }
@@ -370,9 +401,9 @@ mod tests {
         let scene = teaching_scene();
         let mut state = ViewerState::new(&scene);
         state.apply(Command::SetLightOrbit(true));
-        let before = state.light.position;
+        let before = state.lights[0].position;
         state.apply(Command::Tick(1.0));
-        let after = state.light.position;
+        let after = state.lights[0].position;
         assert_ne!(before, after);
         let radius = |p: Vec3| {
             let d = p - state.camera.target;

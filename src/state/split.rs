@@ -1,16 +1,18 @@
 //! The split view: two pictures side by side that differ in one thing, in uniforms (one scene
 //! upload) or in GPU data (a second upload for the right half).
 
-use crate::frame::{BumpSource, Mistake, Parallax, SceneOptions, ShadingMode, ShadingSettings, ViewMode};
+use crate::frame::{
+    BumpSource, LightingSpace, Mistake, Parallax, SceneOptions, ShadingMode, ShadingSettings, ViewMode,
+};
 use crate::names::Named;
 use crate::scene::GreenAxis;
 use crate::tangent::TangentMethod;
 
-/// What the split view's two halves differ in. Bump, view, strength, mode and parallax are
-/// uniforms, so both halves share one scene upload; the others change GPU data
+/// What the split view's two halves differ in. Bump, view, strength, mode, parallax and
+/// lighting space are uniforms or pipeline variants, so both halves share one scene upload; the others change GPU data
 /// ([`SplitDifference::changes_gpu_data`]), so the right half is drawn from a second upload of
 /// the scene. Named `bump`, `view`, `strength`, `mode`, `tangents`, `convention`,
-/// `bump-source`, `parallax`, `mistake`.
+/// `bump-source`, `parallax`, `mistake`, `lighting-space`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
 #[strum(serialize_all = "kebab-case")]
 pub enum SplitDifference {
@@ -33,6 +35,8 @@ pub enum SplitDifference {
     Parallax,
     /// Two classic mistakes, e.g. none │ TBN typo (pipeline variants, one upload).
     Mistake,
+    /// Two lighting spaces (world │ tangent by default).
+    LightingSpace,
 }
 
 impl SplitDifference {
@@ -58,6 +62,7 @@ pub struct SplitView {
     pub bump_sources: [BumpSource; 2],
     pub parallax: [Parallax; 2],
     pub mistakes: [Mistake; 2],
+    pub lighting_spaces: [LightingSpace; 2],
 }
 
 impl Default for SplitView {
@@ -74,6 +79,7 @@ impl Default for SplitView {
             bump_sources: [BumpSource::NormalMap, BumpSource::HeightInShader],
             parallax: [Parallax::Steep, Parallax::Occlusion],
             mistakes: [Mistake::None, Mistake::TbnTypo],
+            lighting_spaces: [LightingSpace::World, LightingSpace::Tangent],
         }
     }
 }
@@ -90,6 +96,7 @@ impl SplitView {
                 SplitDifference::Mode => s.mode = self.modes[i],
                 SplitDifference::Parallax => s.parallax.technique = self.parallax[i],
                 SplitDifference::Mistake => s.mistake = self.mistakes[i],
+                SplitDifference::LightingSpace => s.lighting_space = self.lighting_spaces[i],
                 SplitDifference::Tangents | SplitDifference::Convention | SplitDifference::BumpSource => {}
             }
             s
@@ -118,7 +125,8 @@ impl SplitView {
                 | SplitDifference::Strength
                 | SplitDifference::Mode
                 | SplitDifference::Parallax
-                | SplitDifference::Mistake => {}
+                | SplitDifference::Mistake
+                | SplitDifference::LightingSpace => {}
             }
             options
         })
@@ -139,6 +147,7 @@ impl SplitView {
                 Mistake::None => "correct".to_owned(),
                 mistake => format!("{}: {}", mistake.label(), mistake.explanation()),
             },
+            SplitDifference::LightingSpace => self.lighting_spaces[i].label().to_owned(),
         })
     }
 }

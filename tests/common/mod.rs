@@ -5,6 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
+use bumpview::chain::legacy::vertex_vectors;
 use bumpview::chain::{BumpSample, ChainValues, SurfaceSample, shade};
 use bumpview::frame::BumpKind;
 use bumpview::frame::{FrameParams, SceneOptions, ViewMode};
@@ -46,7 +47,7 @@ pub fn close_wall_params(scene: &Scene, distance: f32) -> FrameParams {
     let mut params = default_params(scene);
     params.camera =
         OrbitCamera { target: Vec3::new(0.0, 1.5, WALL_Z), yaw: 0.0, pitch: 0.0, distance, ..params.camera };
-    params.light.position = Vec3::new(0.12, 1.62, WALL_Z + 0.35);
+    params.lights[0].position = Vec3::new(0.12, 1.62, WALL_Z + 0.35);
     params
 }
 
@@ -131,11 +132,12 @@ pub fn wall_chain(scene: &Scene, params: &FrameParams, size: [u32; 2], x: u32, y
         clearcoat_normal: None,
         // The wall is flat and the light and eye vectors are only read by the legacy looks and
         // the per-vertex mistakes: the values at the point itself.
-        vertex_light: (params.light.position - p).normalize(),
-        vertex_half: ((params.light.position - p).normalize() + (params.camera.eye() - p).normalize()).normalize(),
+        vertex_light: vertex_vectors(p, Vec3::Z, params.lights.first_on(), params.camera.eye()).0,
+        vertex_half: vertex_vectors(p, Vec3::Z, params.lights.first_on(), params.camera.eye()).1,
         emboss: None,
+        triangle_frame: None,
     };
-    shade(BumpKind::TangentSpace, material, scene.ambient, &surface, params)
+    shade(BumpKind::TangentSpace, material, &surface, params)
 }
 
 /// A loaded scene is sane: per mesh, every position, normal, UV and supplied tangent finite,

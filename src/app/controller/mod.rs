@@ -326,7 +326,7 @@ impl Controller {
             // Per-material overrides name materials by index: they belong to the old mesh.
             self.state.scene_options.per_material.clear();
             self.state.camera = scene.default_camera;
-            self.state.light = scene.default_light;
+            self.state.lights = scene.default_lights();
         }
         self.state.default_camera = scene.default_camera;
         if self.state.scene_uploads() == uploads {

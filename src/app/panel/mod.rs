@@ -5,6 +5,7 @@
 //! [`Action`]s; only the forms' text fields are edited in place.
 
 mod files;
+mod lights;
 mod methods;
 mod mistakes;
 mod output;
@@ -38,6 +39,7 @@ pub fn show(
             slot_targets = files::show(ui, controller, &mut actions);
         });
         section(ui, "Lit picture and overlays", true, |ui| picture::show(ui, &controller.state, &mut actions));
+        section(ui, "Lights and specular", false, |ui| lights::show(ui, &controller.state, &mut actions));
         section(ui, "Parallax", false, |ui| parallax::show(ui, &controller.state, &mut actions));
         section(ui, "Classic mistakes", false, |ui| mistakes::show(ui, &controller.state, &mut actions));
         section(ui, "Legacy looks", false, |ui| mistakes::legacy(ui, &controller.state, &mut actions));

@@ -1,7 +1,7 @@
 //! The top of the panel, always in sight: bump on/off and strength, the view, the split view
 //! and the light.
 
-use bumpview::frame::{BumpSource, Mistake, Parallax, STRENGTH_RANGE, ShadingMode, ViewMode};
+use bumpview::frame::{BumpSource, LightingSpace, Mistake, Parallax, STRENGTH_RANGE, ShadingMode, ViewMode};
 use bumpview::names::Named;
 use bumpview::scene::GreenAxis;
 use bumpview::shading::OVER_TILT_LIMIT_DEG;
@@ -103,6 +103,10 @@ fn split(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
         SplitDifference::BumpSource => {
             pair_combos(ui, "bump source", split.bump_sources, BumpSource::label).map(Command::SetSplitBumpSources)
         }
+        SplitDifference::LightingSpace => {
+            pair_combos(ui, "lighting space", split.lighting_spaces, LightingSpace::label)
+                .map(Command::SetSplitLightingSpaces)
+        }
         SplitDifference::Parallax => {
             pair_combos(ui, "parallax", split.parallax, Parallax::label).map(Command::SetSplitParallax)
         }
@@ -134,9 +138,15 @@ fn pair_combos<T: Named>(ui: &mut egui::Ui, what: &str, pair: [T; 2], label: fn(
     (chosen != pair).then_some(chosen)
 }
 
+/// The selected light's position (a directional light's direction towards it), orbit and
+/// markers; the other settings are in the "Lights and specular" section.
 fn light(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
-    let mut position = state.light.position;
+    let selected = state.selected_light();
+    let mut position = state.lights[selected].position;
     let mut moved = false;
+    if state.lights.len() > 1 {
+        ui.weak(format!("light {} of {}", selected + 1, state.lights.len()));
+    }
     for (axis, value) in [("light X", &mut position.x), ("light Y", &mut position.y), ("light Z", &mut position.z)] {
         moved |= ui.add(egui::Slider::new(value, LIGHT_RANGE).text(axis).suffix(" m")).changed();
     }
@@ -149,7 +159,7 @@ fn light(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
             actions.push(Command::SetLightOrbit(orbit).into());
         }
         let mut marker = state.shading.show_light_marker;
-        if ui.checkbox(&mut marker, "marker").changed() {
+        if ui.checkbox(&mut marker, "markers").changed() {
             actions.push(Command::SetLightMarker(marker).into());
         }
         ui.weak("Ctrl-drag moves it");

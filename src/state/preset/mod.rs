@@ -1,4 +1,4 @@
-//! Presets: the whole viewer state (files, camera, light, shading, scene options, kernel) and
+//! Presets: the whole viewer state (files, camera, lights, shading, scene options, kernel) and
 //! the capture settings as a small TOML file, for `bumpview render --preset` and the viewer.
 //!
 //! Enums are stored by the names the command line uses (`view = "shading-normal"`), angles in
@@ -6,7 +6,7 @@
 //!
 //! - an **unknown** key or section, a value of the wrong type or an unknown name is an error
 //!   naming the key (and, for parse errors, the line);
-//! - a **missing** key takes its default: the scene's own camera and light, the viewer's
+//! - a **missing** key takes its default: the scene's own camera, light and ambient light, the viewer's
 //!   start settings ([`ShadingSettings::default`], [`SceneOptions::default`], the default
 //!   kernel), no files (the built-in scene), and a capture at the caller's size.
 //!
@@ -28,7 +28,7 @@ use crate::height::Kernel;
 use crate::load::SceneFiles;
 use crate::names::{Named, parse_or_auto};
 use crate::render::capture::MAX_SUPERSAMPLE;
-use crate::scene::Scene;
+use crate::scene::{Light, MAX_LIGHTS, Scene};
 use crate::state::{SplitView, ViewerState};
 
 mod sections;
@@ -50,6 +50,9 @@ pub struct Preset {
     pub files: SceneFiles,
     pub camera: CameraPreset,
     pub light: LightPreset,
+    /// Every light, in order; missing: the scene's default light alone.
+    pub lights: Vec<LightEntryPreset>,
+    pub ambient: AmbientPreset,
     pub shading: ShadingPreset,
     pub scene: ScenePreset,
     pub capture: CapturePreset,
@@ -59,6 +62,7 @@ pub struct Preset {
 /// What a preset sets besides files, camera and light, checked and typed.
 struct Settings {
     shading: ShadingSettings,
+    ambient_strength: f32,
     light_orbit: bool,
     scene_options: SceneOptions,
     kernel: Kernel,
@@ -80,10 +84,15 @@ impl Preset {
                 fov_y_deg: Some(degrees(camera.fov_y)),
             },
             light: LightPreset {
-                position: Some(state.light.position.to_array()),
-                color: Some(state.light.color.to_array()),
+                position: None,
+                color: None,
                 orbit: state.light_orbit,
                 marker: state.shading.show_light_marker,
+            },
+            lights: state.lights.as_slice().iter().map(LightEntryPreset::from).collect(),
+            ambient: AmbientPreset {
+                color: Some(state.lights.ambient_color.to_array()),
+                strength: state.lights.ambient_strength,
             },
             shading: ShadingPreset::from(&state.shading),
             scene: ScenePreset::new(&state.scene_options, state.kernel),
@@ -103,8 +112,16 @@ impl Preset {
         state.camera.pitch = radians(c.pitch_deg, state.camera.pitch);
         state.camera.distance = c.distance.unwrap_or(state.camera.distance);
         state.camera.fov_y = radians(c.fov_y_deg, state.camera.fov_y);
-        state.light.position = self.light.position.map_or(state.light.position, Vec3::from_array);
-        state.light.color = self.light.color.map_or(state.light.color, Vec3::from_array);
+        let default_position = state.lights[0].position;
+        let lights: Vec<Light> =
+            self.lights.iter().enumerate().map(|(i, l)| l.to_light(i, default_position)).collect::<Result<_, _>>()?;
+        if !lights.is_empty() {
+            state.lights = state.lights.with_lights(&lights).map_err(|e| PresetError(format!("lights: {e}")))?;
+        }
+        state.lights[0].position = self.light.position.map_or(state.lights[0].position, Vec3::from_array);
+        state.lights[0].color = self.light.color.map_or(state.lights[0].color, Vec3::from_array);
+        state.lights.ambient_color = self.ambient.color.map_or(state.lights.ambient_color, Vec3::from_array);
+        state.lights.ambient_strength = settings.ambient_strength;
         state.shading = settings.shading;
         state.light_orbit = settings.light_orbit;
         state.scene_options = settings.scene_options;
@@ -170,6 +187,22 @@ impl Preset {
         if !finite {
             return Err(PresetError("camera and light values must be finite numbers".into()));
         }
+        if self.lights.len() > MAX_LIGHTS {
+            return Err(bad("lights", &format!("{} entries", self.lights.len()), &format!("at most {MAX_LIGHTS}")));
+        }
+        for (i, light) in self.lights.iter().enumerate() {
+            light.to_light(i, Vec3::ZERO)?;
+        }
+        let a = &self.ambient;
+        if let Some(color) = a.color.filter(|c| !c.iter().all(|v| v.is_finite() && *v >= 0.0)) {
+            return Err(bad("ambient.color", &format!("{color:?}"), "linear RGB, each finite and at least 0"));
+        }
+        if !(a.strength.is_finite() && a.strength >= 0.0) {
+            return Err(bad("ambient.strength", &a.strength.to_string(), "a finite number, at least 0"));
+        }
+        if let Some(shininess) = self.shading.shininess.filter(|s| !(s.is_finite() && *s >= 1.0)) {
+            return Err(bad("shading.shininess", &shininess.to_string(), "a finite number, at least 1"));
+        }
         let s = &self.shading;
         if !s.strength.is_finite() {
             return Err(bad("shading.strength", &s.strength.to_string(), "a finite number"));
@@ -233,7 +266,11 @@ impl Preset {
                 },
                 mistake: named("shading.mistake", &s.mistake)?,
                 legacy: LegacySettings { look: named("shading.legacy", &s.legacy)?, cube_map_size },
+                specular: named("shading.specular", &s.specular)?,
+                shininess: s.shininess,
+                lighting_space: named("shading.lighting_space", &s.lighting_space)?,
             },
+            ambient_strength: self.ambient.strength,
             light_orbit: self.light.orbit,
             scene_options: SceneOptions {
                 tangent_method,
@@ -294,12 +331,13 @@ fn degrees(radians: f32) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::frame::LightingSpace;
     use crate::frame::{BumpSource, ShadingMode, ViewMode};
     use crate::frame::{LegacyLook, Mistake};
     use crate::height::Border;
     use crate::scene::builtin::teaching_scene;
-    use crate::scene::{GreenAxis, MaterialOverrides, NormalLayout, ShadingModel};
-    use crate::state::Command;
+    use crate::scene::{GreenAxis, MaterialOverrides, NormalLayout, ShadingModel, SpecularMode};
+    use crate::state::{Command, LightCommand};
     use crate::tangent::TangentMethod;
 
     #[test]
@@ -340,11 +378,45 @@ mod tests {
         state.apply(Command::SetSplitMistakes([Mistake::GreenFlipped, Mistake::LightPerVertex]));
         state.apply(Command::SetMistake(Mistake::SrgbNormalMap));
         state.apply(Command::SetLegacy(LegacySettings { look: LegacyLook::Dot3, cube_map_size: Some(16) }));
+        let mut sun = crate::scene::Light::directional(Vec3::new(0.3, 1.7, -0.2), Vec3::new(1.0, 0.9, 0.71));
+        sun.intensity = 1.37;
+        let mut lamp = crate::scene::Light::point(Vec3::new(0.1, 0.2, 0.3), Vec3::new(0.2, 0.3, 1.0));
+        lamp.attenuation = crate::scene::Attenuation { constant: 0.5, linear: 0.25, quadratic: 0.125 };
+        lamp.enabled = false;
+        for (index, light) in [(1, sun), (2, lamp)] {
+            state.apply(Command::Lighting(LightCommand::Set { index, light }));
+        }
+        state.apply(Command::Lighting(LightCommand::SetAmbient { color: Vec3::new(0.1, 0.2, 0.3), strength: 0.77 }));
+        state.apply(Command::Lighting(LightCommand::SetSpecular(SpecularMode::Phong)));
+        state.apply(Command::Lighting(LightCommand::SetShininess(Some(71.5))));
+        state.apply(Command::Lighting(LightCommand::SetLightingSpace(LightingSpace::Tangent)));
         let files = SceneFiles { height: Some("/x/h.png".into()), ..Default::default() };
         let text = Preset::from_state(&state, files.clone()).to_toml();
         let back = Preset::from_toml(&text).unwrap();
         assert_eq!(back.files, files);
         assert_eq!(back.to_state(&scene).unwrap(), state, "{text}");
+        assert_eq!(back.to_state(&scene).unwrap().lights.len(), 3);
+    }
+
+    /// Presets written before several lights (one `[light]` position and colour) still load,
+    /// into the first light; bad light entries are errors naming them.
+    #[test]
+    fn old_single_light_presets_load_and_bad_lights_are_named() {
+        let scene = teaching_scene();
+        let old = "[light]\nposition = [1.0, 2.0, 3.0]\ncolor = [0.5, 0.25, 1.0]\nmarker = false\n";
+        let state = Preset::from_toml(old).unwrap().to_state(&scene).unwrap();
+        assert_eq!(state.lights.len(), 1);
+        assert_eq!(state.lights[0].position, Vec3::new(1.0, 2.0, 3.0));
+        assert_eq!(state.lights[0].color, Vec3::new(0.5, 0.25, 1.0));
+        assert!(!state.shading.show_light_marker);
+        let bad = "[[lights]]\nkind = \"spot\"\n";
+        assert!(Preset::from_toml(bad).unwrap_err().0.starts_with("lights[0].kind"));
+        let bad = "[[lights]]\n[[lights]]\nattenuation = [0.0, 0.0, 0.0]\n";
+        assert!(Preset::from_toml(bad).unwrap_err().0.starts_with("lights[1].attenuation"));
+        let nine = "[[lights]]\n".repeat(9);
+        assert!(Preset::from_toml(&nine).unwrap_err().0.starts_with("lights"));
+        assert!(Preset::from_toml("[shading]\nshininess = 0.5\n").is_err());
+        assert!(Preset::from_toml("[ambient]\nstrength = -1.0\n").is_err());
     }
 
     /// Older presets' `two_channel = true` reads as the RG layout; a bad layout names its key.

@@ -6,8 +6,9 @@ use crate::height::Kernel;
 use crate::names::{Named, name_or_auto};
 use crate::render::Background;
 use crate::render::capture::CaptureOptions;
-use crate::scene::{MaterialOverrides, NormalLayout};
+use crate::scene::{Attenuation, Light, MaterialOverrides, NormalLayout};
 use crate::state::{SplitDifference, SplitView};
+use glam::Vec3;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -19,7 +20,7 @@ use super::*;
 pub struct SplitPreset {
     pub enabled: bool,
     /// A [`SplitDifference`] name: `bump`, `view`, `strength`, `mode`, `tangents`,
-    /// `convention` or `bump-source`.
+    /// `convention`, `bump-source`, `parallax` or `lighting-space`.
     pub difference: String,
     /// The divider, a fraction of the width (0..1).
     pub divider: f32,
@@ -38,6 +39,8 @@ pub struct SplitPreset {
     pub parallax: [String; 2],
     /// [`Mistake`](crate::frame::Mistake) names, left and right.
     pub mistakes: [String; 2],
+    /// [`LightingSpace`](crate::frame::LightingSpace) names, left and right.
+    pub lighting_spaces: [String; 2],
 }
 
 impl Default for SplitPreset {
@@ -60,6 +63,7 @@ impl From<&SplitView> for SplitPreset {
             bump_sources: names(s.bump_sources),
             parallax: names(s.parallax),
             mistakes: names(s.mistakes),
+            lighting_spaces: names(s.lighting_spaces),
         }
     }
 }
@@ -86,6 +90,7 @@ impl SplitPreset {
             bump_sources: named_pair("split.bump_sources", &self.bump_sources)?,
             parallax: named_pair("split.parallax", &self.parallax)?,
             mistakes: named_pair("split.mistakes", &self.mistakes)?,
+            lighting_spaces: named_pair("split.lighting_spaces", &self.lighting_spaces)?,
         })
     }
 }
@@ -106,17 +111,18 @@ pub struct CameraPreset {
     pub fov_y_deg: Option<f64>,
 }
 
-/// The point light; missing position and colour are the scene's default light's.
+/// The `[light]` table: orbit and markers, and (older presets) the one light's position and
+/// colour, which set the first light; missing ones are the scene's default light's.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct LightPreset {
-    /// Metres, world space.
+    /// Metres, world space (older presets; `[[lights]]` holds every light).
     pub position: Option<[f32; 3]>,
-    /// Linear RGB.
+    /// Linear RGB (older presets).
     pub color: Option<[f32; 3]>,
-    /// The light orbits the target.
+    /// The lights orbit the target.
     pub orbit: bool,
-    /// The light marker is drawn.
+    /// The light markers are drawn.
     pub marker: bool,
 }
 
@@ -124,6 +130,83 @@ impl Default for LightPreset {
     fn default() -> Self {
         let shading = ShadingSettings::default();
         LightPreset { position: None, color: None, orbit: false, marker: shading.show_light_marker }
+    }
+}
+
+/// One `[[lights]]` entry; missing keys are those of a white point light of intensity 1,
+/// on, without attenuation, at the scene's default light's position.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct LightEntryPreset {
+    /// `point` or `directional`.
+    pub kind: String,
+    /// A point light's position (metres, world space) or a directional light's direction
+    /// towards the light.
+    pub position: Option<[f32; 3]>,
+    /// Linear RGB, each at least 0.
+    pub color: [f32; 3],
+    /// At least 0.
+    pub intensity: f32,
+    pub enabled: bool,
+    /// `[c, l, q]` of `1 / (c + l·d + q·d²)`, each at least 0, not all 0.
+    pub attenuation: [f32; 3],
+}
+
+impl Default for LightEntryPreset {
+    fn default() -> Self {
+        LightEntryPreset::from(&Light::point(Vec3::ZERO, Vec3::ONE))
+    }
+}
+
+impl From<&Light> for LightEntryPreset {
+    fn from(light: &Light) -> Self {
+        LightEntryPreset {
+            kind: light.kind.name().to_owned(),
+            position: Some(light.position.to_array()),
+            color: light.color.to_array(),
+            intensity: light.intensity,
+            enabled: light.enabled,
+            attenuation: light.attenuation.to_array(),
+        }
+    }
+}
+
+impl LightEntryPreset {
+    /// The light; `index` names the entry in errors, `default_position` stands in for a
+    /// missing position.
+    pub(super) fn to_light(&self, index: usize, default_position: Vec3) -> Result<Light, PresetError> {
+        let key = |k: &str| format!("lights[{index}].{k}");
+        let kind = named(&key("kind"), &self.kind)?;
+        let position = self.position.map_or(default_position, Vec3::from_array);
+        if !position.is_finite() {
+            return Err(bad(&key("position"), &format!("{position}"), "finite numbers"));
+        }
+        let color = Vec3::from_array(self.color);
+        if !(color.is_finite() && color.min_element() >= 0.0) {
+            return Err(bad(&key("color"), &format!("{:?}", self.color), "linear RGB, each finite and at least 0"));
+        }
+        if !(self.intensity.is_finite() && self.intensity >= 0.0) {
+            return Err(bad(&key("intensity"), &self.intensity.to_string(), "a finite number, at least 0"));
+        }
+        let attenuation = Attenuation::from_array(self.attenuation)
+            .map_err(|e| bad(&key("attenuation"), &format!("{:?}", self.attenuation), &e))?;
+        Ok(Light { kind, position, color, intensity: self.intensity, enabled: self.enabled, attenuation })
+    }
+}
+
+/// The ambient light; a missing colour is the scene's.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct AmbientPreset {
+    /// Linear RGB, each at least 0.
+    pub color: Option<[f32; 3]>,
+    /// Multiplies the colour, at least 0.
+    pub strength: f32,
+}
+
+impl Default for AmbientPreset {
+    fn default() -> Self {
+        AmbientPreset { color: None, strength: 1.0 }
     }
 }
 
@@ -158,6 +241,12 @@ pub struct ShadingPreset {
     pub legacy: String,
     /// DOT3's normalization cube map face size: 8, 16, 32 or 64; 0: none (L per vertex).
     pub cube_map_size: u32,
+    /// A [`SpecularMode`](crate::scene::SpecularMode) name: `blinn`, `phong` or `off`.
+    pub specular: String,
+    /// The shininess for every material (at least 1); missing: each material's own.
+    pub shininess: Option<f32>,
+    /// A [`LightingSpace`](crate::frame::LightingSpace) name: `world`, `tangent` or `view`.
+    pub lighting_space: String,
 }
 
 /// How the scene is prepared: tangents, bump source, kernel and material conventions.
@@ -234,6 +323,9 @@ impl From<&ShadingSettings> for ShadingPreset {
             mistake: s.mistake.name().to_owned(),
             legacy: s.legacy.look.name().to_owned(),
             cube_map_size: s.legacy.cube_map_size.unwrap_or(0),
+            specular: s.specular.name().to_owned(),
+            shininess: s.shininess,
+            lighting_space: s.lighting_space.name().to_owned(),
         }
     }
 }

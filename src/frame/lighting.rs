@@ -1,0 +1,56 @@
+//! In which space the lit views light a surface (seeds 000, 001, 003): the same formulas with
+//! the normal, light and view vectors taken into world, tangent or view space first; and where
+//! a frame's light markers are.
+
+use super::FrameParams;
+use crate::scene::LightKind;
+
+/// Where the lighting is computed. A pipeline variant of the lit views of tangent-space
+/// normal-mapped surfaces (other surfaces have no tangent frame and light in world space).
+/// Named `world`, `tangent`, `view`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "kebab-case")]
+pub enum LightingSpace {
+    /// The map's normal through the per-pixel T, B, N into world space; light and view
+    /// vectors per pixel in world space.
+    #[default]
+    World,
+    /// Seed 003: the light and view vectors taken into tangent space by the inverse of the
+    /// triangle's T, B, N (from its positions and UVs, not orthogonalised; the identity where
+    /// its UVs have no area) and normalised per pixel; the map's normal used as decoded.
+    Tangent,
+    /// Seed 000: the map's normal through T, B, N, then with the light and view vectors
+    /// rotated into view space by the camera's view matrix.
+    View,
+}
+
+impl LightingSpace {
+    /// A space's name for people (labels and captions).
+    pub fn label(self) -> &'static str {
+        match self {
+            LightingSpace::World => "world-space lighting",
+            LightingSpace::Tangent => "tangent-space lighting",
+            LightingSpace::View => "view-space lighting",
+        }
+    }
+
+    /// The index the `LIGHTING_SPACE` pipeline constant takes.
+    pub fn shader_index(self) -> u32 {
+        self as u32
+    }
+}
+
+impl FrameParams {
+    /// Where light `index`'s marker is drawn and dragged: a point light's position; a
+    /// directional light's half the camera distance from the camera target, towards the light.
+    pub fn marker_position(&self, index: usize) -> glam::Vec3 {
+        let light = &self.lights[index];
+        match light.kind {
+            LightKind::Point => light.position,
+            LightKind::Directional => {
+                let towards = crate::math::normalize_or(light.position, glam::Vec3::Y);
+                self.camera.target + towards * (0.5 * self.camera.distance)
+            }
+        }
+    }
+}
