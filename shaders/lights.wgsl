@@ -77,30 +77,32 @@ struct TangentSpaceInputs {
 var<private> tangent_space: TangentSpaceInputs;
 
 // shading::blinn_phong with the vectors of the pipeline's lighting space
-// (shading::world_vectors, spaces::tangent_lighting_vectors, spaces::view_lighting_vectors):
+// (shading::world_vectors with the per-vertex mistakes' hooks of mistakes.wgsl, which act in
+// world space, then spaces::tangent_lighting_vectors or spaces::view_lighting_vectors):
 // the ambient light plus every light that is on, its radiance attenuated in world space.
 // k_s: the material's specular colour, times its gloss map where it has one.
 fn blinn_phong(albedo: vec3<f32>, k_s: vec3<f32>, n_geo: vec3<f32>, n_shading: vec3<f32>, position: vec3<f32>) -> vec3<f32> {
     var sum = albedo * frame.ambient.rgb;
     var g = n_geo;
     var n = n_shading;
-    var v = normalize_or(frame.camera_pos.xyz - position, n_geo);
     if LIGHTING_SPACE == LIGHTING_TANGENT {
         g = vec3<f32>(0.0, 0.0, 1.0);
         n = tangent_space.normal;
-        v = normalize_or(tangent_space.to_tangent * v, g);
     } else if LIGHTING_SPACE == LIGHTING_VIEW {
         g = frame.view_rotation * n_geo;
         n = frame.view_rotation * n_shading;
-        v = frame.view_rotation * v;
     }
+    let to_eye = normalize_or(frame.camera_pos.xyz - position, n_geo);
     for (var i = 0u; i < min(frame.light_count, MAX_LIGHTS); i++) {
         let arriving = incident_light(frame.lights[i], position, n_geo);
-        var l = arriving.direction;
+        var l = seen_light_direction(i, arriving.direction, n_geo);
+        var v = seen_view_direction(i, l, to_eye, n_geo);
         if LIGHTING_SPACE == LIGHTING_TANGENT {
             l = normalize_or(tangent_space.to_tangent * l, g);
+            v = normalize_or(tangent_space.to_tangent * v, g);
         } else if LIGHTING_SPACE == LIGHTING_VIEW {
             l = frame.view_rotation * l;
+            v = frame.view_rotation * v;
         }
         // The parallax searches' soft self-shadow of this light (1 without one).
         let visibility = parallax_light_visibility(arriving.direction);

@@ -17,8 +17,9 @@
 //   vs_wireframe + fs_wireframe   the wireframe overlay (a second pass, PolygonMode::Line)
 //   vs_glyph + fs_glyph           T/B/N glyphs at vertices (a line list, src/render/glyphs.rs)
 //
-// Prepended at build time: frame.wgsl (the Frame uniform, group 0), pbr.wgsl, parallax.wgsl and
-// lights.wgsl (the lights and the classic model's lighting spaces).
+// Prepended at build time: frame.wgsl (the Frame uniform, group 0), pbr.wgsl, parallax.wgsl,
+// mistakes.wgsl (the classic mistakes, the MISTAKE constant), legacy.wgsl (the legacy looks,
+// the LEGACY constant) and lights.wgsl (the lights and the classic model's lighting spaces).
 
 struct Object {
     model: mat4x4<f32>,
@@ -49,9 +50,10 @@ struct Object {
 @group(1) @binding(9) var clearcoat_texture: texture_2d<f32>;  // linear: R coat strength
 @group(1) @binding(10) var clearcoat_roughness_texture: texture_2d<f32>; // linear: G coat roughness
 @group(1) @binding(11) var clearcoat_normal_texture: texture_2d<f32>;    // linear: the coat's normal map
+@group(1) @binding(13) var bump_correction_texture: texture_2d<f32>; // linear: X-Ray's bump# (RGB correction)
 
 const FLIP_GREEN: u32 = 1u;
-const TWO_CHANNEL: u32 = 2u;
+const LAYOUT_RG: u32 = 2u;
 const DEPTH_MAP: u32 = 8u;
 const HAS_METALLIC_ROUGHNESS: u32 = 16u;
 const HAS_GLOSS: u32 = 32u;
@@ -61,6 +63,9 @@ const HAS_CLEARCOAT: u32 = 128u;
 const HAS_CLEARCOAT_TEXTURE: u32 = 256u;
 const HAS_CLEARCOAT_ROUGHNESS_TEXTURE: u32 = 512u;
 const HAS_CLEARCOAT_NORMAL: u32 = 1024u;
+const LAYOUT_AG: u32 = 32768u;
+const LAYOUT_XRAY: u32 = 65536u;
+const HAS_BUMP_CORRECTION: u32 = 131072u;
 const SHADING_METALLIC_ROUGHNESS: u32 = 1u;
 
 // True when the target stores sRGB-encoded values (Rgba8UnormSrgb): debug colours are then
@@ -103,6 +108,8 @@ struct VertexOutput {
     @location(1) world_normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) world_tangent: vec4<f32>,
+    @location(4) vertex_light: vec3<f32>, // legacy.wgsl's vertex_vectors, interpolated
+    @location(5) vertex_half: vec3<f32>,
 };
 
 fn to_world(position: vec3<f32>, normal: vec3<f32>, uv: vec2<f32>, tangent: vec4<f32>) -> VertexOutput {
@@ -113,6 +120,9 @@ fn to_world(position: vec3<f32>, normal: vec3<f32>, uv: vec2<f32>, tangent: vec4
     out.world_normal = (object.normal_matrix * vec4<f32>(normal, 0.0)).xyz;
     out.uv = uv;
     out.world_tangent = vec4<f32>((object.model * vec4<f32>(tangent.xyz, 0.0)).xyz, tangent.w * object.handedness);
+    let vectors = vertex_vectors(out.world_position, out.world_normal);
+    out.vertex_light = vectors[0];
+    out.vertex_half = vectors[1];
     return out;
 }
 
@@ -173,31 +183,72 @@ fn tangent_frame(world_tangent: vec4<f32>, n: vec3<f32>) -> TangentFrame {
     return TangentFrame(t, w * cross(n, t), w);
 }
 
+// shading::unpack_normal's RG and AG layouts: z rebuilt from x and y (0..1 each).
+fn rebuilt_z(x01: f32, y01: f32) -> vec3<f32> {
+    let xy = vec2<f32>(x01, y01) * 2.0 - 1.0;
+    let xy2 = dot(xy, xy);
+    let shrink = select(1.0, inverseSqrt(xy2), xy2 > 1.0);
+    return vec3<f32>(xy * shrink, sqrt(max(1.0 - xy2, 0.0)));
+}
+
+// shading::unpack_normal: the signed vector the texel's channels hold by the layout bits;
+// `correction` is X-Ray's bump# RGB (0.5 without one).
+fn unpack_normal(texel: vec4<f32>, correction: vec3<f32>, flags: u32) -> vec3<f32> {
+    if (flags & LAYOUT_RG) != 0u {
+        return rebuilt_z(texel.r, texel.g);
+    }
+    if (flags & LAYOUT_AG) != 0u {
+        return rebuilt_z(texel.a, texel.g);
+    }
+    if (flags & LAYOUT_XRAY) != 0u {
+        return texel.abg + correction - 1.0; // x = A, y = B, z = G (X-Ray's Nu.wzy)
+    }
+    return texel.rgb * 2.0 - 1.0;
+}
+
 // shading::decode_normal
-fn decode_normal(texel: vec3<f32>, flags: u32) -> vec3<f32> {
-    var v = texel * 2.0 - 1.0;
+fn decode_normal(texel: vec4<f32>, correction: vec3<f32>, flags: u32) -> vec3<f32> {
+    var v = unpack_normal(texel, correction, flags);
     if (flags & FLIP_GREEN) != 0u {
         v.y = -v.y;
-    }
-    if (flags & TWO_CHANNEL) != 0u {
-        let xy2 = v.x * v.x + v.y * v.y;
-        let shrink = select(1.0, inverseSqrt(xy2), xy2 > 1.0);
-        v = vec3<f32>(v.xy * shrink, sqrt(max(1.0 - xy2, 0.0)));
     }
     return normalize_or(v, vec3<f32>(0.0, 0.0, 1.0));
 }
 
+// shading::packed_gloss: X-Ray's bump red squared scales k_s (set by the normal-mapped entry
+// points before they shade; 1 elsewhere).
+var<private> packed_gloss: f32 = 1.0;
+
+// The normal map's texel at `uv` with X-Ray's bump# correction where the material has one.
+struct NormalSample {
+    texel: vec4<f32>,
+    correction: vec3<f32>,
+};
+
+fn sample_normal_map(uv: vec2<f32>) -> NormalSample {
+    var correction = vec3<f32>(0.5);
+    if has(HAS_BUMP_CORRECTION) {
+        correction = textureSample(bump_correction_texture, detail_sampler, uv).rgb;
+    }
+    let texel = textureSample(bump_texture, detail_sampler, uv);
+    if (object.flags & LAYOUT_XRAY) != 0u {
+        packed_gloss = texel.r * texel.r;
+    }
+    return NormalSample(texel, correction);
+}
+
 // shading::tangent_space_normal: the decoded texel after strength, z ≥ 0, in tangent space.
-fn tangent_space_normal(texel: vec3<f32>, strength: f32, flags: u32) -> vec3<f32> {
-    let decoded = decode_normal(texel, flags);
+fn tangent_space_normal(texel: NormalSample, strength: f32, flags: u32) -> vec3<f32> {
+    let decoded = decode_normal(texel.texel, texel.correction, flags);
     let scaled = vec3<f32>(decoded.xy * strength, max(decoded.z, 0.0));
     return normalize_or(scaled, vec3<f32>(0.0, 0.0, 1.0));
 }
 
-// shading::perturbed_normal; `flags` carries the map's convention bits.
-fn perturbed_normal(n: vec3<f32>, frame_tb: TangentFrame, texel: vec3<f32>, strength: f32, flags: u32) -> vec3<f32> {
+// shading::perturbed_normal (through mistakes.wgsl's tangent_to_world); `n` is the base
+// normal, `flags` carries the map's convention bits.
+fn perturbed_normal(n: vec3<f32>, frame_tb: TangentFrame, texel: NormalSample, strength: f32, flags: u32) -> vec3<f32> {
     let nt = tangent_space_normal(texel, strength, flags);
-    return normalize_or(frame_tb.t * nt.x + frame_tb.b * nt.y + n * nt.z, n);
+    return tangent_to_world(frame_tb, n, nt);
 }
 
 fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
@@ -224,8 +275,9 @@ fn clearcoat_normal(in: VertexOutput, n: vec3<f32>, frame_tb: TangentFrame) -> v
     if !has(HAS_CLEARCOAT_NORMAL) || frame.bump_enabled == 0u {
         return n;
     }
-    let texel = textureSample(clearcoat_normal_texture, detail_sampler, clearcoat_uv(in.uv)).rgb;
-    return perturbed_normal(n, frame_tb, texel, frame.strength * object.clearcoat.z, 0u);
+    let texel = textureSample(clearcoat_normal_texture, detail_sampler, clearcoat_uv(in.uv));
+    let coat = NormalSample(vec4<f32>(texel.rgb, 1.0), vec3<f32>(0.5));
+    return perturbed_normal(n, frame_tb, coat, frame.strength * object.clearcoat.z, 0u);
 }
 
 // The lit colour (chain::shade) in the pipeline's shading model, plus emitted light in the
@@ -248,6 +300,7 @@ fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>, n_coat: v
         if has(HAS_GLOSS) {
             k_s *= textureSample(gloss_texture, detail_sampler, in.uv).rgb;
         }
+        k_s *= packed_gloss;
         return blinn_phong(albedo, k_s, n_geo, n_shading, in.world_position) + emission;
     }
     // Each texture is sampled only where the material has it (has(): the pipeline leaves the
@@ -344,9 +397,9 @@ fn surface_color(
             if dot(n_shading, n_geo) < frame.over_tilt_cos {
                 return stored(vec3<f32>(1.0, 0.0, 0.0));
             }
-            return vec4<f32>(lit_color(in, n_geo, n_shading, n_coat), 1.0);
+            return vec4<f32>(lit_or_legacy(in, n_geo, frame_tb, n_shading, n_coat), 1.0);
         }
-        default: { return vec4<f32>(lit_color(in, n_geo, n_shading, n_coat), 1.0); }
+        default: { return vec4<f32>(lit_or_legacy(in, n_geo, frame_tb, n_shading, n_coat), 1.0); }
     }
 }
 
@@ -354,14 +407,16 @@ fn surface_color(
 fn fs_plain(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
     // No tangents: the T and B views show the zero vector (mid grey).
-    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0), 0.0), n, n);
+    let base = base_normal(in.world_normal, front_facing, n);
+    return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0), 0.0), base, n);
 }
 
 @fragment
 fn fs_tangent(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
-    let frame_tb = tangent_frame(in.world_tangent, n);
-    return surface_color(in, n, frame_tb, n, clearcoat_normal(in, n, frame_tb));
+    let frame_tb = mistaken_frame(in.world_tangent, n);
+    let base = base_normal(in.world_normal, front_facing, n);
+    return surface_color(in, n, frame_tb, base, clearcoat_normal(in, n, frame_tb));
 }
 
 @fragment
@@ -369,11 +424,12 @@ fn fs_normal_mapped(vertex: VertexOutput, @builtin(front_facing) front_facing: b
     let n = geometric_normal(vertex.world_normal, front_facing);
     var in = vertex;
     in.uv = parallax_uv(vertex.uv, n, vertex.world_position);
-    let frame_tb = tangent_frame(in.world_tangent, n);
-    let texel = textureSample(bump_texture, detail_sampler, in.uv).rgb;
-    var n_shading = n;
+    let frame_tb = mistaken_frame(in.world_tangent, n);
+    let texel = mistaken_texel(sample_normal_map(in.uv));
+    var n_shading = base_normal(vertex.world_normal, front_facing, n);
     if frame.bump_enabled != 0u {
-        n_shading = perturbed_normal(n, frame_tb, texel, frame.strength * object.normal_scale, object.flags);
+        let strength = frame.strength * object.normal_scale;
+        n_shading = perturbed_normal(n_shading, frame_tb, texel, strength, mistaken_flags(object.flags));
     }
     return surface_color(in, n, frame_tb, n_shading, clearcoat_normal(in, n, frame_tb));
 }
@@ -394,14 +450,15 @@ fn fs_normal_mapped_tangent_space(vertex: VertexOutput, @builtin(front_facing) f
     );
     var in = vertex;
     in.uv = parallax_uv(vertex.uv, n, vertex.world_position);
-    let frame_tb = tangent_frame(in.world_tangent, n);
-    let texel = textureSample(bump_texture, detail_sampler, in.uv).rgb;
-    var n_shading = n;
+    let frame_tb = mistaken_frame(in.world_tangent, n);
+    let texel = mistaken_texel(sample_normal_map(in.uv));
+    var n_shading = base_normal(vertex.world_normal, front_facing, n);
     tangent_space.normal = vec3<f32>(0.0, 0.0, 1.0);
     if frame.bump_enabled != 0u {
         let strength = frame.strength * object.normal_scale;
-        n_shading = perturbed_normal(n, frame_tb, texel, strength, object.flags);
-        tangent_space.normal = tangent_space_normal(texel, strength, object.flags);
+        let flags = mistaken_flags(object.flags);
+        n_shading = perturbed_normal(n_shading, frame_tb, texel, strength, flags);
+        tangent_space.normal = tangent_space_normal(texel, strength, flags);
     }
     return surface_color(in, n, frame_tb, n_shading, clearcoat_normal(in, n, frame_tb));
 }
@@ -410,11 +467,11 @@ fn fs_normal_mapped_tangent_space(vertex: VertexOutput, @builtin(front_facing) f
 @fragment
 fn fs_object_space(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
-    let texel = textureSample(bump_texture, detail_sampler, in.uv).rgb;
-    var n_shading = n;
+    let texel = mistaken_texel(sample_normal_map(in.uv));
+    var n_shading = base_normal(in.world_normal, front_facing, n);
     if frame.bump_enabled != 0u {
         let facing = select(-1.0, 1.0, front_facing);
-        let model_normal = decode_normal(texel, object.flags);
+        let model_normal = decode_normal(texel.texel, texel.correction, mistaken_flags(object.flags));
         let n_map = facing * normalize_or((object.normal_matrix * vec4<f32>(model_normal, 0.0)).xyz, n);
         n_shading = normalize_or(n + frame.strength * object.normal_scale * (n_map - n), n);
     }
@@ -438,7 +495,7 @@ fn fs_height_bump(in: VertexOutput, @builtin(front_facing) front_facing: bool) -
     let dp_dy = dpdy(in.world_position);
     let dh_dx = dpdx(height);
     let dh_dy = dpdy(height);
-    var n_shading = n;
+    var n_shading = base_normal(in.world_normal, front_facing, n);
     if frame.bump_enabled != 0u {
         let r1 = cross(dp_dy, n);
         let r2 = cross(n, dp_dx);

@@ -68,16 +68,17 @@ struct PbrInputs {
 
 const CLEARCOAT_F0: f32 = 0.04;
 
-// pbr::pbr_light: one light's base and clear-coat highlights.
+// pbr::pbr_light: one light's base and clear-coat highlights; `i` counts the lights that are
+// on, for the per-vertex mistakes' hooks (mistakes.wgsl).
 struct PbrLight {
     base: vec3<f32>,
     coat: vec3<f32>,
 };
 
-fn pbr_light(p: PbrInputs, light: Light) -> PbrLight {
+fn pbr_light(p: PbrInputs, i: u32, light: Light) -> PbrLight {
     let arriving = incident_light(light, p.position, p.n_geo);
-    let l = arriving.direction;
-    let v = normalize_or(frame.camera_pos.xyz - p.position, p.n_geo);
+    let l = seen_light_direction(i, arriving.direction, p.n_geo);
+    let v = seen_view_direction(i, l, normalize_or(frame.camera_pos.xyz - p.position, p.n_geo), p.n_geo);
     let h = normalize_or(l + v, p.n_geo);
     let roughness = clamp(p.roughness, MIN_ROUGHNESS, 1.0);
     let alpha = roughness * roughness;
@@ -90,7 +91,7 @@ fn pbr_light(p: PbrInputs, light: Light) -> PbrLight {
     let fresnel = fresnel_schlick(f0, dot(v, h));
     let specular = fresnel * ggx_distribution(n_dot_h, alpha) * smith_visibility(n_dot_l, n_dot_v, alpha);
     let diffuse = (vec3<f32>(1.0) - fresnel) * c_diff / PI;
-    let self_shadow = smoothstep(0.0, frame.self_shadow_fade, dot(p.n_geo, l)) * parallax_light_visibility(l);
+    let self_shadow = smoothstep(0.0, frame.self_shadow_fade, dot(p.n_geo, l)) * parallax_light_visibility(arriving.direction);
     let direct = PI * (diffuse + specular) * arriving.radiance * n_dot_l * self_shadow;
     if !p.has_clearcoat {
         return PbrLight(direct, vec3<f32>(0.0));
@@ -112,7 +113,7 @@ fn metallic_roughness(p: PbrInputs) -> vec3<f32> {
     var direct = vec3<f32>(0.0);
     var coat_direct = vec3<f32>(0.0);
     for (var i = 0u; i < min(frame.light_count, MAX_LIGHTS); i++) {
-        let terms = pbr_light(p, frame.lights[i]);
+        let terms = pbr_light(p, i, frame.lights[i]);
         direct += terms.base;
         coat_direct += terms.coat;
     }

@@ -12,19 +12,22 @@
 //! stored (what the target holds: sRGB-encoded for the lit picture, `0.5·v + 0.5` for
 //! vector views).
 
+pub mod legacy;
+pub mod mistakes;
 pub mod parallax;
 
 use glam::{Mat3, Vec3, Vec4};
 
-use crate::frame::{BumpKind, FrameParams, LightingSpace, ShadingMode, ViewMode};
-use crate::math::{handedness, linear_to_srgb, normalize_or, orthonormalize_tangent, smoothstep};
+use crate::frame::{BumpKind, FrameParams, LegacyLook, LightingSpace, ShadingMode, ViewMode};
+use crate::math::{linear_to_srgb, normalize_or, smoothstep};
 use crate::scene::{MAX_LIGHTS, Material, ShadingModel};
 use crate::shading::lights::incident;
 use crate::shading::pbr::{ClearcoatInputs, PbrInputs, metallic_roughness};
 use crate::shading::spaces::{inverse_tbn, tangent_lighting_vectors, view_lighting_vectors};
 use crate::shading::{
-    LightingInputs, OVER_TILT_COLOR, SELF_SHADOW_FADE, blinn_phong, debug_color, decode_normal, handedness_color,
-    object_space_normal, over_tilted, surface_gradient_normal, tangent_space_normal, world_vectors,
+    LightingInputs, NormalTexel, OVER_TILT_COLOR, SELF_SHADOW_FADE, blinn_phong, debug_color, decode_normal,
+    handedness_color, object_space_normal, over_tilted, packed_gloss, surface_gradient_normal, tangent_space_normal,
+    world_vectors,
 };
 
 /// What the fragment shader reads at one surface point.
@@ -58,6 +61,13 @@ pub struct SurfaceSample {
     pub clearcoat: Option<f32>,
     pub clearcoat_roughness: Option<f32>,
     pub clearcoat_normal: Option<Vec3>,
+    /// The per-vertex light direction and half vector ([`legacy::vertex_vectors`]),
+    /// interpolated (perspective-correct) as the vertex stage passes them on.
+    pub vertex_light: Vec3,
+    pub vertex_half: Vec3,
+    /// The height map's neighbours for the emboss look; `None` where no height map is bound
+    /// (only normal-mapped surfaces with a height map, uploaded for parallax or emboss).
+    pub emboss: Option<legacy::EmbossSample>,
     /// The triangle's inverse frame (world → tangent space) for tangent-space lighting
     /// ([`crate::shading::spaces::triangle_inverse_tbn`], from screen-space derivatives on the
     /// GPU); `None`: the inverse of the point's own T, B, N (the same where the frame is the
@@ -68,8 +78,9 @@ pub struct SurfaceSample {
 /// What the bump texture gives at a point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum BumpSample {
-    /// The normal map's filtered RGB, 0..1, linear (tangent- or object-space maps).
-    NormalMap(Vec3),
+    /// The normal map's filtered texel (and X-Ray's `bump#`), linear (tangent- or
+    /// object-space maps).
+    NormalMap(NormalTexel),
     /// Screen-space derivatives for Blinn's bump from the height map: of the position
     /// (metres per pixel, world space) and of the decoded height sample ([`crate::shading::height_sample`],
     /// full range per pixel, before the depth flip, range and strength).
@@ -101,8 +112,15 @@ pub struct ChainValues {
     pub clearcoat_normal: Vec3,
     /// Unit direction from the point to the eye.
     pub view_dir: Vec3,
+    /// The per-vertex light direction as interpolated ([`SurfaceSample::vertex_light`]), and
+    /// the light vector DOT3 lit with: that one, or it through the normalization cube map;
+    /// `None` outside DOT3.
+    pub vertex_light: Vec3,
+    pub dot3_light: Option<Vec3>,
     /// Each of the frame's lights at the point, in the frame's order; `None` for a light
-    /// that is off and past the last light.
+    /// that is off and past the last light. Under the per-vertex mistakes the first light
+    /// that is on has the direction and half vector the mistake sees
+    /// ([`mistakes::seen_light_direction`], [`mistakes::seen_view_direction`]).
     pub lights: [Option<LightTerms>; MAX_LIGHTS],
     /// Linear albedo: base colour texture times the factor.
     pub albedo: Vec3,
@@ -143,26 +161,24 @@ pub fn shade(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: 
     let shading = &frame.shading;
     let facing = if point.front_facing { 1.0 } else { -1.0 };
     let n = normalize_or(point.world_normal, Vec3::Z) * facing;
-    let tangent_frame = point.world_tangent.map(|world| {
-        let t = orthonormalize_tangent(world.truncate(), n);
-        let w = handedness(world);
-        (t, w * n.cross(t), w)
-    });
+    let mistake = shading.mistake;
+    let tangent_frame = point.world_tangent.map(|world| mistakes::tangent_frame(mistake, world, n));
+    let base = mistakes::base_normal(mistake, point.world_normal, facing, n);
 
     let map = material.normal_map.as_ref().filter(|_| matches!(bump, BumpKind::TangentSpace | BumpKind::ObjectSpace));
     let strength = shading.strength * map.map_or(1.0, |m| m.scale);
     let texel = match point.bump {
-        Some(BumpSample::NormalMap(texel)) => map.map(|_| texel),
+        Some(BumpSample::NormalMap(texel)) => map.map(|_| mistakes::texel_read(mistake, texel)),
         _ => None,
     };
-    let decoded = texel.zip(map).map(|(texel, m)| decode_normal(texel, m.convention));
+    let convention = map.map(|m| mistakes::convention_read(mistake, m.convention));
+    let decoded = texel.zip(convention).map(|(texel, c)| decode_normal(texel, c));
     let after_strength = decoded.filter(|_| bump == BumpKind::TangentSpace).map(|d| tangent_space_normal(d, strength));
-    let shading_normal = match (shading.bump_enabled, bump, tangent_frame, after_strength, texel, map, point.bump) {
-        (true, BumpKind::TangentSpace, Some((t, b, _)), Some(nt), ..) => {
-            normalize_or(t * nt.x + b * nt.y + n * nt.z, n)
-        }
-        (true, BumpKind::ObjectSpace, _, _, Some(texel), Some(m), _) => {
-            object_space_normal(n, point.normal_matrix, point.front_facing, texel, strength, m.convention)
+    let slopes = point.bump;
+    let shading_normal = match (shading.bump_enabled, bump, tangent_frame, after_strength, texel, convention, slopes) {
+        (true, BumpKind::TangentSpace, Some((t, b, _)), Some(nt), ..) => mistakes::to_world(mistake, t, b, base, nt),
+        (true, BumpKind::ObjectSpace, _, _, Some(texel), Some(c), _) => {
+            object_space_normal(n, point.normal_matrix, point.front_facing, texel, strength, c)
         }
         (true, BumpKind::HeightInShader, .., Some(BumpSample::HeightSlopes { dp_dx, dp_dy, dh_dx, dh_dy })) => {
             let height = material.height_map.as_ref();
@@ -170,74 +186,107 @@ pub fn shade(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: 
             let metres = depth_sign * height.map_or(0.0, |h| h.range_m) * shading.strength;
             surface_gradient_normal(n, dp_dx, dp_dy, dh_dx * metres, dh_dy * metres)
         }
-        _ => n,
+        _ => base,
     };
 
     let coat = material.visible_clearcoat();
     let coat_map = coat.and_then(|c| c.normal_map.as_ref());
     let clearcoat_normal = match (shading.bump_enabled, tangent_frame, coat_map, point.clearcoat_normal) {
         (true, Some((t, b, _)), Some(map), Some(texel)) => {
-            let decoded = decode_normal(texel, map.convention);
+            let decoded = decode_normal(NormalTexel::rgb(texel), map.convention);
             let nt = tangent_space_normal(decoded, shading.strength * map.scale);
-            normalize_or(t * nt.x + b * nt.y + n * nt.z, n)
+            mistakes::to_world(mistake, t, b, n, nt)
         }
         _ => n,
     };
 
+    // X-Ray's bump carries a gloss that scales k_s (1 for the other layouts).
+    let gloss = match point.bump {
+        Some(BumpSample::NormalMap(raw)) => map.map_or(1.0, |m| packed_gloss(raw, m.convention.layout)),
+        _ => 1.0,
+    };
     let eye = frame.camera.eye();
     let view_dir = normalize_or(eye - point.position, n);
+    let albedo = point.base_color.unwrap_or(Vec3::ONE) * material.base_color_factor.truncate();
+    let lit_albedo = if shading.mode == ShadingMode::BumpOnly { Vec3::ONE } else { albedo };
+    let inputs = LightingInputs {
+        albedo: lit_albedo,
+        geometric_normal: n,
+        shading_normal,
+        position: point.position,
+        eye,
+        lights: frame.lights,
+        specular: material.specular * point.gloss.unwrap_or(Vec3::ONE) * gloss,
+        shininess: shading.shininess.unwrap_or(material.shininess).max(1.0),
+        specular_mode: shading.specular,
+    };
+    // The world-space directions the lighting sees: the per-vertex mistakes replace the first
+    // light's (mistakes::seen_vectors).
+    let seen =
+        mistakes::seen_vectors(mistake, world_vectors(&inputs), &frame.lights, point.vertex_light, point.vertex_half);
     let mut lights = [None; MAX_LIGHTS];
-    for (terms, light) in lights.iter_mut().zip(frame.lights.as_slice()).filter(|(_, light)| light.enabled) {
+    let on = lights.iter_mut().zip(frame.lights.as_slice()).enumerate().filter(|(_, (_, light))| light.enabled);
+    for (k, (terms, light)) in on {
         let arriving = incident(light, point.position, n);
-        let l = arriving.direction;
+        let (l, v) = (seen.lights[k], seen.views[k]);
         let n_dot_l = shading_normal.dot(l);
-        let half = normalize_or(l + view_dir, n);
+        let half = normalize_or(l + v, n);
         *terms = Some(LightTerms {
             direction: l,
             half,
             n_dot_l,
             n_dot_h: shading_normal.dot(half),
-            r_dot_v: (2.0 * n_dot_l * shading_normal - l).dot(view_dir),
+            r_dot_v: (2.0 * n_dot_l * shading_normal - l).dot(v),
             self_shadow: smoothstep(0.0, SELF_SHADOW_FADE, n.dot(l)),
             attenuation: arriving.attenuation,
             radiance: arriving.radiance,
         });
     }
-    let albedo = point.base_color.unwrap_or(Vec3::ONE) * material.base_color_factor.truncate();
     let shading_model = shading.shading_override.unwrap_or(material.shading_model);
     let lighting_space = match (bump, tangent_frame, shading_model) {
         (BumpKind::TangentSpace, Some(_), ShadingModel::BlinnPhong) => shading.lighting_space,
         _ => LightingSpace::World,
     };
-    let lit_albedo = if shading.mode == ShadingMode::BumpOnly { Vec3::ONE } else { albedo };
-    // Emitted light shows in the bump × colour picture only.
+    let legacy = shading.legacy;
+    // Emitted light shows in the bump × colour picture only (not in the legacy looks).
     let emission = match shading.mode {
+        _ if legacy.look != LegacyLook::Off => Vec3::ZERO,
         ShadingMode::BumpTimesColour => material.emissive_factor * point.emissive.unwrap_or(Vec3::ONE),
         ShadingMode::BumpOnly | ShadingMode::ColourOnly => Vec3::ZERO,
     };
+    let first = frame.lights.first_on().map(|light| (light, incident(light, point.position, n)));
+    let dot3_light = (legacy.look == LegacyLook::Dot3).then(|| match legacy.cube_map_in_use() {
+        Some(size) => legacy::cube_map_lookup(&legacy::cube_map(size), size, point.vertex_light),
+        None => point.vertex_light,
+    });
     let lit_color = match (shading.mode, shading_model) {
         (ShadingMode::ColourOnly, _) => albedo,
+        // The legacy looks light with the first light that is on (the ambient light alone
+        // without one), seen from where it is, whatever the mistake.
+        _ if legacy.look == LegacyLook::Dot3 => match first {
+            Some((_, arriving)) => {
+                legacy::dot3_color(lit_albedo, arriving.radiance, shading_normal, dot3_light.unwrap_or(Vec3::ZERO))
+            }
+            None => lit_albedo * frame.lights.ambient(),
+        },
+        _ if legacy.look == LegacyLook::Emboss => match (point.emboss, tangent_frame, first) {
+            (Some(sample), Some((t, b, _)), Some((light, arriving))) => {
+                let offset = legacy::emboss_light_offset(t, b, legacy::emboss_to_light(light, point.position, n));
+                let strength = if shading.bump_enabled { shading.strength } else { 0.0 };
+                legacy::emboss_color(lit_albedo, arriving.radiance, &sample, offset, strength)
+            }
+            _ => lit_albedo * frame.lights.ambient(),
+        },
         (_, ShadingModel::BlinnPhong) => {
-            let inputs = LightingInputs {
-                albedo: lit_albedo,
-                geometric_normal: n,
-                shading_normal,
-                position: point.position,
-                eye,
-                lights: frame.lights,
-                specular: material.specular * point.gloss.unwrap_or(Vec3::ONE),
-                shininess: shading.shininess.unwrap_or(material.shininess).max(1.0),
-                specular_mode: shading.specular,
-            };
             let vectors = match lighting_space {
-                LightingSpace::World => world_vectors(&inputs),
+                LightingSpace::World => seen,
                 LightingSpace::Tangent => {
                     let own = tangent_frame.map_or(Mat3::IDENTITY, |(t, b, _)| inverse_tbn(t, b, n));
                     let tangent_normal = if shading.bump_enabled { after_strength } else { None };
                     let to_tangent = point.triangle_frame.unwrap_or(own);
-                    tangent_lighting_vectors(&world_vectors(&inputs), to_tangent, tangent_normal.unwrap_or(Vec3::Z))
+                    tangent_lighting_vectors(&seen, to_tangent, tangent_normal.unwrap_or(Vec3::Z))
                 }
-                LightingSpace::View => view_lighting_vectors(&world_vectors(&inputs), frame.camera.view_rotation()),
+                LightingSpace::View => view_lighting_vectors(&seen, frame.camera.view_rotation()),
             };
             blinn_phong(&inputs, &vectors)
         }
@@ -254,6 +303,7 @@ pub fn shade(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: 
                 position: point.position,
                 eye,
                 lights: frame.lights,
+                seen: Some(seen),
                 clearcoat: coat.map(|c| ClearcoatInputs {
                     factor: c.factor * point.clearcoat.unwrap_or(1.0),
                     roughness: c.roughness * point.clearcoat_roughness.unwrap_or(1.0),
@@ -288,6 +338,8 @@ pub fn shade(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: 
         shading_normal,
         clearcoat_normal,
         view_dir,
+        vertex_light: point.vertex_light,
+        dot3_light,
         lights,
         albedo,
         shading_model,

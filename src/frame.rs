@@ -5,8 +5,10 @@
 //! stage, the GPU renderer, the CPU probe, the viewer state — describes a picture with these.
 
 mod lighting;
+mod looks;
 
 pub use lighting::LightingSpace;
+pub use looks::{CUBE_MAP_SIZES, LegacyLook, LegacySettings, Mistake};
 
 use crate::names::Named;
 use crate::scene::{
@@ -118,9 +120,11 @@ impl ShadingMode {
     }
 }
 
-/// The toggles that keep the scene's GPU data: uniforms, except the view, the shading model
-/// and the parallax technique, which pick pipeline variants (each built on first use, then
-/// cached).
+/// The toggles that keep the scene's GPU data: uniforms, except the view, the shading model,
+/// the parallax technique, the mistake and the legacy look, which pick pipeline variants (each
+/// built on first use, then cached). Two of them bring GPU data of their own: emboss binds the
+/// height maps ([`SceneOptions::parallax`]) and no Gram-Schmidt uploads other frames
+/// ([`SceneOptions::tangents_without_gram_schmidt`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShadingSettings {
     pub bump_enabled: bool,
@@ -146,6 +150,10 @@ pub struct ShadingSettings {
     /// Parallax mapping of normal-mapped surfaces with a height map: the technique picks a
     /// pipeline variant, layers, steps and depth are uniforms.
     pub parallax: ParallaxSettings,
+    /// Draw with one classic mistake (a pipeline variant).
+    pub mistake: Mistake,
+    /// A legacy look instead of today's lighting in the lit views (a pipeline variant).
+    pub legacy: LegacySettings,
     /// The classic model's highlight: Blinn, Phong or none (a uniform).
     pub specular: SpecularMode,
     /// The classic model's shininess exponent for every material (`None`: each material's
@@ -168,6 +176,8 @@ impl Default for ShadingSettings {
             wireframe: false,
             tbn_glyphs: false,
             parallax: ParallaxSettings::default(),
+            mistake: Mistake::None,
+            legacy: LegacySettings::default(),
             specular: SpecularMode::Blinn,
             shininess: None,
             lighting_space: LightingSpace::World,
@@ -472,12 +482,16 @@ pub struct SceneOptions {
     /// Per material (index into the scene's materials): conventions that win over
     /// `materials` field by field.
     pub per_material: PerMaterialOverrides,
-    /// Bind each normal-mapped material's height map for the parallax family: on while a
-    /// technique is chosen (`ViewerState::scene_uploads` sets it), so the height maps are
-    /// uploaded only then.
+    /// Bind each normal-mapped material's height map for the parallax family and the emboss
+    /// look: on while a technique or emboss is chosen (`ViewerState::scene_uploads` sets it),
+    /// so the height maps are uploaded only then.
     pub parallax: bool,
     /// Displaced geometry instead of the normal map where a material has a height map.
     pub displacement: Displacement,
+    /// Draw averaged and supplied tangent frames without Gram-Schmidt against the vertex
+    /// normal ([`crate::tangent::without_gram_schmidt`]): on while a picture shows
+    /// [`Mistake::NoGramSchmidt`] (`ViewerState::scene_uploads` sets it).
+    pub tangents_without_gram_schmidt: bool,
 }
 
 impl SceneOptions {

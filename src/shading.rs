@@ -14,27 +14,64 @@ pub mod spaces;
 use glam::{Mat3, Vec3, Vec4};
 
 use crate::math::{handedness, normalize_or, orthonormalize_tangent, smoothstep};
-use crate::scene::{GreenAxis, Lights, MAX_LIGHTS, NormalConvention, SpecularMode};
+use crate::scene::{GreenAxis, Lights, MAX_LIGHTS, NormalConvention, NormalLayout, SpecularMode};
 use lights::{incident, specular_power};
 
 /// Width of the self-shadow fade in units of `N_geo · L` (a cosine): the light fades in
 /// smoothly from grazing (0) to `N_geo · L = 0.1` (about 84° from the normal).
 pub const SELF_SHADOW_FADE: f32 = 0.1;
 
-/// A normal map texel (`rgb` in 0..1) as a unit vector in the map's space:
-/// `2·rgb − 1`, green negated for DirectX, `z = sqrt(max(0, 1 − x² − y²))` for two-channel
-/// maps (with `(x, y)` scaled onto the unit circle where `x² + y² > 1`), then normalised.
-pub fn decode_normal(texel_rgb: Vec3, convention: NormalConvention) -> Vec3 {
-    let mut v = texel_rgb * 2.0 - 1.0;
+/// What a normal map gives at a point: its filtered RGBA (linear, 0..1) and, in the X-Ray
+/// layout, the filtered RGB of its `bump#` texture (`None`: no `bump#`, no correction).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NormalTexel {
+    pub rgba: Vec4,
+    pub correction: Option<Vec3>,
+}
+
+impl NormalTexel {
+    /// An RGB texel (alpha 1), no correction.
+    pub fn rgb(rgb: Vec3) -> NormalTexel {
+        NormalTexel { rgba: rgb.extend(1.0), correction: None }
+    }
+}
+
+/// The signed vector a texel's channels hold by `layout` ([`NormalLayout`]), before the
+/// green convention and normalisation: RGB `2·rgb − 1`; RG and AG `(2·x − 1, 2·y − 1)` with
+/// `z = sqrt(max(0, 1 − x² − y²))`, `(x, y)` scaled onto the unit circle where `x² + y² > 1`;
+/// X-Ray `bump.agb + bump#.rgb − 1` (a correction of 0.5 without `bump#`).
+pub fn unpack_normal(texel: NormalTexel, layout: NormalLayout) -> Vec3 {
+    let t = texel.rgba;
+    let rebuilt = |x: f32, y: f32| {
+        let (x, y) = (x * 2.0 - 1.0, y * 2.0 - 1.0);
+        let xy2 = x * x + y * y;
+        let shrink = if xy2 > 1.0 { xy2.sqrt().recip() } else { 1.0 };
+        Vec3::new(x * shrink, y * shrink, (1.0 - xy2).max(0.0).sqrt())
+    };
+    match layout {
+        NormalLayout::Rgb => t.truncate() * 2.0 - 1.0,
+        NormalLayout::Rg => rebuilt(t.x, t.y),
+        NormalLayout::Ag => rebuilt(t.w, t.y),
+        NormalLayout::Xray => Vec3::new(t.w, t.z, t.y) + texel.correction.unwrap_or(Vec3::splat(0.5)) - 1.0,
+    }
+}
+
+/// A normal map texel as a unit vector in the map's space: unpacked by the layout
+/// ([`unpack_normal`]), green negated for DirectX, then normalised.
+pub fn decode_normal(texel: NormalTexel, convention: NormalConvention) -> Vec3 {
+    let mut v = unpack_normal(texel, convention.layout);
     if convention.green == GreenAxis::DirectX {
         v.y = -v.y;
     }
-    if convention.two_channel {
-        let xy2 = v.x * v.x + v.y * v.y;
-        let shrink = if xy2 > 1.0 { xy2.sqrt().recip() } else { 1.0 };
-        v = Vec3::new(v.x * shrink, v.y * shrink, (1.0 - xy2).max(0.0).sqrt());
-    }
     normalize_or(v, Vec3::Z)
+}
+
+/// The gloss a normal map carries: X-Ray's `bump` red squared (it scales k_s), else 1.
+pub fn packed_gloss(texel: NormalTexel, layout: NormalLayout) -> f32 {
+    match layout {
+        NormalLayout::Xray => texel.rgba.x * texel.rgba.x,
+        NormalLayout::Rgb | NormalLayout::Rg | NormalLayout::Ag => 1.0,
+    }
 }
 
 /// A decoded tangent-space normal after strength `s`: `normalize(x·s, y·s, max(z, 0))` (a
@@ -46,15 +83,15 @@ pub fn tangent_space_normal(decoded: Vec3, strength: f32) -> Vec3 {
 /// The normal after a tangent-space normal map: decode the texel ([`decode_normal`]), clamp
 /// `z ≥ 0` (a tangent-space normal never points into the surface), scale by `(s, s, 1)`,
 /// normalise, take it from tangent to world space with `T` (Gram-Schmidt against `n_geo`)
-/// and `B = w · cross(N, T)`. `texel_rgb` is the normal map value in 0..1; `n_geo` is unit.
+/// and `B = w · cross(N, T)`. `n_geo` is unit.
 pub fn perturbed_normal(
     n_geo: Vec3,
     tangent: Vec4,
-    texel_rgb: Vec3,
+    texel: NormalTexel,
     strength: f32,
     convention: NormalConvention,
 ) -> Vec3 {
-    let n_tangent = tangent_space_normal(decode_normal(texel_rgb, convention), strength);
+    let n_tangent = tangent_space_normal(decode_normal(texel, convention), strength);
     let t = orthonormalize_tangent(tangent.truncate(), n_geo);
     let b = handedness(tangent) * n_geo.cross(t);
     normalize_or(t * n_tangent.x + b * n_tangent.y + n_geo * n_tangent.z, n_geo)
@@ -69,12 +106,12 @@ pub fn object_space_normal(
     n_geo: Vec3,
     normal_matrix: Mat3,
     front_facing: bool,
-    texel_rgb: Vec3,
+    texel: NormalTexel,
     strength: f32,
     convention: NormalConvention,
 ) -> Vec3 {
     let facing = if front_facing { 1.0 } else { -1.0 };
-    let n_map = facing * normalize_or(normal_matrix * decode_normal(texel_rgb, convention), n_geo);
+    let n_map = facing * normalize_or(normal_matrix * decode_normal(texel, convention), n_geo);
     normalize_or(n_geo + strength * (n_map - n_geo), n_geo)
 }
 
@@ -104,10 +141,12 @@ pub struct LightingInputs {
 pub struct LightingVectors {
     pub geometric_normal: Vec3,
     pub shading_normal: Vec3,
-    /// Towards the eye.
-    pub view: Vec3,
     /// Towards each light, by the frame's light index (lights that are off: unused).
     pub lights: [Vec3; MAX_LIGHTS],
+    /// Towards the eye as each light's highlight sees it, by the frame's light index: the
+    /// true direction for every light but where a per-vertex mistake of the chain
+    /// ([`crate::chain::mistakes::seen_view_direction`]) replaces the first light's.
+    pub views: [Vec3; MAX_LIGHTS],
 }
 
 /// The world-space vectors of `p`: its normals, and the directions to the eye and to each
@@ -121,8 +160,8 @@ pub fn world_vectors(p: &LightingInputs) -> LightingVectors {
     LightingVectors {
         geometric_normal: n_geo,
         shading_normal: p.shading_normal,
-        view: normalize_or(p.eye - p.position, n_geo),
         lights,
+        views: [normalize_or(p.eye - p.position, n_geo); MAX_LIGHTS],
     }
 }
 
@@ -131,21 +170,23 @@ pub fn world_vectors(p: &LightingInputs) -> LightingVectors {
 /// ([`lights::incident`], attenuated by its world-space distance).
 pub fn blinn_phong(p: &LightingInputs, space: &LightingVectors) -> Vec3 {
     let mut sum = p.albedo * p.lights.ambient();
-    for (l, light) in space.lights.iter().zip(p.lights.as_slice()).filter(|(_, light)| light.enabled) {
-        sum += light_term(p, space, *l, incident(light, p.position, p.geometric_normal).radiance);
+    let directions = space.lights.iter().zip(&space.views);
+    for ((l, v), light) in directions.zip(p.lights.as_slice()).filter(|(_, light)| light.enabled) {
+        sum += light_term(p, space, *l, *v, incident(light, p.position, p.geometric_normal).radiance);
     }
     sum
 }
 
-/// What one light adds in the classic model from unit direction `l` with `radiance`, with
-/// geometric self-shadowing: `fade(N_geo·L) · radiance · (albedo·max(N·L, 0) + k_s·specular)`,
-/// where `fade` is `smoothstep(0, SELF_SHADOW_FADE, ·)` and the specular term comes from
-/// [`lights::specular_power`] in the frame's mode; every vector from `space`.
-pub fn light_term(p: &LightingInputs, space: &LightingVectors, l: Vec3, radiance: Vec3) -> Vec3 {
+/// What one light adds in the classic model from unit direction `l` with `radiance`, seen
+/// from unit direction `v`, with geometric self-shadowing: `fade(N_geo·L) · radiance ·
+/// (albedo·max(N·L, 0) + k_s·specular)`, where `fade` is `smoothstep(0, SELF_SHADOW_FADE, ·)`
+/// and the specular term comes from [`lights::specular_power`] in the frame's mode; the
+/// normals from `space`.
+pub fn light_term(p: &LightingInputs, space: &LightingVectors, l: Vec3, v: Vec3, radiance: Vec3) -> Vec3 {
     let (n_geo, n) = (space.geometric_normal, space.shading_normal);
     let self_shadow = smoothstep(0.0, SELF_SHADOW_FADE, n_geo.dot(l));
     let n_dot_l = n.dot(l).max(0.0);
-    let specular = specular_power(p.specular_mode, n, n_geo, l, space.view, p.shininess);
+    let specular = specular_power(p.specular_mode, n, n_geo, l, v, p.shininess);
     self_shadow * radiance * (p.albedo * n_dot_l + p.specular * specular)
 }
 
@@ -235,7 +276,8 @@ mod tests {
     use crate::scene::{Light, NormalSpace};
 
     const GL: NormalConvention =
-        NormalConvention { green: GreenAxis::OpenGl, two_channel: false, space: NormalSpace::Tangent };
+        NormalConvention { green: GreenAxis::OpenGl, layout: NormalLayout::Rgb, space: NormalSpace::Tangent };
+    const RGB: fn(Vec3) -> NormalTexel = NormalTexel::rgb;
 
     fn inputs() -> LightingInputs {
         LightingInputs {
@@ -270,8 +312,8 @@ mod tests {
     fn flat_texel_or_zero_strength_keeps_the_geometric_normal() {
         let n = Vec3::new(0.0, 1.0, 0.0);
         let t = Vec4::new(1.0, 0.0, 0.0, 1.0);
-        let bumpy = Vec3::new(0.8, 0.3, 0.7);
-        assert!((perturbed_normal(n, t, Vec3::new(0.5, 0.5, 1.0), 3.0, GL) - n).length() < 1e-6);
+        let bumpy = RGB(Vec3::new(0.8, 0.3, 0.7));
+        assert!((perturbed_normal(n, t, RGB(Vec3::new(0.5, 0.5, 1.0)), 3.0, GL) - n).length() < 1e-6);
         assert!((perturbed_normal(n, t, bumpy, 0.0, GL) - n).length() < 1e-6);
         let inverted = perturbed_normal(n, t, bumpy, -1.0, GL);
         let plain = perturbed_normal(n, t, bumpy, 1.0, GL);
@@ -283,7 +325,7 @@ mod tests {
         let n = Vec3::Z;
         let t = Vec4::new(1.0, 0.0, 0.0, -1.0);
         for s in [-1000.0, 1000.0, f32::MAX] {
-            let v = perturbed_normal(n, t, Vec3::new(0.6, 0.45, 0.9), s, GL);
+            let v = perturbed_normal(n, t, RGB(Vec3::new(0.6, 0.45, 0.9)), s, GL);
             assert!(v.is_finite() && (v.length() - 1.0).abs() < 1e-5, "{s}: {v}");
         }
     }
@@ -293,23 +335,23 @@ mod tests {
         let texel = Vec3::new(0.7, 0.2, 0.9);
         let flipped = Vec3::new(0.7, 0.8, 0.9);
         let dx = NormalConvention { green: GreenAxis::DirectX, ..GL };
-        assert!((decode_normal(flipped, dx) - decode_normal(texel, GL)).length() < 1e-6);
+        assert!((decode_normal(RGB(flipped), dx) - decode_normal(RGB(texel), GL)).length() < 1e-6);
     }
 
     #[test]
     fn two_channel_outside_the_unit_disc_gives_finite_unit_normals() {
-        let two = NormalConvention { two_channel: true, ..GL };
+        let two = NormalConvention { layout: NormalLayout::Rg, ..GL };
         for texel in [Vec3::new(1.0, 1.0, 0.0), Vec3::new(0.0, 1.0, 0.0), Vec3::ZERO, Vec3::new(0.5, 0.5, 0.0)] {
-            let v = decode_normal(texel, two);
+            let v = decode_normal(RGB(texel), two);
             assert!(v.is_finite() && (v.length() - 1.0).abs() < 1e-6 && v.z >= 0.0, "{texel}: {v}");
         }
-        assert!((decode_normal(Vec3::new(0.5, 0.5, 0.0), two) - Vec3::Z).length() < 1e-6);
+        assert!((decode_normal(RGB(Vec3::new(0.5, 0.5, 0.0)), two) - Vec3::Z).length() < 1e-6);
     }
 
     #[test]
     fn object_space_map_turns_with_the_model() {
         let rotation = Mat3::from_rotation_y(std::f32::consts::FRAC_PI_2);
-        let texel = Vec3::new(0.5, 0.5, 1.0); // model +Z
+        let texel = RGB(Vec3::new(0.5, 0.5, 1.0)); // model +Z
         let object = NormalConvention { space: NormalSpace::Object, ..GL };
         let n = object_space_normal(Vec3::X, rotation, true, texel, 1.0, object);
         assert!((n - Vec3::X).length() < 1e-6, "{n}");

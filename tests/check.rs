@@ -56,3 +56,39 @@ fn conventions_and_tangents_of_real_files() {
     assert_eq!(code, 1, "{text}");
     assert!(text.contains("not orthogonal to the normal"), "{text}");
 }
+
+/// An image is checked as a normal map and says which layout it is read with and why; the
+/// brick map with blue made constant reads as RGB but suggests `rg` (a warning, exit 1);
+/// `--normal-layout rg` reads it so, and says it was given.
+#[test]
+fn an_image_reports_its_layout_and_why() {
+    let dir = std::env::temp_dir().join(format!("bumpview-check-layout-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = common::scene();
+    let map = &scene.textures[scene.materials[0].normal_map.as_ref().unwrap().texture];
+    let save = |name: &str, rgba: Vec<u8>| {
+        let path = dir.join(name);
+        image::RgbaImage::from_raw(map.width, map.height, rgba).unwrap().save(&path).unwrap();
+        path
+    };
+    let rgb = save("bricks.png", map.rgba.clone());
+    let (code, text) = check(&[&rgb]);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("layout: rgb (as loaded, and red, green and blue vary)"), "{text}");
+    let mut two = map.rgba.clone();
+    two.chunks_exact_mut(4).for_each(|t| t[2] = 0);
+    let rg = save("bricks-rg.png", two);
+    let (code, text) = check(&[&rg]);
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("layout: rgb (as loaded, although blue is constant)"), "{text}");
+    assert!(text.contains("blue is constant, which suggests --normal-layout rg"), "{text}");
+    let output = Command::new(env!("CARGO_BIN_EXE_bumpview"))
+        .args(["check", "--normal-layout", "rg"])
+        .arg(&rg)
+        .output()
+        .expect("run bumpview");
+    let text = String::from_utf8_lossy(&output.stdout);
+    assert_eq!(output.status.code(), Some(0), "{text}");
+    assert!(text.contains("layout: rg (given by --normal-layout)"), "{text}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -109,6 +109,7 @@ fn a_coat_is_the_dimmed_base_plus_a_black_dielectric() {
                 Light::point(Vec3::new(-1.0, 2.0, (t * 0.9).cos()), Vec3::new(1.0, 0.9, 0.8)),
                 Vec3::ZERO,
             ),
+            seen: None,
             clearcoat: None,
         };
         let factor = (t * 0.13).fract();

@@ -10,10 +10,10 @@ use bumpview::names::Named;
 use bumpview::render::capture::{render_float, render_image};
 use bumpview::scene::builtin::{WALL_Z, wall_uv};
 use bumpview::scene::{
-    GreenAxis, Instance, MaterialOverrides, NormalSpace, SamplerWrap, Scene, ShadingModel, TextureImage, TextureKind,
-    Wrap,
+    GreenAxis, Instance, MaterialOverrides, NormalLayout, NormalSpace, SamplerWrap, Scene, ShadingModel, TextureImage,
+    TextureKind, Wrap,
 };
-use bumpview::shading::{decode_normal, object_space_normal};
+use bumpview::shading::{NormalTexel, decode_normal, object_space_normal};
 use common::*;
 use glam::{Mat3, Mat4, Vec3};
 
@@ -74,7 +74,7 @@ fn two_channel_texels_outside_the_disc_give_finite_unit_normals() {
     let texels = [[255, 255, 0, 255], [0, 255, 0, 255], [0, 0, 0, 255], [128, 128, 0, 255]];
     scene.textures.push(texture("two-channel", TextureKind::NormalMap, 2, &texels));
     scene.materials[0].normal_map.as_mut().unwrap().texture = scene.textures.len() - 1;
-    scene.materials[0].normal_map.as_mut().unwrap().convention.two_channel = true;
+    scene.materials[0].normal_map.as_mut().unwrap().convention.layout = NormalLayout::Rg;
     let mut params = close_wall_params(&scene, 0.5);
     params.shading.view = ViewMode::ShadingNormal;
     let mut renderer = renderer_for(&scene);
@@ -105,7 +105,7 @@ fn object_space_map_follows_the_normal_matrix() {
     normal_map.texture = scene.textures.len() - 1;
     normal_map.convention.space = NormalSpace::Object;
     let convention = normal_map.convention;
-    let rgb = Vec3::new(unit(texel[0]), unit(texel[1]), unit(texel[2]));
+    let rgb = NormalTexel::rgb(Vec3::new(unit(texel[0]), unit(texel[1]), unit(texel[2])));
     let normal_matrix = Mat3::from_mat4(model).inverse().transpose();
     let expected = (normal_matrix * decode_normal(rgb, convention)).normalize();
     let n_geo = (normal_matrix * Vec3::Z).normalize();
@@ -183,7 +183,7 @@ fn gltf_samplers_and_metallic_roughness_are_loaded() {
 }
 
 /// No NaN or infinity anywhere on a float target, for every path this adds: DirectX,
-/// two-channel and object-space maps (on the curved torus too, with extreme texels), both
+/// RG, AG and X-Ray layouts and object-space maps (on the curved torus too, with extreme texels), both
 /// shading models, and a depth map bumped in the shader; lit and shading-normal views.
 #[test]
 fn new_variants_never_produce_nan() {
@@ -193,18 +193,16 @@ fn new_variants_never_produce_nan() {
     let wild_map = wild.textures.len() - 1;
     wild.materials.iter_mut().for_each(|m| m.normal_map.as_mut().unwrap().texture = wild_map);
     let on = Some(true);
+    let [rg, ag, xray] = [NormalLayout::Rg, NormalLayout::Ag, NormalLayout::Xray].map(Some);
     let cases = [
-        (scene(), MaterialOverrides { green: Some(GreenAxis::DirectX), two_channel: on, ..Default::default() }),
-        (wild.clone(), MaterialOverrides { two_channel: on, ..Default::default() }),
+        (scene(), MaterialOverrides { green: Some(GreenAxis::DirectX), layout: rg, ..Default::default() }),
+        (wild.clone(), MaterialOverrides { layout: rg, ..Default::default() }),
+        (wild.clone(), MaterialOverrides { layout: ag, ..Default::default() }),
+        (wild.clone(), MaterialOverrides { layout: xray, ..Default::default() }),
         (wild.clone(), MaterialOverrides { object_space: on, ..Default::default() }),
         (
             wild,
-            MaterialOverrides {
-                object_space: on,
-                two_channel: on,
-                green: Some(GreenAxis::DirectX),
-                ..Default::default()
-            },
+            MaterialOverrides { object_space: on, layout: rg, green: Some(GreenAxis::DirectX), ..Default::default() },
         ),
         (scene(), MaterialOverrides { depth_map: on, height_range_m: Some(0.05), ..Default::default() }),
     ];

@@ -2,10 +2,10 @@
 //! them, so they must stay as they are. Each enum derives its names ([`bumpview::names`]);
 //! this pins every one, in order (the panel's, `--help`'s and the reports' order).
 
-use bumpview::frame::{BumpSource, LightingSpace, Parallax, ShadingMode, ViewMode};
+use bumpview::frame::{BumpSource, LegacyLook, LightingSpace, Mistake, Parallax, ShadingMode, ViewMode};
 use bumpview::height::{Border, Kernel};
 use bumpview::names::Named;
-use bumpview::scene::{GreenAxis, LightKind, ShadingModel, SpecularMode};
+use bumpview::scene::{GreenAxis, LightKind, NormalLayout, ShadingModel, SpecularMode};
 use bumpview::state::SplitDifference;
 use bumpview::tangent::TangentMethod;
 
@@ -26,8 +26,19 @@ fn every_enum_keeps_its_names_in_order() {
     assert_eq!(ViewMode::names(), views);
     assert_eq!(ShadingMode::names(), ["bump-colour", "bump-only", "colour-only"]);
     assert_eq!(BumpSource::names(), ["normal-map", "height-in-shader"]);
-    let differences =
-        ["bump", "view", "strength", "mode", "tangents", "convention", "bump-source", "parallax", "lighting-space", "displacement"];
+    let differences = [
+        "bump",
+        "view",
+        "strength",
+        "mode",
+        "tangents",
+        "convention",
+        "bump-source",
+        "parallax",
+        "mistake",
+        "lighting-space",
+        "displacement",
+    ];
     assert_eq!(SplitDifference::names(), differences);
     let methods = [
         "mikktspace",
@@ -45,6 +56,20 @@ fn every_enum_keeps_its_names_in_order() {
     assert_eq!(Border::names(), ["wrap", "clamp"]);
     assert_eq!(ShadingModel::names(), ["blinn-phong", "pbr"]);
     assert_eq!(Parallax::names(), ["off", "offset", "offset-limited", "steep", "occlusion", "relief"]);
+    assert_eq!(NormalLayout::names(), ["rgb", "rg", "ag", "xray"]);
+    let mistakes = [
+        "none",
+        "tbn-typo",
+        "handedness-ignored",
+        "srgb-normal-map",
+        "no-renormalization",
+        "no-gram-schmidt",
+        "green-flipped",
+        "half-vector-per-vertex",
+        "light-per-vertex",
+    ];
+    assert_eq!(Mistake::names(), mistakes);
+    assert_eq!(LegacyLook::names(), ["off", "dot3", "emboss"]);
     assert_eq!(LightKind::names(), ["point", "directional"]);
     assert_eq!(SpecularMode::names(), ["blinn", "phong", "off"]);
     assert_eq!(LightingSpace::names(), ["world", "tangent", "view"]);
@@ -70,6 +95,9 @@ fn every_name_reads_back_as_its_value() {
     round_trip::<Border>();
     round_trip::<ShadingModel>();
     round_trip::<Parallax>();
+    round_trip::<NormalLayout>();
+    round_trip::<Mistake>();
+    round_trip::<LegacyLook>();
     assert_eq!(ShadingMode::from_name("bump-colour"), Some(ShadingMode::BumpTimesColour));
     assert_eq!(TangentMethod::from_name("averaged-area"), Some(TangentMethod::AveragedArea));
 }

@@ -77,6 +77,7 @@ fn differences_occluded(
                 position,
                 eye: params.camera.eye(),
                 lights: params.lights,
+                seen: None,
                 clearcoat: None,
             });
             let cpu = linear.map(|c| linear_to_srgb(c) * 255.0);

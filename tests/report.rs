@@ -215,6 +215,9 @@ fn quick_report_writes_a_row_for_every_method_and_kernel_and_valid_charts() {
     }
     let markdown = std::fs::read_to_string(dir.join("report.md")).unwrap();
     assert!(markdown.contains("](tangents.png)") && markdown.contains("](kernels.png)"));
+    for size in bumpview::frame::CUBE_MAP_SIZES {
+        assert!(markdown.contains(&format!("| {size}×{size} |")), "the cube map row of {size}");
+    }
     assert!(!std::fs::read_dir(&dir).unwrap().any(|e| e.unwrap().file_name().to_string_lossy().ends_with(".tmp")));
     std::fs::remove_dir_all(&dir).unwrap();
 }

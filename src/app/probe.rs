@@ -12,7 +12,7 @@ use bumpview::names::Named;
 use bumpview::prepare::PreparedScene;
 use bumpview::probe::{ProbePoint, ProbeReadout, ProbeScene, project_to_pixel};
 use bumpview::scene::OrbitCamera;
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 
 /// The pinned probe and what it needs to recompute.
 #[derive(Default)]
@@ -136,6 +136,10 @@ fn v3(v: Vec3) -> String {
     format!("({:6.3}, {:6.3}, {:6.3})", v.x, v.y, v.z)
 }
 
+fn v4(v: Vec4) -> String {
+    format!("({:6.3}, {:6.3}, {:6.3}, {:6.3})", v.x, v.y, v.z, v.w)
+}
+
 fn opt3(v: Option<Vec3>) -> String {
     v.map_or_else(|| "—".to_owned(), v3)
 }
@@ -170,7 +174,8 @@ fn lines(r: &ProbeReadout, mesh_name: &str) -> String {
     }
     text.extend([
         format!("texel    {texel} (0–255, mip 0, at the read UV)"),
-        format!("filtered {}", opt3(r.texel)),
+        format!("filtered {}", r.texel.map_or_else(|| "—".to_owned(), |t| v4(t.rgba))),
+        format!("bump#    {}  (X-Ray correction)", opt3(r.texel.and_then(|t| t.correction))),
         format!("decoded  {}", opt3(r.chain.decoded)),
         format!("s={:<6.3} {}", r.chain.strength, opt3(r.chain.after_strength)),
         format!("T        {}", opt3(r.chain.tangent)),

@@ -11,9 +11,10 @@ use std::fmt::Write;
 use glam::{Vec2, Vec3};
 
 use crate::error::LoadWarning;
-use crate::scene::{Mesh, Scene};
+use crate::names::Named;
+use crate::scene::{Mesh, NormalLayout, Scene};
 use crate::tangent::face_frame;
-pub use normal_map::{GreenConvention, NormalMapFindings, check_normal_map};
+pub use normal_map::{GreenConvention, NormalMapFindings, check_normal_map, layout_evidence};
 
 /// How serious a finding is; decides the exit status (0 clean, 1 warnings, 2 errors).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -61,6 +62,9 @@ pub struct MapFindings {
     pub material: String,
     pub texture: String,
     pub findings: NormalMapFindings,
+    /// The channel layout the map is drawn with (the material's, as loaded), and why.
+    pub layout: NormalLayout,
+    pub layout_reason: String,
 }
 
 /// Everything `check` found in one scene.
@@ -151,10 +155,23 @@ pub fn check_scene(scene: &Scene) -> CheckReport {
         .filter_map(|m| m.normal_map.as_ref().map(|map| (m, map)))
         .filter_map(|(material, map)| {
             let texture = scene.textures.get(map.texture)?;
+            let findings = check_normal_map(texture);
+            let layout = map.convention.layout;
+            let evidence = layout_evidence(findings.suggested_layout);
+            let layout_reason = match (layout, map.correction.and_then(|c| scene.textures.get(c))) {
+                (NormalLayout::Xray, Some(correction)) => {
+                    format!("X-Ray pair: {:?} with the correction {:?} beside it", texture.name, correction.name)
+                }
+                (NormalLayout::Xray, None) => format!("X-Ray bump {:?} without a bump# correction", texture.name),
+                (layout, _) if layout == findings.suggested_layout => format!("as loaded, and {evidence}"),
+                _ => format!("as loaded, although {evidence}"),
+            };
             Some(MapFindings {
                 material: material.name.clone(),
                 texture: texture.name.clone(),
-                findings: check_normal_map(texture),
+                findings,
+                layout,
+                layout_reason,
             })
         })
         .collect();
@@ -189,6 +206,14 @@ impl CheckReport {
         for map in &self.normal_maps {
             let f = &map.findings;
             let name = format!("material {:?}, normal map {:?}", map.material, map.texture);
+            if map.layout != f.suggested_layout && map.layout != NormalLayout::Xray {
+                let (suggested, evidence) = (f.suggested_layout.name(), layout_evidence(f.suggested_layout));
+                warnings.push(format!("{name}: {evidence}, which suggests --normal-layout {suggested}"));
+            }
+            // The texel statistics read red, green, blue as x, y, z.
+            if map.layout != NormalLayout::Rgb {
+                continue;
+            }
             if f.non_unit_share > NON_UNIT_WARN_SHARE {
                 warnings
                     .push(format!("{name}: {:.1}% of texels decode far from unit length", f.non_unit_share * 100.0));
@@ -248,14 +273,14 @@ impl CheckReport {
             };
             let _ = writeln!(
                 out,
-                "  material {:?}, normal map {:?}: {:.1}% non-unit, {:.2}% z < 0, {}, {}; green: {convention}",
+                "  material {:?}, normal map {:?}: {:.1}% non-unit, {:.2}% z < 0, {}; green: {convention}",
                 map.material,
                 map.texture,
                 f.non_unit_share * 100.0,
                 f.negative_z_share * 100.0,
                 if f.looks_srgb { "looks sRGB-encoded" } else { "linear" },
-                if f.two_channel { "two-channel" } else { "three-channel" },
             );
+            let _ = writeln!(out, "    layout: {} ({})", map.layout.name(), map.layout_reason);
         }
         for error in self.errors() {
             let _ = writeln!(out, "  error: {error}");

@@ -6,7 +6,7 @@
 //! "curl" becomes `∂p/∂y_up + ∂q/∂x`, which is not zero where the relief bends. Comparing the
 //! two energies tells the convention (Kovesi's integrability test, in short).
 
-use crate::scene::TextureImage;
+use crate::scene::{NormalLayout, TextureImage};
 
 /// Which way green points.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -27,8 +27,10 @@ pub struct NormalMapFindings {
     /// The flat texel looks sRGB-encoded: most texels sit near (188, 188) in red and green
     /// (0.5 encoded as sRGB) instead of near 128.
     pub looks_srgb: bool,
-    /// Blue carries no information (constant): a two-channel map whose z must be rebuilt.
-    pub two_channel: bool,
+    /// The channel layout the texels suggest ([`suggested_layout`]): RG where blue is
+    /// constant, AG where red and blue are constant and alpha varies, else RGB. X-Ray's pair
+    /// is told by its files, not its texels.
+    pub suggested_layout: NormalLayout,
     /// The convention whose slope field is closer to curl-free, with a confidence in 0..1
     /// (`1 − smaller energy / larger energy`); `None` for a map too flat to tell.
     pub convention: Option<(GreenConvention, f32)>,
@@ -45,8 +47,8 @@ fn slopes(image: &TextureImage, x: i64, y: i64) -> Option<(f32, f32)> {
 pub fn check_normal_map(image: &TextureImage) -> NormalMapFindings {
     let texels = (image.width as usize * image.height as usize).max(1) as f32;
     let (mut non_unit, mut negative_z, mut near_srgb_flat, mut near_linear_flat) = (0usize, 0usize, 0usize, 0usize);
-    let first_blue = image.rgba.get(2).copied().unwrap_or(0);
-    let mut blue_constant = true;
+    let first = image.rgba.get(..4).map_or([0; 4], |t| [t[0], t[1], t[2], t[3]]);
+    let mut constant = [true; 4];
     for t in image.rgba.chunks_exact(4) {
         let [x, y, z] = [0, 1, 2].map(|c| t[c] as f32 / 127.5 - 1.0);
         if ((x * x + y * y + z * z).sqrt() - 1.0).abs() > 0.1 {
@@ -58,14 +60,36 @@ pub fn check_normal_map(image: &TextureImage) -> NormalMapFindings {
         let near = |c: u8, centre: i32| (c as i32 - centre).abs() <= 12;
         near_srgb_flat += (near(t[0], 188) && near(t[1], 188)) as usize;
         near_linear_flat += (near(t[0], 128) && near(t[1], 128)) as usize;
-        blue_constant &= t[2] == first_blue;
+        (0..4).for_each(|c| constant[c] &= t[c] == first[c]);
     }
     NormalMapFindings {
         non_unit_share: non_unit as f32 / texels,
         negative_z_share: negative_z as f32 / texels,
         looks_srgb: near_srgb_flat > near_linear_flat.max(1) * 2,
-        two_channel: blue_constant && image.rgba.len() >= 16,
+        suggested_layout: suggested_layout(constant, image.rgba.len() / 4),
         convention: green_convention(image),
+    }
+}
+
+/// The layout channels that are constant over `texels` texels suggest (RGBA order): AG
+/// (DXT5nm) where red and blue are constant and alpha varies, RG (two-channel) where blue is
+/// constant, else RGB. A map of fewer than 4 texels tells nothing (RGB).
+pub fn suggested_layout(constant: [bool; 4], texels: usize) -> NormalLayout {
+    match constant {
+        _ if texels < 4 => NormalLayout::Rgb,
+        [true, _, true, false] => NormalLayout::Ag,
+        [_, _, true, _] => NormalLayout::Rg,
+        _ => NormalLayout::Rgb,
+    }
+}
+
+/// Why the channels suggest `layout` (see [`suggested_layout`]).
+pub fn layout_evidence(layout: NormalLayout) -> &'static str {
+    match layout {
+        NormalLayout::Rgb => "red, green and blue vary",
+        NormalLayout::Rg => "blue is constant",
+        NormalLayout::Ag => "red and blue are constant, alpha varies",
+        NormalLayout::Xray => "X-Ray's bump pair",
     }
 }
 
@@ -114,7 +138,8 @@ mod tests {
         let (convention, confidence) = findings.convention.unwrap();
         assert_eq!(convention, GreenConvention::OpenGl);
         assert!(confidence > 0.5, "{confidence}");
-        assert!(!findings.looks_srgb && !findings.two_channel && findings.negative_z_share == 0.0);
+        assert!(!findings.looks_srgb && findings.negative_z_share == 0.0);
+        assert_eq!(findings.suggested_layout, NormalLayout::Rgb);
         let (flipped, confidence) = check_normal_map(&flip_green(&map)).convention.unwrap();
         assert_eq!(flipped, GreenConvention::DirectX);
         assert!(confidence > 0.5, "{confidence}");
@@ -130,8 +155,21 @@ mod tests {
             rgba: [rgb[0], rgb[1], rgb[2], 255].repeat(64),
         };
         let linear = check_normal_map(&flat([128, 128, 255]));
-        assert!(linear.convention.is_none() && !linear.looks_srgb && linear.two_channel);
+        assert!(linear.convention.is_none() && !linear.looks_srgb);
+        assert_eq!(linear.suggested_layout, NormalLayout::Rg);
         assert!(check_normal_map(&flat([188, 188, 255])).looks_srgb);
         assert_eq!(check_normal_map(&flat([128, 128, 0])).negative_z_share, 1.0);
+    }
+
+    /// DXT5nm keeps red and blue constant and x in alpha; BC5 keeps blue constant.
+    #[test]
+    fn constant_channels_suggest_the_layout() {
+        let map = brick_height_field(1.0).to_normal_map(Kernel::CentralDifference, Border::Wrap, "bricks");
+        let mut ag = map.clone();
+        ag.rgba.chunks_exact_mut(4).for_each(|t| t.copy_from_slice(&[255, t[1], 0, t[0]]));
+        let mut rg = map.clone();
+        rg.rgba.chunks_exact_mut(4).for_each(|t| t[2] = 0);
+        let layouts = [&map, &ag, &rg].map(|m| check_normal_map(m).suggested_layout);
+        assert_eq!(layouts, [NormalLayout::Rgb, NormalLayout::Ag, NormalLayout::Rg]);
     }
 }

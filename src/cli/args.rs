@@ -153,6 +153,7 @@ pub fn parse_split_sides(difference: SplitDifference, text: &str) -> Result<Comm
         SplitDifference::Convention => Command::SetSplitConventions(pair(sides, parse_named)?),
         SplitDifference::BumpSource => Command::SetSplitBumpSources(pair(sides, parse_named)?),
         SplitDifference::Parallax => Command::SetSplitParallax(pair(sides, parse_named)?),
+        SplitDifference::Mistake => Command::SetSplitMistakes(pair(sides, parse_named)?),
         SplitDifference::LightingSpace => Command::SetSplitLightingSpaces(pair(sides, parse_named)?),
         SplitDifference::Displacement => {
             let level = right.parse::<u32>().ok().filter(|l| (1..=MAX_DISPLACEMENT_LEVEL).contains(l));

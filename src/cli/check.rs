@@ -1,16 +1,25 @@
-//! `bumpview check`: what in a mesh file breaks bump mapping.
+//! `bumpview check`: what in a mesh file (or a normal-map image) breaks bump mapping.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use bumpview::check::{Severity, check_scene};
-use bumpview::load::load_scene;
+use bumpview::load::{is_image_path, load_scene, texture_scene};
+use bumpview::scene::{MaterialOverrides, NormalLayout};
+
+use super::args;
 
 #[derive(clap::Args)]
 pub struct CheckArgs {
-    /// glTF (.gltf, .glb) or OBJ files.
+    /// glTF (.gltf, .glb) or OBJ files, or images: a colour texture NAME.* with X-Ray's
+    /// NAME_bump.* (and NAME_bump#.*) beside it is checked as that pair, any other image as a
+    /// normal map.
     #[arg(required = true)]
     files: Vec<PathBuf>,
+    /// Check the normal maps in this channel layout (rgb, rg, ag, xray) instead of the one
+    /// they load with.
+    #[arg(long, value_parser = args::named::<NormalLayout>())]
+    normal_layout: Option<NormalLayout>,
 }
 
 /// Prints a check report per file; the exit status is the worst finding (a file that does
@@ -19,9 +28,14 @@ pub fn run(args: &CheckArgs) -> ExitCode {
     let mut worst = Severity::Clean;
     for path in &args.files {
         println!("{}", path.display());
-        let severity = match load_scene(path) {
+        let loaded = if is_image_path(path) { texture_scene(path) } else { load_scene(path) };
+        let severity = match loaded {
             Ok(scene) => {
-                let report = check_scene(&scene);
+                let overrides = MaterialOverrides { layout: args.normal_layout, ..Default::default() };
+                let mut report = check_scene(&overrides.applied_to(&scene));
+                if args.normal_layout.is_some() {
+                    report.normal_maps.iter_mut().for_each(|m| m.layout_reason = "given by --normal-layout".into());
+                }
                 print!("{}", report.to_text());
                 report.severity()
             }

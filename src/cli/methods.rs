@@ -3,7 +3,7 @@
 
 use bumpview::frame::BumpSource;
 use bumpview::height::{Border, Kernel};
-use bumpview::scene::{GreenAxis, MaterialOverrides, ShadingModel};
+use bumpview::scene::{GreenAxis, MaterialOverrides, NormalLayout, ShadingModel};
 use bumpview::state::{Command, ViewerState};
 use bumpview::tangent::TangentMethod;
 
@@ -32,8 +32,13 @@ pub struct MaterialArgs {
     /// Normal maps' green channel: opengl (+Y up the image) or directx (−Y); default: as loaded.
     #[arg(long, value_parser = args::named::<GreenAxis>())]
     pub normal_convention: Option<GreenAxis>,
-    /// Normal maps store only red and green; blue (z) is reconstructed.
-    #[arg(long)]
+    /// Normal maps' channel layout: rgb; rg (BC5: x, y in red, green, z rebuilt); ag (DXT5nm:
+    /// x in alpha, y in green, z rebuilt); xray (X-Ray's bump pair: x, y, z in alpha, blue,
+    /// green, gloss = red², plus bump#'s correction); default: as loaded.
+    #[arg(long, value_parser = args::named::<NormalLayout>())]
+    pub normal_layout: Option<NormalLayout>,
+    /// Short for `--normal-layout rg`: normal maps store only red and green.
+    #[arg(long, conflicts_with = "normal_layout")]
     pub two_channel: bool,
     /// Normal maps hold object-space (model-space) normals; no tangents are used.
     #[arg(long)]
@@ -62,7 +67,7 @@ impl MaterialArgs {
     fn overrides(&self) -> MaterialOverrides {
         MaterialOverrides {
             green: self.normal_convention,
-            two_channel: self.two_channel.then_some(true),
+            layout: if self.two_channel { Some(NormalLayout::Rg) } else { self.normal_layout },
             object_space: self.object_space.then_some(true),
             depth_map: self.depth_map.then_some(true),
             height_range_m: self.height_range,

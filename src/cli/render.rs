@@ -8,8 +8,8 @@ use std::path::PathBuf;
 
 use bumpview::error::LoadWarning;
 use bumpview::frame::{
-    FrameQuality, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS, Parallax, SceneUploads,
-    ViewMode,
+    FrameQuality, LegacyLook, LegacySettings, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS,
+    Mistake, Parallax, SceneUploads, ViewMode,
 };
 use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
 use bumpview::render::export::{TileGrid, caption, render_grid};
@@ -99,6 +99,23 @@ pub struct RenderArgs {
     /// count and memory go to stderr [default: 0].
     #[arg(long, value_name = "LEVEL", value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_DISPLACEMENT_LEVEL)))]
     displacement: Option<u32>,
+    /// A legacy look in the lit views: dot3 (diffuse N·L alone, L normalised per vertex and
+    /// interpolated) or emboss (the 2D light-map bump on surfaces with a height map)
+    /// [default: off].
+    #[arg(long, value_parser = args::named::<LegacyLook>())]
+    legacy: Option<LegacyLook>,
+    /// With --legacy dot3: re-normalise L through a normalization cube map of this face size
+    /// (8, 16, 32 or 64).
+    #[arg(long, value_name = "N", requires = "legacy", value_parser = clap::builder::PossibleValuesParser::new(["8", "16", "32", "64"]))]
+    cube_map_size: Option<String>,
+    /// Draw with one classic mistake: tbn-typo (seed 000's TBN[1].z = N.z where N.y
+    /// belongs), handedness-ignored (B = N × T, w dropped), srgb-normal-map (the map sampled
+    /// through an sRGB view), no-renormalization (interpolated normals used as they come),
+    /// no-gram-schmidt (T not made orthogonal to N), green-flipped (the other green
+    /// convention), half-vector-per-vertex (H interpolated, Cg 8.1.4), light-per-vertex (L
+    /// normalised per vertex before interpolation, seed 003) [default: none].
+    #[arg(long, value_parser = args::named::<Mistake>())]
+    mistake: Option<Mistake>,
     /// Hide the light marker.
     #[arg(long)]
     no_light_marker: bool,
@@ -108,8 +125,9 @@ pub struct RenderArgs {
     /// Split view, left │ right, as one image: bump (off │ on), view (lit │ shading-normal),
     /// strength (1 │ 3), mode (colour-only │ bump-colour), tangents (per-face │ mikktspace),
     /// convention (opengl │ directx), bump-source (normal-map │ height-in-shader), parallax
-    /// (steep │ occlusion), lighting-space (world │ tangent) or displacement (a parallax
-    /// technique │ displacement at a level, `--split-sides occlusion,6`) [default: the preset's].
+    /// (steep │ occlusion), lighting-space (world │ tangent), mistake (none │ tbn-typo) or
+    /// displacement (a parallax technique │ displacement at a level, `--split-sides occlusion,6`)
+    /// [default: the preset's].
     #[arg(long, value_name = "KIND", value_parser = args::named::<SplitDifference>(), conflicts_with = "tiles")]
     split: Option<SplitDifference>,
     /// With --split: the two sides instead of the defaults above, e.g. `averaged-uniform,mikktspace`
@@ -154,6 +172,11 @@ impl RenderArgs {
         commands.extend(self.bump.map(Command::SetBump));
         commands.extend(self.strength.map(Command::SetStrength));
         commands.extend(self.parallax.map(Command::SetParallax));
+        commands.extend(self.mistake.map(Command::SetMistake));
+        if let Some(look) = self.legacy {
+            let cube_map_size = self.cube_map_size.as_deref().and_then(|n| n.parse().ok());
+            commands.push(Command::SetLegacy(LegacySettings { look, cube_map_size }));
+        }
         commands.extend(self.parallax_layers.map(Command::SetParallaxLayers));
         commands.extend(self.parallax_steps.map(Command::SetParallaxSteps));
         if let Some(depth) = self.parallax_depth {

@@ -154,8 +154,24 @@ impl SceneFiles {
 }
 
 /// Loads each texture file of `files` (its mesh is not read) and puts it into its slot on
-/// every material of `scene`.
+/// every material of `scene`. A colour texture `NAME.*` given without a normal or height map
+/// brings X-Ray's pair beside it when there is one ([`xray_pair_beside`]): `NAME_bump.*` as a
+/// normal map in the [`crate::scene::NormalLayout::Xray`] layout, with `NAME_bump#.*`.
 pub fn replace_textures(scene: &mut Scene, files: &SceneFiles) -> Result<(), LoadError> {
+    let pair = files.color.as_deref().filter(|_| files.normal.is_none() && files.height.is_none());
+    if let Some((bump, correction)) = pair.and_then(xray_pair_beside) {
+        scene.textures.push(load_texture(&bump, TextureKind::NormalMap)?);
+        let bump_index = scene.textures.len() - 1;
+        let correction_index = match &correction {
+            Some(path) => {
+                scene.textures.push(load_texture(path, TextureKind::Data)?);
+                Some(scene.textures.len() - 1)
+            }
+            None => None,
+        };
+        scene.materials.iter_mut().for_each(|m| m.normal_map = Some(NormalMap::xray(bump_index, correction_index)));
+        scene.files.extend(std::iter::once(bump).chain(correction));
+    }
     if let Some(path) = &files.height {
         let every: Vec<usize> = (0..scene.materials.len()).collect();
         add_height_map(scene, &every, load_texture(path, TextureKind::Height)?, 1.0);
@@ -172,6 +188,53 @@ pub fn replace_textures(scene: &mut Scene, files: &SceneFiles) -> Result<(), Loa
     each(&files.normal, TextureKind::NormalMap, |m, t| m.normal_map = Some(NormalMap::new(t, 1.0)))?;
     each(&files.gloss, TextureKind::Data, |m, t| m.gloss_texture = Some(t))?;
     Ok(())
+}
+
+/// A scene of one material and no mesh around an image file, for `bumpview check`: X-Ray's
+/// pair when `path` is a colour texture with `NAME_bump.*` beside it ([`xray_pair_beside`]),
+/// else the image as an RGB normal map.
+pub fn texture_scene(path: &Path) -> Result<Scene, LoadError> {
+    let mut scene = super::empty_scene();
+    let name = path.file_name().map_or_else(|| "texture".to_owned(), |n| n.to_string_lossy().into_owned());
+    scene.materials.push(crate::scene::Material { name, ..Default::default() });
+    let files = match xray_pair_beside(path) {
+        Some(_) => SceneFiles { color: Some(path.to_owned()), ..Default::default() },
+        None => SceneFiles { normal: Some(path.to_owned()), ..Default::default() },
+    };
+    replace_textures(&mut scene, &files)?;
+    Ok(scene)
+}
+
+/// Whether `path` names an image this build decodes, by its extension.
+pub fn is_image_path(path: &Path) -> bool {
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    ext.is_some_and(|e| IMAGE_EXTENSIONS.contains(&e.as_str()))
+}
+
+/// Image extensions this build decodes ([`load_texture`]).
+const IMAGE_EXTENSIONS: [&str; 5] = ["png", "jpg", "jpeg", "tga", "bmp"];
+
+/// X-Ray's (S.T.A.L.K.E.R.) normal-map pair beside a colour texture `NAME.*`: the files
+/// `NAME_bump.*` and, where it exists, `NAME_bump#.*` in the same folder (any extension this
+/// build decodes, the first in name order); `None` without `NAME_bump.*`.
+pub fn xray_pair_beside(color: &Path) -> Option<(PathBuf, Option<PathBuf>)> {
+    let stem = color.file_stem()?.to_str()?;
+    let folder =
+        color.parent().map_or_else(|| Path::new("."), |p| if p.as_os_str().is_empty() { Path::new(".") } else { p });
+    let mut names: Vec<PathBuf> = std::fs::read_dir(folder).ok()?.filter_map(|e| e.ok().map(|e| e.path())).collect();
+    names.sort();
+    let find = |wanted: String| {
+        names
+            .iter()
+            .find(|path| {
+                path.file_stem().and_then(|s| s.to_str()) == Some(wanted.as_str())
+                    && is_image_path(path)
+                    && path.is_file()
+            })
+            .map(|path| color.with_file_name(path.file_name().expect("listed files have names")))
+    };
+    let bump = find(format!("{stem}_bump"))?;
+    Some((bump, find(format!("{stem}_bump#"))))
 }
 
 /// Puts a [`TextureKind::Height`] texture into the height map slot of `materials`, spanning

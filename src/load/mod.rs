@@ -21,7 +21,9 @@ pub use crate::error::LoadError;
 use glam::Vec3;
 
 use crate::scene::Scene;
-pub use files::{SceneFiles, TextureSlot, add_height_map, replace_textures};
+pub use files::{
+    SceneFiles, TextureSlot, add_height_map, is_image_path, replace_textures, texture_scene, xray_pair_beside,
+};
 pub use framing::{bounds, frame_scene};
 
 /// Loads a mesh file into a [`Scene`] with a camera framing it and a light above and in

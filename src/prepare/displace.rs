@@ -59,7 +59,7 @@ struct HeightLookup<'a> {
 impl HeightLookup<'_> {
     /// The height (0..1, white = high) at `uv`.
     fn at(&self, uv: Vec2) -> f32 {
-        let sample = height_sample(sample_bilinear(self.texture, uv, self.material.detail_wrap));
+        let sample = height_sample(sample_bilinear(self.texture, uv, self.material.detail_wrap).truncate());
         if self.depth { 1.0 - sample } else { sample }
     }
 

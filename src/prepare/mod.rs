@@ -66,6 +66,9 @@ pub struct InstanceTextures {
     /// The height map the parallax family marches: for tangent-space normal-mapped variants
     /// whose material has one.
     pub height: Option<usize>,
+    /// X-Ray's `bump#` correction texture: for normal-mapped variants whose map has the X-Ray
+    /// layout and a `bump#`.
+    pub bump_correction: Option<usize>,
 }
 
 impl InstanceTextures {
@@ -94,13 +97,18 @@ impl InstanceTextures {
                 .as_ref()
                 .map(|h| h.texture)
                 .filter(|_| parallax && variant == Variant::NormalMapped),
+            bump_correction: material
+                .normal_map
+                .as_ref()
+                .and_then(|m| m.correction_in_use())
+                .filter(|_| matches!(variant, Variant::NormalMapped | Variant::ObjectSpace)),
         }
     }
 
     fn all(&self) -> impl Iterator<Item = usize> {
         let slots = [self.base_color, self.bump, self.metallic_roughness, self.occlusion, self.gloss, self.emissive];
-        let coat = [self.clearcoat, self.clearcoat_roughness, self.clearcoat_normal, self.height];
-        slots.into_iter().chain(coat).flatten()
+        let more = [self.clearcoat, self.clearcoat_roughness, self.clearcoat_normal, self.height, self.bump_correction];
+        slots.into_iter().chain(more).flatten()
     }
 }
 
@@ -205,7 +213,13 @@ impl PreparedScene {
                 // Per-face frames need a vertex per corner.
                 let per_face = options.tangent_method == Some(TangentMethod::PerFace);
                 let drawn = if per_face { mesh.unwelded() } else { mesh.clone() };
-                let (tangents, method) = tangent::resolve(&drawn, options.tangent_method);
+                let (mut tangents, method) = tangent::resolve(&drawn, options.tangent_method);
+                // The classic mistake: the same frames before their Gram-Schmidt.
+                if options.tangents_without_gram_schmidt
+                    && let Some(raw) = tangent::without_gram_schmidt(&drawn, method)
+                {
+                    tangents = raw;
+                }
                 if method.is_generated() {
                     tangent_frames_generated += tangents.len() as u64;
                 }

@@ -29,6 +29,7 @@ use std::sync::Arc;
 
 use glam::{Mat3, Vec2, Vec3, Vec4};
 
+use crate::chain::legacy::{EmbossSample, vertex_vectors};
 use crate::chain::parallax::{MarchInputs, light_in_tangent_space, march, soft_shadow};
 use crate::chain::{BumpSample, ChainValues, SurfaceSample, shade};
 use crate::frame::{BumpKind, FrameParams, Parallax, SceneOptions};
@@ -37,9 +38,9 @@ use crate::prepare::PreparedScene;
 use crate::scene::sample::sample_trilinear;
 pub use crate::scene::sample::{nearest_texel, sample_bilinear};
 use crate::scene::{MAX_LIGHTS, OrbitCamera, SamplerWrap, Scene, TextureImage, Wrap};
-use crate::shading::height_sample;
 use crate::shading::lights::incident;
 use crate::shading::spaces::triangle_inverse_tbn;
+use crate::shading::{NormalTexel, height_sample};
 use crate::tangent::TangentMethod;
 pub use pick::project_to_pixel;
 use pick::{Quad, corner_positions, intersect};
@@ -82,9 +83,9 @@ pub struct ProbeReadout {
     /// (RGBA, 0–255, before filtering).
     pub texel_xy: Option<[u32; 2]>,
     pub texel_raw: Option<[u8; 4]>,
-    /// The normal map's filtered sample at `uv` (RGB, 0..1, linear; at the mip levels the GPU
-    /// reads): what the shader decodes.
-    pub texel: Option<Vec3>,
+    /// The normal map's filtered sample at `uv` (RGBA, 0..1, linear; at the mip levels the GPU
+    /// reads, with X-Ray's `bump#` correction): what the shader decodes.
+    pub texel: Option<NormalTexel>,
     /// The tangent method the frames come from.
     pub tangent_method: Option<TangentMethod>,
     /// Every value of the shading chain at the point ([`crate::chain::shade`]): the decoded
@@ -233,7 +234,8 @@ impl ProbeScene {
             let (duv_dx, duv_dy) = interpolated_footprint?;
             let flip = height_map.is_some_and(|h| h.depth);
             let height = move |at: Vec2| {
-                let sample = height_sample(sample_trilinear(&self.mips[texture], at, detail, interpolated_footprint));
+                let sample =
+                    height_sample(sample_trilinear(&self.mips[texture], at, detail, interpolated_footprint).truncate());
                 if flip { 1.0 - sample } else { sample }
             };
             let clamp = [detail.u == Wrap::ClampToEdge, detail.v == Wrap::ClampToEdge];
@@ -261,8 +263,9 @@ impl ProbeScene {
             (Some(m), Some(quad)) => quad.derivatives(|b, p| m(b, p).0.uv),
             _ => interpolated_footprint,
         };
-        let sample =
+        let sample_rgba =
             |texture: usize, wrap: SamplerWrap| sample_trilinear(&self.mips[texture], read_uv, wrap, footprint);
+        let sample = |texture: usize, wrap: SamplerWrap| sample_rgba(texture, wrap).truncate();
         let frames = prepared_mesh.frames.as_ref();
         let world_tangent = frames.map(|f| {
             let t = corners.iter().zip(b.to_array()).fold(Vec4::ZERO, |acc, (&i, w)| acc + f.tangents[i as usize] * w);
@@ -277,7 +280,7 @@ impl ProbeScene {
             let linear =
                 |d: Vec2| Vec2::new(coat.uv_transform[0].truncate().dot(d), coat.uv_transform[1].truncate().dot(d));
             let coat_footprint = footprint.map(|(dx, dy)| (linear(dx), linear(dy)));
-            Some(sample_trilinear(&self.mips[texture?], coat.layer_uv(read_uv), detail, coat_footprint))
+            Some(sample_trilinear(&self.mips[texture?], coat.layer_uv(read_uv), detail, coat_footprint).truncate())
         };
         let normal_map = slots.bump.filter(|_| matches!(instance.bump, BumpKind::TangentSpace | BumpKind::ObjectSpace));
         let nearest = normal_map.map(|t| {
@@ -286,15 +289,43 @@ impl ProbeScene {
             (xy, texture.texel(xy[0] as i64, xy[1] as i64))
         });
         let bump = match (instance.bump, slots.bump) {
-            (BumpKind::TangentSpace | BumpKind::ObjectSpace, Some(t)) => Some(BumpSample::NormalMap(sample(t, detail))),
+            (BumpKind::TangentSpace | BumpKind::ObjectSpace, Some(t)) => Some(BumpSample::NormalMap(NormalTexel {
+                rgba: sample_rgba(t, detail),
+                correction: slots.bump_correction.map(|c| sample(c, detail)),
+            })),
             (BumpKind::HeightInShader, Some(t)) => quad.as_ref().and_then(|quad| {
                 // Every pixel of the quad samples at the quad's footprint, as the GPU does.
-                let height_at = |b| height_sample(sample_trilinear(&self.mips[t], uv_at(b), detail, footprint));
+                let height_at =
+                    |b| height_sample(sample_trilinear(&self.mips[t], uv_at(b), detail, footprint).truncate());
                 let (dx, dy) = quad.derivatives(|b, p| p.extend(height_at(b)))?;
                 Some(BumpSample::HeightSlopes { dp_dx: dx.truncate(), dp_dy: dy.truncate(), dh_dx: dx.w, dh_dy: dy.w })
             }),
             _ => None,
         };
+        // The vertex stage's per-vertex light and half vectors, interpolated.
+        let (vertex_light, vertex_half) =
+            corners.iter().zip(b.to_array()).fold((Vec3::ZERO, Vec3::ZERO), |(l, h), (&i, weight)| {
+                let p = model.transform_point3(mesh.positions[i as usize]);
+                let n = normal_matrix.transform_vector3(mesh.normals[i as usize]);
+                let (vl, vh) = vertex_vectors(p, n, params.lights.first_on(), eye);
+                (l + vl * weight, h + vh * weight)
+            });
+        // The emboss look's height neighbours at mip 0, where a height map is bound.
+        let emboss = slots.height.map(|texture| {
+            let level = &self.mips[texture][0];
+            let flip = height_map.is_some_and(|h| h.depth);
+            let texel = Vec2::new(level.width as f32, level.height as f32).recip();
+            let height = |offset: Vec2| {
+                let sample = height_sample(sample_bilinear(level, read_uv + offset, detail).truncate());
+                if flip { 1.0 - sample } else { sample }
+            };
+            EmbossSample {
+                left: height(Vec2::new(-texel.x, 0.0)),
+                right: height(Vec2::new(texel.x, 0.0)),
+                up: height(Vec2::new(0.0, -texel.y)),
+                down: height(Vec2::new(0.0, texel.y)),
+            }
+        });
         let surface = SurfaceSample {
             position,
             world_normal: normal_matrix.transform_vector3(at(b)(&mesh.normals)),
@@ -310,6 +341,9 @@ impl ProbeScene {
             clearcoat: coat_sample(slots.clearcoat).map(|t| t.x),
             clearcoat_roughness: coat_sample(slots.clearcoat_roughness).map(|t| t.y),
             clearcoat_normal: coat_sample(slots.clearcoat_normal),
+            vertex_light,
+            vertex_half,
+            emboss,
             triangle_frame: corner_positions(mesh, corners, &model).map(|[p0, p1, p2]| {
                 // The triangle's frame from its edges: what the GPU gets from the pixel's
                 // screen-space derivatives (the same differences up to a 2×2 change of basis).

@@ -12,6 +12,8 @@ pub enum Resource {
     Uniform,
     /// A filterable 2D float texture, read by the fragment stage.
     Texture,
+    /// A filterable 2D array float texture, read by the fragment stage.
+    TextureArray,
     /// A filtering sampler, used by the fragment stage.
     Sampler,
 }
@@ -30,6 +32,14 @@ const fn slot(binding: u32, wgsl_name: &'static str, resource: Resource) -> Slot
 
 /// Group 0: the `Frame` uniform (shaders/frame.wgsl).
 pub const FRAME: Slot = slot(0, "frame", Resource::Uniform);
+/// Group 0: DOT3's normalization cube map, its six faces as layers (shaders/legacy.wgsl,
+/// `chain::legacy::normalization_cube_map`), linear; a 1×1 placeholder while unused.
+pub const NORMALIZATION_CUBE_MAP: Slot = slot(1, "normalization_cube_map", Resource::TextureArray);
+/// Group 0: the emboss look's light map (`chain::legacy::emboss_light_map`), linear; a 1×1
+/// placeholder while unused.
+pub const EMBOSS_LIGHT_MAP: Slot = slot(2, "emboss_light_map", Resource::Texture);
+/// Group 0, in binding order.
+pub const FRAME_GROUP: [Slot; 3] = [FRAME, NORMALIZATION_CUBE_MAP, EMBOSS_LIGHT_MAP];
 
 /// Group 1 of the mesh shader: the `Object` uniform.
 pub const OBJECT: Slot = slot(0, "object", Resource::Uniform);
@@ -57,9 +67,13 @@ pub const CLEARCOAT_NORMAL_TEXTURE: Slot = slot(11, "clearcoat_normal_texture", 
 /// The height map the parallax family marches (shaders/parallax.wgsl), linear, through the
 /// detail sampler; a placeholder where the instance has none.
 pub const HEIGHT_TEXTURE: Slot = slot(12, "height_texture", Resource::Texture);
+/// X-Ray's `bump#` texture (RGB: the normal's compression-error correction), linear, through
+/// the detail sampler; only in layouts of variants with a bump texture, a placeholder where
+/// the instance has none.
+pub const BUMP_CORRECTION_TEXTURE: Slot = slot(13, "bump_correction_texture", Resource::Texture);
 
 /// Group 1 of the mesh shader, in binding order.
-pub const MATERIAL: [Slot; 13] = [
+pub const MATERIAL: [Slot; 14] = [
     OBJECT,
     BASE_COLOR_TEXTURE,
     BASE_COLOR_SAMPLER,
@@ -73,6 +87,7 @@ pub const MATERIAL: [Slot; 13] = [
     CLEARCOAT_ROUGHNESS_TEXTURE,
     CLEARCOAT_NORMAL_TEXTURE,
     HEIGHT_TEXTURE,
+    BUMP_CORRECTION_TEXTURE,
 ];
 
 /// Group 1 of the marker shader: each light's marker centre and colour.
@@ -90,11 +105,15 @@ impl Slot {
                     min_binding_size: None,
                 },
             ),
-            Resource::Texture => (
+            Resource::Texture | Resource::TextureArray => (
                 wgpu::ShaderStages::FRAGMENT,
                 wgpu::BindingType::Texture {
                     sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                    view_dimension: wgpu::TextureViewDimension::D2,
+                    view_dimension: if self.resource == Resource::Texture {
+                        wgpu::TextureViewDimension::D2
+                    } else {
+                        wgpu::TextureViewDimension::D2Array
+                    },
                     multisampled: false,
                 },
             ),
@@ -118,14 +137,14 @@ mod tests {
     use wgpu::naga;
 
     use super::*;
+    use crate::frame::{LegacyLook, LegacySettings, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Mistake, Parallax};
     use crate::frame::{LightingSpace, ShadingMode, ViewMode};
-    use crate::frame::{MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Parallax};
     use crate::names::Named;
     use crate::render::pipelines::{MARKER_WGSL, MESH_WGSL};
     use crate::render::uniforms::{
-        DEPTH_MAP, HAS_CLEARCOAT, HAS_CLEARCOAT_NORMAL, HAS_CLEARCOAT_ROUGHNESS_TEXTURE, HAS_CLEARCOAT_TEXTURE,
-        HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS, HAS_OCCLUSION_TEXTURE, HAS_PARALLAX_HEIGHT,
-        PARALLAX_CLAMP_U, PARALLAX_CLAMP_V,
+        DEPTH_MAP, HAS_BUMP_CORRECTION, HAS_CLEARCOAT, HAS_CLEARCOAT_NORMAL, HAS_CLEARCOAT_ROUGHNESS_TEXTURE,
+        HAS_CLEARCOAT_TEXTURE, HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS, HAS_OCCLUSION_TEXTURE,
+        HAS_PARALLAX_HEIGHT, PARALLAX_CLAMP_U, PARALLAX_CLAMP_V,
     };
     use crate::scene::{NormalConvention, ShadingModel, SpecularMode};
 
@@ -161,7 +180,7 @@ mod tests {
         let mesh = wgsl_bindings(&module(MESH_WGSL));
         let mut expected: BTreeMap<String, (u32, u32)> =
             MATERIAL.iter().map(|s| (s.wgsl_name.to_owned(), (1, s.binding))).collect();
-        expected.insert(FRAME.wgsl_name.to_owned(), (0, FRAME.binding));
+        expected.extend(FRAME_GROUP.iter().map(|s| (s.wgsl_name.to_owned(), (0, s.binding))));
         assert_eq!(mesh, expected, "shaders/mesh.wgsl against render::bindings");
         let marker = wgsl_bindings(&module(MARKER_WGSL));
         let expected = BTreeMap::from([
@@ -186,7 +205,10 @@ mod tests {
             expected.insert(constant_name("MODE_", mode.name()), mode.shader_index());
         }
         expected.insert("FLIP_GREEN".into(), NormalConvention::FLIP_GREEN);
-        expected.insert("TWO_CHANNEL".into(), NormalConvention::TWO_CHANNEL);
+        expected.insert("LAYOUT_RG".into(), NormalConvention::LAYOUT_RG);
+        expected.insert("LAYOUT_AG".into(), NormalConvention::LAYOUT_AG);
+        expected.insert("LAYOUT_XRAY".into(), NormalConvention::LAYOUT_XRAY);
+        expected.insert("HAS_BUMP_CORRECTION".into(), HAS_BUMP_CORRECTION);
         expected.insert("DEPTH_MAP".into(), DEPTH_MAP);
         expected.insert("HAS_METALLIC_ROUGHNESS".into(), HAS_METALLIC_ROUGHNESS);
         expected.insert("HAS_OCCLUSION_TEXTURE".into(), HAS_OCCLUSION_TEXTURE);
@@ -197,6 +219,16 @@ mod tests {
         expected.insert("HAS_CLEARCOAT_ROUGHNESS_TEXTURE".into(), HAS_CLEARCOAT_ROUGHNESS_TEXTURE);
         expected.insert("HAS_CLEARCOAT_NORMAL".into(), HAS_CLEARCOAT_NORMAL);
         expected.insert("SHADING_METALLIC_ROUGHNESS".into(), ShadingModel::MetallicRoughness.shader_index());
+        for (name, legacy) in [
+            ("LEGACY_DOT3", LegacySettings { look: LegacyLook::Dot3, cube_map_size: None }),
+            ("LEGACY_DOT3_CUBE_MAP", LegacySettings { look: LegacyLook::Dot3, cube_map_size: Some(32) }),
+            ("LEGACY_EMBOSS", LegacySettings { look: LegacyLook::Emboss, cube_map_size: None }),
+        ] {
+            expected.insert(name.into(), legacy.shader_index());
+        }
+        for mistake in Mistake::all().iter().copied().filter(|&m| m != Mistake::None) {
+            expected.insert(constant_name("MISTAKE_", mistake.name()), mistake.shader_index());
+        }
         for technique in Parallax::all().iter().copied().filter(|&p| p != Parallax::Off) {
             expected.insert(constant_name("PARALLAX_", technique.name()), technique.shader_index());
         }

@@ -9,8 +9,8 @@ use super::Renderer;
 use super::capture::{CaptureOptions, render_capture};
 use crate::error::RenderError;
 use crate::frame::{
-    BumpSource, FrameParams, MAX_PARALLAX_LAYERS, Parallax, STRENGTH_RANGE, SceneOptions, ShadingMode, ShadingSettings,
-    ViewMode,
+    BumpSource, FrameParams, LegacyLook, MAX_PARALLAX_LAYERS, Mistake, Parallax, STRENGTH_RANGE, SceneOptions,
+    ShadingMode, ShadingSettings, ViewMode,
 };
 use crate::names::Named;
 use crate::scene::Scene;
@@ -135,7 +135,8 @@ fn parse_tile(text: &str, current: &ShadingSettings) -> Result<ShadingSettings, 
 
 /// The caption of a tile: view (and mode), bump and strength, the normal-map convention of the
 /// scene's materials (after `options`' overrides) and the tangent frames the renderer drew
-/// with (its current scene, made with `options`); with parallax on, the technique and its layers.
+/// with (its current scene, made with `options`); with parallax on, the technique and its
+/// layers; with a classic mistake, the mistake and what it breaks.
 pub fn caption(renderer: &Renderer, scene: &Scene, options: &SceneOptions, shading: &ShadingSettings) -> Vec<String> {
     let view = match shading.view {
         ViewMode::Lit | ViewMode::OverTilt => format!("{}: {}", shading.view.label(), shading.mode.label()),
@@ -177,6 +178,12 @@ pub fn caption(renderer: &Renderer, scene: &Scene, options: &SceneOptions, shadi
     }
     if let Some(stats) = renderer.prepared(false).and_then(|p| p.displacement) {
         lines.push(format!("displacement {}", stats.summary()));
+    }
+    if shading.legacy.look != LegacyLook::Off && shading.view.is_lit() {
+        lines.push(format!("legacy look: {}", shading.legacy.caption()));
+    }
+    if shading.mistake != Mistake::None {
+        lines.push(format!("mistake: {}: {}", shading.mistake.label(), shading.mistake.explanation()));
     }
     lines
 }

@@ -10,6 +10,7 @@ pub mod export;
 mod floor;
 pub mod glyphs;
 pub mod gpu;
+mod legacy;
 pub mod pipelines;
 mod scene_gpu;
 pub mod timing;
@@ -23,7 +24,8 @@ use glam::Vec3;
 use crate::counters::WorkCounters;
 use crate::error::RenderError;
 use crate::frame::{
-    FrameParams, LightingSpace, Msaa, Parallax, SceneOptions, SceneUploads, ShadingSettings, SplitFrame, ViewMode,
+    FrameParams, LegacySettings, LightingSpace, Msaa, Parallax, SceneOptions, SceneUploads, ShadingSettings,
+    SplitFrame, ViewMode,
 };
 use crate::prepare::{PreparedScene, Variant};
 use crate::scene::{MAX_LIGHTS, Scene, ShadingModel};
@@ -91,6 +93,9 @@ pub struct Renderer {
     /// both are written before the encoder is submitted, so each half needs its own.
     split_uniform: wgpu::Buffer,
     split_bind_group: wgpu::BindGroup,
+    /// The legacy looks' textures, and what the two frame bind groups hold of them.
+    legacy: legacy::LegacyTextures,
+    bound: [legacy::LegacyNeeds; 2],
     /// The floor's pipelines ([`Self::draw_floor`]), by format and sample count.
     floor: floor::FloorPipelines,
     scene: Option<GpuScene>,
@@ -112,6 +117,7 @@ pub const WIREFRAME_UNSUPPORTED: &str =
 impl Renderer {
     pub fn new(device: wgpu::Device, queue: wgpu::Queue, adapter: wgpu::Adapter) -> Self {
         let pipelines = Pipelines::new(&device);
+        let legacy = legacy::LegacyTextures::new(&device, &queue);
         let uniform = |label| {
             let buffer = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -119,11 +125,7 @@ impl Renderer {
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             });
-            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some(label),
-                layout: &pipelines.layouts.frame,
-                entries: &[bindings::FRAME.entry(buffer.as_entire_binding())],
-            });
+            let bind_group = legacy.bind_group(&device, &pipelines.layouts.frame, &buffer, Default::default());
             (buffer, bind_group)
         };
         let (frame_uniform, frame_bind_group) = uniform("frame");
@@ -138,6 +140,8 @@ impl Renderer {
             frame_bind_group,
             split_uniform,
             split_bind_group,
+            legacy,
+            bound: Default::default(),
             scene: None,
             split_scene: None,
             targets: Vec::new(),
@@ -451,6 +455,8 @@ impl Renderer {
             self.queue.write_buffer(&scene.marker.lights, 0, bytemuck::bytes_of(&markers));
         }
 
+        self.bind_legacy_textures(halves);
+
         let key = |pass| PipelineKey { pass, format: target.format, samples };
         let line_mode = self.device.features().contains(wgpu::Features::POLYGON_MODE_LINE);
         let wants_wireframe = halves.iter().any(|h| h.shading.wireframe);
@@ -545,6 +551,29 @@ impl Renderer {
     }
 }
 
+impl Renderer {
+    /// Makes the legacy looks' textures the halves use (dropping the others) and rebinds a
+    /// frame bind group whose textures change.
+    fn bind_legacy_textures(&mut self, halves: &[Half]) {
+        let needs: Vec<_> = halves.iter().map(|h| legacy::LegacyNeeds::of(&h.shading)).collect();
+        if needs.iter().zip(&self.bound).all(|(a, b)| a == b) {
+            return;
+        }
+        self.legacy.retain(&self.device, &self.queue, &needs, &mut self.counters);
+        let layout = &self.pipelines.layouts.frame;
+        for (index, wanted) in needs.into_iter().enumerate() {
+            let (uniform, bind_group) = match index {
+                0 => (&self.frame_uniform, &mut self.frame_bind_group),
+                _ => (&self.split_uniform, &mut self.split_bind_group),
+            };
+            if self.bound[index] != wanted {
+                *bind_group = self.legacy.bind_group(&self.device, layout, uniform, wanted);
+                self.bound[index] = wanted;
+            }
+        }
+    }
+}
+
 /// Begins the one render pass of a frame (or of the floor): `targets`' multisampled colour
 /// resolved into `view` (or `view` itself at 1 sample) and their depth, both cleared.
 fn begin_scene_pass<'e>(
@@ -618,10 +647,23 @@ fn drawn_pass(instance: &scene_gpu::GpuInstance, scene: &GpuScene, shading: &Sha
     }
     let lighting = shading.view.is_lit().then(|| shading.shading_override.unwrap_or(instance.shading_model));
     let parallax = if instance.parallax_height { shading.parallax.technique } else { Parallax::Off };
+    let legacy = if shading.view.is_lit() { shading.legacy } else { LegacySettings::default() };
+    let (view, mistake) = (shading.view, shading.mistake);
     // As chain::shade decides: the classic model on tangent-space normal-mapped surfaces.
     let lighting_space = match (variant, lighting) {
         (Variant::NormalMapped, Some(ShadingModel::BlinnPhong)) => shading.lighting_space,
         _ => LightingSpace::World,
     };
-    Pass::Mesh { variant, cull_back_faces, mirrored, view: shading.view, lighting, parallax, lighting_space, features }
+    Pass::Mesh {
+        variant,
+        cull_back_faces,
+        mirrored,
+        view,
+        lighting,
+        parallax,
+        mistake,
+        legacy,
+        lighting_space,
+        features,
+    }
 }

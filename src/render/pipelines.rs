@@ -7,17 +7,20 @@ use std::collections::HashMap;
 
 use super::bindings;
 use crate::counters::WorkCounters;
-use crate::frame::{LightingSpace, Parallax, ViewMode};
+use crate::frame::{LegacyLook, LegacySettings, LightingSpace, Mistake, Parallax, ViewMode};
 use crate::prepare::Variant;
 use crate::scene::ShadingModel;
 
 /// Shader sources, embedded at build time; frame.wgsl is the shared Frame uniform, pbr.wgsl
 /// the metallic-roughness shading the mesh shader calls, parallax.wgsl the parallax family,
-/// lights.wgsl the lights and the classic model's lighting spaces.
+/// lights.wgsl the lights and the classic model's lighting spaces, mistakes.wgsl the classic
+/// mistakes, legacy.wgsl the legacy looks.
 pub const MESH_WGSL: &str = concat!(
     include_str!("../../shaders/frame.wgsl"),
     include_str!("../../shaders/pbr.wgsl"),
     include_str!("../../shaders/parallax.wgsl"),
+    include_str!("../../shaders/mistakes.wgsl"),
+    include_str!("../../shaders/legacy.wgsl"),
     include_str!("../../shaders/lights.wgsl"),
     include_str!("../../shaders/mesh.wgsl")
 );
@@ -47,6 +50,10 @@ pub enum Pass {
         /// The parallax technique (the `PARALLAX` constant); [`Parallax::Off`] for instances
         /// without a height map bound for it.
         parallax: Parallax,
+        /// The classic mistake drawn (the `MISTAKE` constant).
+        mistake: Mistake,
+        /// The legacy look of a lit view (the `LEGACY` constant); off in the other views.
+        legacy: LegacySettings,
         /// The classic model's lighting space (the `LIGHTING_SPACE` constant; tangent space
         /// has its own fragment stage); [`LightingSpace::World`] except for normal-mapped
         /// variants in lit views with the classic model.
@@ -100,9 +107,10 @@ impl Layouts {
             let entries: Vec<_> = slots.iter().map(bindings::Slot::layout_entry).collect();
             device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries: &entries })
         };
-        let plain: Vec<_> = bindings::MATERIAL.into_iter().filter(|s| *s != bindings::BUMP_TEXTURE).collect();
+        let bump_only = [bindings::BUMP_TEXTURE, bindings::BUMP_CORRECTION_TEXTURE];
+        let plain: Vec<_> = bindings::MATERIAL.into_iter().filter(|s| !bump_only.contains(s)).collect();
         Layouts {
-            frame: layout("frame", &[bindings::FRAME]),
+            frame: layout("frame", &bindings::FRAME_GROUP),
             plain_material: layout("plain material", &plain),
             normal_mapped_material: layout("normal-mapped material", &bindings::MATERIAL),
             marker: layout("light marker", &[bindings::MARKERS]),
@@ -199,7 +207,18 @@ impl Pipelines {
         };
         let (module, group1, vs, fs, buffers, cull_mode, constants): (_, _, _, _, &[_], _, Vec<(&str, f64)>) =
             match key.pass {
-                Pass::Mesh { variant, cull_back_faces, view, lighting, parallax, lighting_space, features, .. } => {
+                Pass::Mesh {
+                    variant,
+                    cull_back_faces,
+                    view,
+                    lighting,
+                    parallax,
+                    mistake,
+                    legacy,
+                    lighting_space,
+                    features,
+                    ..
+                } => {
                     let (vs, fs, buffers): (_, _, &[_]) = match variant {
                         Variant::NormalMapped if lighting_space == LightingSpace::Tangent => {
                             ("vs_tangent", "fs_normal_mapped_tangent_space", &[POSITION, NORMAL, UV, TANGENT])
@@ -219,6 +238,12 @@ impl Pipelines {
                     constants.extend(lighting.map(|model| ("SHADING_MODEL", f64::from(model.shader_index()))));
                     if parallax != Parallax::Off {
                         constants.push(("PARALLAX", f64::from(parallax.shader_index())));
+                    }
+                    if mistake != Mistake::None {
+                        constants.push(("MISTAKE", f64::from(mistake.shader_index())));
+                    }
+                    if legacy.look != LegacyLook::Off {
+                        constants.push(("LEGACY", f64::from(legacy.shader_index())));
                     }
                     if lighting_space != LightingSpace::World {
                         constants.push(("LIGHTING_SPACE", f64::from(lighting_space.shader_index())));
@@ -355,6 +380,18 @@ mod tests {
         }
         let mesh = naga::front::wgsl::parse_str(MESH_WGSL).expect("parsed above");
         let overrides: Vec<_> = mesh.overrides.iter().filter_map(|(_, o)| o.name.as_deref()).collect();
-        assert_eq!(overrides, ["PARALLAX", "LIGHTING_SPACE", "TARGET_ENCODES_SRGB", "VIEW", "SHADING_MODEL", "MATERIAL_FEATURES"]);
+        assert_eq!(
+            overrides,
+            [
+                "MISTAKE",
+                "PARALLAX",
+                "LEGACY",
+                "MATERIAL_FEATURES",
+                "SHADING_MODEL",
+                "LIGHTING_SPACE",
+                "TARGET_ENCODES_SRGB",
+                "VIEW"
+            ]
+        );
     }
 }

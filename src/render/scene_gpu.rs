@@ -262,6 +262,7 @@ pub fn upload(
             let clearcoat_roughness = optional(slots.clearcoat_roughness);
             let clearcoat_normal = optional(slots.clearcoat_normal);
             let height = optional(slots.height);
+            let correction = optional(slots.bump_correction);
             let base_sampler = samplers.get(device, material.base_color_wrap);
             let detail_sampler = samplers.get(device, material.detail_wrap);
             let view = wgpu::BindingResource::TextureView;
@@ -284,6 +285,7 @@ pub fn upload(
             let bump = slots.bump.map(|t| textures.get(&prepared, t, counters));
             if let Some(bump) = &bump {
                 entries.push(bindings::BUMP_TEXTURE.entry(view(bump)));
+                entries.push(bindings::BUMP_CORRECTION_TEXTURE.entry(view(&correction)));
             }
             let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(&scene.meshes[instance.mesh].name),

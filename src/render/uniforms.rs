@@ -150,6 +150,9 @@ pub(crate) const PARALLAX_CLAMP_U: u32 = 4096;
 pub(crate) const PARALLAX_CLAMP_V: u32 = 8192;
 /// Bit of `flags`: binding 6 holds the material's occlusion texture.
 pub(crate) const HAS_OCCLUSION_TEXTURE: u32 = 16384;
+/// Bit of `flags`: binding 13 holds X-Ray's `bump#` correction texture (bits 15 and 16 are
+/// [`crate::scene::NormalConvention`]'s layouts).
+pub(crate) const HAS_BUMP_CORRECTION: u32 = 1 << 17;
 
 /// The bits of `flags` that say which optional textures and lobes a material has: the mesh
 /// pipelines are specialised to them ([`super::pipelines::Pass::Mesh`]'s `features`, the
@@ -162,7 +165,8 @@ pub(crate) const MATERIAL_FEATURES: u32 = HAS_METALLIC_ROUGHNESS
     | HAS_CLEARCOAT
     | HAS_CLEARCOAT_TEXTURE
     | HAS_CLEARCOAT_ROUGHNESS_TEXTURE
-    | HAS_CLEARCOAT_NORMAL;
+    | HAS_CLEARCOAT_NORMAL
+    | HAS_BUMP_CORRECTION;
 
 impl ObjectUniform {
     /// Normals go through the inverse-transpose of the model matrix; tangent `w` is
@@ -193,6 +197,7 @@ impl ObjectUniform {
                 | bit(slots.clearcoat_roughness.is_some(), HAS_CLEARCOAT_ROUGHNESS_TEXTURE)
                 | bit(slots.clearcoat_normal.is_some(), HAS_CLEARCOAT_NORMAL)
                 | bit(slots.height.is_some(), HAS_PARALLAX_HEIGHT)
+                | bit(slots.bump_correction.is_some(), HAS_BUMP_CORRECTION)
                 | bit(material.detail_wrap.u == Wrap::ClampToEdge, PARALLAX_CLAMP_U)
                 | bit(material.detail_wrap.v == Wrap::ClampToEdge, PARALLAX_CLAMP_V),
             metallic: material.metallic,

@@ -9,6 +9,7 @@ pub mod blinn;
 mod chart;
 mod convergence;
 mod csv;
+pub mod cube_map;
 pub mod gpu_time;
 mod markdown;
 pub mod measure;
@@ -143,6 +144,9 @@ impl Machine {
     }
 }
 
+/// Directions the normalization cube maps are measured over (a tenth with `--quick`).
+pub const CUBE_MAP_DIRECTIONS: usize = 400_000;
+
 /// The surface name of the large torus's rows.
 pub const LARGE_TORUS: &str = "large torus";
 /// The surface name of the large plane's rows.
@@ -257,6 +261,7 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
     let acos_f32 = plan.spheres.contains(&MIKKTSPACE_SANITY_SPHERE).then(|| {
         measure::acos_f32_means(TangentMethod::MikkTSpace, &uv_sphere(segments, rings), surfaces::Region::Interior)
     });
+    let cube_maps = cube_map::cube_map_rows(if plan.quick { CUBE_MAP_DIRECTIONS / 10 } else { CUBE_MAP_DIRECTIONS });
     let page = markdown::Page {
         rows: &rows,
         orders: &orders,
@@ -268,6 +273,7 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
         stability: &stiff::stability_rows(),
         round_trips: &round_trips,
         agreements: &agreements,
+        cube_maps: &cube_maps,
         lighting_spaces: &spaces::space_rows(&crate::scene::builtin::teaching_scene()),
     };
     let study = parallax_study(&plan.parallax, progress);

@@ -10,11 +10,13 @@
 
 use glam::{Vec2, Vec3, Vec4};
 
+use crate::chain::legacy::vertex_vectors;
 use crate::chain::{BumpSample, SurfaceSample, shade};
 use crate::frame::{BumpKind, FrameParams, LightingSpace, SceneOptions, ShadingSettings};
 use crate::math::{linear_to_srgb, normal_matrix, normalize_or};
 use crate::prepare::PreparedScene;
 use crate::scene::Scene;
+use crate::shading::NormalTexel;
 use crate::shading::spaces::triangle_inverse_tbn;
 
 /// One surface, one space against world space.
@@ -76,6 +78,7 @@ pub fn space_rows(scene: &Scene) -> Vec<SpaceRow> {
                 let front_facing = normal.dot(eye - position) >= 0.0 || !material.double_sided;
                 let facing = if front_facing { 1.0 } else { -1.0 };
                 let to_tangent = triangle_inverse_tbn(b.0 - a.0, c.0 - a.0, b.3 - a.3, c.3 - a.3, face_normal * facing);
+                let (vertex_light, vertex_half) = vertex_vectors(position, normal, params.lights.first_on(), eye);
                 let point = SurfaceSample {
                     position,
                     world_normal: normal,
@@ -83,9 +86,9 @@ pub fn space_rows(scene: &Scene) -> Vec<SpaceRow> {
                     world_tangent: Some(tangent),
                     normal_matrix: glam::Mat3::from_mat4(normals),
                     base_color: None,
-                    bump: Some(BumpSample::NormalMap(
+                    bump: Some(BumpSample::NormalMap(NormalTexel::rgb(
                         Vec3::new(texel[0] as f32, texel[1] as f32, texel[2] as f32) / 255.0,
-                    )),
+                    ))),
                     metallic_roughness: None,
                     occlusion: None,
                     gloss: None,
@@ -93,6 +96,10 @@ pub fn space_rows(scene: &Scene) -> Vec<SpaceRow> {
                     clearcoat: None,
                     clearcoat_roughness: None,
                     clearcoat_normal: None,
+                    // No mistake or legacy look is drawn here: the per-vertex vectors at the point.
+                    vertex_light,
+                    vertex_half,
+                    emboss: None,
                     triangle_frame: Some(to_tangent),
                 };
                 let shaded = |space: LightingSpace| {

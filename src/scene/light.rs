@@ -166,6 +166,12 @@ impl Lights {
         self.count == 0
     }
 
+    /// The first light that is on: the shader's `frame.lights[0]` (the light of the legacy
+    /// looks and of the per-vertex mistakes); `None` when every light is off.
+    pub fn first_on(&self) -> Option<&Light> {
+        self.as_slice().iter().find(|light| light.enabled)
+    }
+
     pub fn as_slice(&self) -> &[Light] {
         &self.slots[..self.count]
     }

@@ -42,34 +42,77 @@ pub enum NormalSpace {
     Object,
 }
 
-/// How a normal map's texels decode to a unit vector (crate conventions: linear,
-/// `n = 2·rgb − 1`). The shader receives it as [`NormalConvention::flags`].
+/// Which channels of a normal map hold the vector ([`crate::shading::unpack_normal`]). Named
+/// `rgb`, `rg`, `ag`, `xray` (command line `--normal-layout`, presets `normal_layout`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "lowercase")]
+pub enum NormalLayout {
+    /// x, y, z in red, green, blue: `2·rgb − 1`.
+    #[default]
+    Rgb,
+    /// Two-channel (BC5): x in red, y in green, `z = sqrt(max(0, 1 − x² − y²))` with `(x, y)`
+    /// scaled back onto the unit circle where `x² + y² > 1`. What `bake --two-channel` writes.
+    Rg,
+    /// DXT5nm: x in alpha, y in green, z rebuilt as for [`NormalLayout::Rg`].
+    Ag,
+    /// X-Ray's (S.T.A.L.K.E.R.) pair: the `bump` texture holds x in alpha, y in blue, z in
+    /// green and the gloss in red (gloss = red², scaling k_s); the optional `bump#` texture
+    /// ([`NormalMap::correction`]) holds a compression-error correction in RGB (and the height
+    /// in alpha, unused here). The vector is `bump.agb + bump#.rgb − 1`, each part a signed
+    /// half range, so the sum lies in [−1, 1]; without `bump#` the correction is 0.5 (none).
+    Xray,
+}
+
+impl NormalLayout {
+    /// Name for people (panel, labels, captions).
+    pub fn label(self) -> &'static str {
+        match self {
+            NormalLayout::Rgb => "RGB",
+            NormalLayout::Rg => "RG (two-channel, BC5)",
+            NormalLayout::Ag => "AG (DXT5nm)",
+            NormalLayout::Xray => "X-Ray pair (bump + bump#)",
+        }
+    }
+
+    /// Whether z is rebuilt from x and y.
+    pub fn rebuilds_z(self) -> bool {
+        matches!(self, NormalLayout::Rg | NormalLayout::Ag)
+    }
+}
+
+/// How a normal map's texels decode to a unit vector (crate conventions: linear, by the
+/// channel layout). The shader receives it as [`NormalConvention::flags`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct NormalConvention {
     pub green: GreenAxis,
-    /// Only red and green are stored (BC5-style): `z = sqrt(max(0, 1 − x² − y²))`, with
-    /// `(x, y)` scaled back onto the unit circle where `x² + y² > 1`.
-    pub two_channel: bool,
+    pub layout: NormalLayout,
     pub space: NormalSpace,
 }
 
 impl NormalConvention {
     /// Bit of [`NormalConvention::flags`]: green is flipped (DirectX).
     pub const FLIP_GREEN: u32 = 1;
-    /// Bit of [`NormalConvention::flags`]: z is reconstructed from x and y.
-    pub const TWO_CHANNEL: u32 = 2;
+    /// Bit of [`NormalConvention::flags`]: the RG layout (z is reconstructed from x and y).
+    pub const LAYOUT_RG: u32 = 2;
     /// Bit of [`NormalConvention::flags`]: object-space map.
     pub const OBJECT_SPACE: u32 = 4;
+    /// Bit of [`NormalConvention::flags`]: the AG (DXT5nm) layout.
+    pub const LAYOUT_AG: u32 = 1 << 15;
+    /// Bit of [`NormalConvention::flags`]: the X-Ray pair layout.
+    pub const LAYOUT_XRAY: u32 = 1 << 16;
 
-    /// The low bits of the shader's `object.flags`.
+    /// The convention bits of the shader's `object.flags`.
     pub fn flags(self) -> u32 {
         let mut flags = 0;
         if self.green == GreenAxis::DirectX {
             flags |= Self::FLIP_GREEN;
         }
-        if self.two_channel {
-            flags |= Self::TWO_CHANNEL;
-        }
+        flags |= match self.layout {
+            NormalLayout::Rgb => 0,
+            NormalLayout::Rg => Self::LAYOUT_RG,
+            NormalLayout::Ag => Self::LAYOUT_AG,
+            NormalLayout::Xray => Self::LAYOUT_XRAY,
+        };
         if self.space == NormalSpace::Object {
             flags |= Self::OBJECT_SPACE;
         }
@@ -83,7 +126,10 @@ impl NormalConvention {
             NormalSpace::Tangent => "tangent space",
             NormalSpace::Object => "object space",
         };
-        let channels = if self.two_channel { ", two-channel" } else { "" };
+        let channels = match self.layout {
+            NormalLayout::Rgb => String::new(),
+            layout => format!(", {}", layout.label()),
+        };
         format!("{green}{channels}, {space}")
     }
 }
@@ -94,12 +140,26 @@ pub struct NormalMap {
     pub texture: usize,
     pub scale: f32,
     pub convention: NormalConvention,
+    /// X-Ray's `bump#` texture (linear: RGB the compression-error correction, A the height),
+    /// read only in the [`NormalLayout::Xray`] layout.
+    pub correction: Option<usize>,
 }
 
 impl NormalMap {
-    /// A tangent-space OpenGL-convention normal map with `scale`.
+    /// A tangent-space OpenGL-convention RGB normal map with `scale`.
     pub fn new(texture: usize, scale: f32) -> NormalMap {
-        NormalMap { texture, scale, convention: NormalConvention::default() }
+        NormalMap { texture, scale, convention: NormalConvention::default(), correction: None }
+    }
+
+    /// An X-Ray pair: `bump` (normal in A, B, G; gloss in R) and the optional `bump#`.
+    pub fn xray(bump: usize, correction: Option<usize>) -> NormalMap {
+        let convention = NormalConvention { layout: NormalLayout::Xray, ..Default::default() };
+        NormalMap { texture: bump, scale: 1.0, convention, correction }
+    }
+
+    /// The `bump#` texture where the layout reads it.
+    pub fn correction_in_use(&self) -> Option<usize> {
+        self.correction.filter(|_| self.convention.layout == NormalLayout::Xray)
     }
 }
 

@@ -16,8 +16,8 @@ use crate::error::LoadWarning;
 pub use camera::OrbitCamera;
 pub use light::{Attenuation, Light, LightKind, Lights, LightsError, MAX_LIGHTS, SpecularMode};
 pub use material::{
-    Clearcoat, GreenAxis, HeightMap, Material, NormalConvention, NormalMap, NormalSpace, Occlusion, SamplerWrap,
-    ShadingModel, Wrap,
+    Clearcoat, GreenAxis, HeightMap, Material, NormalConvention, NormalLayout, NormalMap, NormalSpace, Occlusion,
+    SamplerWrap, ShadingModel, Wrap,
 };
 pub use overrides::{MaterialOverrides, PerMaterialOverrides};
 // Images are plain data below scene and height (see [`crate::texture`]); scenes hold them.

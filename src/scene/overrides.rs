@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 
 use super::material::TEXTURE_SPAN_M;
-use super::{GreenAxis, Material, NormalMap, NormalSpace, Scene};
+use super::{GreenAxis, Material, NormalLayout, NormalMap, NormalSpace, Scene, TextureKind};
 use crate::height::{Border, Kernel};
 
 /// Settings that replace a material's own where set (`None`: the material's own, or for a
@@ -14,8 +14,8 @@ use crate::height::{Border, Kernel};
 pub struct MaterialOverrides {
     /// Normal-map green convention.
     pub green: Option<GreenAxis>,
-    /// Two-channel normal maps (z reconstructed).
-    pub two_channel: Option<bool>,
+    /// Normal maps' channel layout (RGB, RG, AG, X-Ray).
+    pub layout: Option<NormalLayout>,
     /// Object-space (true) or tangent-space (false) normal maps.
     pub object_space: Option<bool>,
     /// Height maps are depth maps (white = deep).
@@ -41,7 +41,7 @@ impl MaterialOverrides {
     pub fn over(self, base: MaterialOverrides) -> MaterialOverrides {
         MaterialOverrides {
             green: self.green.or(base.green),
-            two_channel: self.two_channel.or(base.two_channel),
+            layout: self.layout.or(base.layout),
             object_space: self.object_space.or(base.object_space),
             depth_map: self.depth_map.or(base.depth_map),
             height_range_m: self.height_range_m.or(base.height_range_m),
@@ -63,7 +63,7 @@ impl MaterialOverrides {
         if let Some(normal) = &mut material.normal_map {
             let convention = &mut normal.convention;
             convention.green = self.green.unwrap_or(convention.green);
-            convention.two_channel = self.two_channel.unwrap_or(convention.two_channel);
+            convention.layout = self.layout.unwrap_or(convention.layout);
             if let Some(object) = self.object_space {
                 convention.space = if object { NormalSpace::Object } else { NormalSpace::Tangent };
             }
@@ -95,6 +95,14 @@ impl MaterialOverrides {
         for index in 0..scene.materials.len() {
             let overrides = self.for_material(per_material, index);
             let (material, remade) = overrides.in_use(&scene.materials[index]);
+            // A packed map's channels are not a vector's x, y, z: its mips average them one
+            // by one (as data) instead of renormalising RGB.
+            if let Some(map) = material.normal_map.as_ref().filter(|m| m.convention.layout != NormalLayout::Rgb)
+                && let Some(texture) = scene.textures.get_mut(map.texture)
+                && texture.kind == TextureKind::NormalMap
+            {
+                texture.kind = TextureKind::Data;
+            }
             scene.materials[index] = material;
             let Some(height) = scene.materials[index].height_map.clone().filter(|_| remade) else { continue };
             let normals = height.to_normal_map(&scene.textures[height.texture], TEXTURE_SPAN_M);
@@ -131,7 +139,7 @@ mod tests {
         let all = MaterialOverrides { green: Some(GreenAxis::DirectX), depth_map: Some(false), ..Default::default() };
         let torus = MaterialOverrides {
             green: Some(GreenAxis::OpenGl),
-            two_channel: Some(true),
+            layout: Some(NormalLayout::Rg),
             kernel: Some(Kernel::Sobel3),
             border: Some(Border::Clamp),
             ..Default::default()
@@ -143,11 +151,11 @@ mod tests {
         let bricks = &changed.materials[0];
         let normal = bricks.normal_map.as_ref().unwrap();
         assert_eq!(normal.convention.green, GreenAxis::DirectX);
-        assert!(!normal.convention.two_channel);
+        assert_eq!(normal.convention.layout, NormalLayout::Rgb);
         assert_eq!(normal.texture, scene.materials[0].normal_map.as_ref().unwrap().texture);
         assert_eq!(bricks.height_map, scene.materials[0].height_map);
         // Material 1: its own settings win; the new kernel and border re-make its normal map
-        // in the crate convention (its green and two-channel apply to the file's map only).
+        // in the crate convention (its green and layout apply to the file's map only).
         let (drawn, remade) = torus.over(all).in_use(&scene.materials[1]);
         assert!(remade);
         assert_eq!(drawn.height_map.as_ref().unwrap().kernel, Kernel::Sobel3);
@@ -167,9 +175,9 @@ mod tests {
         println!("re-made Sobel map: max {to_sobel} steps from the built-in Sobel map, {to_central} from central");
         assert!(to_sobel <= 2 && to_central > 10, "{to_sobel} {to_central}");
         // Without the green override, the torus inherits DirectX when its height is untouched.
-        let green_only = MaterialOverrides { two_channel: Some(true), ..Default::default() };
+        let green_only = MaterialOverrides { layout: Some(NormalLayout::Rg), ..Default::default() };
         let changed = all.applied_with(&PerMaterialOverrides::from([(1, green_only)]), &scene);
         let torus = changed.materials[1].normal_map.as_ref().unwrap().convention;
-        assert_eq!((torus.green, torus.two_channel), (GreenAxis::DirectX, true));
+        assert_eq!((torus.green, torus.layout), (GreenAxis::DirectX, NormalLayout::Rg));
     }
 }

@@ -1,8 +1,7 @@
 //! Textures read as the GPU's sampler reads them: wrap modes, bilinear filtering, and the
 //! level of detail from a pixel's UV footprint between mip levels.
 
-use glam::Vec2;
-use glam::Vec3;
+use glam::{Vec2, Vec3, Vec4};
 
 use super::{SamplerWrap, TextureImage, TextureKind, Wrap};
 use crate::math::srgb_to_linear;
@@ -11,7 +10,7 @@ use crate::math::srgb_to_linear;
 /// filtering, linear between mip levels, no anisotropy): level of detail `log2` of the longer
 /// of the footprint's derivatives in texels (`footprint`: d(uv)/dx and d(uv)/dy per pixel;
 /// `None`: level 0), bilinear at level 0 when magnified, else between the two levels around it.
-pub fn sample_trilinear(chain: &[TextureImage], uv: Vec2, wrap: SamplerWrap, footprint: Option<(Vec2, Vec2)>) -> Vec3 {
+pub fn sample_trilinear(chain: &[TextureImage], uv: Vec2, wrap: SamplerWrap, footprint: Option<(Vec2, Vec2)>) -> Vec4 {
     let texels = Vec2::new(chain[0].width as f32, chain[0].height as f32);
     let lod = footprint.map_or(0.0, |(dx, dy)| (dx * texels).length().max((dy * texels).length()).log2());
     let lod = if lod.is_finite() { lod.clamp(0.0, (chain.len() - 1) as f32) } else { 0.0 };
@@ -43,10 +42,10 @@ pub fn nearest_texel(texture: &TextureImage, uv: Vec2, wrap: SamplerWrap) -> [u3
     [wrap_texel(x, texture.width, wrap.u) as u32, wrap_texel(y, texture.height, wrap.v) as u32]
 }
 
-/// Bilinear sample of mip level 0 (RGB, 0..1), as the GPU's linear magnification filter reads
+/// Bilinear sample of mip level 0 (RGBA, 0..1), as the GPU's linear magnification filter reads
 /// it with the given wrap modes; sRGB colour texels are decoded to linear before filtering, as
-/// through an sRGB texture view.
-pub fn sample_bilinear(texture: &TextureImage, uv: Vec2, wrap: SamplerWrap) -> Vec3 {
+/// through an sRGB texture view (alpha is linear).
+pub fn sample_bilinear(texture: &TextureImage, uv: Vec2, wrap: SamplerWrap) -> Vec4 {
     let x = uv.x * texture.width as f32 - 0.5;
     let y = uv.y * texture.height as f32 - 0.5;
     let (x0, y0) = (x.floor(), y.floor());
@@ -56,10 +55,11 @@ pub fn sample_bilinear(texture: &TextureImage, uv: Vec2, wrap: SamplerWrap) -> V
         let ty = wrap_texel(y0 as i64 + dy, texture.height, wrap.v);
         let t = texture.texel(tx, ty);
         let rgb = Vec3::new(t[0] as f32, t[1] as f32, t[2] as f32) / 255.0;
-        match texture.kind {
+        let rgb = match texture.kind {
             TextureKind::Color => rgb.map(srgb_to_linear),
             TextureKind::NormalMap | TextureKind::Height | TextureKind::Data => rgb,
-        }
+        };
+        rgb.extend(t[3] as f32 / 255.0)
     };
     let top = texel(0, 0).lerp(texel(1, 0), fx);
     let bottom = texel(0, 1).lerp(texel(1, 1), fx);

@@ -10,8 +10,8 @@ use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
-use super::SELF_SHADOW_FADE;
 use super::lights::incident;
+use super::{LightingVectors, SELF_SHADOW_FADE};
 use crate::math::{normalize_or, smoothstep};
 use crate::scene::{Light, Lights};
 
@@ -100,6 +100,10 @@ pub struct PbrInputs {
     pub eye: Vec3,
     /// Every light (switched-off ones bring nothing); their ambient light is not used.
     pub lights: Lights,
+    /// The world-space directions to each light and to the eye as the lighting sees them
+    /// ([`super::world_vectors`], where the chain's per-vertex mistakes may replace the first
+    /// light's); `None`: the true ones.
+    pub seen: Option<LightingVectors>,
     /// The clear-coat layer over the base, if any.
     pub clearcoat: Option<ClearcoatInputs>,
 }
@@ -126,9 +130,15 @@ pub const CLEARCOAT_F0: f32 = 0.04;
 pub fn metallic_roughness(p: &PbrInputs) -> Vec3 {
     let n = p.shading_normal;
     let v = normalize_or(p.eye - p.position, p.geometric_normal);
-    let lit = p.lights.as_slice().iter().filter(|light| light.enabled);
-    let (direct, coat_direct) =
-        lit.map(|light| pbr_light(p, light)).fold((Vec3::ZERO, Vec3::ZERO), |(a, b), (c, d)| (a + c, b + d));
+    let lit = p.lights.as_slice().iter().enumerate().filter(|(_, light)| light.enabled);
+    let terms = lit.map(|(k, light)| {
+        let (l, v) = match &p.seen {
+            Some(seen) => (seen.lights[k], seen.views[k]),
+            None => (incident(light, p.position, p.geometric_normal).direction, v),
+        };
+        pbr_light(p, light, l, v)
+    });
+    let (direct, coat_direct) = terms.fold((Vec3::ZERO, Vec3::ZERO), |(a, b), (c, d)| (a + c, b + d));
     let roughness = p.roughness.clamp(MIN_ROUGHNESS, 1.0);
     let metallic = p.metallic.clamp(0.0, 1.0);
     let c_diff = p.base_color.lerp(Vec3::ZERO, metallic);
@@ -156,13 +166,12 @@ pub fn metallic_roughness(p: &PbrInputs) -> Vec3 {
 /// What one light adds through the glTF BRDF, `(base, clear coat)`:
 /// `π · ((1 − F) · c_diff/π + F · D · V) · radiance · max(n·l, 0)` faded by the same
 /// geometric self-shadow as Blinn-Phong, and the coat's `π · F_c · D_c · V_c · radiance ·
-/// max(n_c·l, 0)` with the same fade (zero without a coat).
-pub fn pbr_light(p: &PbrInputs, light: &Light) -> (Vec3, Vec3) {
+/// max(n_c·l, 0)` with the same fade (zero without a coat); `l` and `v` are the unit
+/// directions to the light and to the eye the lighting sees ([`PbrInputs::seen`]).
+pub fn pbr_light(p: &PbrInputs, light: &Light, l: Vec3, v: Vec3) -> (Vec3, Vec3) {
     let n_geo = p.geometric_normal;
     let n = p.shading_normal;
     let incident = incident(light, p.position, n_geo);
-    let l = incident.direction;
-    let v = normalize_or(p.eye - p.position, n_geo);
     let h = normalize_or(l + v, n_geo);
     let roughness = p.roughness.clamp(MIN_ROUGHNESS, 1.0);
     let alpha = roughness * roughness;
@@ -229,6 +238,7 @@ mod tests {
             position: Vec3::ZERO,
             eye: Vec3::new(0.0, 1e-7, 1.0),
             lights: Lights::one(Light::point(Vec3::new(1.0, 1e-7, 0.0), Vec3::ONE), Vec3::ZERO),
+            seen: None,
             clearcoat: Some(ClearcoatInputs { factor: 1.0, roughness: 0.0, normal: Vec3::Z }),
         };
         assert!(metallic_roughness(&p).is_finite());

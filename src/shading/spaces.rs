@@ -55,8 +55,8 @@ pub fn tangent_lighting_vectors(world: &LightingVectors, to_tangent: Mat3, shadi
     LightingVectors {
         geometric_normal: Vec3::Z,
         shading_normal,
-        view: normalize_or(to_tangent * world.view, Vec3::Z),
         lights: world.lights.map(|l| normalize_or(to_tangent * l, Vec3::Z)),
+        views: world.views.map(|v| normalize_or(to_tangent * v, Vec3::Z)),
     }
 }
 
@@ -66,8 +66,8 @@ pub fn view_lighting_vectors(world: &LightingVectors, view_rotation: Mat3) -> Li
     LightingVectors {
         geometric_normal: view_rotation * world.geometric_normal,
         shading_normal: view_rotation * world.shading_normal,
-        view: view_rotation * world.view,
         lights: world.lights.map(|l| view_rotation * l),
+        views: world.views.map(|v| view_rotation * v),
     }
 }
 

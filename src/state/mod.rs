@@ -14,9 +14,9 @@ pub use split::{SplitDifference, SplitView};
 use glam::{Vec2, Vec3};
 
 use crate::frame::{
-    BumpSource, FrameParams, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS, MAX_PARALLAX_SHADOW_STRENGTH,
-    MAX_PARALLAX_STEPS, Msaa, Parallax, STRENGTH_RANGE, SceneOptions, SceneUploads, ShadingMode, ShadingSettings,
-    SplitFrame, ViewMode,
+    BumpSource, FrameParams, LegacyLook, LegacySettings, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS,
+    MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS, Mistake, Msaa, Parallax, STRENGTH_RANGE, SceneOptions,
+    SceneUploads, ShadingMode, ShadingSettings, SplitFrame, ViewMode,
 };
 use crate::height::Kernel;
 use crate::math::normalize_or;
@@ -115,6 +115,13 @@ pub enum Command {
     SetSplitBumpSources([BumpSource; 2]),
     /// The two techniques of [`SplitDifference::Parallax`].
     SetSplitParallax([Parallax; 2]),
+    /// The two mistakes of [`SplitDifference::Mistake`].
+    SetSplitMistakes([Mistake; 2]),
+    /// Draw with a classic mistake (a pipeline variant).
+    SetMistake(Mistake),
+    /// A legacy look and DOT3's cube map face size (one of [`crate::frame::CUBE_MAP_SIZES`],
+    /// else none).
+    SetLegacy(LegacySettings),
     /// The two spaces of [`SplitDifference::LightingSpace`].
     SetSplitLightingSpaces([crate::frame::LightingSpace; 2]),
     /// The parallax technique (a uniform).
@@ -189,19 +196,31 @@ impl ViewerState {
     pub fn scene_uploads(&self) -> SceneUploads {
         let shown = self.split_frame().map_or(vec![self.shading], |s| vec![s.left, s.right]);
         let options = self.scene_options_drawing(&shown);
+        // Frames without Gram-Schmidt for the pictures that show that mistake; the split
+        // view's halves then differ in GPU data when only one shows it.
+        let raw = |s: &ShadingSettings| s.mistake == Mistake::NoGramSchmidt;
+        let with_frames = |options: SceneOptions, s: &ShadingSettings| SceneOptions {
+            tangents_without_gram_schmidt: raw(s),
+            ..options
+        };
+        let first = shown[0];
+        let last = *shown.last().expect("one or two pictures");
         if self.split.enabled && self.split.difference.changes_gpu_data() {
             let [left, right] = self.split.scene_options(&options);
-            SceneUploads { main: left, split_right: Some(right) }
+            SceneUploads { main: with_frames(left, &first), split_right: Some(with_frames(right, &last)) }
+        } else if raw(&first) != raw(&last) {
+            SceneUploads { main: with_frames(options.clone(), &first), split_right: Some(with_frames(options, &last)) }
         } else {
-            SceneUploads { main: options, split_right: None }
+            SceneUploads { main: with_frames(options, &first), split_right: None }
         }
     }
 
     /// The scene options pictures with `shown` settings are drawn with: the height maps bound
-    /// for parallax while any of them marches, displacement at the parallax depth (so both
+    /// while any of them marches or embosses, displacement at the parallax depth (so both
     /// draw the same relief); the split view aside.
     pub fn scene_options_drawing(&self, shown: &[ShadingSettings]) -> SceneOptions {
-        let parallax = shown.iter().any(|s| s.parallax.technique != Parallax::Off);
+        let parallax =
+            shown.iter().any(|s| s.parallax.technique != Parallax::Off || s.legacy.look == LegacyLook::Emboss);
         let mut displacement = self.scene_options.displacement;
         displacement.depth_m = self.shading.parallax.depth_m;
         SceneOptions { parallax, displacement, ..self.scene_options.clone() }
@@ -332,6 +351,12 @@ impl ViewerState {
             Command::SetSplitConventions(conventions) => self.split.conventions = conventions,
             Command::SetSplitBumpSources(sources) => self.split.bump_sources = sources,
             Command::SetSplitParallax(techniques) => self.split.parallax = techniques,
+            Command::SetSplitMistakes(mistakes) => self.split.mistakes = mistakes,
+            Command::SetMistake(mistake) => self.shading.mistake = mistake,
+            Command::SetLegacy(legacy) => {
+                let size = legacy.cube_map_size.filter(|s| crate::frame::CUBE_MAP_SIZES.contains(s));
+                self.shading.legacy = LegacySettings { cube_map_size: size, ..legacy };
+            }
             Command::SetSplitLightingSpaces(spaces) => self.split.lighting_spaces = spaces,
             Command::Lighting(command) => self.apply_lighting(command),
         }
@@ -369,6 +394,7 @@ impl RedrawTracker {
 mod tests {
     use super::*;
     use crate::names::Named;
+    use crate::scene::NormalLayout;
     use crate::scene::builtin::teaching_scene;
 
     #[test]
@@ -471,7 +497,8 @@ mod tests {
     fn a_split_convention_wins_over_per_material_green_and_keeps_other_overrides() {
         let scene = teaching_scene();
         let mut state = ViewerState::new(&scene);
-        let own = MaterialOverrides { green: Some(GreenAxis::OpenGl), two_channel: Some(true), ..Default::default() };
+        let own =
+            MaterialOverrides { green: Some(GreenAxis::OpenGl), layout: Some(NormalLayout::Rg), ..Default::default() };
         state.apply(Command::SetMaterialOverrides { material: Some(0), overrides: own });
         state.apply(Command::SetMaterialOverrides {
             material: Some(1),
@@ -482,7 +509,7 @@ mod tests {
         let [left, right] = state.split.scene_options(&state.scene_options);
         for (options, green) in [(left, GreenAxis::OpenGl), (right, GreenAxis::DirectX)] {
             assert_eq!(options.overrides_in_use(0).green, Some(green));
-            assert_eq!(options.overrides_in_use(0).two_channel, Some(true));
+            assert_eq!(options.overrides_in_use(0).layout, Some(NormalLayout::Rg));
             assert_eq!(options.overrides_in_use(1).green, Some(green));
             assert!(!options.per_material.contains_key(&1), "an emptied record is dropped");
         }
@@ -503,6 +530,27 @@ mod tests {
         state.apply(Command::SetSplitDifference(SplitDifference::BumpSource));
         assert_eq!(state.picture_at(25, 100).1.bump_source, BumpSource::NormalMap);
         assert_eq!(state.picture_at(26, 100).1.bump_source, BumpSource::HeightInShader);
+    }
+
+    /// A mistake is a pipeline variant (one upload), except no Gram-Schmidt, whose frames are
+    /// GPU data: a split against it uploads the right half's frames without Gram-Schmidt.
+    #[test]
+    fn split_mistakes_share_an_upload_unless_frames_differ() {
+        let scene = teaching_scene();
+        let mut state = ViewerState::new(&scene);
+        state.apply(Command::SetSplit(true));
+        state.apply(Command::SetSplitDifference(SplitDifference::Mistake));
+        let [left, right] = state.split_frame().map(|s| [s.left.mistake, s.right.mistake]).unwrap();
+        assert_eq!([left, right], [Mistake::None, Mistake::TbnTypo]);
+        assert_eq!(state.scene_uploads().split_right, None);
+        state.apply(Command::SetSplitMistakes([Mistake::None, Mistake::NoGramSchmidt]));
+        let uploads = state.scene_uploads();
+        assert!(!uploads.main.tangents_without_gram_schmidt);
+        assert!(uploads.split_right.is_some_and(|o| o.tangents_without_gram_schmidt));
+        state.apply(Command::SetSplit(false));
+        state.apply(Command::SetMistake(Mistake::NoGramSchmidt));
+        let uploads = state.scene_uploads();
+        assert!(uploads.main.tangents_without_gram_schmidt && uploads.split_right.is_none());
     }
 
     #[test]

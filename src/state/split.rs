@@ -1,7 +1,9 @@
 //! The split view: two pictures side by side that differ in one thing, in uniforms (one scene
 //! upload) or in GPU data (a second upload for the right half).
 
-use crate::frame::{BumpSource, LightingSpace, Parallax, SceneOptions, ShadingMode, ShadingSettings, ViewMode};
+use crate::frame::{
+    BumpSource, LightingSpace, Mistake, Parallax, SceneOptions, ShadingMode, ShadingSettings, ViewMode,
+};
 use crate::names::Named;
 use crate::scene::GreenAxis;
 use crate::tangent::TangentMethod;
@@ -10,7 +12,7 @@ use crate::tangent::TangentMethod;
 /// lighting space are uniforms or pipeline variants, so both halves share one scene upload; the others change GPU data
 /// ([`SplitDifference::changes_gpu_data`]), so the right half is drawn from a second upload of
 /// the scene. Named `bump`, `view`, `strength`, `mode`, `tangents`, `convention`,
-/// `bump-source`, `parallax`, `lighting-space`, `displacement`.
+/// `bump-source`, `parallax`, `mistake`, `lighting-space`, `displacement`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
 #[strum(serialize_all = "kebab-case")]
 pub enum SplitDifference {
@@ -31,6 +33,8 @@ pub enum SplitDifference {
     BumpSource,
     /// Two parallax techniques (same layers, steps and depth).
     Parallax,
+    /// Two classic mistakes, e.g. none │ TBN typo (pipeline variants, one upload).
+    Mistake,
     /// Two lighting spaces (world │ tangent by default).
     LightingSpace,
     /// The left parallax technique (`parallax[0]`) │ displacement at `displacement_level`, the
@@ -66,6 +70,7 @@ pub struct SplitView {
     pub conventions: [GreenAxis; 2],
     pub bump_sources: [BumpSource; 2],
     pub parallax: [Parallax; 2],
+    pub mistakes: [Mistake; 2],
     pub lighting_spaces: [LightingSpace; 2],
     /// The right half's displacement level in [`SplitDifference::Displacement`].
     pub displacement_level: u32,
@@ -84,6 +89,7 @@ impl Default for SplitView {
             conventions: [GreenAxis::OpenGl, GreenAxis::DirectX],
             bump_sources: [BumpSource::NormalMap, BumpSource::HeightInShader],
             parallax: [Parallax::Steep, Parallax::Occlusion],
+            mistakes: [Mistake::None, Mistake::TbnTypo],
             lighting_spaces: [LightingSpace::World, LightingSpace::Tangent],
             displacement_level: 6,
         }
@@ -101,6 +107,7 @@ impl SplitView {
                 SplitDifference::Strength => s.strength = self.strengths[i],
                 SplitDifference::Mode => s.mode = self.modes[i],
                 SplitDifference::Parallax => s.parallax.technique = self.parallax[i],
+                SplitDifference::Mistake => s.mistake = self.mistakes[i],
                 SplitDifference::LightingSpace => s.lighting_space = self.lighting_spaces[i],
                 SplitDifference::Displacement if i == 0 => s.parallax.technique = self.parallax[0],
                 SplitDifference::Displacement => {}
@@ -133,6 +140,7 @@ impl SplitView {
                 | SplitDifference::Strength
                 | SplitDifference::Mode
                 | SplitDifference::Parallax
+                | SplitDifference::Mistake
                 | SplitDifference::LightingSpace => {}
             }
             options
@@ -150,6 +158,10 @@ impl SplitView {
             SplitDifference::Convention => format!("normal map: {}", self.conventions[i].label()),
             SplitDifference::BumpSource => self.bump_sources[i].label().to_owned(),
             SplitDifference::Parallax => self.parallax[i].label().to_owned(),
+            SplitDifference::Mistake => match self.mistakes[i] {
+                Mistake::None => "correct".to_owned(),
+                mistake => format!("{}: {}", mistake.label(), mistake.explanation()),
+            },
             SplitDifference::LightingSpace => self.lighting_spaces[i].label().to_owned(),
             SplitDifference::Displacement if i == 0 => self.parallax[0].label().to_owned(),
             SplitDifference::Displacement => format!("displacement, level {}", self.displacement_level),

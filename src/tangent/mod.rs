@@ -16,7 +16,9 @@ use crate::scene::Mesh;
 pub use compare::{AngleStats, FrameAngles, MethodMeasurement, angle_degrees, frame_angles, measure};
 pub use meshopt::generate_meshopt;
 pub use mikktspace::generate_mikktspace;
-pub use uv_delta::{Weighting, averaged_face_frames, face_frame, per_face_frames};
+pub use uv_delta::{
+    Weighting, averaged_face_frames, averaged_face_frames_without_gram_schmidt, face_frame, per_face_frames,
+};
 
 /// How tangent frames are made. Named `mikktspace`, `meshopt`, `per-face`, `averaged-uniform`,
 /// `averaged-area`, `averaged-angle`, `supplied`, `analytic`.
@@ -75,6 +77,29 @@ pub fn resolve(mesh: &Mesh, choice: Option<TangentMethod>) -> (Vec<Vec4>, Tangen
     match tangents(mesh, wanted) {
         Some(frames) => (frames, wanted),
         None => (generate_meshopt(mesh), TangentMethod::Meshopt),
+    }
+}
+
+/// The frames of `method` without their Gram-Schmidt against the vertex normal, where it has
+/// one to skip: averaged face frames only normalised, supplied and analytic frames as given
+/// (normalised); `None` for the others (MikkTSpace, meshopt and per-face frames are drawn
+/// as [`tangents`] makes them).
+pub fn without_gram_schmidt(mesh: &Mesh, method: TangentMethod) -> Option<Vec<Vec4>> {
+    let given = |frames: &Vec<Vec4>| {
+        let normalised = frames.iter().zip(&mesh.normals).map(|(t, &n)| {
+            crate::math::normalize_or(t.truncate(), crate::math::any_perpendicular(n)).extend(t.w.signum())
+        });
+        normalised.collect()
+    };
+    match method {
+        TangentMethod::AveragedUniform | TangentMethod::AveragedArea | TangentMethod::AveragedAngle => {
+            method.weighting().map(|weighting| averaged_face_frames_without_gram_schmidt(mesh, weighting))
+        }
+        TangentMethod::Supplied => mesh.tangents.as_ref().filter(|t| t.len() == mesh.positions.len()).map(given),
+        TangentMethod::Analytic => {
+            mesh.analytic_tangents.as_ref().filter(|t| t.len() == mesh.positions.len()).map(given)
+        }
+        TangentMethod::MikkTSpace | TangentMethod::Meshopt | TangentMethod::PerFace => None,
     }
 }
 

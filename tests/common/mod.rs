@@ -5,12 +5,16 @@
 
 use std::path::{Path, PathBuf};
 
+use bumpview::chain::legacy::vertex_vectors;
 use bumpview::chain::{BumpSample, ChainValues, SurfaceSample, shade};
 use bumpview::frame::BumpKind;
-use bumpview::frame::FrameParams;
+use bumpview::frame::{FrameParams, SceneOptions, ViewMode};
+use bumpview::probe::{ProbeReadout, ProbeScene};
+use bumpview::render::capture::render_image;
 use bumpview::render::{Gpu, Renderer};
 use bumpview::scene::builtin::{WALL_Z, teaching_scene, wall_uv};
 use bumpview::scene::{OrbitCamera, Scene, TextureImage};
+use bumpview::shading::NormalTexel;
 use bumpview::state::ViewerState;
 use glam::{Mat3, Vec2, Vec3, Vec4};
 
@@ -95,7 +99,7 @@ pub fn asset(base: &Path, relative: &str) -> PathBuf {
 /// filter does; sRGB texels are decoded before filtering, as for an sRGB texture view
 /// ([`bumpview::probe::sample_bilinear`]).
 pub fn sample_bilinear(texture: &TextureImage, uv: Vec2) -> Vec3 {
-    bumpview::probe::sample_bilinear(texture, uv, Default::default())
+    bumpview::probe::sample_bilinear(texture, uv, Default::default()).truncate()
 }
 
 /// The value at fraction `p` (0..1) of sorted values.
@@ -118,7 +122,7 @@ pub fn wall_chain(scene: &Scene, params: &FrameParams, size: [u32; 2], x: u32, y
         world_tangent: Some(Vec4::new(1.0, 0.0, 0.0, 1.0)),
         normal_matrix: Mat3::IDENTITY,
         base_color: material.base_color_texture.map(sample),
-        bump: material.normal_map.as_ref().map(|m| BumpSample::NormalMap(sample(m.texture))),
+        bump: material.normal_map.as_ref().map(|m| BumpSample::NormalMap(NormalTexel::rgb(sample(m.texture)))),
         metallic_roughness: None,
         occlusion: None,
         gloss: material.gloss_texture.map(sample),
@@ -126,6 +130,11 @@ pub fn wall_chain(scene: &Scene, params: &FrameParams, size: [u32; 2], x: u32, y
         clearcoat: None,
         clearcoat_roughness: None,
         clearcoat_normal: None,
+        // The wall is flat and the light and eye vectors are only read by the legacy looks and
+        // the per-vertex mistakes: the values at the point itself.
+        vertex_light: vertex_vectors(p, Vec3::Z, params.lights.first_on(), params.camera.eye()).0,
+        vertex_half: vertex_vectors(p, Vec3::Z, params.lights.first_on(), params.camera.eye()).1,
+        emboss: None,
         triangle_frame: None,
     };
     shade(BumpKind::TangentSpace, material, &surface, params)
@@ -177,4 +186,57 @@ pub fn assert_sane(scene: &Scene, what: &str) {
             texture.name
         );
     }
+}
+
+/// The probe's readouts (with their pixels) on a grid of pixels (every `step`, from (4, 4)) of a `size` picture of
+/// `scene` prepared with `options`, after checking that the GPU's lit and shading-normal
+/// pictures equal them within `tolerance` steps of 8 bits (lit, shading normal). Pixels whose
+/// neighbours see another instance or nothing are left out (silhouettes blend two surfaces).
+pub fn gpu_against_probe(
+    scene: &Scene,
+    options: &SceneOptions,
+    params: &FrameParams,
+    size: [u32; 2],
+    step: usize,
+    tolerance: [f32; 2],
+) -> Vec<([u32; 2], ProbeReadout)> {
+    let probe = ProbeScene::new(scene, options);
+    let mut renderer = renderer_for(scene);
+    renderer.set_scene(scene, options.clone());
+    let lit = render_image(&mut renderer, size, params).unwrap();
+    let mut normal_params = *params;
+    normal_params.shading.view = ViewMode::ShadingNormal;
+    let normals = render_image(&mut renderer, size, &normal_params).unwrap();
+    let mut worst = [0.0f32; 2];
+    let mut readouts = vec![];
+    for y in (4..size[1] - 1).step_by(step) {
+        for x in (4..size[0] - 1).step_by(step) {
+            let Some(readout) = probe.probe(params, size, [x, y]) else { continue };
+            let instance = |dx: i32, dy: i32| {
+                let pixel = [(x as i32 + dx) as u32, (y as i32 + dy) as u32];
+                probe.pick(&params.camera, size, pixel).map(|p| p.instance)
+            };
+            let neighbours = [(-1, -1), (0, -1), (1, -1), (-1, 0), (1, 0), (-1, 1), (0, 1), (1, 1)];
+            if neighbours.iter().any(|&(dx, dy)| instance(dx, dy) != Some(readout.point.instance)) {
+                continue;
+            }
+            let cpu = readout.shown_bytes().unwrap();
+            let gpu = lit.get_pixel(x, y);
+            let lit_diff = (0..3).map(|c| (gpu[c] as f32 - cpu[c]).abs()).fold(0.0, f32::max);
+            let expected = (readout.chain.shading_normal * 0.5 + 0.5) * 255.0;
+            let stored = normals.get_pixel(x, y);
+            let normal_diff = (0..3).map(|c| (stored[c] as f32 - expected[c]).abs()).fold(0.0, f32::max);
+            worst = [worst[0].max(lit_diff), worst[1].max(normal_diff)];
+            assert!(lit_diff <= tolerance[0], "({x},{y}): GPU {gpu:?} vs CPU {cpu}");
+            assert!(normal_diff <= tolerance[1], "({x},{y}): GPU {stored:?} vs CPU {expected}");
+            readouts.push(([x, y], readout));
+        }
+    }
+    println!(
+        "GPU against CPU at {} pixels: worst lit {} steps, shading normal {} steps",
+        readouts.len(),
+        worst[0],
+        worst[1]
+    );
+    readouts
 }

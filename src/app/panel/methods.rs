@@ -6,7 +6,7 @@ use bumpview::frame::BumpSource;
 use bumpview::frame::ViewMode;
 use bumpview::height::{Border, Kernel};
 use bumpview::names::Named;
-use bumpview::scene::{GreenAxis, Material, MaterialOverrides, ShadingModel};
+use bumpview::scene::{GreenAxis, Material, MaterialOverrides, NormalLayout, ShadingModel};
 use bumpview::state::{Command, ViewerState};
 use bumpview::tangent::{MethodMeasurement, TangentMethod};
 
@@ -89,8 +89,13 @@ pub(super) fn conventions(ui: &mut egui::Ui, state: &ViewerState, materials: &[M
             ui.selectable_value(&mut new.green, choice, green_name(choice));
         }
     });
+    let layout_name = |l: Option<NormalLayout>| l.map_or(unset, NormalLayout::label);
+    egui::ComboBox::from_label("normal map layout").selected_text(layout_name(new.layout)).show_ui(ui, |ui| {
+        for choice in std::iter::once(None).chain(NormalLayout::all().iter().copied().map(Some)) {
+            ui.selectable_value(&mut new.layout, choice, layout_name(choice));
+        }
+    });
     for (flag, base, label) in [
-        (&mut new.two_channel, inherited.two_channel, "two-channel (reconstruct z)"),
         (&mut new.object_space, inherited.object_space, "object-space normal map (no tangents)"),
         (&mut new.depth_map, inherited.depth_map, "height map is a depth map (white = deep)"),
     ] {

@@ -7,6 +7,7 @@
 mod files;
 mod lights;
 mod methods;
+mod mistakes;
 mod output;
 mod parallax;
 mod picture;
@@ -44,6 +45,8 @@ pub fn show(
             parallax::show(ui, &controller.state, &mut actions);
             parallax::displacement(ui, &controller.state, displaced, &mut actions);
         });
+        section(ui, "Classic mistakes", false, |ui| mistakes::show(ui, &controller.state, &mut actions));
+        section(ui, "Legacy looks", false, |ui| mistakes::legacy(ui, &controller.state, &mut actions));
         section(ui, "Tangent frames and kernels", false, |ui| {
             methods::methods(ui, &controller.state, &controller.facts().measurements, &mut actions);
         });

@@ -1,7 +1,9 @@
 //! The top of the panel, always in sight: bump on/off and strength, the view, the split view
 //! and the light.
 
-use bumpview::frame::{BumpSource, LightingSpace, MAX_DISPLACEMENT_LEVEL, Parallax, STRENGTH_RANGE, ShadingMode, ViewMode};
+use bumpview::frame::{
+    BumpSource, LightingSpace, MAX_DISPLACEMENT_LEVEL, Mistake, Parallax, STRENGTH_RANGE, ShadingMode, ViewMode,
+};
 use bumpview::names::Named;
 use bumpview::scene::GreenAxis;
 use bumpview::shading::OVER_TILT_LIMIT_DEG;
@@ -121,6 +123,13 @@ fn split(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
             let slider = egui::Slider::new(&mut level, 1..=MAX_DISPLACEMENT_LEVEL).text("right: displacement level");
             let changed = ui.add(slider).changed();
             (changed || technique != split.parallax[0]).then_some(Command::SetSplitDisplacement(technique, level))
+        }
+        SplitDifference::Mistake => {
+            let chosen = pair_combos(ui, "mistake", split.mistakes, Mistake::label).map(Command::SetSplitMistakes);
+            for (side, mistake) in ["left", "right"].into_iter().zip(split.mistakes) {
+                ui.weak(format!("{side}: {}", mistake.explanation()));
+            }
+            chosen
         }
     };
     actions.extend(command.map(Action::from));

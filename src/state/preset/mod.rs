@@ -21,8 +21,8 @@ use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
 use crate::frame::{
-    Displacement, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS, MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS,
-    ParallaxSettings, SceneOptions, ShadingSettings,
+    CUBE_MAP_SIZES, Displacement, LegacySettings, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS,
+    MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS, ParallaxSettings, SceneOptions, ShadingSettings,
 };
 use crate::height::Kernel;
 use crate::load::SceneFiles;
@@ -245,6 +245,11 @@ impl Preset {
             let strengths = format!("0 (off) to {MAX_PARALLAX_SHADOW_STRENGTH}");
             return Err(bad("shading.parallax_shadows", &s.parallax_shadows.to_string(), &strengths));
         }
+        let cube_map_size = match s.cube_map_size {
+            0 => None,
+            size if CUBE_MAP_SIZES.contains(&size) => Some(size),
+            size => return Err(bad("shading.cube_map_size", &size.to_string(), "0 (none), 8, 16, 32 or 64")),
+        };
         if let Some(d) = s.parallax_depth_m.filter(|d| !(d.is_finite() && *d >= 0.0)) {
             return Err(bad("shading.parallax_depth_m", &d.to_string(), "metres, 0 or more"));
         }
@@ -268,6 +273,8 @@ impl Preset {
                     depth_m: s.parallax_depth_m,
                     shadow_strength: s.parallax_shadows,
                 },
+                mistake: named("shading.mistake", &s.mistake)?,
+                legacy: LegacySettings { look: named("shading.legacy", &s.legacy)?, cube_map_size },
                 specular: named("shading.specular", &s.specular)?,
                 shininess: s.shininess,
                 lighting_space: named("shading.lighting_space", &s.lighting_space)?,
@@ -282,6 +289,7 @@ impl Preset {
                 // Set by `ViewerState::scene_uploads` from the shading.
                 parallax: false,
                 displacement: Displacement { level: scene.displacement, depth_m: None },
+                tangents_without_gram_schmidt: false,
             },
             kernel: self.kernel()?,
             split: self.split.to_split()?,
@@ -335,9 +343,10 @@ mod tests {
     use super::*;
     use crate::frame::LightingSpace;
     use crate::frame::{BumpSource, ShadingMode, ViewMode};
+    use crate::frame::{LegacyLook, Mistake};
     use crate::height::Border;
     use crate::scene::builtin::teaching_scene;
-    use crate::scene::{GreenAxis, MaterialOverrides, ShadingModel, SpecularMode};
+    use crate::scene::{GreenAxis, MaterialOverrides, NormalLayout, ShadingModel, SpecularMode};
     use crate::state::{Command, LightCommand};
     use crate::tangent::TangentMethod;
 
@@ -353,10 +362,15 @@ mod tests {
         state.apply(Command::SetLightMarker(false));
         state.apply(Command::SetTangentMethod(Some(TangentMethod::PerFace)));
         state.apply(Command::SetKernel(Kernel::Sobel5));
-        let overrides =
-            MaterialOverrides { green: Some(GreenAxis::DirectX), height_range_m: Some(0.0123), ..Default::default() };
+        let overrides = MaterialOverrides {
+            green: Some(GreenAxis::DirectX),
+            height_range_m: Some(0.0123),
+            layout: Some(NormalLayout::Ag),
+            ..Default::default()
+        };
         state.apply(Command::SetMaterialOverrides { material: None, overrides });
-        let own = MaterialOverrides { border: Some(Border::Clamp), ..Default::default() };
+        let own =
+            MaterialOverrides { border: Some(Border::Clamp), layout: Some(NormalLayout::Xray), ..Default::default() };
         state.apply(Command::SetMaterialOverrides { material: Some(1), overrides: own });
         state.apply(Command::SetShadingOverride(Some(ShadingModel::MetallicRoughness)));
         state.apply(Command::SetShadingMode(ShadingMode::BumpOnly));
@@ -371,6 +385,9 @@ mod tests {
         state.apply(Command::SetSplitTangentMethods([TangentMethod::Analytic, TangentMethod::PerFace]));
         state.apply(Command::SetSplitConventions([GreenAxis::DirectX, GreenAxis::OpenGl]));
         state.apply(Command::SetSplitBumpSources([BumpSource::HeightInShader, BumpSource::NormalMap]));
+        state.apply(Command::SetSplitMistakes([Mistake::GreenFlipped, Mistake::LightPerVertex]));
+        state.apply(Command::SetMistake(Mistake::SrgbNormalMap));
+        state.apply(Command::SetLegacy(LegacySettings { look: LegacyLook::Dot3, cube_map_size: Some(16) }));
         let mut sun = crate::scene::Light::directional(Vec3::new(0.3, 1.7, -0.2), Vec3::new(1.0, 0.9, 0.71));
         sun.intensity = 1.37;
         let mut lamp = crate::scene::Light::point(Vec3::new(0.1, 0.2, 0.3), Vec3::new(0.2, 0.3, 1.0));
@@ -410,6 +427,16 @@ mod tests {
         assert!(Preset::from_toml(&nine).unwrap_err().0.starts_with("lights"));
         assert!(Preset::from_toml("[shading]\nshininess = 0.5\n").is_err());
         assert!(Preset::from_toml("[ambient]\nstrength = -1.0\n").is_err());
+    }
+
+    /// Older presets' `two_channel = true` reads as the RG layout; a bad layout names its key.
+    #[test]
+    fn two_channel_reads_as_the_rg_layout() {
+        let scene = teaching_scene();
+        let state = Preset::from_toml("[scene.materials]\ntwo_channel = true\n").unwrap().to_state(&scene).unwrap();
+        assert_eq!(state.scene_options.materials.layout, Some(NormalLayout::Rg));
+        let bad = Preset::from_toml("[scene.materials]\nnormal_layout = \"bc7\"\n").and_then(|p| p.to_state(&scene));
+        assert!(bad.unwrap_err().to_string().contains("scene.materials.normal_layout"));
     }
 
     #[test]

@@ -6,7 +6,7 @@ use crate::height::Kernel;
 use crate::names::{Named, name_or_auto};
 use crate::render::Background;
 use crate::render::capture::CaptureOptions;
-use crate::scene::{Attenuation, Light, MaterialOverrides};
+use crate::scene::{Attenuation, Light, MaterialOverrides, NormalLayout};
 use crate::state::{SplitDifference, SplitView};
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
@@ -37,6 +37,8 @@ pub struct SplitPreset {
     pub bump_sources: [String; 2],
     /// [`Parallax`](crate::frame::Parallax) technique names, left and right.
     pub parallax: [String; 2],
+    /// [`Mistake`](crate::frame::Mistake) names, left and right.
+    pub mistakes: [String; 2],
     /// [`LightingSpace`](crate::frame::LightingSpace) names, left and right.
     pub lighting_spaces: [String; 2],
     /// The right half's displacement level in the `displacement` split (1 to 10).
@@ -62,6 +64,7 @@ impl From<&SplitView> for SplitPreset {
             conventions: names(s.conventions),
             bump_sources: names(s.bump_sources),
             parallax: names(s.parallax),
+            mistakes: names(s.mistakes),
             lighting_spaces: names(s.lighting_spaces),
             displacement_level: s.displacement_level,
         }
@@ -93,6 +96,7 @@ impl SplitPreset {
             conventions: named_pair("split.conventions", &self.conventions)?,
             bump_sources: named_pair("split.bump_sources", &self.bump_sources)?,
             parallax: named_pair("split.parallax", &self.parallax)?,
+            mistakes: named_pair("split.mistakes", &self.mistakes)?,
             lighting_spaces: named_pair("split.lighting_spaces", &self.lighting_spaces)?,
             displacement_level: self.displacement_level,
         })
@@ -239,6 +243,12 @@ pub struct ShadingPreset {
     pub parallax_steps: u32,
     /// The relief's depth, metres; missing: each material's height range.
     pub parallax_depth_m: Option<f32>,
+    /// A [`Mistake`](crate::frame::Mistake) name: `none`, `tbn-typo`, `green-flipped`, ….
+    pub mistake: String,
+    /// A [`LegacyLook`](crate::frame::LegacyLook) name: `off`, `dot3`, `emboss`.
+    pub legacy: String,
+    /// DOT3's normalization cube map face size: 8, 16, 32 or 64; 0: none (L per vertex).
+    pub cube_map_size: u32,
     /// A [`SpecularMode`](crate::scene::SpecularMode) name: `blinn`, `phong` or `off`.
     pub specular: String,
     /// The shininess for every material (at least 1); missing: each material's own.
@@ -274,6 +284,10 @@ pub struct ScenePreset {
 pub struct OverridesPreset {
     /// `opengl` or `directx`.
     pub normal_convention: Option<String>,
+    /// A [`NormalLayout`](crate::scene::NormalLayout) name: `rgb`, `rg`, `ag`, `xray`.
+    pub normal_layout: Option<String>,
+    /// Older presets' spelling of `normal_layout = "rg"` (true) or `"rgb"` (false); read, never
+    /// written.
     pub two_channel: Option<bool>,
     pub object_space: Option<bool>,
     pub depth_map: Option<bool>,
@@ -319,6 +333,9 @@ impl From<&ShadingSettings> for ShadingPreset {
             parallax_layers: [s.parallax.layers_min, s.parallax.layers_max],
             parallax_steps: s.parallax.steps,
             parallax_depth_m: s.parallax.depth_m,
+            mistake: s.mistake.name().to_owned(),
+            legacy: s.legacy.look.name().to_owned(),
+            cube_map_size: s.legacy.cube_map_size.unwrap_or(0),
             specular: s.specular.name().to_owned(),
             shininess: s.shininess,
             lighting_space: s.lighting_space.name().to_owned(),
@@ -364,7 +381,8 @@ impl From<&MaterialOverrides> for OverridesPreset {
     fn from(o: &MaterialOverrides) -> Self {
         OverridesPreset {
             normal_convention: o.green.map(|g| g.name().to_owned()),
-            two_channel: o.two_channel,
+            normal_layout: o.layout.map(|l| l.name().to_owned()),
+            two_channel: None,
             object_space: o.object_space,
             depth_map: o.depth_map,
             height_range_m: o.height_range_m,
@@ -386,7 +404,11 @@ impl OverridesPreset {
         };
         Ok(MaterialOverrides {
             green: self.normal_convention.as_deref().map(|n| named(&key("normal_convention"), n)).transpose()?,
-            two_channel: self.two_channel,
+            layout: match (&self.normal_layout, self.two_channel) {
+                (Some(name), _) => Some(named(&key("normal_layout"), name)?),
+                (None, Some(two)) => Some(if two { NormalLayout::Rg } else { NormalLayout::Rgb }),
+                (None, None) => None,
+            },
             object_space: self.object_space,
             depth_map: self.depth_map,
             height_range_m,

@@ -1,0 +1,140 @@
+//! The classic mistakes and the legacy looks a frame can be drawn with: pipeline variants
+//! of the lit views ([`crate::chain::mistakes`], [`crate::chain::legacy`]).
+
+/// A classic mistake to draw the scene with, for the split view against the correct picture
+/// ([`crate::chain::mistakes`], `shaders/mistakes.wgsl`). A pipeline variant (the `MISTAKE`
+/// constant). Named as on the command line (`--mistake`) and in presets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "kebab-case")]
+pub enum Mistake {
+    /// The correct picture.
+    #[default]
+    None,
+    /// Seed 000's transposition typo: the TBN matrix's `[1].z = Normal.z` where `Normal.y`
+    /// belongs, so the world normal's y takes `N.z · n_t.z`.
+    TbnTypo,
+    /// Handedness ignored: `B = N × T`, the tangent's `w` dropped.
+    HandednessIgnored,
+    /// The normal map sampled through an sRGB view: its texels are decoded from sRGB first.
+    SrgbNormalMap,
+    /// No re-normalisation after interpolation: the interpolated normal shades as it comes,
+    /// and the perturbed normal is not normalised.
+    NoRenormalization,
+    /// Averaged tangents without Gram-Schmidt: `T` is used as interpolated, not made
+    /// orthogonal to `N`.
+    NoGramSchmidt,
+    /// Green flipped: the normal map read with the other green convention.
+    GreenFlipped,
+    /// The half vector computed per vertex and interpolated instead of per pixel (Cg
+    /// tutorial 8.1.4): highlights smear and shrink across large triangles.
+    HalfVectorPerVertex,
+    /// The light vector normalised per vertex before interpolation (seed 003's vertex
+    /// shader): the interpolated direction bends where the light is near large triangles.
+    LightPerVertex,
+}
+
+impl Mistake {
+    /// The mistake's name for people (labels and captions).
+    pub fn label(self) -> &'static str {
+        match self {
+            Mistake::None => "no mistake",
+            Mistake::TbnTypo => "TBN typo",
+            Mistake::HandednessIgnored => "handedness ignored",
+            Mistake::SrgbNormalMap => "sRGB normal map",
+            Mistake::NoRenormalization => "no re-normalisation",
+            Mistake::NoGramSchmidt => "no Gram-Schmidt",
+            Mistake::GreenFlipped => "green flipped",
+            Mistake::HalfVectorPerVertex => "half vector per vertex",
+            Mistake::LightPerVertex => "light normalised per vertex",
+        }
+    }
+
+    /// What goes wrong, in one line (panel and captions).
+    pub fn explanation(self) -> &'static str {
+        match self {
+            Mistake::None => "the correct picture",
+            Mistake::TbnTypo => "TBN[1].z = N.z instead of N.y: walls lean up, floors lose their normal",
+            Mistake::HandednessIgnored => "B = N × T without w: mirrored UV islands light upside down",
+            Mistake::SrgbNormalMap => "sRGB-decoded texels: a flat texel tilts 39° towards −T −B",
+            Mistake::NoRenormalization => "interpolated normals shorter than 1: curved surfaces darken mid-triangle",
+            Mistake::NoGramSchmidt => "T not orthogonal to N: the bump leaks into the normal's own direction",
+            Mistake::GreenFlipped => "the other green convention: the relief lit from the mirrored side",
+            Mistake::HalfVectorPerVertex => "H interpolated from the vertices: highlights smear across triangles",
+            Mistake::LightPerVertex => "unit L interpolated from the vertices: wrong direction near the light",
+        }
+    }
+
+    /// The index the `MISTAKE` pipeline constant takes (shaders/mistakes.wgsl).
+    pub fn shader_index(self) -> u32 {
+        self as u32
+    }
+}
+
+/// A legacy look (seed 004's history) as a lit mode, a pipeline variant (the `LEGACY`
+/// constant, shaders/legacy.wgsl; [`crate::chain::legacy`]). Named `off`, `dot3`, `emboss`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "kebab-case")]
+pub enum LegacyLook {
+    /// Today's lighting.
+    #[default]
+    Off,
+    /// DOT3 bump mapping: diffuse `albedo · light · max(N·L, 0)` alone, no ambient, no
+    /// specular; `L` normalised per vertex and interpolated (not re-normalised), or
+    /// re-normalised through a normalization cube map ([`LegacySettings::cube_map_size`]).
+    Dot3,
+    /// The Pascal seed's 2D light-map bump on surfaces with a height map: the slope from
+    /// neighbouring height differences (in height-map steps of 1/255), the colour read from a
+    /// precomputed light map at `(n.x − (light.x − x), n.y − (light.y − y))`, in texels of
+    /// the height map, `x` right and `y` down the image.
+    Emboss,
+}
+
+impl LegacyLook {
+    /// A look's name for people (labels and captions).
+    pub fn label(self) -> &'static str {
+        match self {
+            LegacyLook::Off => "off",
+            LegacyLook::Dot3 => "DOT3 (N·L only)",
+            LegacyLook::Emboss => "emboss (2D light map)",
+        }
+    }
+}
+
+/// The face sizes a normalization cube map may have (Cg tutorial 8.1.3).
+pub const CUBE_MAP_SIZES: [u32; 4] = [8, 16, 32, 64];
+
+/// The legacy look and its settings.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct LegacySettings {
+    pub look: LegacyLook,
+    /// DOT3's normalization cube map face size (one of [`CUBE_MAP_SIZES`]); `None`: the
+    /// interpolated light vector is used as it comes.
+    pub cube_map_size: Option<u32>,
+}
+
+impl LegacySettings {
+    /// The index the `LEGACY` pipeline constant takes: 0 off, 1 DOT3 per vertex, 2 DOT3
+    /// through the cube map, 3 emboss.
+    pub fn shader_index(self) -> u32 {
+        match (self.look, self.cube_map_size) {
+            (LegacyLook::Off, _) => 0,
+            (LegacyLook::Dot3, None) => 1,
+            (LegacyLook::Dot3, Some(_)) => 2,
+            (LegacyLook::Emboss, _) => 3,
+        }
+    }
+
+    /// The cube map face size in use (DOT3 with a cube map only).
+    pub fn cube_map_in_use(self) -> Option<u32> {
+        self.cube_map_size.filter(|_| self.look == LegacyLook::Dot3)
+    }
+
+    /// A caption, e.g. "DOT3 (N·L only), cube map 32²".
+    pub fn caption(self) -> String {
+        match self.cube_map_in_use() {
+            Some(size) => format!("{}, cube map {size}²", self.look.label()),
+            None if self.look == LegacyLook::Dot3 => format!("{}, L per vertex", self.look.label()),
+            None => self.look.label().to_owned(),
+        }
+    }
+}
