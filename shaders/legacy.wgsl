@@ -75,7 +75,6 @@ fn emboss_height(uv: vec2<f32>, offset: vec2<f32>) -> f32 {
 // (the ambient light alone without one), else today's lighting (lit_color), whose light loop
 // reads the per-vertex vectors through the mistakes' hooks (mistakes.wgsl).
 fn lit_or_legacy(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_shading: vec3<f32>, n_coat: vec3<f32>) -> vec3<f32> {
-    per_vertex = PerVertexVectors(in.vertex_light, in.vertex_half);
     if LEGACY == 0u || frame.shading_mode == MODE_COLOUR_ONLY {
         return lit_color(in, n_geo, n_shading, n_coat);
     }
@@ -89,9 +88,9 @@ fn lit_or_legacy(in: VertexOutput, n_geo: vec3<f32>, frame_tb: TangentFrame, n_s
     let first = frame.lights[0];
     let arriving = incident_light(first, in.world_position, n_geo);
     if LEGACY == LEGACY_DOT3 || LEGACY == LEGACY_DOT3_CUBE_MAP {
-        var l = in.vertex_light;
+        var l = per_vertex.light;
         if LEGACY == LEGACY_DOT3_CUBE_MAP {
-            l = cube_map_lookup(in.vertex_light);
+            l = cube_map_lookup(per_vertex.light);
         }
         return albedo * arriving.radiance * max(dot(n_shading, l), 0.0);
     }

@@ -102,18 +102,38 @@ const VIEW_CLEARCOAT_NORMAL: u32 = 9u;
 const MODE_BUMP_ONLY: u32 = 1u;
 const MODE_COLOUR_ONLY: u32 = 2u;
 
+// What the fragment stages read (and every shading function takes).
 struct VertexOutput {
     @builtin(position) clip_position: vec4<f32>,
     @location(0) world_position: vec3<f32>,
     @location(1) world_normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) world_tangent: vec4<f32>,
-    @location(4) vertex_light: vec3<f32>, // legacy.wgsl's vertex_vectors, interpolated
+};
+
+// What the vertex stages write: VertexOutput and legacy.wgsl's per-vertex light direction and
+// half vector. Only the `_per_vertex` fragment entry points read those two (pipelines of the
+// legacy looks and the per-vertex mistakes): llvmpipe interpolates every input a fragment
+// stage declares, used or not, and the two cost about a sixth of a 4× MSAA frame.
+struct PerVertexOutput {
+    @builtin(position) clip_position: vec4<f32>,
+    @location(0) world_position: vec3<f32>,
+    @location(1) world_normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) world_tangent: vec4<f32>,
+    @location(4) vertex_light: vec3<f32>,
     @location(5) vertex_half: vec3<f32>,
 };
 
-fn to_world(position: vec3<f32>, normal: vec3<f32>, uv: vec2<f32>, tangent: vec4<f32>) -> VertexOutput {
-    var out: VertexOutput;
+// The fragment inputs of a `_per_vertex` entry point, its per-vertex vectors kept for the
+// mistakes' hooks and the legacy looks (mistakes.wgsl's per_vertex).
+fn with_per_vertex(v: PerVertexOutput) -> VertexOutput {
+    per_vertex = PerVertexVectors(v.vertex_light, v.vertex_half);
+    return VertexOutput(v.clip_position, v.world_position, v.world_normal, v.uv, v.world_tangent);
+}
+
+fn to_world(position: vec3<f32>, normal: vec3<f32>, uv: vec2<f32>, tangent: vec4<f32>) -> PerVertexOutput {
+    var out: PerVertexOutput;
     let world = object.model * vec4<f32>(position, 1.0);
     out.clip_position = frame.view_proj * world;
     out.world_position = world.xyz;
@@ -127,7 +147,7 @@ fn to_world(position: vec3<f32>, normal: vec3<f32>, uv: vec2<f32>, tangent: vec4
 }
 
 @vertex
-fn vs_plain(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>, @location(2) uv: vec2<f32>) -> VertexOutput {
+fn vs_plain(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>, @location(2) uv: vec2<f32>) -> PerVertexOutput {
     return to_world(position, normal, uv, vec4<f32>(0.0));
 }
 
@@ -137,7 +157,7 @@ fn vs_tangent(
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) tangent: vec4<f32>,
-) -> VertexOutput {
+) -> PerVertexOutput {
     return to_world(position, normal, uv, tangent);
 }
 
@@ -403,24 +423,21 @@ fn surface_color(
     }
 }
 
-@fragment
-fn fs_plain(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+fn plain_surface(in: VertexOutput, front_facing: bool) -> vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
     // No tangents: the T and B views show the zero vector (mid grey).
     let base = base_normal(in.world_normal, front_facing, n);
     return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0), 0.0), base, n);
 }
 
-@fragment
-fn fs_tangent(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+fn tangent_surface(in: VertexOutput, front_facing: bool) -> vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
     let frame_tb = mistaken_frame(in.world_tangent, n);
     let base = base_normal(in.world_normal, front_facing, n);
     return surface_color(in, n, frame_tb, base, clearcoat_normal(in, n, frame_tb));
 }
 
-@fragment
-fn fs_normal_mapped(vertex: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+fn normal_mapped_surface(vertex: VertexOutput, front_facing: bool) -> vec4<f32> {
     let n = geometric_normal(vertex.world_normal, front_facing);
     var in = vertex;
     in.uv = parallax_uv(vertex.uv, n, vertex.world_position);
@@ -438,8 +455,7 @@ fn fs_normal_mapped(vertex: VertexOutput, @builtin(front_facing) front_facing: b
 // normal, frame and views, with the light and view vectors taken by the triangle's inverse
 // frame from screen-space derivatives (seed 003 takes light − P per vertex and interpolates;
 // with one frame per triangle that is the frame times light − P at the pixel, exactly).
-@fragment
-fn fs_normal_mapped_tangent_space(vertex: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+fn normal_mapped_tangent_space_surface(vertex: VertexOutput, front_facing: bool) -> vec4<f32> {
     let n = geometric_normal(vertex.world_normal, front_facing);
     tangent_space.to_tangent = triangle_inverse_tbn(
         dpdx(vertex.world_position),
@@ -464,8 +480,7 @@ fn fs_normal_mapped_tangent_space(vertex: VertexOutput, @builtin(front_facing) f
 }
 
 // shading::object_space_normal: the map holds model-space normals; no tangents.
-@fragment
-fn fs_object_space(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+fn object_space_surface(in: VertexOutput, front_facing: bool) -> vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
     let texel = mistaken_texel(sample_normal_map(in.uv));
     var n_shading = base_normal(in.world_normal, front_facing, n);
@@ -482,8 +497,7 @@ fn fs_object_space(in: VertexOutput, @builtin(front_facing) front_facing: bool) 
 // Blinn's bump from a height field without tangents: Mikkelsen's surface gradient from
 // screen-space derivatives of the position and of the height (metres). Heights are 16 bits in
 // red (high byte) and green (low byte), TextureKind::Height.
-@fragment
-fn fs_height_bump(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+fn height_bump_surface(in: VertexOutput, front_facing: bool) -> vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
     let texel = textureSample(bump_texture, detail_sampler, in.uv);
     var sample = (texel.r * 65280.0 + texel.g * 255.0) / 65535.0;
@@ -505,6 +519,68 @@ fn fs_height_bump(in: VertexOutput, @builtin(front_facing) front_facing: bool) -
     }
     // No tangents: the T and B views show the zero vector (mid grey), and no coat normal map.
     return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0), 0.0), n_shading, n);
+}
+
+// ---- fragment entry points: each surface without and with the per-vertex vectors ----
+
+@fragment
+fn fs_plain(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    return plain_surface(in, front_facing);
+}
+
+@fragment
+fn fs_plain_per_vertex(in: PerVertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    return plain_surface(with_per_vertex(in), front_facing);
+}
+
+@fragment
+fn fs_tangent(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    return tangent_surface(in, front_facing);
+}
+
+@fragment
+fn fs_tangent_per_vertex(in: PerVertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    return tangent_surface(with_per_vertex(in), front_facing);
+}
+
+@fragment
+fn fs_normal_mapped(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    return normal_mapped_surface(in, front_facing);
+}
+
+@fragment
+fn fs_normal_mapped_per_vertex(in: PerVertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    return normal_mapped_surface(with_per_vertex(in), front_facing);
+}
+
+@fragment
+fn fs_normal_mapped_tangent_space(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    return normal_mapped_tangent_space_surface(in, front_facing);
+}
+
+@fragment
+fn fs_normal_mapped_tangent_space_per_vertex(in: PerVertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    return normal_mapped_tangent_space_surface(with_per_vertex(in), front_facing);
+}
+
+@fragment
+fn fs_object_space(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    return object_space_surface(in, front_facing);
+}
+
+@fragment
+fn fs_object_space_per_vertex(in: PerVertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    return object_space_surface(with_per_vertex(in), front_facing);
+}
+
+@fragment
+fn fs_height_bump(in: VertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    return height_bump_surface(in, front_facing);
+}
+
+@fragment
+fn fs_height_bump_per_vertex(in: PerVertexOutput, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    return height_bump_surface(with_per_vertex(in), front_facing);
 }
 
 // ---- Difference view (shading::difference_color is the CPU twin of the colour scale) ----

@@ -64,8 +64,9 @@ fn tangent_to_world(frame_tb: TangentFrame, base: vec3<f32>, nt: vec3<f32>) -> v
     return normalize_or(sum, base);
 }
 
-// The vertex stage's per-vertex light direction and half vector as interpolated, set by
-// lit_or_legacy (legacy.wgsl) before anything is lit; the hooks below read them.
+// The vertex stage's per-vertex light direction and half vector as interpolated, set by the
+// `_per_vertex` fragment entry points (mesh.wgsl's with_per_vertex) before anything is lit;
+// the hooks below and the legacy looks read them.
 struct PerVertexVectors {
     light: vec3<f32>,
     half: vec3<f32>,

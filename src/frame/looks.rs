@@ -68,6 +68,12 @@ impl Mistake {
     pub fn shader_index(self) -> u32 {
         self as u32
     }
+
+    /// Whether the mistake lights with the vertex stage's interpolated light direction or
+    /// half vector (its pipelines read them; the others leave them out).
+    pub fn reads_per_vertex_vectors(self) -> bool {
+        matches!(self, Mistake::HalfVectorPerVertex | Mistake::LightPerVertex)
+    }
 }
 
 /// A legacy look (seed 004's history) as a lit mode, a pipeline variant (the `LEGACY`

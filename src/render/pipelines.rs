@@ -219,15 +219,34 @@ impl Pipelines {
                     features,
                     ..
                 } => {
-                    let (vs, fs, buffers): (_, _, &[_]) = match variant {
-                        Variant::NormalMapped if lighting_space == LightingSpace::Tangent => {
-                            ("vs_tangent", "fs_normal_mapped_tangent_space", &[POSITION, NORMAL, UV, TANGENT])
+                    // Each fragment stage without and with the per-vertex vectors (mesh.wgsl's
+                    // PerVertexOutput), which only the legacy looks and the per-vertex mistakes read.
+                    let (vs, [fs, fs_per_vertex], buffers): (_, _, &[_]) = match variant {
+                        Variant::NormalMapped if lighting_space == LightingSpace::Tangent => (
+                            "vs_tangent",
+                            ["fs_normal_mapped_tangent_space", "fs_normal_mapped_tangent_space_per_vertex"],
+                            &[POSITION, NORMAL, UV, TANGENT],
+                        ),
+                        Variant::Plain => ("vs_plain", ["fs_plain", "fs_plain_per_vertex"], &[POSITION, NORMAL, UV]),
+                        Variant::Tangent => {
+                            ("vs_tangent", ["fs_tangent", "fs_tangent_per_vertex"], &[POSITION, NORMAL, UV, TANGENT])
                         }
-                        Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
-                        Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
-                        Variant::NormalMapped => ("vs_tangent", "fs_normal_mapped", &[POSITION, NORMAL, UV, TANGENT]),
-                        Variant::ObjectSpace => ("vs_plain", "fs_object_space", &[POSITION, NORMAL, UV]),
-                        Variant::HeightBump => ("vs_plain", "fs_height_bump", &[POSITION, NORMAL, UV]),
+                        Variant::NormalMapped => (
+                            "vs_tangent",
+                            ["fs_normal_mapped", "fs_normal_mapped_per_vertex"],
+                            &[POSITION, NORMAL, UV, TANGENT],
+                        ),
+                        Variant::ObjectSpace => {
+                            ("vs_plain", ["fs_object_space", "fs_object_space_per_vertex"], &[POSITION, NORMAL, UV])
+                        }
+                        Variant::HeightBump => {
+                            ("vs_plain", ["fs_height_bump", "fs_height_bump_per_vertex"], &[POSITION, NORMAL, UV])
+                        }
+                    };
+                    let fs = if legacy.look != LegacyLook::Off || mistake.reads_per_vertex_vectors() {
+                        fs_per_vertex
+                    } else {
+                        fs
                     };
                     let cull = cull_back_faces.then_some(wgpu::Face::Back);
                     let mut constants = vec![
@@ -357,6 +376,12 @@ mod tests {
                     "fs_normal_mapped_tangent_space",
                     "fs_object_space",
                     "fs_height_bump",
+                    "fs_plain_per_vertex",
+                    "fs_tangent_per_vertex",
+                    "fs_normal_mapped_per_vertex",
+                    "fs_normal_mapped_tangent_space_per_vertex",
+                    "fs_object_space_per_vertex",
+                    "fs_height_bump_per_vertex",
                     "vs_difference",
                     "fs_difference",
                     "vs_wireframe",
