@@ -102,7 +102,7 @@ const VIEW_CLEARCOAT_NORMAL: u32 = 9u;
 const MODE_BUMP_ONLY: u32 = 1u;
 const MODE_COLOUR_ONLY: u32 = 2u;
 
-// What the fragment stages read (and every shading function takes).
+// What the vertex stages write and the fragment stages read (every shading function takes it).
 struct VertexOutput {
     @builtin(position) clip_position: vec4<f32>,
     @location(0) world_position: vec3<f32>,
@@ -111,10 +111,9 @@ struct VertexOutput {
     @location(3) world_tangent: vec4<f32>,
 };
 
-// What the vertex stages write: VertexOutput and legacy.wgsl's per-vertex light direction and
-// half vector. Only the `_per_vertex` fragment entry points read those two (pipelines of the
-// legacy looks and the per-vertex mistakes): llvmpipe interpolates every input a fragment
-// stage declares, used or not, and the two cost about a sixth of a 4× MSAA frame.
+// VertexOutput with legacy.wgsl's per-vertex light direction and half vector: what the
+// `_per_vertex` stages pass on, for the legacy looks and the per-vertex mistakes alone
+// (render::pipelines::per_vertex_entry): llvmpipe sets up every vertex output, read or not.
 struct PerVertexOutput {
     @builtin(position) clip_position: vec4<f32>,
     @location(0) world_position: vec3<f32>,
@@ -132,22 +131,25 @@ fn with_per_vertex(v: PerVertexOutput) -> VertexOutput {
     return VertexOutput(v.clip_position, v.world_position, v.world_normal, v.uv, v.world_tangent);
 }
 
-fn to_world(position: vec3<f32>, normal: vec3<f32>, uv: vec2<f32>, tangent: vec4<f32>) -> PerVertexOutput {
-    var out: PerVertexOutput;
+fn to_world(position: vec3<f32>, normal: vec3<f32>, uv: vec2<f32>, tangent: vec4<f32>) -> VertexOutput {
+    var out: VertexOutput;
     let world = object.model * vec4<f32>(position, 1.0);
     out.clip_position = frame.view_proj * world;
     out.world_position = world.xyz;
     out.world_normal = (object.normal_matrix * vec4<f32>(normal, 0.0)).xyz;
     out.uv = uv;
     out.world_tangent = vec4<f32>((object.model * vec4<f32>(tangent.xyz, 0.0)).xyz, tangent.w * object.handedness);
-    let vectors = vertex_vectors(out.world_position, out.world_normal);
-    out.vertex_light = vectors[0];
-    out.vertex_half = vectors[1];
     return out;
 }
 
+// VertexOutput with legacy.wgsl's per-vertex light direction and half vector.
+fn with_vertex_vectors(out: VertexOutput) -> PerVertexOutput {
+    let vectors = vertex_vectors(out.world_position, out.world_normal);
+    return PerVertexOutput(out.clip_position, out.world_position, out.world_normal, out.uv, out.world_tangent, vectors[0], vectors[1]);
+}
+
 @vertex
-fn vs_plain(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>, @location(2) uv: vec2<f32>) -> PerVertexOutput {
+fn vs_plain(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>, @location(2) uv: vec2<f32>) -> VertexOutput {
     return to_world(position, normal, uv, vec4<f32>(0.0));
 }
 
@@ -157,8 +159,23 @@ fn vs_tangent(
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) tangent: vec4<f32>,
-) -> PerVertexOutput {
+) -> VertexOutput {
     return to_world(position, normal, uv, tangent);
+}
+
+@vertex
+fn vs_plain_per_vertex(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>, @location(2) uv: vec2<f32>) -> PerVertexOutput {
+    return with_vertex_vectors(to_world(position, normal, uv, vec4<f32>(0.0)));
+}
+
+@vertex
+fn vs_tangent_per_vertex(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) tangent: vec4<f32>,
+) -> PerVertexOutput {
+    return with_vertex_vectors(to_world(position, normal, uv, tangent));
 }
 
 // ---- guarded vector helpers (src/math.rs) ----

@@ -164,6 +164,25 @@ const GLYPH: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
     attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 3 => Float32x4, 5 => Float32x3],
 };
 
+/// A mesh stage's twin that passes on or reads the per-vertex light direction and half vector
+/// (mesh.wgsl's `PerVertexOutput`). Only the legacy looks and the per-vertex mistakes use
+/// them: llvmpipe sets up and interpolates every vertex output, read or not; with the two in
+/// every pipeline a 4× MSAA frame of the built-in scene cost 1.81–2.04× the floor, without
+/// them 1.73–1.80× (`render --frames 30`, same machine and load).
+fn per_vertex_entry(entry: &'static str) -> &'static str {
+    match entry {
+        "vs_plain" => "vs_plain_per_vertex",
+        "vs_tangent" => "vs_tangent_per_vertex",
+        "fs_plain" => "fs_plain_per_vertex",
+        "fs_tangent" => "fs_tangent_per_vertex",
+        "fs_normal_mapped" => "fs_normal_mapped_per_vertex",
+        "fs_normal_mapped_tangent_space" => "fs_normal_mapped_tangent_space_per_vertex",
+        "fs_object_space" => "fs_object_space_per_vertex",
+        "fs_height_bump" => "fs_height_bump_per_vertex",
+        other => unreachable!("{other} has no per-vertex twin"),
+    }
+}
+
 impl Pipelines {
     pub fn new(device: &wgpu::Device) -> Self {
         let module = |label: &str, source: &'static str| {
@@ -219,34 +238,20 @@ impl Pipelines {
                     features,
                     ..
                 } => {
-                    // Each fragment stage without and with the per-vertex vectors (mesh.wgsl's
-                    // PerVertexOutput), which only the legacy looks and the per-vertex mistakes read.
-                    let (vs, [fs, fs_per_vertex], buffers): (_, _, &[_]) = match variant {
-                        Variant::NormalMapped if lighting_space == LightingSpace::Tangent => (
-                            "vs_tangent",
-                            ["fs_normal_mapped_tangent_space", "fs_normal_mapped_tangent_space_per_vertex"],
-                            &[POSITION, NORMAL, UV, TANGENT],
-                        ),
-                        Variant::Plain => ("vs_plain", ["fs_plain", "fs_plain_per_vertex"], &[POSITION, NORMAL, UV]),
-                        Variant::Tangent => {
-                            ("vs_tangent", ["fs_tangent", "fs_tangent_per_vertex"], &[POSITION, NORMAL, UV, TANGENT])
+                    let (vs, fs, buffers): (_, _, &[_]) = match variant {
+                        Variant::NormalMapped if lighting_space == LightingSpace::Tangent => {
+                            ("vs_tangent", "fs_normal_mapped_tangent_space", &[POSITION, NORMAL, UV, TANGENT])
                         }
-                        Variant::NormalMapped => (
-                            "vs_tangent",
-                            ["fs_normal_mapped", "fs_normal_mapped_per_vertex"],
-                            &[POSITION, NORMAL, UV, TANGENT],
-                        ),
-                        Variant::ObjectSpace => {
-                            ("vs_plain", ["fs_object_space", "fs_object_space_per_vertex"], &[POSITION, NORMAL, UV])
-                        }
-                        Variant::HeightBump => {
-                            ("vs_plain", ["fs_height_bump", "fs_height_bump_per_vertex"], &[POSITION, NORMAL, UV])
-                        }
+                        Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
+                        Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
+                        Variant::NormalMapped => ("vs_tangent", "fs_normal_mapped", &[POSITION, NORMAL, UV, TANGENT]),
+                        Variant::ObjectSpace => ("vs_plain", "fs_object_space", &[POSITION, NORMAL, UV]),
+                        Variant::HeightBump => ("vs_plain", "fs_height_bump", &[POSITION, NORMAL, UV]),
                     };
-                    let fs = if legacy.look != LegacyLook::Off || mistake.reads_per_vertex_vectors() {
-                        fs_per_vertex
+                    let (vs, fs) = if legacy.look != LegacyLook::Off || mistake.reads_per_vertex_vectors() {
+                        (per_vertex_entry(vs), per_vertex_entry(fs))
                     } else {
-                        fs
+                        (vs, fs)
                     };
                     let cull = cull_back_faces.then_some(wgpu::Face::Back);
                     let mut constants = vec![
@@ -376,6 +381,8 @@ mod tests {
                     "fs_normal_mapped_tangent_space",
                     "fs_object_space",
                     "fs_height_bump",
+                    "vs_plain_per_vertex",
+                    "vs_tangent_per_vertex",
                     "fs_plain_per_vertex",
                     "fs_tangent_per_vertex",
                     "fs_normal_mapped_per_vertex",
