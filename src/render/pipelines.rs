@@ -167,7 +167,7 @@ const GLYPH: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
 /// A mesh stage's twin that passes on or reads the per-vertex light direction and half vector
 /// (mesh.wgsl's `PerVertexOutput`). Only the legacy looks and the per-vertex mistakes use
 /// them: llvmpipe sets up and interpolates every vertex output, read or not; with the two in
-/// every pipeline a 4× MSAA frame of the built-in scene cost 1.81–2.04× the floor, without
+/// every pipeline a 4× MSAA frame of the built-in scene cost 1.86–2.04× the floor, without
 /// them 1.73–1.80× (`render --frames 30`, same machine and load).
 fn per_vertex_entry(entry: &'static str) -> &'static str {
     match entry {
