@@ -247,6 +247,24 @@ mod tests {
         assert_eq!(constants, expected, "u32 constants of shaders/mesh.wgsl against the Rust side");
     }
 
+    /// The Rust uniform structs are as large as the WGSL ones they fill: a field added on one
+    /// side only, or padding that misplaces `view_rotation`, fails here instead of drawing wrong.
+    #[test]
+    fn the_uniform_structs_have_the_wgsl_sizes() {
+        use crate::render::uniforms::{FrameUniform, LightUniform, ObjectUniform};
+        let module = module(MESH_WGSL);
+        let mut layouter = naga::proc::Layouter::default();
+        layouter.update(module.to_ctx()).expect("the mesh shader's types have a layout");
+        for (name, rust_size) in [
+            ("Frame", std::mem::size_of::<FrameUniform>()),
+            ("Object", std::mem::size_of::<ObjectUniform>()),
+            ("Light", std::mem::size_of::<LightUniform>()),
+        ] {
+            let (handle, _) = module.types.iter().find(|(_, t)| t.name.as_deref() == Some(name)).expect(name);
+            assert_eq!(layouter[handle].size as usize, rust_size, "WGSL {name} against its Rust uniform");
+        }
+    }
+
     /// The parallax march's grazing floor (shaders/parallax.wgsl, chain::parallax) and the
     /// attenuation's bounds (shading::lights) are one number on both sides.
     #[test]
