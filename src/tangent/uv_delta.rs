@@ -79,31 +79,27 @@ fn corner_angle(p: [Vec3; 3], k: usize) -> f32 {
 /// normal and `w = sign(dot(cross(N, T), ΣB))`. Vertices with no usable face get a valid
 /// fallback frame with `w = +1`.
 pub fn averaged_face_frames(mesh: &Mesh, weighting: Weighting) -> Vec<Vec4> {
-    let (sum_t, sum_b) = averaged_sums(mesh, weighting);
-    sum_t
-        .iter()
-        .zip(&sum_b)
-        .zip(&mesh.normals)
-        .map(|((&t, &b), &n)| {
-            let t = orthonormalize_tangent(t, n);
-            let w = if n.cross(t).dot(b) < 0.0 { -1.0 } else { 1.0 };
-            t.extend(w)
-        })
-        .collect()
+    frames_from_sums(mesh, weighting, orthonormalize_tangent)
 }
 
 /// As [`averaged_face_frames`] without Gram-Schmidt: each vertex's averaged `T` only
 /// normalised (not made orthogonal to its normal), `w` as there. The classic mistake
 /// [`crate::frame::Mistake::NoGramSchmidt`] draws these.
 pub fn averaged_face_frames_without_gram_schmidt(mesh: &Mesh, weighting: Weighting) -> Vec<Vec4> {
+    frames_from_sums(mesh, weighting, |t, n| crate::math::normalize_or(t, crate::math::any_perpendicular(n)))
+}
+
+/// The averaged frames: `T = tangent(ΣT, N)` at each vertex and `w = sign(dot(cross(N, T), ΣB))`.
+fn frames_from_sums(mesh: &Mesh, weighting: Weighting, tangent: impl Fn(Vec3, Vec3) -> Vec3) -> Vec<Vec4> {
     let (sum_t, sum_b) = averaged_sums(mesh, weighting);
     sum_t
         .iter()
         .zip(&sum_b)
         .zip(&mesh.normals)
         .map(|((&t, &b), &n)| {
+            let t = tangent(t, n);
             let w = if n.cross(t).dot(b) < 0.0 { -1.0 } else { 1.0 };
-            crate::math::normalize_or(t, crate::math::any_perpendicular(n)).extend(w)
+            t.extend(w)
         })
         .collect()
 }
