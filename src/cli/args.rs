@@ -11,16 +11,7 @@ use bumpview::names::{AUTO, Named, parse_or_auto};
 use bumpview::state::{Command, SplitDifference};
 use glam::Vec3;
 
-/// `"WxH"` → `[W, H]` in pixels (each at least 1).
-pub fn parse_size(text: &str) -> Result<[u32; 2], String> {
-    let (w, h) =
-        text.trim().split_once(['x', 'X']).ok_or_else(|| format!("size {text:?}: expected WxH, e.g. 1280x720"))?;
-    let side = |s: &str| s.trim().parse::<u32>().ok().filter(|&v| v > 0);
-    match (side(w), side(h)) {
-        (Some(w), Some(h)) => Ok([w, h]),
-        _ => Err(format!("size {text:?}: width and height must be whole numbers of pixels, at least 1")),
-    }
-}
+pub use bumpview::render::export::parse_size;
 
 /// `"X,Y"` → a pixel position, whole pixels from the top-left corner.
 pub fn parse_pixel(text: &str) -> Result<[u32; 2], String> {

@@ -22,6 +22,17 @@ pub const MAX_EXPORT_PIXELS: u64 = 1 << 28;
 pub const CAPTION_BACKGROUND: [u8; 3] = [24, 26, 30];
 const CAPTION_TEXT: [u8; 3] = [235, 235, 235];
 
+/// `"WxH"` → `[W, H]` in pixels (each at least 1).
+pub fn parse_size(text: &str) -> Result<[u32; 2], String> {
+    let (w, h) =
+        text.trim().split_once(['x', 'X']).ok_or_else(|| format!("size {text:?}: expected WxH, e.g. 1280x720"))?;
+    let side = |s: &str| s.trim().parse::<u32>().ok().filter(|&v| v > 0);
+    match (side(w), side(h)) {
+        (Some(w), Some(h)) => Ok([w, h]),
+        _ => Err(format!("size {text:?}: width and height must be whole numbers of pixels, at least 1")),
+    }
+}
+
 /// Tiles in rows of `columns`, left to right, then top to bottom.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TileGrid {

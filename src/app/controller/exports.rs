@@ -4,11 +4,10 @@
 use std::path::{Path, PathBuf};
 
 use bumpview::render::capture::{render_capture, render_capture_split, write_png_atomically};
-use bumpview::render::export::{self, TileGrid};
+use bumpview::render::export::{self, TileGrid, parse_size};
 use bumpview::state::preset::CapturePreset;
 
 use super::Controller;
-use crate::cli::args::parse_size;
 
 /// The screenshot size field, its options, the tile export's spec and the outcome of the last
 /// screenshot or export.
