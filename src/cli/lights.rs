@@ -84,8 +84,8 @@ pub struct LightArgs {
     #[arg(long, value_parser = args::parse_finite)]
     shininess: Option<f32>,
     /// Where tangent-space normal-mapped surfaces are lit: world (per pixel), tangent (light
-    /// and view vectors by each triangle's inverse TBN, seed 003) or view (seed 000)
-    /// [default: world].
+    /// and view vectors by each triangle's inverse TBN, as the ARB-era shaders do) or view (the
+    /// world vectors rotated by the camera, as the GLSL practicum does) [default: world].
     #[arg(long, value_parser = args::named::<LightingSpace>())]
     lighting_space: Option<LightingSpace>,
 }

@@ -28,7 +28,7 @@ pub enum Mistake {
     /// The half vector computed per vertex and interpolated instead of per pixel (Cg
     /// tutorial 8.1.4): highlights smear and shrink across large triangles.
     HalfVectorPerVertex,
-    /// The light vector normalised per vertex before interpolation (seed 003's vertex
+    /// The light vector normalised per vertex before interpolation (the ARB-era tangent-space vertex
     /// shader): the interpolated direction bends where the light is near large triangles.
     LightPerVertex,
 }
@@ -76,7 +76,7 @@ impl Mistake {
     }
 }
 
-/// A legacy look (seed 004's history) as a lit mode, a pipeline variant (the `LEGACY`
+/// A legacy look (the history of DOT3 and emboss) as a lit mode, a pipeline variant (the `LEGACY`
 /// constant, shaders/legacy.wgsl; [`crate::chain::legacy`]). Named `off`, `dot3`, `emboss`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
 #[strum(serialize_all = "kebab-case")]
@@ -88,7 +88,7 @@ pub enum LegacyLook {
     /// specular; `L` normalised per vertex and interpolated (not re-normalised), or
     /// re-normalised through a normalization cube map ([`LegacySettings::cube_map_size`]).
     Dot3,
-    /// The Pascal seed's 2D light-map bump on surfaces with a height map: the slope from
+    /// The classic Pascal emboss demo's 2D light-map bump on surfaces with a height map: the slope from
     /// neighbouring height differences (in height-map steps of 1/255), the colour read from a
     /// precomputed light map at `(n.x − (light.x − x), n.y − (light.y − y))`, in texels of
     /// the height map, `x` right and `y` down the image.

@@ -329,8 +329,8 @@ fn lighting_spaces(page: &Page, out: &mut String) {
         "## Lighting spaces\n\n\
          The built-in scene from its default camera and light, the classic model, the brick map at strength 1, \
          MikkTSpace frames; three points per triangle, the normal map's nearest texel (the CPU chain, which the \
-         GPU matches: tests/lighting_spaces.rs). Tangent space (seed 003): light and view vectors through the \
-         inverse of each triangle's frame (T = ∂P/∂u, B = −∂P/∂v, N the face normal). View space (seed 000): the world vectors rotated by the \
+         GPU matches: tests/lighting_spaces.rs). Tangent space (as the ARB-era shaders light): light and view vectors through the \
+         inverse of each triangle's frame (T = ∂P/∂u, B = −∂P/∂v, N the face normal). View space (as the GLSL practicum lights): the world vectors rotated by the \
          camera. Angle: between the light direction a space lights with and the exact one in the pixel's frame \
          (for the diffuse term, the angle between that space's shading normal and world space's). ΔRGB: the \
          largest channel difference from world space, 8-bit sRGB steps.\n\n\

@@ -1,8 +1,8 @@
-//! The lighting spaces of the classic model (seeds 000 and 003): the vectors
-//! [`super::blinn_phong`] lights with, taken into tangent space by each triangle's inverse
-//! frame as seed 003 does, or into view space as seed 000 does. World space is
-//! [`super::world_vectors`]. Twins of `inverse_tbn`, `triangle_inverse_tbn` and the
-//! lighting-space branches of `blinn_phong` in `shaders/lights.wgsl`.
+//! The lighting spaces of the classic model: the vectors [`super::blinn_phong`] lights with,
+//! taken into tangent space by each triangle's inverse frame as the ARB-era shaders do, or into
+//! view space as the GLSL practicum does. World space is [`super::world_vectors`].
+//! Twins of `inverse_tbn`, `triangle_inverse_tbn` and the lighting-space branches of
+//! `blinn_phong` in `shaders/lights.wgsl`.
 
 use glam::{Mat3, Vec2, Vec3};
 
@@ -10,7 +10,7 @@ use super::LightingVectors;
 use crate::math::normalize_or;
 
 /// `|det(T, B, N)|` below this counts as degenerate (UVs without area): the inverse is then
-/// the identity, as in seed 003.
+/// the identity, as in the ARB-era shaders.
 pub const MIN_TBN_DETERMINANT: f32 = 1e-6;
 
 /// The inverse of the matrix whose columns are `t`, `b`, `n` (world → tangent space; not
@@ -23,7 +23,7 @@ pub fn inverse_tbn(t: Vec3, b: Vec3, n: Vec3) -> Mat3 {
 }
 
 /// Triangles whose UV area per world area is below this many UV² per m² count as degenerate
-/// (UVs without area): their inverse frame is the identity, as in seed 003. The ratio is the
+/// (UVs without area): their inverse frame is the identity, as in the ARB-era shaders. The ratio is the
 /// same from the triangle's edges and from a pixel's screen-space derivatives.
 pub const MIN_UV_AREA_PER_M2: f32 = 1e-6;
 
@@ -46,8 +46,8 @@ pub fn triangle_inverse_tbn(dp_a: Vec3, dp_b: Vec3, duv_a: Vec2, duv_b: Vec2, no
     inverse_tbn(normalize_or(dp_du, Vec3::X), normalize_or(-dp_dv, Vec3::Y), n)
 }
 
-/// Tangent-space lighting (seed 003): the world-space vectors taken by the triangle's inverse
-/// frame `to_tangent` and normalised (seed 003 takes `light − P` per vertex and interpolates;
+/// Tangent-space lighting (the ARB-era shaders): the world-space vectors taken by the triangle's inverse
+/// frame `to_tangent` and normalised (those shaders take `light − P` per vertex and interpolates;
 /// with one frame per triangle that is `to_tangent · (light − P)` at the pixel exactly), the
 /// geometric normal `+Z`, the shading normal the map's tangent-space normal after strength as
 /// it is (no frame applied). Degenerate vectors fall back to `+Z`.
@@ -60,7 +60,7 @@ pub fn tangent_lighting_vectors(world: &LightingVectors, to_tangent: Mat3, shadi
     }
 }
 
-/// View-space lighting (seed 000): the world-space vectors (the normal already through
+/// View-space lighting (the GLSL practicum): the world-space vectors (the normal already through
 /// T, B, N) rotated by the camera's `view_rotation` (world → view).
 pub fn view_lighting_vectors(world: &LightingVectors, view_rotation: Mat3) -> LightingVectors {
     LightingVectors {
