@@ -22,7 +22,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use bumpview::error::RenderError;
-use bumpview::frame::{FrameQuality, Msaa};
+use bumpview::frame::{FrameQuality, Msaa, SceneUploads};
 use bumpview::load::SceneFiles;
 use bumpview::render::timing::{time_floor, timed};
 use bumpview::render::{DrawOptions, RenderTarget, Renderer};
@@ -99,6 +99,9 @@ pub struct Controller {
     jobs: SceneJobs,
     /// What the last installed job cost.
     last_job: Option<JobTimes>,
+    /// The uploads a job failed to make for the scene shown (a bug, shown in the status): not
+    /// asked for again until the state asks for others.
+    failed: Option<SceneUploads>,
     /// The 3D view's size in pixels, as last laid out (`None` before the first frame).
     view_size: Option<[u32; 2]>,
     /// Counts changes of the scene or its GPU data: a drawn picture older than this is stale.
@@ -151,6 +154,7 @@ impl Controller {
             probe: Probe::default(),
             jobs: SceneJobs::new(build),
             last_job: None,
+            failed: None,
             view_size: None,
             revision: 0,
             last_state,

@@ -53,7 +53,8 @@ impl Controller {
             Some((source, uploads)) => (source.clone(), Some(uploads.clone())),
             None => (self.shown(), self.renderer.uploads()),
         };
-        if aimed != Some(self.planned_uploads(source.purpose())) {
+        let wanted = self.planned_uploads(source.purpose());
+        if aimed.as_ref() != Some(&wanted) && self.failed.as_ref() != Some(&wanted) {
             self.request(source);
         }
     }
@@ -85,7 +86,9 @@ impl Controller {
     /// Takes in a scene job's action: a superseded job's is dropped; the latest's outcome goes
     /// to the files (recent list, status) when it loaded any, and its scene is installed.
     pub(super) fn scene_ready(&mut self, ready: SceneReady) {
+        let aimed = self.jobs.in_flight().map(|(_, uploads)| uploads.clone());
         let Some(SceneReady { load, outcome, .. }) = self.jobs.accept(ready) else { return };
+        self.failed = None;
         let purpose = load.as_ref().map_or(Purpose::Reload, |job| job.purpose);
         match (load, outcome) {
             (Some(job), outcome) => {
@@ -97,7 +100,10 @@ impl Controller {
                 }
             }
             (None, Ok(ready)) => self.install(ready, purpose),
-            (None, Err(message)) => self.files.status = Some(Status::Failed(message)),
+            (None, Err(message)) => {
+                self.files.status = Some(Status::Failed(message));
+                self.failed = aimed;
+            }
         }
     }
 

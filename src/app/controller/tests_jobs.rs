@@ -80,6 +80,26 @@ fn a_superseded_jobs_result_is_dropped() {
     assert_eq!(controller.renderer().counters().scenes_uploaded, 2);
 }
 
+/// A job that fails (a bug in preparing) leaves the scene and says why, and its options are
+/// not asked for again frame after frame; other options are.
+#[test]
+fn a_failed_job_is_not_started_again_for_the_same_options() {
+    let mut controller = controller();
+    let before = drawn_method(&controller);
+    controller.apply([Command::SetTangentMethod(Some(TangentMethod::PerFace)).into()]);
+    let mut failed = controller.jobs.wait(JOB_TIMEOUT).expect("the job's action");
+    let Action::SceneReady(ready) = &mut failed else { panic!("not a scene job's action: {failed:?}") };
+    ready.outcome = Err("the scene: preparing failed (a bug): planted".into());
+    controller.apply([failed]);
+    assert_eq!(controller.files.status, Some(Status::Failed("the scene: preparing failed (a bug): planted".into())));
+    assert_eq!(drawn_method(&controller), before);
+    controller.poll_background(std::time::Instant::now());
+    assert!(controller.busy().is_none(), "not started again");
+    controller.apply([Command::SetTangentMethod(Some(TangentMethod::AveragedArea)).into()]);
+    settle(&mut controller);
+    assert_eq!(drawn_method(&controller), Some(TangentMethod::AveragedArea));
+}
+
 /// A fake loader counting its calls: the built-in scene with the mesh's file name as its first
 /// mesh's name, an error for `broken.obj`, a panic for `panic.obj`, and for `slow.obj` it
 /// waits for a go from the test.
