@@ -1,6 +1,7 @@
 //! The viewer driven by its command line for scripts, tests and screenshots: `--probe X,Y`
 //! pins the probe once the view has a size, `--exit-after N [--capture-window PATH]` closes
-//! after N presented frames, optionally saving a screenshot of the whole window first.
+//! after N presented frames of the scene (frames while its scene job runs do not count),
+//! optionally saving a screenshot of the whole window first.
 
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
@@ -40,10 +41,11 @@ impl Automation {
         Some(Action::PinProbe { pixel: [x.min(size[0] - 1), y.min(size[1] - 1)], size })
     }
 
-    /// Called once per presented frame (each call to `App::ui`).
-    pub fn on_frame(&mut self, ctx: &egui::Context, device: &wgpu::Device) {
+    /// Called once per presented frame (each call to `App::ui`); `settled`: no scene job is
+    /// in flight, so the frame shows the scene asked for.
+    pub fn on_frame(&mut self, ctx: &egui::Context, device: &wgpu::Device, settled: bool) {
         if let Some(exit) = &mut self.exit {
-            exit.on_frame(ctx, device);
+            exit.on_frame(ctx, device, settled);
         }
     }
 }
@@ -58,8 +60,8 @@ enum ExitStage {
     Closing,
 }
 
-/// `--exit-after N [--capture-window PATH]`: keeps frames coming, closes after frame N,
-/// optionally saving a screenshot of the whole window first.
+/// `--exit-after N [--capture-window PATH]`: keeps frames coming, closes after the N-th frame
+/// showing the scene, optionally saving a screenshot of the whole window first.
 struct ExitAfter {
     after: u64,
     presented: u64,
@@ -74,8 +76,11 @@ impl ExitAfter {
         ExitAfter { after, presented: 0, capture, stage: ExitStage::Counting, failure }
     }
 
-    fn on_frame(&mut self, ctx: &egui::Context, device: &wgpu::Device) {
+    fn on_frame(&mut self, ctx: &egui::Context, device: &wgpu::Device, settled: bool) {
         ctx.request_repaint();
+        if !settled && matches!(self.stage, ExitStage::Counting) {
+            return;
+        }
         self.presented += 1;
         self.stage = match std::mem::replace(&mut self.stage, ExitStage::Closing) {
             ExitStage::Counting if self.presented >= self.after => match self.capture.take() {

@@ -182,7 +182,8 @@ impl eframe::App for ViewerApp {
         if self.view.draw(&mut self.controller, active) {
             ctx.request_repaint_after(INTERACTIVE_RECHECK);
         }
-        self.automation.on_frame(&ctx, self.controller.renderer().device());
+        let settled = self.controller.busy().is_none();
+        self.automation.on_frame(&ctx, self.controller.renderer().device(), settled);
     }
 
     /// Saves the state for the next start (see [`last_state_file`]).

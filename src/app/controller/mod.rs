@@ -1,45 +1,49 @@
 //! The viewer without a window: the state, the scene, the renderer (eframe's device in the
 //! window, a headless one in tests) and the scene's files. [`Controller::apply`] is the one
-//! place [`Action`]s take effect: commands on the state, scenes installed, files opened and
-//! reloaded, exports ([`exports`]) and presets ([`presets`]). After every batch the renderer's
-//! uploads are made to match what the state asks ([`Controller::sync_uploads`]).
+//! place [`Action`]s take effect: commands on the state, files opened and reloaded, scenes
+//! changed ([`scene_change`]: one background job per change, [`scene_job`]), exports
+//! ([`exports`]) and presets ([`presets`]). The UI thread only uploads what a job made ready.
 
 mod exports;
-mod preparing;
+mod facts;
 mod presets;
+mod scene_change;
+mod scene_job;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_jobs;
+#[cfg(test)]
+mod ui_frames;
 
 use std::num::NonZeroU32;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use bumpview::check::{CheckReport, check_scene};
 use bumpview::error::RenderError;
-use bumpview::frame::{FrameQuality, Msaa};
-use bumpview::height::Kernel;
+use bumpview::frame::{FrameQuality, Msaa, SceneUploads};
 use bumpview::load::SceneFiles;
-use bumpview::names::Named;
 use bumpview::render::timing::{time_floor, timed};
 use bumpview::render::{DrawOptions, RenderTarget, Renderer};
 use bumpview::scene::Scene;
 use bumpview::state::interactive::InteractiveQuality;
 use bumpview::state::preset::CapturePreset;
 use bumpview::state::{Command, ViewerState};
-use bumpview::tangent::{MethodMeasurement, TangentMethod, measure};
 pub use exports::ScreenshotForm;
-use preparing::{Prepared, Preparer};
+pub use facts::SceneFacts;
 pub use presets::{PresetForm, last_state_file};
+use scene_job::SceneJobs;
+pub use scene_job::{JobTimes, SceneReady};
 
 use super::action::Action;
 use super::dialog::Dialog;
-use super::files::{self, Files, Purpose, Status};
+use super::files::{self, Files, Job, Status};
 use super::probe::Probe;
 use super::watch::Watcher;
 
-/// Called from worker threads (loader, dialog, file watcher) to make the UI run a frame and
-/// pick up what they delivered; a no-op without a window.
+/// Called from worker threads (scene jobs, dialog, file watcher) to make the UI run a frame
+/// and pick up what they delivered; a no-op without a window.
 pub type Waker = Arc<dyn Fn() + Send + Sync>;
 
 /// What the controller starts with.
@@ -58,31 +62,6 @@ pub struct Start {
     pub notice: Option<String>,
 }
 
-/// Facts about the current scene the panel shows, made once per scene (and per tangent method)
-/// rather than per drawn frame.
-pub struct SceneFacts {
-    /// Per mesh: the chosen tangent method timed and compared with the reference.
-    pub measurements: Vec<(String, MethodMeasurement)>,
-    /// The tangent method `measurements` are of.
-    measured: Option<TangentMethod>,
-    /// What `bumpview check` finds in the scene.
-    pub check: CheckReport,
-    /// `check`'s warnings, one line each.
-    pub check_warnings: Vec<String>,
-}
-
-impl SceneFacts {
-    fn new(scene: &Scene, method: Option<TangentMethod>) -> SceneFacts {
-        let check = check_scene(scene);
-        SceneFacts {
-            measurements: measure_all(scene, method),
-            measured: method,
-            check_warnings: check.warnings(),
-            check,
-        }
-    }
-}
-
 /// What the last interactive frame cost, for the panel.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InteractiveFrame {
@@ -99,23 +78,30 @@ const FLOOR_FRAMES: u32 = 5;
 
 pub struct Controller {
     pub state: ViewerState,
-    scene: Scene,
+    /// The scene the state is for; its GPU data may still be on its way ([`Self::busy`]).
+    scene: Arc<Scene>,
     renderer: Renderer,
-    /// The scene's files, the loader, the recent list and the last outcome.
+    /// The scene's files, the recent list and the last outcome.
     pub files: Files,
     dialog: Dialog,
     watcher: Watcher,
     /// Why hot reload does not work, when it does not.
     watch_error: Option<String>,
     wake: Waker,
-    facts: SceneFacts,
+    /// The facts of the scene drawn (`None` until its first job is done).
+    facts: Option<Arc<SceneFacts>>,
     /// The screenshot and tile-export fields the panel edits, and their last outcome.
     pub screenshot: ScreenshotForm,
     /// The preset path field the panel edits, and the last save's or load's outcome.
     pub preset: PresetForm,
     probe: Probe,
-    /// Makes loaded scenes ready off the UI thread.
-    preparer: Preparer,
+    /// Makes scenes ready off the UI thread, one job per scene change.
+    jobs: SceneJobs,
+    /// What the last installed job cost.
+    last_job: Option<JobTimes>,
+    /// The uploads a job failed to make for the scene shown (a bug, shown in the status): not
+    /// asked for again until the state asks for others.
+    failed: Option<SceneUploads>,
     /// The 3D view's size in pixels, as last laid out (`None` before the first frame).
     view_size: Option<[u32; 2]>,
     /// Counts changes of the scene or its GPU data: a drawn picture older than this is stale.
@@ -135,12 +121,17 @@ pub struct Controller {
 }
 
 impl Controller {
-    /// A controller showing `start`'s scene with `renderer` (which gets the scene's uploads);
-    /// `wake` is called from worker threads when they deliver something.
-    pub fn new(start: Start, mut renderer: Renderer, wake: Waker) -> Controller {
+    /// A controller showing `start`'s scene with `renderer`, which gets the scene's uploads
+    /// when the first scene job has made them ready; `wake` is called from worker threads when
+    /// they deliver something.
+    pub fn new(start: Start, renderer: Renderer, wake: Waker) -> Controller {
+        Self::with_build(start, renderer, wake, Arc::new(SceneFiles::build))
+    }
+
+    /// [`Self::new`] with files loaded by `build` (a fake in tests).
+    fn with_build(start: Start, renderer: Renderer, wake: Waker, build: scene_job::BuildFn) -> Controller {
         let Start { scene, state, files: scene_files, capture, last_state, recent_file, notice } = start;
-        renderer.set_scene_uploads(&scene, &state.scene_uploads());
-        let mut files = Files::new(scene_files.absolute(), state.kernel, Arc::new(SceneFiles::build), recent_file);
+        let mut files = Files::new(scene_files.absolute(), state.kernel, recent_file);
         files.remember_scene_files();
         if let Some(notice) = notice {
             files.status = Some(Status::Failed(notice));
@@ -148,10 +139,10 @@ impl Controller {
         let watch_wake = Arc::clone(&wake);
         let (mut watcher, watching) = Watcher::new(move || watch_wake());
         let watch_error = watching.and_then(|()| watcher.watch(&watched_files(&files.scene_files, &scene))).err();
-        Controller {
-            facts: SceneFacts::new(&scene, state.scene_options.tangent_method),
+        let mut controller = Controller {
+            facts: None,
             state,
-            scene,
+            scene: Arc::new(scene),
             renderer,
             files,
             dialog: Dialog::default(),
@@ -161,7 +152,9 @@ impl Controller {
             screenshot: ScreenshotForm::new(&capture),
             preset: PresetForm::default(),
             probe: Probe::default(),
-            preparer: Preparer::default(),
+            jobs: SceneJobs::new(build),
+            last_job: None,
+            failed: None,
             view_size: None,
             revision: 0,
             last_state,
@@ -169,7 +162,9 @@ impl Controller {
             interactive: InteractiveQuality::default(),
             floor: None,
             last_interactive: None,
-        }
+        };
+        controller.sync_uploads();
+        controller
     }
 
     pub fn scene(&self) -> &Scene {
@@ -180,8 +175,20 @@ impl Controller {
         &self.renderer
     }
 
-    pub fn facts(&self) -> &SceneFacts {
-        &self.facts
+    /// The facts of the scene drawn (`None` until its first job is done).
+    pub fn facts(&self) -> Option<&SceneFacts> {
+        self.facts.as_deref()
+    }
+
+    /// What the panel shows while a scene job runs: the scene, the stage and the seconds so
+    /// far; `None` when the scene drawn is the one the state asks for.
+    pub fn busy(&self) -> Option<String> {
+        self.jobs.busy()
+    }
+
+    /// What the last scene change cost, on its worker and in the upload.
+    pub fn last_job(&self) -> Option<JobTimes> {
+        self.last_job
     }
 
     pub fn probe(&self) -> &Probe {
@@ -255,14 +262,20 @@ impl Controller {
             Action::ExportTiles => self.screenshot.message = Some(self.export_tiles()),
             Action::SavePreset(path) => self.preset.message = Some(self.save_preset(&path)),
             Action::LoadPreset(path) => self.preset.message = Some(self.load_preset(&path)),
-            Action::Open { paths, slot } => self.files.open(&paths, slot, self.waker()),
+            Action::Open { paths, slot } => {
+                let job = self.files.plan(&paths, slot);
+                self.load(job);
+            }
             Action::ShowDialog(slot) => {
                 let folder = self.files.scene_files.paths().first().and_then(|f| f.parent()).map(Path::to_owned);
                 if let Err(message) = self.dialog.show(slot, folder, self.waker()) {
                     self.files.status = Some(Status::Failed(message));
                 }
             }
-            Action::DialogClosed { slot, path: Some(path) } => self.files.open(&[path], slot, self.waker()),
+            Action::DialogClosed { slot, path: Some(path) } => {
+                let job = self.files.plan(&[path], slot);
+                self.load(job);
+            }
             Action::DialogClosed { path: None, .. } => {
                 self.files.status = Some(Status::Done(
                     "no file chosen (if no dialog appeared: this desktop has no file-chooser portal or zenity)".into(),
@@ -271,8 +284,7 @@ impl Controller {
             Action::Reload => {
                 let scene_files = self.files.scene_files.clone();
                 let name = scene_files.paths().first().map_or_else(|| "built-in scene".into(), |p| files::file_name(p));
-                let done = format!("reloaded {name}");
-                self.files.reload(scene_files, self.files.kernel, done, self.waker());
+                self.load(Some(Job::reload(scene_files, self.files.kernel, format!("reloaded {name}"))));
             }
             Action::PinProbe { pixel, size } => {
                 self.probe.pin(pixel, size);
@@ -280,93 +292,12 @@ impl Controller {
             }
             Action::ClearProbe => self.probe.clear(),
             Action::SetInteractiveFrames(on) => self.interactive.enabled = on,
-            Action::Loaded(finished) => {
-                if let Some((scene, purpose)) = self.files.finish(*finished) {
-                    self.prepare_scene(scene, purpose);
-                }
-            }
+            Action::SceneReady(ready) => self.scene_ready(*ready),
         }
-    }
-
-    /// Re-makes the built-in scene with a new brick-map kernel (in the background, keeping
-    /// the view and any textures in its slots); loaded meshes do not use the kernel.
-    fn rebuild_builtin(&mut self, kernel: Kernel) {
-        if self.files.scene_files.mesh.is_none() && self.files.kernel != kernel {
-            let done = format!("brick normal map made with {}", kernel.name());
-            self.files.reload(self.files.scene_files.clone(), kernel, done, self.waker());
-        }
-    }
-
-    /// Prepares a newly loaded scene off the UI thread ([`Preparer`]) for the options it will be
-    /// drawn with; the window keeps showing the current scene until [`Self::install_scene`].
-    fn prepare_scene(&mut self, scene: Scene, purpose: Purpose) {
-        let mut planned = self.state.clone();
-        if purpose == Purpose::Open {
-            planned.scene_options.per_material.clear();
-        }
-        let label =
-            self.files.scene_files.paths().first().map_or_else(|| "built-in scene".into(), |p| files::file_name(p));
-        let wake = self.waker();
-        if let Err(message) = self.preparer.start(scene, purpose, planned.scene_uploads(), label, wake) {
-            self.files.status = Some(Status::Failed(message));
-        }
-    }
-
-    /// What the panel shows while a loaded scene is prepared (stage and seconds so far).
-    pub fn preparing(&self) -> Option<String> {
-        self.preparer.busy()
-    }
-
-    /// Shows a newly loaded and prepared scene. A new mesh is framed by its default camera and
-    /// light; a reload keeps camera, light and settings. The prepared GPU data is uploaded as
-    /// it is unless the options changed while it was made (then it is re-made here).
-    fn install_scene(&mut self, prepared: Prepared) {
-        let Prepared { scene, purpose, uploads, main, split, facts } = prepared;
-        if purpose == Purpose::Open {
-            // Per-material overrides name materials by index: they belong to the old mesh.
-            self.state.scene_options.per_material.clear();
-            self.state.camera = scene.default_camera;
-            self.state.lights = scene.default_lights();
-        }
-        self.state.default_camera = scene.default_camera;
-        if self.state.scene_uploads() == uploads {
-            self.renderer.set_prepared(main);
-            self.renderer.set_split_prepared(split);
-        } else {
-            self.renderer.set_scene_uploads(&scene, &self.state.scene_uploads());
-        }
-        self.facts = facts;
-        self.scene = scene;
-        self.probe.scene_changed();
-        self.revision += 1;
-        self.watch_error = self.watcher.watch(&watched_files(&self.files.scene_files, &self.scene)).err();
-    }
-
-    /// Re-makes the GPU data the state asks for and the renderer does not hold: the tangent
-    /// method, bump source or conventions changed, or the split view's halves. (A kernel
-    /// change re-makes the built-in scene instead: [`Self::rebuild_builtin`].)
-    fn sync_uploads(&mut self) {
-        let wanted = self.state.scene_uploads();
-        let Some(held) = self.renderer.uploads() else { return };
-        if wanted == held {
-            return;
-        }
-        if wanted.main != held.main {
-            self.renderer.set_scene(&self.scene, wanted.main.clone());
-        }
-        if wanted.split_right != held.split_right {
-            self.renderer.set_split_scene(&self.scene, wanted.split_right);
-        }
-        let method = self.state.scene_options.tangent_method;
-        if self.facts.measured != method {
-            self.facts.measurements = measure_all(&self.scene, method);
-            self.facts.measured = method;
-        }
-        self.revision += 1;
     }
 
     /// Takes in what arrived from other threads: the dialog's answer, settled file changes and
-    /// finished loads. Returns how soon to look again while file changes are settling.
+    /// finished scene jobs. Returns how soon to look again while file changes are settling.
     pub fn poll_background(&mut self, now: Instant) -> Option<Duration> {
         let mut actions = Vec::new();
         if let Some((slot, path)) = self.dialog.poll() {
@@ -379,16 +310,11 @@ impl Controller {
         if self.watcher.changes().iter().any(|path| files::affects(&self.files.scene_files, path) || referred(path)) {
             self.files.debouncer.changed(now);
         }
-        if let Some(finished) = self.files.loader.poll() {
-            actions.push(Action::Loaded(Box::new(finished)));
-        }
-        if let Some(prepared) = self.preparer.poll() {
-            self.install_scene(prepared);
-        }
-        // A reload waits for a load or preparation in flight (which wakes the UI when done), so
-        // that it does not replace a mesh the user is opening.
+        actions.extend(self.jobs.poll());
+        // A reload waits for a scene job in flight (which wakes the UI when done), so that it
+        // does not replace a mesh the user is opening.
         let mut wait = None;
-        if self.files.loader.busy().is_none() && self.preparer.busy().is_none() {
+        if self.jobs.busy().is_none() {
             if self.files.debouncer.fire(now) {
                 actions.push(Action::Reload);
             } else {
@@ -458,9 +384,4 @@ fn watched_files<'a>(scene_files: &'a SceneFiles, scene: &'a Scene) -> Vec<&'a P
     let mut files = scene_files.paths();
     files.extend(scene.files.iter().map(PathBuf::as_path));
     files
-}
-
-/// The chosen tangent method timed and compared with the reference on every mesh.
-fn measure_all(scene: &Scene, method: Option<TangentMethod>) -> Vec<(String, MethodMeasurement)> {
-    scene.meshes.iter().map(|mesh| (mesh.name.clone(), measure(mesh, method))).collect()
 }

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use bumpview::state::preset::Preset;
 
 use super::{Controller, ScreenshotForm};
-use crate::app::files;
+use crate::app::files::{self, Job};
 
 /// The preset path field and the outcome of the last save or load.
 #[derive(Default)]
@@ -51,7 +51,7 @@ impl Controller {
         self.revision += 1;
         if (&wanted, kernel) != (&self.files.scene_files, self.files.kernel) {
             let done = format!("opened the files of {}", path.display());
-            self.files.reload(wanted, kernel, done, self.waker());
+            self.load(Some(Job::reload(wanted, kernel, done)));
         }
         Ok(format!("loaded {}", path.display()))
     }

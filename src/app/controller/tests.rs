@@ -7,6 +7,7 @@ use std::time::{Duration, Instant};
 use bumpview::frame::ViewMode;
 use bumpview::load::SceneFiles;
 use bumpview::render::{Gpu, Renderer};
+use bumpview::scene::Scene;
 use bumpview::scene::builtin::teaching_scene;
 use bumpview::state::preset::CapturePreset;
 use bumpview::state::{Command, SplitDifference, ViewerState};
@@ -15,10 +16,10 @@ use bumpview::tangent::TangentMethod;
 use super::{Controller, Start};
 use crate::app::action::Action;
 
-/// A controller on the built-in scene with a headless renderer, no recent list, no last state.
-fn controller() -> Controller {
+/// What a controller on `scene` with a headless renderer, no recent list and no last state
+/// starts with.
+pub(super) fn start(scene: Scene) -> (Start, Renderer) {
     let gpu = Gpu::headless().expect("a GPU adapter (WGPU_BACKEND=vulkan with lavapipe)");
-    let scene = teaching_scene();
     let start = Start {
         state: ViewerState::new(&scene),
         scene,
@@ -28,7 +29,25 @@ fn controller() -> Controller {
         recent_file: None,
         notice: None,
     };
-    Controller::new(start, Renderer::from_gpu(&gpu), Arc::new(|| {}))
+    (start, Renderer::from_gpu(&gpu))
+}
+
+/// A controller on the built-in scene once its first scene job is installed.
+pub(super) fn controller() -> Controller {
+    let (start, renderer) = start(teaching_scene());
+    let mut controller = Controller::new(start, renderer, Arc::new(|| {}));
+    settle(&mut controller);
+    controller
+}
+
+/// Runs the UI's background step until no scene job is in flight (60 s at most).
+pub(super) fn settle(controller: &mut Controller) {
+    let started = Instant::now();
+    while controller.busy().is_some() {
+        assert!(started.elapsed() < Duration::from_secs(60), "the scene job did not finish");
+        std::thread::sleep(Duration::from_millis(5));
+        controller.poll_background(Instant::now());
+    }
 }
 
 /// A fresh folder for one test's files.
@@ -52,10 +71,11 @@ fn a_tangent_method_change_re_uploads_once_and_uniforms_never() {
     let uploads = || controller.renderer().counters().scenes_uploaded;
     assert_eq!(uploads(), 1, "the start's upload");
     controller.apply([Command::SetTangentMethod(Some(TangentMethod::PerFace)).into()]);
+    settle(&mut controller);
     assert_eq!(controller.renderer().counters().scenes_uploaded, 2);
     let held = controller.renderer().prepared(false).unwrap();
     assert_eq!(held.options.tangent_method, Some(TangentMethod::PerFace));
-    assert_eq!(controller.facts().measurements[0].1.method, TangentMethod::PerFace, "measured again");
+    assert_eq!(controller.facts().unwrap().measurements[0].1.method, TangentMethod::PerFace, "measured again");
 
     // The same method again, uniforms and a uniform split: nothing to upload.
     let uniforms = [
@@ -65,15 +85,19 @@ fn a_tangent_method_change_re_uploads_once_and_uniforms_never() {
         Command::SetSplit(true),
     ];
     controller.apply(uniforms.map(Action::from));
+    assert!(controller.busy().is_none(), "no scene job");
     assert_eq!(controller.renderer().counters().scenes_uploaded, 2);
 
     // A split in tangent methods needs a second upload, once; turning it off drops it.
     controller.apply([Command::SetSplitDifference(SplitDifference::Tangents).into()]);
+    settle(&mut controller);
     controller.apply([Command::SetStrength(1.0).into()]);
     assert_eq!(controller.renderer().counters().scenes_uploaded, 3, "the right half's upload (left is per-face)");
     assert!(controller.renderer().uploads().unwrap().split_right.is_some());
     controller.apply([Command::SetSplit(false).into()]);
+    settle(&mut controller);
     assert_eq!(controller.renderer().uploads().unwrap().split_right, None);
+    assert_eq!(controller.renderer().counters().scenes_uploaded, 3, "the left half's upload stays");
 }
 
 #[test]
@@ -87,6 +111,7 @@ fn the_probe_reads_the_scene_the_renderer_draws() {
     assert!(controller.probe().report().unwrap().text.is_ok(), "the wall is at that pixel");
 
     controller.apply([Command::SetTangentMethod(Some(TangentMethod::PerFace)).into()]);
+    settle(&mut controller);
     controller.refresh_probe();
     let drawn = controller.renderer().prepared(false).unwrap();
     assert!(Arc::ptr_eq(controller.probe().prepared().unwrap(), drawn), "follows the new upload");
@@ -103,7 +128,7 @@ fn a_preset_load_applies_its_state_and_a_bad_one_keeps_the_state() {
     assert_eq!(controller.preset.message, Some(Ok(format!("loaded {}", good.display()))));
     assert_eq!((controller.state.shading.view, controller.state.shading.strength), (ViewMode::ShadingNormal, 2.5));
     assert_eq!(controller.screenshot.size_text, "640x360");
-    assert!(controller.files.loader.busy().is_none(), "same files: nothing to load");
+    assert!(controller.busy().is_none(), "same files and scene options: no scene job");
 
     let before = controller.state.clone();
     let bad = dir.join("bad.toml");
@@ -145,6 +170,7 @@ fn a_screenshot_and_a_tile_export_write_pngs_atomically() {
     controller.screenshot.size_text = "40x30".into();
     controller.screenshot.tiles_text = "flat,bumped".into();
     controller.apply([Command::SetSplit(true).into(), Command::SetSplitDifference(SplitDifference::Tangents).into()]);
+    settle(&mut controller);
     let held = controller.renderer().uploads();
     controller.apply([Action::ExportTiles]);
     let message = controller.screenshot.message.clone().unwrap().unwrap();
@@ -167,7 +193,7 @@ fn a_texture_opened_into_a_slot_reloads_the_scene_in_the_background() {
     let revision = controller.revision();
     controller.apply([Action::Open { paths: vec![texture.clone()], slot: Some(bumpview::load::TextureSlot::Color) }]);
     let started = Instant::now();
-    while controller.files.loader.busy().is_some() || controller.revision() == revision {
+    while controller.busy().is_some() || controller.revision() == revision {
         assert!(started.elapsed() < Duration::from_secs(60), "the load did not finish");
         std::thread::sleep(Duration::from_millis(20));
         controller.poll_background(Instant::now());

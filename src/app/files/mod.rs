@@ -1,23 +1,20 @@
 //! Opening files in the viewer, as a state machine without a window: what a set of dropped or
 //! chosen files means ([`plan_open`]: a mesh replaces the scene, an image fills a material
-//! slot, chosen or guessed from its name by [`guess_slot`]), loading on a worker thread
-//! ([`Loader`]), the recent-files list ([`RecentFiles`]) and the outcome of a load
-//! ([`Files::finish`]).
+//! slot, chosen or guessed from its name by [`guess_slot`]), the [`Job`] that loads them (in
+//! the controller's scene job), the recent-files list ([`RecentFiles`]) and the outcome of a
+//! load ([`Files::finish`]).
 //!
 //! A scene is always re-made from its [`SceneFiles`] — the mesh file (or the built-in scene)
 //! plus the texture files in its slots — and the built-in scene's kernel, so a texture drop and
 //! a hot reload take the same path as opening a mesh, and a failure leaves the previous scene
 //! and files untouched.
 
-mod loader;
 mod recent;
 
 use std::path::{Path, PathBuf};
 
 use bumpview::height::Kernel;
 use bumpview::load::{SceneFiles, TextureSlot};
-use bumpview::scene::Scene;
-pub use loader::{BuildFn, Finished, Loader};
 pub use recent::{RecentFiles, recent_file};
 
 use super::watch::Debouncer;
@@ -94,7 +91,7 @@ pub enum Purpose {
     Reload,
 }
 
-/// A scene to load on the worker thread and what to do with it.
+/// Files to load in a scene job and what to do with the scene.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Job {
     /// The files to load (absolute paths).
@@ -177,8 +174,17 @@ pub enum Status {
     Failed(String),
 }
 
-/// The viewer's files: the current scene's files and kernel, the loader, the recent list and
-/// the status.
+impl Job {
+    /// The job re-making the scene from `files` and `kernel` (hot reload, a kernel change, a
+    /// preset's files); `done` is what the panel says on success.
+    pub fn reload(files: SceneFiles, kernel: Kernel, done: String) -> Job {
+        let label = files.paths().first().map_or_else(|| "built-in scene".to_owned(), |p| file_name(p));
+        Job { files, kernel, purpose: Purpose::Reload, label, opened: vec![], done }
+    }
+}
+
+/// The viewer's files: the current scene's files and kernel, the recent list, the status and
+/// the hot-reload debouncer.
 pub struct Files {
     /// What the current scene was made from (absolute paths).
     pub scene_files: SceneFiles,
@@ -186,7 +192,6 @@ pub struct Files {
     pub kernel: Kernel,
     pub recent: RecentFiles,
     pub status: Option<Status>,
-    pub loader: Loader,
     pub debouncer: Debouncer,
     /// Where the recent list is saved; `None`: not saved.
     recent_file: Option<PathBuf>,
@@ -195,10 +200,9 @@ pub struct Files {
 impl Files {
     /// Files for a viewer showing the scene made from `scene_files` (absolute paths) and
     /// `kernel`, with the recent list read from `recent_file`.
-    pub fn new(scene_files: SceneFiles, kernel: Kernel, build: BuildFn, recent_file: Option<PathBuf>) -> Files {
+    pub fn new(scene_files: SceneFiles, kernel: Kernel, recent_file: Option<PathBuf>) -> Files {
         let recent = recent_file.as_deref().map(RecentFiles::load).unwrap_or_default();
-        let loader = Loader::new(build);
-        Files { scene_files, kernel, recent, status: None, loader, debouncer: Debouncer::default(), recent_file }
+        Files { scene_files, kernel, recent, status: None, debouncer: Debouncer::default(), recent_file }
     }
 
     /// Puts the current scene's files (given on the command line) into the recent list and
@@ -224,35 +228,17 @@ impl Files {
         }
     }
 
-    /// Starts loading what `paths` ask for ([`plan_open`]); a plan error becomes the status.
-    pub fn open(&mut self, paths: &[PathBuf], slot: Option<TextureSlot>, wake: impl Fn() + Send + 'static) {
-        match plan_open(&self.scene_files, self.kernel, paths, slot) {
-            Ok(job) => self.start(job, wake),
-            Err(message) => self.status = Some(Status::Failed(message)),
-        }
+    /// The job for what `paths` ask ([`plan_open`]); a plan error becomes the status.
+    pub fn plan(&mut self, paths: &[PathBuf], slot: Option<TextureSlot>) -> Option<Job> {
+        plan_open(&self.scene_files, self.kernel, paths, slot).map_err(|m| self.status = Some(Status::Failed(m))).ok()
     }
 
-    /// Starts re-making the current scene from `files` and `kernel` (hot reload, a kernel
-    /// change, a preset's files).
-    pub fn reload(&mut self, files: SceneFiles, kernel: Kernel, done: String, wake: impl Fn() + Send + 'static) {
-        let label = files.paths().first().map_or_else(|| "built-in scene".to_owned(), |p| file_name(p));
-        self.start(Job { files, kernel, purpose: Purpose::Reload, label, opened: vec![], done }, wake);
-    }
-
-    /// Starts `job`; a thread that cannot be started becomes the status.
-    fn start(&mut self, job: Job, wake: impl Fn() + Send + 'static) {
-        if let Err(message) = self.loader.start(job, wake) {
-            self.status = Some(Status::Failed(message));
-        }
-    }
-
-    /// Takes in a finished load: on success the files and kernel become the job's, the opened files
-    /// go into the recent list (saved) and the new scene is returned with its purpose; on
-    /// failure the status says why and nothing else changes.
-    pub fn finish(&mut self, finished: Finished) -> Option<(Scene, Purpose)> {
-        let Finished { job, result } = finished;
-        match result {
-            Ok(scene) => {
+    /// Takes in a finished load: on success the files and kernel become the job's, the opened
+    /// files go into the recent list (saved) and the status says what was done; on failure the
+    /// status says why and nothing else changes.
+    pub fn finish(&mut self, job: Job, outcome: Result<(), String>) {
+        match outcome {
+            Ok(()) => {
                 let done = match self.remember(&job.opened) {
                     Ok(()) => job.done,
                     Err(message) => format!("{} ({message})", job.done),
@@ -260,24 +246,14 @@ impl Files {
                 self.scene_files = job.files;
                 self.kernel = job.kernel;
                 self.status = Some(Status::Done(done));
-                Some((scene, job.purpose))
             }
-            Err(message) => {
-                self.status = Some(Status::Failed(message));
-                None
-            }
+            Err(message) => self.status = Some(Status::Failed(message)),
         }
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use std::sync::{Arc, mpsc};
-    use std::time::{Duration, Instant};
-
-    use bumpview::load::LoadError;
-    use bumpview::scene::builtin::teaching_scene_with_kernel;
-
     use super::*;
 
     fn paths(names: &[&str]) -> Vec<PathBuf> {
@@ -365,88 +341,33 @@ mod tests {
         assert!(!affects(&SceneFiles::default(), Path::new("/m/box.bin")));
     }
 
-    /// A fake loader: the built-in scene, an error for a mesh named `broken.obj`, a panic for
-    /// `panic.obj`, and for a mesh named `slow.obj` it waits for a go from the test.
-    fn fake_build(slow: mpsc::Receiver<()>) -> BuildFn {
-        let slow = std::sync::Mutex::new(slow);
-        Arc::new(move |files: &SceneFiles, kernel: Kernel| {
-            let name = files.mesh.as_deref().map(file_name).unwrap_or_default();
-            if name == "slow.obj" {
-                slow.lock().unwrap().recv().unwrap();
-            }
-            assert_ne!(name, "panic.obj", "a loader bug");
-            if name == "broken.obj" {
-                return Err(LoadError::new(Path::new("/m/broken.obj"), "the file holds no triangles to draw"));
-            }
-            let mut scene = teaching_scene_with_kernel(kernel);
-            scene.meshes[0].name = name;
-            Ok(scene)
-        })
-    }
-
-    /// Polls until the loader's result is there (the fake is quick; 10 s is generous).
-    fn wait(files: &mut Files) -> Finished {
-        let start = Instant::now();
-        loop {
-            if let Some(finished) = files.loader.poll() {
-                return finished;
-            }
-            assert!(start.elapsed() < Duration::from_secs(10), "no result");
-            std::thread::sleep(Duration::from_millis(5));
-        }
-    }
-
     #[test]
-    fn loading_succeeds_fails_and_supersedes() {
-        let (go, slow) = mpsc::channel();
+    fn a_finished_load_updates_files_recent_list_and_status() {
         let dir = std::env::temp_dir().join(format!("bumpview-files-{}", std::process::id()));
         let recent_file = dir.join("recent.txt");
-        let mut files =
-            Files::new(SceneFiles::default(), Kernel::default(), fake_build(slow), Some(recent_file.clone()));
-        assert!(files.loader.busy().is_none());
+        let mut files = Files::new(SceneFiles::default(), Kernel::default(), Some(recent_file.clone()));
 
-        // Success: the files, recent list (saved) and status change; a new mesh is framed.
-        files.open(&paths(&["/m/good.obj"]), None, || {});
-        assert_eq!(files.loader.busy(), Some("good.obj"));
-        let finished = wait(&mut files);
-        let (scene, purpose) = files.finish(finished).unwrap();
-        assert_eq!((scene.meshes[0].name.as_str(), purpose), ("good.obj", Purpose::Open));
-        assert!(files.loader.busy().is_none());
+        // Success: the files, recent list (saved) and status change.
+        let job = files.plan(&paths(&["/m/good.obj"]), None).unwrap();
+        files.finish(job, Ok(()));
         assert_eq!(files.scene_files.mesh.as_deref(), Some(Path::new("/m/good.obj")));
         assert_eq!(files.status, Some(Status::Done("opened good.obj".into())));
         assert_eq!(RecentFiles::load(&recent_file).paths(), [PathBuf::from("/m/good.obj")]);
 
         // Failure: the message is the status; files and recent list stay.
-        files.open(&paths(&["/m/broken.obj"]), None, || {});
-        let finished = wait(&mut files);
-        assert!(files.finish(finished).is_none());
+        let job = files.plan(&paths(&["/m/broken.obj"]), None).unwrap();
+        files.finish(job, Err("/m/broken.obj: the file holds no triangles to draw".into()));
         assert_eq!(files.status, Some(Status::Failed("/m/broken.obj: the file holds no triangles to draw".into())));
         assert_eq!(files.scene_files.mesh.as_deref(), Some(Path::new("/m/good.obj")));
         assert_eq!(files.recent.paths().len(), 1);
 
-        // A panicking loader is a message too.
-        files.open(&paths(&["/m/panic.obj"]), None, || {});
-        let finished = wait(&mut files);
-        assert!(files.finish(finished).is_none());
-        assert!(matches!(&files.status, Some(Status::Failed(m)) if m.contains("panic.obj: the loader failed (a bug)")));
-
-        // A plan error never starts a job.
-        files.open(&paths(&["/m/readme.md"]), None, || {});
-        assert!(files.loader.busy().is_none());
+        // A plan error is the status at once.
+        assert!(files.plan(&paths(&["/m/readme.md"]), None).is_none());
         assert!(matches!(&files.status, Some(Status::Failed(m)) if m.contains("readme.md")));
 
-        // A job started while another runs supersedes it: only the newer result arrives.
-        files.open(&paths(&["/m/slow.obj"]), None, || {});
-        files.reload(files.scene_files.clone(), files.kernel, "reloaded".into(), || {});
-        assert_eq!(files.loader.busy(), Some("good.obj"));
-        let finished = wait(&mut files);
-        assert_eq!(finished.job.purpose, Purpose::Reload);
-        go.send(()).unwrap();
-        std::thread::sleep(Duration::from_millis(50));
-        assert!(files.loader.poll().is_none(), "the superseded result is dropped");
-        let (scene, purpose) = files.finish(finished).unwrap();
-        assert_eq!((scene.meshes[0].name.as_str(), purpose), ("good.obj", Purpose::Reload));
-        assert_eq!(files.status, Some(Status::Done("reloaded".into())));
+        // A reload keeps the view and names the mesh.
+        let job = Job::reload(files.scene_files.clone(), files.kernel, "reloaded".into());
+        assert_eq!((job.purpose, job.label.as_str()), (Purpose::Reload, "good.obj"));
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

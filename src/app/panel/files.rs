@@ -12,8 +12,8 @@ use crate::app::action::Action;
 use crate::app::controller::Controller;
 use crate::app::files::{Files, Status, file_name};
 
-/// The panel's heading and Open…, what is loading, the last load's outcome and why hot reload
-/// does not work, if it does not.
+/// The panel's heading and Open…, the scene job in flight, the last load's outcome and why hot
+/// reload does not work, if it does not.
 pub(super) fn heading(ui: &mut egui::Ui, controller: &Controller, actions: &mut Vec<Action>) {
     let files = &controller.files;
     ui.horizontal(|ui| {
@@ -22,12 +22,9 @@ pub(super) fn heading(ui: &mut egui::Ui, controller: &Controller, actions: &mut 
         if open.on_hover_text("a glTF (.gltf, .glb) or OBJ mesh, or a texture; or drop files on the window").clicked() {
             actions.push(Action::ShowDialog(None));
         }
-        if let Some(label) = files.loader.busy() {
+        if let Some(busy) = controller.busy() {
             ui.add(egui::Spinner::new());
-            ui.label(format!("loading {label}…"));
-        } else if let Some(preparing) = controller.preparing() {
-            ui.add(egui::Spinner::new());
-            ui.label(preparing);
+            ui.label(busy);
         }
     });
     match &files.status {

@@ -190,14 +190,17 @@ fn convention_in_use(material: &Material, remade: bool) -> String {
 /// The findings of `bumpview check` for the scene, the renderer's notices, and a button for
 /// the view that highlights degenerate and mirrored triangles.
 pub(super) fn check(ui: &mut egui::Ui, controller: &Controller, actions: &mut Vec<Action>) {
-    let facts = controller.facts();
-    for mesh in &facts.check.meshes {
+    let (meshes, maps, warnings) = match controller.facts() {
+        Some(facts) => (&facts.check.meshes[..], &facts.check.normal_maps[..], &facts.check_warnings[..]),
+        None => (&[][..], &[][..], &[][..]),
+    };
+    for mesh in meshes {
         ui.small(format!(
             "{}: {} triangles, {} degenerate-UV, {} mirrored, {} UV-seam positions",
             mesh.name, mesh.triangles, mesh.degenerate_uv, mesh.mirrored, mesh.seam_positions
         ));
     }
-    for map in &facts.check.normal_maps {
+    for map in maps {
         let convention = match map.findings.convention {
             Some((GreenConvention::OpenGl, c)) => format!("green looks OpenGL ({c:.2})"),
             Some((GreenConvention::DirectX, c)) => format!("green looks DirectX ({c:.2})"),
@@ -206,7 +209,7 @@ pub(super) fn check(ui: &mut egui::Ui, controller: &Controller, actions: &mut Ve
         ui.small(format!("{}: {convention}", map.material));
     }
     let warn = ui.visuals().warn_fg_color;
-    for line in facts.check_warnings.iter().chain(&controller.renderer().notices()) {
+    for line in warnings.iter().chain(&controller.renderer().notices()) {
         ui.colored_label(warn, egui::RichText::new(line).small());
     }
     if ui.button("Highlight degenerate / mirrored UVs").clicked() {

@@ -48,7 +48,8 @@ pub fn show(
         section(ui, "Classic mistakes", false, |ui| mistakes::show(ui, &controller.state, &mut actions));
         section(ui, "Legacy looks", false, |ui| mistakes::legacy(ui, &controller.state, &mut actions));
         section(ui, "Tangent frames and kernels", false, |ui| {
-            methods::methods(ui, &controller.state, &controller.facts().measurements, &mut actions);
+            let measurements = controller.facts().map_or(&[][..], |facts| &facts.measurements[..]);
+            methods::methods(ui, &controller.state, measurements, &mut actions);
         });
         section(ui, "Texture conventions and shading", false, |ui| {
             methods::conventions(ui, &controller.state, &controller.scene().materials, &mut actions);

@@ -74,7 +74,7 @@ pub(super) fn interactive(ui: &mut egui::Ui, controller: &Controller, actions: &
     }
 }
 
-/// The adapter, the view's size and the work done so far.
+/// The adapter, the view's size, the work done so far and what the last scene change cost.
 pub(super) fn stats(ui: &mut egui::Ui, controller: &Controller) {
     let size = controller.view_size().map_or_else(|| "no view".to_owned(), |[w, h]| format!("{w}x{h}"));
     let renderer = controller.renderer();
@@ -85,4 +85,10 @@ pub(super) fn stats(ui: &mut egui::Ui, controller: &Controller) {
         counters.frames_drawn,
         counters.pipelines_built
     ));
+    if let Some(job) = controller.last_job() {
+        ui.small(format!(
+            "last scene change: load {:.0} ms, prepare {:.0} ms, measure {:.0} ms (off the UI thread); upload {:.0} ms",
+            job.load_ms, job.prepare_ms, job.measure_ms, job.upload_ms
+        ));
+    }
 }

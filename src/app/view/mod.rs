@@ -84,6 +84,20 @@ impl View {
             Some(texture) => texture.id,
             None => self.ensure_texture(size),
         };
+        if controller.renderer().prepared(false).is_none() {
+            // Before the first scene job is done (the scene given at start) there is nothing
+            // to draw yet; the panel names the job's stage.
+            let text = "preparing the scene…";
+            let color = ui.visuals().weak_text_color();
+            ui.painter().text(
+                rect.center(),
+                egui::Align2::CENTER_CENTER,
+                text,
+                egui::FontId::proportional(18.0),
+                color,
+            );
+            return Vec::new();
+        }
         let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
         ui.painter().image(id, rect, uv, egui::Color32::WHITE);
         let state = &controller.state;
@@ -187,10 +201,11 @@ impl View {
 
     /// Draws the controller's picture into the view texture at the quality it chooses
     /// ([`Controller::frame_quality`]: interactive while `active`), only when the picture, its
-    /// size or quality, the split view or the scene's GPU data changed. Returns whether it drew
-    /// an interactive frame: then a full-quality one is owed once input stops.
+    /// size or quality, the split view or the scene's GPU data changed (nothing before the
+    /// first scene is uploaded). Returns whether it drew an interactive frame: then a
+    /// full-quality one is owed once input stops.
     pub fn draw(&mut self, controller: &mut Controller, active: bool) -> bool {
-        let Some(size) = self.size else { return false };
+        let Some(size) = self.size.filter(|_| controller.renderer().prepared(false).is_some()) else { return false };
         let quality = controller.frame_quality(active);
         let render_size = quality.render_size(size);
         self.ensure_texture(render_size);

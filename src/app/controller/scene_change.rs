@@ -1,0 +1,146 @@
+//! Scene changes in the controller: every change that needs the scene made again — files
+//! opened or reloaded, a kernel change, and any option the GPU data depends on (tangent method,
+//! bump source, conventions, the split view's halves), and the scene given at start — becomes
+//! one scene job ([`super::scene_job`]); the job's one action installs its result: the UI
+//! thread only uploads it.
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use bumpview::frame::SceneUploads;
+use bumpview::height::Kernel;
+use bumpview::names::Named;
+use bumpview::prepare::PreparedScene;
+
+use super::scene_job::{Ready, SceneReady, Source};
+use super::{Controller, watched_files};
+use crate::app::files::{self, Job, Purpose, Status};
+
+impl Controller {
+    /// Starts loading `job`'s files (nothing when there is no job: the plan failed and the
+    /// status says why).
+    pub(super) fn load(&mut self, job: Option<Job>) {
+        if let Some(job) = job {
+            self.request(Source::Load(super::scene_job::Load::new(job)));
+        }
+    }
+
+    /// Re-makes the built-in scene with a new brick-map kernel (in the background, keeping
+    /// the view and any textures in its slots); loaded meshes do not use the kernel.
+    pub(super) fn rebuild_builtin(&mut self, kernel: Kernel) {
+        if self.files.scene_files.mesh.is_none() && self.files.kernel != kernel {
+            let done = format!("brick normal map made with {}", kernel.name());
+            self.load(Some(Job::reload(self.files.scene_files.clone(), kernel, done)));
+        }
+    }
+
+    /// The uploads a scene made for `purpose` is to have: what the state asks, without the
+    /// per-material overrides for a new mesh (they name the old mesh's materials).
+    fn planned_uploads(&self, purpose: Purpose) -> SceneUploads {
+        if purpose != Purpose::Open || self.state.scene_options.per_material.is_empty() {
+            return self.state.scene_uploads();
+        }
+        let mut planned = self.state.clone();
+        planned.scene_options.per_material.clear();
+        planned.scene_uploads()
+    }
+
+    /// Starts a scene job when the GPU data the state asks for is neither drawn nor on its way:
+    /// the tangent method, bump source or conventions changed, or the split view's halves. A
+    /// load in flight is asked for again with the new options (its files are read once).
+    pub(super) fn sync_uploads(&mut self) {
+        let (source, aimed) = match self.jobs.in_flight() {
+            Some((source, uploads)) => (source.clone(), Some(uploads.clone())),
+            None => (self.shown(), self.renderer.uploads()),
+        };
+        let wanted = self.planned_uploads(source.purpose());
+        if aimed.as_ref() != Some(&wanted) && self.failed.as_ref() != Some(&wanted) {
+            self.request(source);
+        }
+    }
+
+    /// The scene shown, with its prepared scenes and facts for the job to reuse.
+    fn shown(&self) -> Source {
+        let main = self.renderer.prepared(false);
+        let split = self.renderer.uploads().and_then(|u| u.split_right).and(self.renderer.prepared(true));
+        let held = main.into_iter().chain(split).cloned().collect();
+        Source::Shown { scene: Arc::clone(&self.scene), held, facts: self.facts.clone() }
+    }
+
+    /// Starts the job making `source` ready for the options the state asks, superseding the
+    /// one in flight; a thread that cannot be started becomes the status.
+    fn request(&mut self, source: Source) {
+        let uploads = self.planned_uploads(source.purpose());
+        let label = match &source {
+            Source::Load(load) => load.job.label.clone(),
+            Source::Shown { .. } => {
+                self.files.scene_files.paths().first().map_or_else(|| "built-in scene".into(), |p| files::file_name(p))
+            }
+        };
+        let wake = self.waker();
+        if let Err(message) = self.jobs.start(source, uploads, label, wake) {
+            self.files.status = Some(Status::Failed(message));
+        }
+    }
+
+    /// Takes in a scene job's action: a superseded job's is dropped; the latest's outcome goes
+    /// to the files (recent list, status) when it loaded any, and its scene is installed.
+    pub(super) fn scene_ready(&mut self, ready: SceneReady) {
+        let aimed = self.jobs.in_flight().map(|(_, uploads)| uploads.clone());
+        let Some(SceneReady { load, outcome, .. }) = self.jobs.accept(ready) else { return };
+        self.failed = None;
+        let purpose = load.as_ref().map_or(Purpose::Reload, |job| job.purpose);
+        match (load, outcome) {
+            (Some(job), outcome) => {
+                let loaded = outcome.as_ref().map(drop).map_err(Clone::clone);
+                self.files.finish(job, loaded);
+                if let Ok(ready) = outcome {
+                    self.install(ready, purpose);
+                    self.watch_error = self.watcher.watch(&watched_files(&self.files.scene_files, &self.scene)).err();
+                }
+            }
+            (None, Ok(ready)) => self.install(ready, purpose),
+            (None, Err(message)) => {
+                self.files.status = Some(Status::Failed(message));
+                self.failed = aimed;
+            }
+        }
+    }
+
+    /// Shows a scene a job made ready: uploads what the renderer does not hold yet, timed. A
+    /// new mesh is framed by its default camera and light; otherwise camera, light and
+    /// settings stay.
+    fn install(&mut self, ready: Ready, purpose: Purpose) {
+        let Ready { scene, uploads: _, main, split, facts, mut times } = ready;
+        if purpose == Purpose::Open {
+            // Per-material overrides name materials by index: they belong to the old mesh.
+            self.state.scene_options.per_material.clear();
+            self.state.camera = scene.default_camera;
+            self.state.lights = scene.default_lights();
+        }
+        self.state.default_camera = scene.default_camera;
+        let started = Instant::now();
+        let held = |prepared: Option<&Arc<PreparedScene>>, new: &Arc<PreparedScene>| {
+            prepared.is_some_and(|held| Arc::ptr_eq(held, new))
+        };
+        if !held(self.renderer.prepared(false), &main) {
+            self.renderer.set_prepared(main);
+        }
+        let split_held = self.renderer.uploads().is_some_and(|u| u.split_right.is_some());
+        let same_split = match &split {
+            Some(split) => split_held && held(self.renderer.prepared(true), split),
+            None => !split_held,
+        };
+        if !same_split {
+            self.renderer.set_split_prepared(split);
+        }
+        times.upload_ms = started.elapsed().as_secs_f64() * 1e3;
+        self.last_job = Some(times);
+        if !Arc::ptr_eq(&self.scene, &scene) {
+            self.scene = scene;
+            self.probe.scene_changed();
+        }
+        self.facts = Some(facts);
+        self.revision += 1;
+    }
+}
