@@ -27,7 +27,8 @@ use clap::{Parser, Subcommand};
 pub struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
-    /// Viewer: close after this many frames have been presented (for tests and CI).
+    /// Viewer: close after this many frames have been presented with the scene shown (frames
+    /// drawn while a scene is still being prepared do not count; for tests and CI).
     #[arg(long, value_name = "FRAMES")]
     exit_after: Option<u64>,
     /// Viewer: with --exit-after, save a screenshot of the whole window (UI included) here first.
