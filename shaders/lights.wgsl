@@ -1,6 +1,6 @@
 // The lights (src/shading/lights.rs) and the classic model with its lighting spaces
-// (src/shading.rs blinn_phong, src/shading/spaces.rs). Prepended after parallax.wgsl and
-// before mesh.wgsl, whose helpers (normalize_or) and Object uniform it uses.
+// (src/shading.rs blinn_phong, src/shading/spaces.rs). Part of the mesh pass; uses
+// common.wgsl's helpers (normalize_or) and object.wgsl's Object uniform.
 
 // ---- lights (src/shading/lights.rs) ----
 
