@@ -1,7 +1,7 @@
-//! The formulas of the shading in `shaders/mesh.wgsl`, one function each: normal-map decoding,
-//! the bump by a normal map, an object-space map or a height field, Blinn-Phong and
-//! metallic-roughness ([`pbr`]), and the colours of the debug views. [`crate::chain`] runs them
-//! in the shader's order.
+//! The formulas of the shading in the mesh pass (the `shaders/` files of `render::shaders::MESH`),
+//! one function each: normal-map decoding, the bump by a normal map, an object-space map or a
+//! height field, Blinn-Phong and metallic-roughness ([`pbr`]), and the colours of the debug
+//! views. [`crate::chain`] runs them in the shader's order.
 //!
 //! The GPU and this module implement the same formulas line for line; tests render with the
 //! GPU and compare against them. All vectors are world space and unit length unless stated;

@@ -3,6 +3,11 @@
 //! adapter supports it for the target format ([`Msaa::X4`]) or 1 sample ([`Msaa::Off`], the
 //! interactive frames). [`Renderer::draw_floor`] draws the adapter's floor, what any frame of
 //! that size and MSAA costs at least; [`timing`] measures frames against it.
+//!
+//! The renderer keeps the long-lived resources (the pipeline pool, the frame uniforms, the
+//! attachments, the scene uploads); each kind of thing drawn — meshes, wireframe, T/B/N glyphs,
+//! light markers — has its own file under `render/draw/` that plans its passes from a frame's
+//! per-draw values and records them. The WGSL is split by pass ([`shaders`]).
 
 mod bindings;
 pub mod capture;
