@@ -72,8 +72,9 @@ fn normal_mapped_surface(vertex: VertexOutput, front_facing: bool) -> vec4<f32> 
 
 // fs_normal_mapped lit in tangent space (blinn_phong's LIGHTING_TANGENT branch): the same
 // normal, frame and views, with the light and view vectors taken by the triangle's inverse
-// frame from screen-space derivatives (seed 003 takes light − P per vertex and interpolates;
-// with one frame per triangle that is the frame times light − P at the pixel, exactly).
+// frame from screen-space derivatives (the ARB-era tangent-space shaders take light − P per
+// vertex and interpolate; with one frame per triangle that is the frame times light − P at
+// the pixel, exactly).
 fn normal_mapped_tangent_space_surface(vertex: VertexOutput, front_facing: bool) -> vec4<f32> {
     let n = geometric_normal(vertex.world_normal, front_facing);
     tangent_space.to_tangent = triangle_inverse_tbn(
