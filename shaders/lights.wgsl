@@ -1,6 +1,6 @@
 // The lights (src/shading/lights.rs) and the classic model with its lighting spaces
-// (src/shading.rs blinn_phong, src/shading/spaces.rs). Prepended after parallax.wgsl and
-// before mesh.wgsl, whose helpers (normalize_or) and Object uniform it uses.
+// (src/shading.rs blinn_phong, src/shading/spaces.rs). Part of the mesh pass; uses
+// common.wgsl's helpers (normalize_or) and object.wgsl's Object uniform.
 
 // ---- lights (src/shading/lights.rs) ----
 
@@ -111,7 +111,7 @@ fn blinn_phong(albedo: vec3<f32>, k_s: vec3<f32>, n_geo: vec3<f32>, n_shading: v
     return sum;
 }
 
-// ---- tangent-space lighting (seed 003; src/shading/spaces.rs) ----
+// ---- tangent-space lighting (as the ARB-era shaders light; src/shading/spaces.rs) ----
 
 const MIN_TBN_DETERMINANT: f32 = 1e-6; // spaces::MIN_TBN_DETERMINANT
 const MIN_UV_AREA_PER_M2: f32 = 1e-6;  // spaces::MIN_UV_AREA_PER_M2
@@ -130,7 +130,7 @@ fn inverse_tbn(t: vec3<f32>, b: vec3<f32>, n: vec3<f32>) -> mat3x3<f32> {
     return transpose(mat3x3<f32>(cross(b, n), cross(n, t), cross(t, b))) * (1.0 / det);
 }
 
-// spaces::triangle_inverse_tbn: seed 003's per-triangle frame from two differences across the
+// spaces::triangle_inverse_tbn: the ARB-era shaders' per-triangle frame from two differences across the
 // triangle (here the pixel's screen-space derivatives of position and UV): T = ∂P/∂u,
 // B = −∂P/∂v, N the face normal on `normal`'s side, normalised, not orthogonalised, inverted.
 fn triangle_inverse_tbn(dp_a: vec3<f32>, dp_b: vec3<f32>, duv_a: vec2<f32>, duv_b: vec2<f32>, normal: vec3<f32>) -> mat3x3<f32> {

@@ -65,7 +65,7 @@ fn tangent_to_world(frame_tb: TangentFrame, base: vec3<f32>, nt: vec3<f32>) -> v
 }
 
 // The vertex stage's per-vertex light direction and half vector as interpolated, set by the
-// `_per_vertex` fragment entry points (mesh.wgsl's with_per_vertex) before anything is lit;
+// per-vertex interface's fragment_inputs (mesh_varyings_per_vertex.wgsl) before anything is lit;
 // the hooks below and the legacy looks read them.
 struct PerVertexVectors {
     light: vec3<f32>,

@@ -2,7 +2,7 @@
 // the material's height map before the normal map and the colour are read. The CPU twin is
 // src/chain/parallax.rs, formula for formula; its doc comment states the geometry (reference
 // plane at the top of the relief, UV density from screen-space derivatives) and the bounds.
-// Prepended to mesh.wgsl at build time; fs_normal_mapped calls parallax_uv, the lighting
+// Part of the mesh pass (render::shaders::MESH); normal_mapped_surface calls parallax_uv, the lighting
 // multiplies each light by parallax_light_visibility (the searches' soft self-shadows).
 
 @group(1) @binding(12) var height_texture: texture_2d<f32>; // linear: 16-bit height in R (high), G (low)

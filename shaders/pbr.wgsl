@@ -1,6 +1,6 @@
 // glTF 2.0 metallic-roughness (spec appendix B) with every light and a procedural sky.
 // CPU twin: src/shading/pbr.rs (constants and functions line for line; keep them in step).
-// Prepended after frame.wgsl and before mesh.wgsl.
+// Part of the mesh pass (render::shaders::MESH).
 
 const PI: f32 = 3.14159265;
 const SKY_ZENITH: vec3<f32> = vec3<f32>(0.12, 0.22, 0.45);
@@ -107,8 +107,8 @@ fn pbr_light(p: PbrInputs, i: u32, light: Light) -> PbrLight {
     return PbrLight(direct, PI * highlight * arriving.radiance * nc_dot_l * self_shadow);
 }
 
-// pbr::metallic_roughness; normalize_or, incident_light and the self-shadow fade come from
-// mesh.wgsl.
+// pbr::metallic_roughness; normalize_or comes from common.wgsl, incident_light from
+// lights.wgsl.
 fn metallic_roughness(p: PbrInputs) -> vec3<f32> {
     var direct = vec3<f32>(0.0);
     var coat_direct = vec3<f32>(0.0);

@@ -1,7 +1,7 @@
-//! The formulas of the shading in `shaders/mesh.wgsl`, one function each: normal-map decoding,
-//! the bump by a normal map, an object-space map or a height field, Blinn-Phong and
-//! metallic-roughness ([`pbr`]), and the colours of the debug views. [`crate::chain`] runs them
-//! in the shader's order.
+//! The formulas of the shading in the mesh pass (the `shaders/` files of `render::shaders::MESH`),
+//! one function each: normal-map decoding, the bump by a normal map, an object-space map or a
+//! height field, Blinn-Phong and metallic-roughness ([`pbr`]), and the colours of the debug
+//! views. [`crate::chain`] runs them in the shader's order.
 //!
 //! The GPU and this module implement the same formulas line for line; tests render with the
 //! GPU and compare against them. All vectors are world space and unit length unless stated;
@@ -242,7 +242,7 @@ pub const HANDEDNESS_NONE: Vec3 = Vec3::new(0.5, 0.5, 0.5);
 
 /// The stored colour of the Handedness view: by the sign of tangent `w` (`None`: drawn
 /// without tangents), shaded by `0.35 + 0.65·|N_geo·V|` so the shape stays readable. The
-/// twin of `handedness_color` in `shaders/mesh.wgsl`.
+/// twin of `handedness_color` in `shaders/surface_color.wgsl`.
 pub fn handedness_color(w: Option<f32>, n_geo: Vec3, to_eye: Vec3) -> Vec3 {
     let base = match w {
         None => HANDEDNESS_NONE,
@@ -257,7 +257,7 @@ const DIFFERENCE_STOPS: [[f32; 3]; 5] =
     [[0.267, 0.005, 0.329], [0.229, 0.322, 0.546], [0.128, 0.567, 0.551], [0.369, 0.789, 0.383], [0.993, 0.906, 0.144]];
 
 /// The stored colour of the Difference view for `t` = angle / range (clamped to 0..1); the
-/// twin of `difference_color` in `shaders/mesh.wgsl`, for legends.
+/// twin of `difference_color` in `shaders/difference.wgsl`, for legends.
 pub fn difference_color(t: f32) -> [f32; 3] {
     let x = t.clamp(0.0, 1.0) * 4.0;
     let i = (x.floor() as usize).min(3);

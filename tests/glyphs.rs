@@ -15,7 +15,7 @@ use bumpview::tangent::{self, TangentMethod};
 use glam::{Vec2, Vec3};
 
 const SIZE: [u32; 2] = [256, 256];
-/// Lift of the glyph base along N, as a fraction of its length (`GLYPH_LIFT` in mesh.wgsl).
+/// Lift of the glyph base along N, as a fraction of its length (`GLYPH_LIFT` in glyphs.wgsl).
 const LIFT: f32 = 0.04;
 /// A drawn line may be this many pixels from its projected segment (1 px lines, 4× MSAA).
 const TOLERANCE_PX: f32 = 1.5;

@@ -140,7 +140,7 @@ mod tests {
     use crate::frame::{LegacyLook, LegacySettings, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Mistake, Parallax};
     use crate::frame::{LightingSpace, ShadingMode, ViewMode};
     use crate::names::Named;
-    use crate::render::pipelines::{MARKER_WGSL, MESH_WGSL};
+    use crate::render::shaders::{MARKER, MESH};
     use crate::render::uniforms::{
         DEPTH_MAP, HAS_BUMP_CORRECTION, HAS_CLEARCOAT, HAS_CLEARCOAT_NORMAL, HAS_CLEARCOAT_ROUGHNESS_TEXTURE,
         HAS_CLEARCOAT_TEXTURE, HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS, HAS_OCCLUSION_TEXTURE,
@@ -148,8 +148,9 @@ mod tests {
     };
     use crate::scene::{NormalConvention, ShadingModel, SpecularMode};
 
-    fn module(source: &str) -> naga::Module {
-        naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)))
+    fn module(wgsl: &crate::render::shaders::Wgsl) -> naga::Module {
+        let source = wgsl.source();
+        naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)))
     }
 
     /// `(group, binding)` of every resource global, by name.
@@ -177,12 +178,12 @@ mod tests {
 
     #[test]
     fn the_wgsl_bindings_are_the_tables() {
-        let mesh = wgsl_bindings(&module(MESH_WGSL));
+        let mesh = wgsl_bindings(&module(&MESH));
         let mut expected: BTreeMap<String, (u32, u32)> =
             MATERIAL.iter().map(|s| (s.wgsl_name.to_owned(), (1, s.binding))).collect();
         expected.extend(FRAME_GROUP.iter().map(|s| (s.wgsl_name.to_owned(), (0, s.binding))));
-        assert_eq!(mesh, expected, "shaders/mesh.wgsl against render::bindings");
-        let marker = wgsl_bindings(&module(MARKER_WGSL));
+        assert_eq!(mesh, expected, "the mesh pass against render::bindings");
+        let marker = wgsl_bindings(&module(&MARKER));
         let expected = BTreeMap::from([
             (FRAME.wgsl_name.to_owned(), (0, FRAME.binding)),
             (MARKERS.wgsl_name.to_owned(), (1, MARKERS.binding)),
@@ -196,7 +197,7 @@ mod tests {
     /// Rust value. The first view and mode are the shader's `default` branches.
     #[test]
     fn the_wgsl_constants_are_the_rust_values() {
-        let constants = wgsl_u32_constants(&module(MESH_WGSL));
+        let constants = wgsl_u32_constants(&module(&MESH));
         let mut expected = BTreeMap::new();
         for view in ViewMode::all().iter().copied().filter(|&v| v != ViewMode::default()) {
             expected.insert(constant_name("VIEW_", view.name()), view.shader_index());
@@ -244,7 +245,7 @@ mod tests {
         for mode in SpecularMode::all().iter().copied().filter(|&m| m != SpecularMode::default()) {
             expected.insert(constant_name("SPECULAR_", mode.name()), mode.shader_index());
         }
-        assert_eq!(constants, expected, "u32 constants of shaders/mesh.wgsl against the Rust side");
+        assert_eq!(constants, expected, "u32 constants of the mesh pass against the Rust side");
     }
 
     /// The Rust uniform structs are as large as the WGSL ones they fill: a field added on one
@@ -252,7 +253,7 @@ mod tests {
     #[test]
     fn the_uniform_structs_have_the_wgsl_sizes() {
         use crate::render::uniforms::{FrameUniform, LightUniform, ObjectUniform};
-        let module = module(MESH_WGSL);
+        let module = module(&MESH);
         let mut layouter = naga::proc::Layouter::default();
         layouter.update(module.to_ctx()).expect("the mesh shader's types have a layout");
         for (name, rust_size) in [
@@ -269,7 +270,7 @@ mod tests {
     /// attenuation's bounds (shading::lights) are one number on both sides.
     #[test]
     fn the_wgsl_float_constants_are_the_rust_ones() {
-        let module = module(MESH_WGSL);
+        let module = module(&MESH);
         for (name, expected) in [
             ("GRAZING_N_DOT_V", crate::chain::parallax::GRAZING_N_DOT_V),
             ("MIN_ATTENUATION_DENOMINATOR", crate::shading::lights::MIN_ATTENUATION_DENOMINATOR),

@@ -5,6 +5,7 @@ use std::path::Path;
 use super::{Background, DrawOptions, RenderTarget, Renderer};
 use crate::error::RenderError;
 use crate::frame::{FrameParams, SplitFrame};
+use crate::math::{linear_to_srgb, srgb_to_linear};
 
 /// Format of pictures: 8-bit RGBA holding sRGB-encoded values.
 pub const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
@@ -240,19 +241,9 @@ fn downsample(image: &image::RgbaImage, factor: u32, unpremultiply: bool) -> ima
         }
         let alpha = sum[3] / count;
         let scale = if unpremultiply && alpha > 0.0 { 1.0 / (alpha * count) } else { 1.0 / count };
-        let channel = |c: usize| (linear_to_srgb((sum[c] * scale).min(1.0)) * 255.0).round() as u8;
+        let channel = |c: usize| (linear_to_srgb(sum[c] * scale) * 255.0).round() as u8;
         image::Rgba([channel(0), channel(1), channel(2), (alpha * 255.0).round() as u8])
     })
-}
-
-/// The sRGB transfer function's inverse (encoded 0..1 → linear 0..1).
-fn srgb_to_linear(v: f32) -> f32 {
-    if v <= 0.04045 { v / 12.92 } else { ((v + 0.055) / 1.055).powf(2.4) }
-}
-
-/// The sRGB transfer function (linear 0..1 → encoded 0..1).
-fn linear_to_srgb(v: f32) -> f32 {
-    if v <= 0.0031308 { v * 12.92 } else { 1.055 * v.powf(1.0 / 2.4) - 0.055 }
 }
 
 /// Writes `image` as a PNG at `path` atomically ([`crate::atomic::write_atomically`]), so an

@@ -5,9 +5,8 @@
 use std::collections::HashMap;
 
 use super::pipelines::DEPTH_FORMAT;
+use super::shaders;
 use crate::counters::WorkCounters;
-
-pub const FLOOR_WGSL: &str = include_str!("../../shaders/floor.wgsl");
 
 /// The floor's shader and its pipelines by target format and sample count.
 pub struct FloorPipelines {
@@ -18,8 +17,8 @@ pub struct FloorPipelines {
 impl FloorPipelines {
     pub fn new(device: &wgpu::Device) -> Self {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("floor.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(FLOOR_WGSL.into()),
+            label: Some(shaders::FLOOR.label),
+            source: wgpu::ShaderSource::Wgsl(shaders::FLOOR.source().into()),
         });
         FloorPipelines { module, cache: HashMap::new() }
     }

@@ -29,7 +29,7 @@ pub enum GlyphAxis {
     Normal = 2,
 }
 
-/// One end of a glyph line, laid out as the glyph vertex buffer (`vs_glyph` in mesh.wgsl).
+/// One end of a glyph line, laid out as the glyph vertex buffer (`vs_glyph` in glyphs.wgsl).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct GlyphVertex {

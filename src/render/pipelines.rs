@@ -6,26 +6,11 @@
 use std::collections::HashMap;
 
 use super::bindings;
+use super::shaders::{self, Wgsl};
 use crate::counters::WorkCounters;
 use crate::frame::{LegacyLook, LegacySettings, LightingSpace, Mistake, Parallax, ViewMode};
 use crate::prepare::Variant;
 use crate::scene::ShadingModel;
-
-/// Shader sources, embedded at build time; frame.wgsl is the shared Frame uniform, pbr.wgsl
-/// the metallic-roughness shading the mesh shader calls, parallax.wgsl the parallax family,
-/// lights.wgsl the lights and the classic model's lighting spaces, mistakes.wgsl the classic
-/// mistakes, legacy.wgsl the legacy looks.
-pub const MESH_WGSL: &str = concat!(
-    include_str!("../../shaders/frame.wgsl"),
-    include_str!("../../shaders/pbr.wgsl"),
-    include_str!("../../shaders/parallax.wgsl"),
-    include_str!("../../shaders/mistakes.wgsl"),
-    include_str!("../../shaders/legacy.wgsl"),
-    include_str!("../../shaders/lights.wgsl"),
-    include_str!("../../shaders/mesh.wgsl")
-);
-pub const MARKER_WGSL: &str =
-    concat!(include_str!("../../shaders/frame.wgsl"), include_str!("../../shaders/marker.wgsl"));
 
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -123,11 +108,12 @@ impl Layouts {
     }
 }
 
-/// Layouts, shader modules and the cache of built pipelines.
+/// Layouts, shader modules and the cache of built pipelines: the long-lived resources every
+/// drawable's pipelines come from, keyed by what they are ([`PipelineKey`]).
 pub struct Pipelines {
     pub layouts: Layouts,
-    mesh_module: wgpu::ShaderModule,
-    marker_module: wgpu::ShaderModule,
+    /// The shader modules made so far (each on the first pipeline that needs it), by label.
+    modules: HashMap<&'static str, wgpu::ShaderModule>,
     cache: HashMap<PipelineKey, wgpu::RenderPipeline>,
 }
 
@@ -164,45 +150,46 @@ const GLYPH: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
     attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 3 => Float32x4, 5 => Float32x3],
 };
 
-/// A mesh stage's twin that passes on or reads the per-vertex light direction and half vector
-/// (mesh.wgsl's `PerVertexOutput`). Only the legacy looks and the per-vertex mistakes use
-/// them: llvmpipe sets up and interpolates every vertex output, read or not; with the two in
-/// every pipeline a 4× MSAA frame of the built-in scene cost 1.86–2.04× the floor, without
-/// them 1.73–1.80× (`render --frames 30`, same machine and load).
-fn per_vertex_entry(entry: &'static str) -> &'static str {
-    match entry {
-        "vs_plain" => "vs_plain_per_vertex",
-        "vs_tangent" => "vs_tangent_per_vertex",
-        "fs_plain" => "fs_plain_per_vertex",
-        "fs_tangent" => "fs_tangent_per_vertex",
-        "fs_normal_mapped" => "fs_normal_mapped_per_vertex",
-        "fs_normal_mapped_tangent_space" => "fs_normal_mapped_tangent_space_per_vertex",
-        "fs_object_space" => "fs_object_space_per_vertex",
-        "fs_height_bump" => "fs_height_bump_per_vertex",
-        other => unreachable!("{other} has no per-vertex twin"),
+/// The mesh pass's module for a pipeline: the one with the per-vertex light direction and half
+/// vector between its stages ([`shaders::MESH_PER_VERTEX`]) only where the legacy looks or the
+/// per-vertex mistakes read them. llvmpipe sets up and interpolates every vertex output, read
+/// or not; with the two in every pipeline a 4× MSAA frame of the built-in scene cost 1.86–2.04×
+/// the floor, without them 1.73–1.80× (`render --frames 30`, same machine and load).
+fn mesh_module(legacy: LegacySettings, mistake: Mistake) -> Wgsl {
+    if legacy.look != LegacyLook::Off || mistake.reads_per_vertex_vectors() {
+        shaders::MESH_PER_VERTEX
+    } else {
+        shaders::MESH
+    }
+}
+
+/// The module a pass's pipelines are made from.
+fn module_of(pass: Pass) -> Wgsl {
+    match pass {
+        Pass::Mesh { legacy, mistake, .. } => mesh_module(legacy, mistake),
+        Pass::Difference { .. } => shaders::DIFFERENCE,
+        Pass::Wireframe { .. } => shaders::WIREFRAME,
+        Pass::Glyphs { .. } => shaders::GLYPHS,
+        Pass::LightMarker => shaders::MARKER,
     }
 }
 
 impl Pipelines {
     pub fn new(device: &wgpu::Device) -> Self {
-        let module = |label: &str, source: &'static str| {
-            device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(label),
-                source: wgpu::ShaderSource::Wgsl(source.into()),
-            })
-        };
-        Pipelines {
-            layouts: Layouts::new(device),
-            mesh_module: module("mesh.wgsl", MESH_WGSL),
-            marker_module: module("marker.wgsl", MARKER_WGSL),
-            cache: HashMap::new(),
-        }
+        Pipelines { layouts: Layouts::new(device), modules: HashMap::new(), cache: HashMap::new() }
     }
 
-    /// Builds the pipeline for `key` unless it is cached.
+    /// Builds the pipeline for `key` unless it is cached (and its shader module unless made).
     pub fn ensure(&mut self, device: &wgpu::Device, key: PipelineKey, counters: &mut WorkCounters) {
         if !self.cache.contains_key(&key) {
-            let pipeline = self.build(device, key);
+            let wgsl = module_of(key.pass);
+            let module = self.modules.entry(wgsl.label).or_insert_with(|| {
+                device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some(wgsl.label),
+                    source: wgpu::ShaderSource::Wgsl(wgsl.source().into()),
+                })
+            });
+            let pipeline = build(device, &self.layouts, module, key);
             counters.pipelines_built += 1;
             self.cache.insert(key, pipeline);
         }
@@ -217,213 +204,121 @@ impl Pipelines {
     pub fn built(&self) -> impl Iterator<Item = &PipelineKey> {
         self.cache.keys()
     }
-
-    fn build(&self, device: &wgpu::Device, key: PipelineKey) -> wgpu::RenderPipeline {
-        let encodes_srgb = ("TARGET_ENCODES_SRGB", if key.format.is_srgb() { 1.0 } else { 0.0 });
-        let front_face = match key.pass {
-            Pass::Mesh { mirrored: true, .. } | Pass::Difference { mirrored: true, .. } => wgpu::FrontFace::Cw,
-            _ => wgpu::FrontFace::Ccw,
-        };
-        let (module, group1, vs, fs, buffers, cull_mode, constants): (_, _, _, _, &[_], _, Vec<(&str, f64)>) =
-            match key.pass {
-                Pass::Mesh {
-                    variant,
-                    cull_back_faces,
-                    view,
-                    lighting,
-                    parallax,
-                    mistake,
-                    legacy,
-                    lighting_space,
-                    features,
-                    ..
-                } => {
-                    let (vs, fs, buffers): (_, _, &[_]) = match variant {
-                        Variant::NormalMapped if lighting_space == LightingSpace::Tangent => {
-                            ("vs_tangent", "fs_normal_mapped_tangent_space", &[POSITION, NORMAL, UV, TANGENT])
-                        }
-                        Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
-                        Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
-                        Variant::NormalMapped => ("vs_tangent", "fs_normal_mapped", &[POSITION, NORMAL, UV, TANGENT]),
-                        Variant::ObjectSpace => ("vs_plain", "fs_object_space", &[POSITION, NORMAL, UV]),
-                        Variant::HeightBump => ("vs_plain", "fs_height_bump", &[POSITION, NORMAL, UV]),
-                    };
-                    let (vs, fs) = if legacy.look != LegacyLook::Off || mistake.reads_per_vertex_vectors() {
-                        (per_vertex_entry(vs), per_vertex_entry(fs))
-                    } else {
-                        (vs, fs)
-                    };
-                    let cull = cull_back_faces.then_some(wgpu::Face::Back);
-                    let mut constants = vec![
-                        encodes_srgb,
-                        ("VIEW", f64::from(view.shader_index())),
-                        ("MATERIAL_FEATURES", f64::from(features)),
-                    ];
-                    constants.extend(lighting.map(|model| ("SHADING_MODEL", f64::from(model.shader_index()))));
-                    if parallax != Parallax::Off {
-                        constants.push(("PARALLAX", f64::from(parallax.shader_index())));
-                    }
-                    if mistake != Mistake::None {
-                        constants.push(("MISTAKE", f64::from(mistake.shader_index())));
-                    }
-                    if legacy.look != LegacyLook::Off {
-                        constants.push(("LEGACY", f64::from(legacy.shader_index())));
-                    }
-                    if lighting_space != LightingSpace::World {
-                        constants.push(("LIGHTING_SPACE", f64::from(lighting_space.shader_index())));
-                    }
-                    (&self.mesh_module, self.layouts.material(variant), vs, fs, buffers, cull, constants)
-                }
-                Pass::Difference { variant, cull_back_faces, .. } => {
-                    let buffers: &[_] = &[POSITION, NORMAL, UV, TANGENT, REFERENCE_TANGENT];
-                    let cull = cull_back_faces.then_some(wgpu::Face::Back);
-                    let layout = self.layouts.material(variant);
-                    (&self.mesh_module, layout, "vs_difference", "fs_difference", buffers, cull, vec![encodes_srgb])
-                }
-                Pass::Wireframe { variant } => (
-                    &self.mesh_module,
-                    self.layouts.material(variant),
-                    "vs_wireframe",
-                    "fs_wireframe",
-                    &[POSITION],
-                    None,
-                    vec![encodes_srgb],
-                ),
-                Pass::Glyphs { variant } => (
-                    &self.mesh_module,
-                    self.layouts.material(variant),
-                    "vs_glyph",
-                    "fs_glyph",
-                    &[GLYPH],
-                    None,
-                    vec![encodes_srgb],
-                ),
-                Pass::LightMarker => (
-                    &self.marker_module,
-                    &self.layouts.marker,
-                    "vs_marker",
-                    "fs_marker",
-                    &[POSITION],
-                    Some(wgpu::Face::Back),
-                    vec![],
-                ),
-            };
-        let wireframe = matches!(key.pass, Pass::Wireframe { .. });
-        let overlay = wireframe || matches!(key.pass, Pass::Glyphs { .. });
-        let polygon_mode = if wireframe { wgpu::PolygonMode::Line } else { wgpu::PolygonMode::Fill };
-        let topology = match key.pass {
-            Pass::Glyphs { .. } => wgpu::PrimitiveTopology::LineList,
-            _ => wgpu::PrimitiveTopology::TriangleList,
-        };
-        let buffers: Vec<_> = buffers.iter().cloned().map(Some).collect();
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("bumpview"),
-            bind_group_layouts: &[Some(&self.layouts.frame), Some(group1)],
-            immediate_size: 0,
-        });
-        let options = wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };
-        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(&format!("{key:?}")),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module,
-                entry_point: Some(vs),
-                buffers: &buffers,
-                compilation_options: options.clone(),
-            },
-            primitive: wgpu::PrimitiveState { topology, cull_mode, front_face, polygon_mode, ..Default::default() },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(!overlay),
-                depth_compare: Some(if overlay {
-                    wgpu::CompareFunction::LessEqual
-                } else {
-                    wgpu::CompareFunction::Less
-                }),
-                stencil: Default::default(),
-                bias: if wireframe { WIREFRAME_DEPTH_BIAS } else { Default::default() },
-            }),
-            multisample: wgpu::MultisampleState { count: key.samples, ..Default::default() },
-            fragment: Some(wgpu::FragmentState {
-                module,
-                entry_point: Some(fs),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: key.format,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-                compilation_options: options,
-            }),
-            multiview_mask: None,
-            cache: None,
-        })
-    }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use wgpu::naga;
-
-    /// Every shader parses and validates with naga, no GPU needed, and has the entry points
-    /// the pipeline variants name; the mesh shader has the pipeline constants they set.
-    #[test]
-    fn shaders_validate_and_have_every_entry_point() {
-        let cases: [(&str, &[&str]); 3] = [
-            (
-                MESH_WGSL,
-                &[
-                    "vs_plain",
-                    "vs_tangent",
-                    "fs_plain",
-                    "fs_tangent",
-                    "fs_normal_mapped",
-                    "fs_normal_mapped_tangent_space",
-                    "fs_object_space",
-                    "fs_height_bump",
-                    "vs_plain_per_vertex",
-                    "vs_tangent_per_vertex",
-                    "fs_plain_per_vertex",
-                    "fs_tangent_per_vertex",
-                    "fs_normal_mapped_per_vertex",
-                    "fs_normal_mapped_tangent_space_per_vertex",
-                    "fs_object_space_per_vertex",
-                    "fs_height_bump_per_vertex",
-                    "vs_difference",
-                    "fs_difference",
-                    "vs_wireframe",
-                    "fs_wireframe",
-                    "vs_glyph",
-                    "fs_glyph",
-                ],
-            ),
-            (MARKER_WGSL, &["vs_marker", "fs_marker"]),
-            (super::super::floor::FLOOR_WGSL, &["vs_floor", "fs_floor"]),
-        ];
-        for (source, entry_points) in cases {
-            let module =
-                naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
-            naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::empty())
-                .validate(&module)
-                .unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
-            for name in entry_points {
-                assert!(module.entry_points.iter().any(|e| e.name == *name), "missing entry point {name}");
+/// The pipeline for `key`, its stages from `module` ([`module_of`]).
+fn build(
+    device: &wgpu::Device,
+    layouts: &Layouts,
+    module: &wgpu::ShaderModule,
+    key: PipelineKey,
+) -> wgpu::RenderPipeline {
+    let encodes_srgb = ("TARGET_ENCODES_SRGB", if key.format.is_srgb() { 1.0 } else { 0.0 });
+    let front_face = match key.pass {
+        Pass::Mesh { mirrored: true, .. } | Pass::Difference { mirrored: true, .. } => wgpu::FrontFace::Cw,
+        _ => wgpu::FrontFace::Ccw,
+    };
+    let (group1, vs, fs, buffers, cull_mode, constants): (_, _, _, &[_], _, Vec<(&str, f64)>) = match key.pass {
+        Pass::Mesh {
+            variant,
+            cull_back_faces,
+            view,
+            lighting,
+            parallax,
+            mistake,
+            legacy,
+            lighting_space,
+            features,
+            ..
+        } => {
+            let (vs, fs, buffers): (_, _, &[_]) = match variant {
+                Variant::NormalMapped if lighting_space == LightingSpace::Tangent => {
+                    ("vs_tangent", "fs_normal_mapped_tangent_space", &[POSITION, NORMAL, UV, TANGENT])
+                }
+                Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
+                Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
+                Variant::NormalMapped => ("vs_tangent", "fs_normal_mapped", &[POSITION, NORMAL, UV, TANGENT]),
+                Variant::ObjectSpace => ("vs_plain", "fs_object_space", &[POSITION, NORMAL, UV]),
+                Variant::HeightBump => ("vs_plain", "fs_height_bump", &[POSITION, NORMAL, UV]),
+            };
+            let cull = cull_back_faces.then_some(wgpu::Face::Back);
+            let mut constants = vec![
+                encodes_srgb,
+                ("VIEW", f64::from(view.shader_index())),
+                ("MATERIAL_FEATURES", f64::from(features)),
+            ];
+            constants.extend(lighting.map(|model| ("SHADING_MODEL", f64::from(model.shader_index()))));
+            if parallax != Parallax::Off {
+                constants.push(("PARALLAX", f64::from(parallax.shader_index())));
             }
+            if mistake != Mistake::None {
+                constants.push(("MISTAKE", f64::from(mistake.shader_index())));
+            }
+            if legacy.look != LegacyLook::Off {
+                constants.push(("LEGACY", f64::from(legacy.shader_index())));
+            }
+            if lighting_space != LightingSpace::World {
+                constants.push(("LIGHTING_SPACE", f64::from(lighting_space.shader_index())));
+            }
+            (layouts.material(variant), vs, fs, buffers, cull, constants)
         }
-        let mesh = naga::front::wgsl::parse_str(MESH_WGSL).expect("parsed above");
-        let overrides: Vec<_> = mesh.overrides.iter().filter_map(|(_, o)| o.name.as_deref()).collect();
-        assert_eq!(
-            overrides,
-            [
-                "MISTAKE",
-                "PARALLAX",
-                "LEGACY",
-                "MATERIAL_FEATURES",
-                "SHADING_MODEL",
-                "LIGHTING_SPACE",
-                "TARGET_ENCODES_SRGB",
-                "VIEW"
-            ]
-        );
-    }
+        Pass::Difference { variant, cull_back_faces, .. } => {
+            let buffers: &[_] = &[POSITION, NORMAL, UV, TANGENT, REFERENCE_TANGENT];
+            let cull = cull_back_faces.then_some(wgpu::Face::Back);
+            let layout = layouts.material(variant);
+            (layout, "vs_difference", "fs_difference", buffers, cull, vec![encodes_srgb])
+        }
+        Pass::Wireframe { variant } => {
+            (layouts.material(variant), "vs_wireframe", "fs_wireframe", &[POSITION], None, vec![encodes_srgb])
+        }
+        Pass::Glyphs { variant } => {
+            (layouts.material(variant), "vs_glyph", "fs_glyph", &[GLYPH], None, vec![encodes_srgb])
+        }
+        Pass::LightMarker => (&layouts.marker, "vs_marker", "fs_marker", &[POSITION], Some(wgpu::Face::Back), vec![]),
+    };
+    let wireframe = matches!(key.pass, Pass::Wireframe { .. });
+    let overlay = wireframe || matches!(key.pass, Pass::Glyphs { .. });
+    let polygon_mode = if wireframe { wgpu::PolygonMode::Line } else { wgpu::PolygonMode::Fill };
+    let topology = match key.pass {
+        Pass::Glyphs { .. } => wgpu::PrimitiveTopology::LineList,
+        _ => wgpu::PrimitiveTopology::TriangleList,
+    };
+    let buffers: Vec<_> = buffers.iter().cloned().map(Some).collect();
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("bumpview"),
+        bind_group_layouts: &[Some(&layouts.frame), Some(group1)],
+        immediate_size: 0,
+    });
+    let options = wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(&format!("{key:?}")),
+        layout: Some(&layout),
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some(vs),
+            buffers: &buffers,
+            compilation_options: options.clone(),
+        },
+        primitive: wgpu::PrimitiveState { topology, cull_mode, front_face, polygon_mode, ..Default::default() },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(!overlay),
+            depth_compare: Some(if overlay { wgpu::CompareFunction::LessEqual } else { wgpu::CompareFunction::Less }),
+            stencil: Default::default(),
+            bias: if wireframe { WIREFRAME_DEPTH_BIAS } else { Default::default() },
+        }),
+        multisample: wgpu::MultisampleState { count: key.samples, ..Default::default() },
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some(fs),
+            targets: &[Some(wgpu::ColorTargetState {
+                format: key.format,
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+            compilation_options: options,
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
 }

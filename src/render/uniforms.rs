@@ -1,4 +1,4 @@
-//! Uniform blocks, laid out exactly as the WGSL structs in `shaders/frame.wgsl` and `shaders/mesh.wgsl`.
+//! Uniform blocks, laid out exactly as the WGSL structs in `shaders/frame.wgsl` and `shaders/object.wgsl`.
 
 use bytemuck::{Pod, Zeroable};
 

@@ -2,7 +2,7 @@
 //! attenuation ([`attenuation`]), the direction and radiance arriving from a point or
 //! directional light ([`incident`]) and the highlight of the classic model by specular mode
 //! ([`specular_power`]). Twins of `attenuation`, `incident_light` and `specular_power` in
-//! `shaders/mesh.wgsl`. World space, metres, linear RGB.
+//! `shaders/lights.wgsl`. World space, metres, linear RGB.
 
 use glam::Vec3;
 

@@ -1,0 +1,71 @@
+//! The meshes' surfaces: each instance drawn with the mesh pass specialised to what it has and
+//! to the half's view, or with the Difference pass.
+
+use super::{FramePipelines, InstanceDraw};
+use crate::frame::{LegacySettings, LightingSpace, Parallax, ShadingSettings, ViewMode};
+use crate::prepare::Variant;
+use crate::render::pipelines::Pass;
+use crate::render::scene_gpu::{GpuInstance, GpuScene};
+use crate::scene::ShadingModel;
+
+/// Every instance of `scene` with the pass it is drawn with in `shading`.
+pub fn plan(scene: &GpuScene, shading: &ShadingSettings) -> Vec<InstanceDraw> {
+    let instances = scene.instances.iter().enumerate();
+    instances
+        .map(|(index, instance)| InstanceDraw { instance: index, pass: drawn_pass(instance, scene, shading) })
+        .collect()
+}
+
+/// Draws each planned instance: its vertex streams (the reference tangents only in the
+/// Difference pass) and its triangles.
+pub fn record(pass: &mut wgpu::RenderPass, pipelines: &FramePipelines, scene: &GpuScene, draws: &[InstanceDraw]) {
+    for draw in draws {
+        let instance = &scene.instances[draw.instance];
+        let mesh = &scene.meshes[instance.mesh];
+        pass.set_pipeline(pipelines.get(draw.pass));
+        pass.set_bind_group(1, &instance.bind_group, &[]);
+        pass.set_vertex_buffer(0, mesh.positions.slice(..));
+        pass.set_vertex_buffer(1, mesh.normals.slice(..));
+        pass.set_vertex_buffer(2, mesh.uvs.slice(..));
+        if let Some(tangents) = &mesh.tangents {
+            pass.set_vertex_buffer(3, tangents.slice(..));
+        }
+        if let (Pass::Difference { .. }, Some(reference)) = (draw.pass, &mesh.reference_tangents) {
+            pass.set_vertex_buffer(4, reference.slice(..));
+        }
+        pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+    }
+}
+
+/// The pass an instance is drawn with in `shading`'s view: the Difference view has its own
+/// pass for meshes that have tangent frames; else the mesh pass specialised to the view, in a
+/// lit view to the shading model (the frame's override, else the material's), where a
+/// height map is bound for it, to the parallax technique, and to the material's features.
+fn drawn_pass(instance: &GpuInstance, scene: &GpuScene, shading: &ShadingSettings) -> Pass {
+    let GpuInstance { variant, cull_back_faces, mirrored, features, .. } = *instance;
+    if shading.view == ViewMode::Difference && scene.prepared.meshes[instance.mesh].frames.is_some() {
+        return Pass::Difference { variant, cull_back_faces, mirrored };
+    }
+    let lighting = shading.view.is_lit().then(|| shading.shading_override.unwrap_or(instance.shading_model));
+    let parallax = if instance.parallax_height { shading.parallax.technique } else { Parallax::Off };
+    let legacy = if shading.view.is_lit() { shading.legacy } else { LegacySettings::default() };
+    let (view, mistake) = (shading.view, shading.mistake);
+    // As chain::shade decides: the classic model on tangent-space normal-mapped surfaces.
+    let lighting_space = match (variant, lighting) {
+        (Variant::NormalMapped, Some(ShadingModel::BlinnPhong)) => shading.lighting_space,
+        _ => LightingSpace::World,
+    };
+    Pass::Mesh {
+        variant,
+        cull_back_faces,
+        mirrored,
+        view,
+        lighting,
+        parallax,
+        mistake,
+        legacy,
+        lighting_space,
+        features,
+    }
+}
