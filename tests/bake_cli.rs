@@ -125,7 +125,10 @@ fn to_height_memory_limit_is_named_and_raisable() {
     let (status, stderr) = run(&["--to-height", "--max-memory", "175"]);
     assert_eq!(status, Some(1), "{stderr}");
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
-    assert!(stderr.contains("need 176 MiB to integrate, over the limit of 175 MiB (--max-memory raises it)"), "{stderr}");
+    assert!(
+        stderr.contains("need 176 MiB to integrate, over the limit of 175 MiB (--max-memory raises it)"),
+        "{stderr}"
+    );
     let (status, stderr) = run(&["--to-height", "--max-memory", "176"]);
     assert!(status == Some(1) && stderr.contains("not a readable image"), "{stderr}");
     let (status, stderr) = run(&["--max-memory", "176"]);

@@ -21,10 +21,10 @@ use rustfft::num_complex::Complex32;
 use super::image_io::{Header, PngLayout, read_image_admitted, write_png};
 use super::{BakeError, BakeOptions, Baked};
 use crate::atomic::write_atomically;
+use crate::height::Border;
 use crate::height::integrate::{Derivative, Slopes};
 use crate::height::rows::Channels;
 use crate::height::spectrum::{self, PackedSlopes};
-use crate::height::Border;
 use crate::names::Named;
 use crate::scene::GreenAxis;
 
@@ -148,8 +148,7 @@ fn unit16(v: u16) -> f32 {
 /// the lowest point at 0 (white = high; black = high with `depth`), clipped at the full range.
 /// Refused before decoding when its [`to_height_need`] is over [`BakeOptions::memory_limit`].
 pub fn to_height_file(input: &Path, output: &Path, options: &BakeOptions) -> Result<Baked, BakeError> {
-    let image =
-        read_image_admitted(input, |header| admit(input, header, options.border, options.memory_limit))?;
+    let image = read_image_admitted(input, |header| admit(input, header, options.border, options.memory_limit))?;
     let (width, height) = (image.width(), image.height());
     let mut packed = PackedSlopes::try_new(width as usize, height as usize, options.border)
         .map_err(|e| BakeError::new(input, format!("cannot allocate the solve: {e}")))?;

@@ -112,7 +112,8 @@ impl PackedSlopes {
         };
         columns.solve(&mut self.data, derivative);
         fft_rows(&mut self.data, &*planner.plan_fft_inverse(n_x));
-        let mut heights = Heights { width, height, row_len: n_x, scale: 1.0 / (n_x * n_y) as f32, offset: 0.0, data: self.data };
+        let mut heights =
+            Heights { width, height, row_len: n_x, scale: 1.0 / (n_x * n_y) as f32, offset: 0.0, data: self.data };
         if border == Border::Clamp {
             // The cropped quarter's mean is not the extension's (0): remove it.
             let sum: f64 = (0..height).into_par_iter().map(|y| heights.row(y).map(f64::from).sum::<f64>()).sum();
@@ -136,7 +137,8 @@ struct Columns {
 impl Columns {
     fn solve(&self, data: &mut [Complex32], derivative: Derivative) {
         let (n_x, n_y) = (self.n_x, self.n_y);
-        let phases_y: Vec<Phase> = (0..n_y).map(|k| Phase::new(TAU * signed_frequency(k, n_y) as f32 / n_y as f32)).collect();
+        let phases_y: Vec<Phase> =
+            (0..n_y).map(|k| Phase::new(TAU * signed_frequency(k, n_y) as f32 / n_y as f32)).collect();
         let (mut spectrum, mut solved) = (vec![], vec![]);
         for start in (0..=n_x / 2).step_by(BATCH) {
             // Each column with its mirror `−kx` (the solve reads both), and where that is.
@@ -179,7 +181,11 @@ impl Columns {
                     let q = (a - b) * Complex32::new(0.0, -0.5);
                     let (dx, dy) = derivative.symbols(&phase_x, phase_y);
                     let denominator = dx.norm_sqr() + dy.norm_sqr();
-                    *out = if denominator > BLIND { (dx.conj() * p + dy.conj() * q) / denominator } else { Complex32::ZERO };
+                    *out = if denominator > BLIND {
+                        (dx.conj() * p + dy.conj() * q) / denominator
+                    } else {
+                        Complex32::ZERO
+                    };
                 }
             });
             fft_rows(&mut solved, &*self.inverse);
