@@ -2,7 +2,9 @@
 //! transposes, no second field.
 //!
 //! Memory: the two real slope fields share one complex transform (`z = p + i·q`, 8 bytes a
-//! texel) — the saving a real-to-complex FFT would give, without a second FFT library. Rows are
+//! texel). Real-to-complex transforms (the `realfft` crate) of `p` and `q` would hold the same
+//! two half spectra, `2 × (width/2 + 1) × height` complex values, and do the same work, so they
+//! would add a dependency for nothing; the packing trick keeps rustfft alone. Rows are
 //! transformed in place; columns are transformed, solved and transformed back in batches of
 //! [`BATCH`] frequency pairs `(kx, −kx)` copied out to a small scratch, so the whole solve holds
 //! [`PackedSlopes::bytes`] plus [`scratch_bytes`].
