@@ -9,7 +9,9 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use bumpview::bake::image_io::MAX_SIDE;
-use bumpview::bake::{BakeOptions, Direction, TexelSize, Units, bake_all, bake_file, plan_outputs, to_height_file};
+use bumpview::bake::{
+    BakeOptions, DEFAULT_MEMORY_LIMIT, Direction, TexelSize, Units, bake_all, bake_file, plan_outputs, to_height_file,
+};
 use bumpview::height::rows::Channels;
 use bumpview::height::{Border, Kernel};
 use bumpview::report::surfaces::SineBumps;
@@ -301,6 +303,53 @@ fn bad_inputs_fail_with_one_line_naming_the_file() {
         }
     }
     assert!(!unwritable.parent().unwrap().exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A PNG whose header declares `side²` texels of `color` and whose pixel data is ten zero bytes:
+/// decoding it fails, so an error about memory came from the header alone.
+fn header_only_png(path: &Path, side: u32, color: png::ColorType, depth: png::BitDepth) {
+    let mut encoder = png::Encoder::new(std::fs::File::create(path).unwrap(), side, side);
+    encoder.set_color(color);
+    encoder.set_depth(depth);
+    let mut writer = encoder.write_header().unwrap();
+    let mut zlib = vec![0x78, 0x01, 0x01, 10, 0, !10, 0xff];
+    zlib.extend([0; 10]);
+    zlib.extend([0, 10, 0, 1]);
+    writer.write_chunk(png::chunk::IDAT, &zlib).unwrap();
+}
+
+const MIB: u64 = 1 << 20;
+
+/// `--to-height` refuses an input whose memory need is over the limit from its header, before
+/// any pixel is allocated (the pixels are missing: decoding would fail otherwise), in one line
+/// naming the file, its size, the need and the limit. The need is the documented formula
+/// `max(decoded + max(file, packed), packed + scratch)`, checked at the limit's edge.
+#[test]
+fn to_height_refuses_inputs_over_the_memory_limit_from_the_header() {
+    let dir = temp_dir("memory");
+    let out = dir.join("out.png");
+    // 4096² RGB 8-bit, wrapping: 3 B decoded + 8 B packed a texel = 11 · 16 MiB = 176 MiB
+    // (the solve's 128 MiB + 4 MiB of column scratch is less; the file is under 1 KiB).
+    let small = dir.join("rgb8.png");
+    header_only_png(&small, 4096, png::ColorType::Rgb, png::BitDepth::Eight);
+    let with_limit = |mib: u64| BakeOptions { memory_limit: mib * MIB, ..Default::default() };
+    let refused = to_height_file(&small, &out, &with_limit(175)).unwrap_err().to_string();
+    let expected = "4096x4096 texels (Rgb8, border wrap) need 176 MiB to integrate, over the limit of 175 MiB";
+    assert!(refused.starts_with(&small.display().to_string()) && refused.contains(expected), "{refused}");
+    assert!(!refused.contains('\n'));
+    let admitted = to_height_file(&small, &out, &with_limit(176)).unwrap_err().to_string();
+    assert!(admitted.contains("not a readable image"), "{admitted}");
+    // 16384² RGB 16-bit, clamped: 6 B decoded + 16 B packed a texel = 22 · 256 MiB = 5632 MiB,
+    // over the default 4096 MiB.
+    let big = dir.join("rgb16.png");
+    header_only_png(&big, 16384, png::ColorType::Rgb, png::BitDepth::Sixteen);
+    assert_eq!(DEFAULT_MEMORY_LIMIT, 4096 * MIB);
+    let clamped = BakeOptions { border: Border::Clamp, ..Default::default() };
+    let refused = to_height_file(&big, &out, &clamped).unwrap_err().to_string();
+    let expected = "16384x16384 texels (Rgb16, border clamp) need 5632 MiB to integrate, over the limit of 4096 MiB";
+    assert!(refused.contains(expected), "{refused}");
+    assert!(!out.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

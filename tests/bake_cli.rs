@@ -97,3 +97,42 @@ fn bad_inputs_and_flags_give_one_line_and_their_status() {
     assert!(!out.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `--max-memory MIB` sets the limit of `--to-height` (one line, status 1, naming the need and
+/// the limit, with the flag); at the need the input is admitted and fails only at its missing
+/// pixels. Without `--to-height` the flag is a usage error.
+#[test]
+fn to_height_memory_limit_is_named_and_raisable() {
+    let dir = temp_dir("memory");
+    let header_only = dir.join("rgb8.png");
+    {
+        // 4096² RGB 8-bit declared, ten zero bytes of data: needs 176 MiB (tests/bake.rs).
+        let mut encoder = png::Encoder::new(std::fs::File::create(&header_only).unwrap(), 4096, 4096);
+        encoder.set_color(png::ColorType::Rgb);
+        let mut writer = encoder.write_header().unwrap();
+        let mut zlib = vec![0x78, 0x01, 0x01, 10, 0, !10, 0xff];
+        zlib.extend([0; 10]);
+        zlib.extend([0, 10, 0, 1]);
+        writer.write_chunk(png::chunk::IDAT, &zlib).unwrap();
+    }
+    let out = dir.join("out.png");
+    let run = |extra: &[&str]| {
+        let mut args = vec!["bake", text(&header_only), "--out", text(&out)];
+        args.extend(extra);
+        let output = bumpview(&args);
+        (output.status.code(), String::from_utf8_lossy(&output.stderr).into_owned())
+    };
+    let (status, stderr) = run(&["--to-height", "--max-memory", "175"]);
+    assert_eq!(status, Some(1), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("need 176 MiB to integrate, over the limit of 175 MiB (--max-memory raises it)"),
+        "{stderr}"
+    );
+    let (status, stderr) = run(&["--to-height", "--max-memory", "176"]);
+    assert!(status == Some(1) && stderr.contains("not a readable image"), "{stderr}");
+    let (status, stderr) = run(&["--max-memory", "176"]);
+    assert_eq!(status, Some(2), "{stderr}");
+    assert!(!out.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

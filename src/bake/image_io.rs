@@ -12,7 +12,7 @@ use std::io::{Cursor, Write};
 use std::path::Path;
 use std::sync::mpsc;
 
-use image::{DynamicImage, ImageFormat, ImageReader, Limits};
+use image::{DynamicImage, ImageDecoder, ImageFormat, ImageReader, Limits};
 
 use super::BakeError;
 
@@ -26,21 +26,46 @@ pub const MIN_SIDE: u32 = 2;
 /// Decodes the image file `path` (PNG, JPEG, TGA or BMP; TGA by extension), refusing sizes
 /// outside [`MIN_SIDE`]..=[`MAX_SIDE`] from the header.
 pub fn read_image(path: &Path) -> Result<DynamicImage, BakeError> {
+    read_image_admitted(path, |_| Ok(()))
+}
+
+/// What an image file's header says, before any pixel is decoded.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Header {
+    pub width: u32,
+    pub height: u32,
+    /// Bytes of the file (held while decoding).
+    pub file_bytes: u64,
+    /// Bytes of the decoded pixels.
+    pub decoded_bytes: u64,
+    pub color: image::ColorType,
+}
+
+/// [`read_image`], with `admit` asked from the header before the pixels are allocated: its
+/// error is returned instead of decoding.
+pub fn read_image_admitted(
+    path: &Path,
+    admit: impl FnOnce(&Header) -> Result<(), BakeError>,
+) -> Result<DynamicImage, BakeError> {
     let bytes = std::fs::read(path).map_err(|e| BakeError::new(path, format!("cannot read: {e}")))?;
     let format = image::guess_format(&bytes)
         .ok()
         .or_else(|| ImageFormat::from_path(path).ok().filter(|&f| f == ImageFormat::Tga))
         .ok_or_else(|| BakeError::new(path, "not an image (expected PNG, JPEG, TGA or BMP data)"))?;
-    let reader = || ImageReader::with_format(Cursor::new(&bytes[..]), format);
     let unreadable = |e: image::ImageError| BakeError::new(path, format!("not a readable image: {e}"));
-    let (width, height) = reader().into_dimensions().map_err(unreadable)?;
+    // Limits are set on the decoder after the size check, so oversized headers get its message.
+    let mut reader = ImageReader::with_format(Cursor::new(&bytes[..]), format);
+    reader.no_limits();
+    let mut decoder = reader.into_decoder().map_err(unreadable)?;
+    let (width, height) = decoder.dimensions();
     check_size(path, width, height)?;
     let mut limits = Limits::no_limits();
     limits.max_image_width = Some(MAX_SIDE);
     limits.max_image_height = Some(MAX_SIDE);
-    let mut reader = reader();
-    reader.limits(limits);
-    reader.decode().map_err(unreadable)
+    decoder.set_limits(limits).map_err(unreadable)?;
+    let color = decoder.color_type();
+    admit(&Header { width, height, file_bytes: bytes.len() as u64, decoded_bytes: decoder.total_bytes(), color })?;
+    DynamicImage::from_decoder(decoder).map_err(unreadable)
 }
 
 fn check_size(path: &Path, width: u32, height: u32) -> Result<(), BakeError> {

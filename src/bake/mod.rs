@@ -6,10 +6,12 @@
 //! written as it is computed, band by band, to a PNG ([`image_io`]); the whole normal map is
 //! never held in memory. Backward ([`to_height_file`]), a normal map's slopes are integrated in
 //! the least-squares sense ([`crate::height::integrate`], Frankot & Chellappa 1988) into a
-//! 16-bit height map in the same units. Files are written atomically ([`crate::atomic`]) and
-//! many files are baked in parallel ([`bake_all`]).
+//! 16-bit height map in the same units, in memory bounded by [`to_height_need`]. Files are
+//! written atomically ([`crate::atomic`]); many files are baked in parallel ([`bake_all`]),
+//! except backward, where one solve already uses every core and memory is budgeted per file.
 
 pub mod image_io;
+pub mod to_height;
 
 use std::path::{Path, PathBuf};
 
@@ -17,11 +19,11 @@ use image::DynamicImage;
 use rayon::prelude::*;
 
 use crate::atomic::write_atomically;
-use crate::height::integrate::{Derivative, Slopes, integrate};
 use crate::height::rows::{Channels, HeightGrid, MapFormat, Samples, encode_row, for_each_normal_row};
 use crate::height::{Border, Kernel};
 use crate::scene::GreenAxis;
 use image_io::{PngLayout, read_image, write_png};
+pub use to_height::{DEFAULT_MEMORY_LIMIT, slopes_of, to_height_file, to_height_need};
 
 /// A file that could not be baked, on one line: the file and the problem.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -79,7 +81,7 @@ impl Units {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BakeOptions {
     /// The derivative: forward, it makes the slopes; backward, its symbol is inverted
-    /// ([`Derivative::Kernel`]) unless [`Self::spectral`].
+    /// ([`crate::height::integrate::Derivative::Kernel`]) unless [`Self::spectral`].
     pub kernel: Kernel,
     /// Backward only: integrate with the continuous derivative `iω` instead of the kernel's.
     pub spectral: bool,
@@ -94,6 +96,9 @@ pub struct BakeOptions {
     /// Forward: RGB, RGB + height in alpha, or two channels; backward: two-channel input
     /// (`z` rebuilt) when [`Channels::TwoChannel`].
     pub channels: Channels,
+    /// Backward: inputs whose [`to_height_need`] is above this many bytes are refused before
+    /// decoding ([`DEFAULT_MEMORY_LIMIT`]).
+    pub memory_limit: u64,
 }
 
 impl Default for BakeOptions {
@@ -107,6 +112,7 @@ impl Default for BakeOptions {
             green: GreenAxis::OpenGl,
             sixteen_bit: false,
             channels: Channels::Rgb,
+            memory_limit: DEFAULT_MEMORY_LIMIT,
         }
     }
 }
@@ -180,70 +186,6 @@ pub fn bake_file(input: &Path, output: &Path, options: &BakeOptions) -> Result<B
     Ok(Baked { input: input.to_owned(), output: output.to_owned(), width, height, relief: None })
 }
 
-/// Unit normals of a normal map image as `(x, y, z)` per texel, rows top to bottom: decoded
-/// `normalize(2·c − 1)` from 8 or 16 bits, green negated for DirectX, `z` rebuilt as
-/// `sqrt(max(0, 1 − x² − y²))` for two-channel maps.
-fn normals_of(image: &DynamicImage, green: GreenAxis, two_channel: bool) -> Vec<[f32; 3]> {
-    let rgb = image.to_rgb32f();
-    let flip = if green == GreenAxis::DirectX { -1.0 } else { 1.0 };
-    rgb.pixels()
-        .map(|p| {
-            let [x, y, z] = p.0.map(|c| 2.0 * c - 1.0);
-            let y = flip * y;
-            let z = if two_channel { (1.0 - x * x - y * y).max(0.0).sqrt() } else { z };
-            let length = (x * x + y * y + z * z).sqrt();
-            if length > 1e-6 && length.is_finite() { [x / length, y / length, z / length] } else { [0.0, 0.0, 1.0] }
-        })
-        .collect()
-}
-
-/// Normals pointing this close to the surface or below (`z` under this) are read with this
-/// `z`: slopes of at most 100.
-const MIN_NORMAL_Z: f32 = 0.01;
-
-/// The slopes of unit normals in full ranges per texel (slope ÷ `slope_scale`).
-pub fn slopes_of(normals: &[[f32; 3]], width: usize, height: usize, slope_scale: f32) -> Slopes {
-    let (dx, dy_up) = normals
-        .iter()
-        .map(|&[x, y, z]| {
-            let z = z.max(MIN_NORMAL_Z);
-            (-x / z / slope_scale, -y / z / slope_scale)
-        })
-        .unzip();
-    Slopes { width, height, dx, dy_up }
-}
-
-/// Integrates the normal map `input` into the 16-bit grey height map PNG `output`: heights in
-/// the options' units (a full range of `range_m` metres, or `1/strength`-per-texel slopes),
-/// the lowest point at 0 (white = high; black = high with `depth`), clipped at the full range.
-pub fn to_height_file(input: &Path, output: &Path, options: &BakeOptions) -> Result<Baked, BakeError> {
-    let image = read_image(input)?;
-    let (width, height) = (image.width(), image.height());
-    let normals = normals_of(&image, options.green, options.channels == Channels::TwoChannel);
-    drop(image);
-    let slopes = slopes_of(&normals, width as usize, height as usize, options.units.slope_scale(width));
-    drop(normals);
-    let derivative = if options.spectral { Derivative::Spectral } else { Derivative::Kernel(options.kernel) };
-    let heights = integrate(&slopes, derivative, options.border);
-    let lowest = heights.iter().copied().fold(f32::INFINITY, f32::min);
-    let highest = heights.iter().copied().fold(f32::NEG_INFINITY, f32::max);
-    let clipped = heights.iter().filter(|&&h| h - lowest > 1.0).count();
-    let layout = PngLayout { width, height, color: png::ColorType::Grayscale, sixteen_bit: true };
-    write_atomically(output, |out| {
-        write_png(out, layout, |rows, bytes| {
-            let band = &heights[rows.start * width as usize..rows.end * width as usize];
-            for (out, &h) in bytes.chunks_exact_mut(2).zip(band) {
-                let sample = (h - lowest).clamp(0.0, 1.0);
-                let sample = if options.depth { 1.0 - sample } else { sample };
-                out.copy_from_slice(&((sample * 65535.0).round() as u16).to_be_bytes());
-            }
-        })
-    })
-    .map_err(|e| BakeError::new(output, format!("cannot write: {e}")))?;
-    let relief = Some((highest - lowest, clipped));
-    Ok(Baked { input: input.to_owned(), output: output.to_owned(), width, height, relief })
-}
-
 /// Which way a bake goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Direction {
@@ -288,23 +230,25 @@ pub fn plan_outputs(inputs: &[PathBuf], out: &Path, direction: Direction) -> Res
     Ok(outputs)
 }
 
-/// Bakes every `(input, output)` pair, files in parallel; `done` is called after each file.
-/// Returns one result per pair, in order.
+/// Bakes every `(input, output)` pair, files in parallel (one at a time backward: each solve is
+/// parallel and the memory budget is per file); `done` is called after each file. Returns one
+/// result per pair, in order.
 pub fn bake_all(
     pairs: &[(PathBuf, PathBuf)],
     direction: Direction,
     options: &BakeOptions,
     done: &(dyn Fn(&Result<Baked, BakeError>) + Sync),
 ) -> Vec<Result<Baked, BakeError>> {
-    pairs
-        .par_iter()
-        .map(|(input, output)| {
-            let result = match direction {
-                Direction::ToNormal => bake_file(input, output, options),
-                Direction::ToHeight => to_height_file(input, output, options),
-            };
-            done(&result);
-            result
-        })
-        .collect()
+    let bake = |(input, output): &(PathBuf, PathBuf)| {
+        let result = match direction {
+            Direction::ToNormal => bake_file(input, output, options),
+            Direction::ToHeight => to_height_file(input, output, options),
+        };
+        done(&result);
+        result
+    };
+    match direction {
+        Direction::ToNormal => pairs.par_iter().map(bake).collect(),
+        Direction::ToHeight => pairs.iter().map(bake).collect(),
+    }
 }

@@ -64,6 +64,10 @@ pub struct BakeArgs {
     /// Only the normal's x and y (red, green; blue 0); with --to-height, rebuild z from them.
     #[arg(long)]
     two_channel: bool,
+    /// With --to-height: refuse inputs whose integration needs more than MIB mebibytes
+    /// (8 bytes a texel, 16 with --border clamp, plus the decoded image) [default: 4096].
+    #[arg(long, value_name = "MIB", requires = "to_height", value_parser = clap::value_parser!(u64).range(1..=1 << 24))]
+    max_memory: Option<u64>,
 }
 
 /// A finite number above zero.
@@ -104,6 +108,7 @@ impl BakeArgs {
             green: self.normal_convention.unwrap_or(defaults.green),
             sixteen_bit: self.bits.as_deref() == Some("16"),
             channels,
+            memory_limit: self.max_memory.map_or(defaults.memory_limit, |mib| mib << 20),
         }
     }
 }

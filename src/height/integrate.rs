@@ -15,14 +15,12 @@
 //!
 //! The solve assumes the field tiles ([`Border::Wrap`]). With [`Border::Clamp`] the slopes are
 //! first mirrored into a field twice as wide and tall, which tiles, and the solution cropped
-//! (the even extension, i.e. Neumann boundary conditions), at four times the work.
+//! (the even extension, i.e. Neumann boundary conditions), at four times the work and twice
+//! the memory ([`super::spectrum`] stores only the upper half).
 
-use std::f32::consts::TAU;
-
-use rayon::prelude::*;
 use rustfft::num_complex::Complex32;
-use rustfft::{Fft, FftPlanner};
 
+use super::spectrum::PackedSlopes;
 use super::{Border, Kernel, Tap};
 
 /// Which derivative the slopes are taken to be.
@@ -37,13 +35,13 @@ pub enum Derivative {
 
 /// One axis's frequency: the angle `θ` (radians per texel) and `e^{iθo}` for the offsets
 /// `o = −2..=2` the kernels reach.
-struct Phase {
+pub(super) struct Phase {
     theta: f32,
     powers: [Complex32; 5],
 }
 
 impl Phase {
-    fn new(theta: f32) -> Phase {
+    pub(super) fn new(theta: f32) -> Phase {
         Phase { theta, powers: [-2.0f32, -1.0, 0.0, 1.0, 2.0].map(|o| Complex32::from_polar(1.0, theta * o)) }
     }
 
@@ -56,7 +54,7 @@ impl Phase {
 impl Derivative {
     /// Fourier symbols `(D̂x, D̂y_up)` at angular frequencies `(θx, θy)` radians per texel,
     /// `θy` along rows (down the image), for a field sampled as `Σ Ĥ e^{i(θx·x + θy·row)}`.
-    fn symbols(self, x: &Phase, y: &Phase) -> (Complex32, Complex32) {
+    pub(super) fn symbols(self, x: &Phase, y: &Phase) -> (Complex32, Complex32) {
         match self {
             // Rows run down, y_up runs up: ∂/∂y_up = −∂/∂row.
             Derivative::Spectral => (Complex32::new(0.0, x.theta), Complex32::new(0.0, -y.theta)),
@@ -77,7 +75,7 @@ impl Derivative {
 /// mode of unit amplitude whose slope is under 1e-3 per texel) and set to 0: dividing by such
 /// a symbol only amplifies f32 rounding (up to 2e-4 of the relief near the smoothing kernels'
 /// zeros at the Nyquist corner, measured on a 27×15 field with 1e-10).
-const BLIND: f32 = 1e-6;
+pub(super) const BLIND: f32 = 1e-6;
 
 /// `width × height` slopes: `dx[i]` = ∂h/∂x and `dy_up[i]` = ∂h/∂y_up (y up the image) at
 /// texel `i` (rows top to bottom), in height units per texel.
@@ -89,113 +87,30 @@ pub struct Slopes {
     pub dy_up: Vec<f32>,
 }
 
-impl Slopes {
-    /// The slopes mirrored into a `2·width × 2·height` field that tiles (see module docs).
-    fn mirrored(&self) -> Slopes {
-        let (w, h) = (self.width, self.height);
-        let mut dx = vec![0.0; 4 * w * h];
-        let mut dy_up = vec![0.0; 4 * w * h];
-        for y in 0..2 * h {
-            let (source_y, flip_y) = if y < h { (y, 1.0) } else { (2 * h - 1 - y, -1.0) };
-            for x in 0..2 * w {
-                let (source_x, flip_x) = if x < w { (x, 1.0) } else { (2 * w - 1 - x, -1.0) };
-                let i = source_y * w + source_x;
-                dx[y * 2 * w + x] = flip_x * self.dx[i];
-                dy_up[y * 2 * w + x] = flip_y * self.dy_up[i];
-            }
-        }
-        Slopes { width: 2 * w, height: 2 * h, dx, dy_up }
-    }
-}
-
-/// The least-squares heights of `slopes` (same units, mean 0), rows top to bottom.
+/// The least-squares heights of `slopes` (same units, mean 0), rows top to bottom. Holds the
+/// slopes, the packed field ([`PackedSlopes::bytes`]) and the result; the bake fills a
+/// [`PackedSlopes`] itself and streams the [`super::spectrum::Heights`] out instead.
 pub fn integrate(slopes: &Slopes, derivative: Derivative, border: Border) -> Vec<f32> {
-    match border {
-        Border::Wrap => integrate_tiled(slopes, derivative),
-        Border::Clamp => {
-            let (w, h) = (slopes.width, slopes.height);
-            let big = integrate_tiled(&slopes.mirrored(), derivative);
-            let mut heights: Vec<f32> = big.chunks_exact(2 * w).take(h).flat_map(|row| row[..w].to_vec()).collect();
-            let mean = heights.iter().map(|&v| v as f64).sum::<f64>() / heights.len().max(1) as f64;
-            heights.iter_mut().for_each(|v| *v -= mean as f32);
-            heights
-        }
-    }
-}
-
-fn integrate_tiled(slopes: &Slopes, derivative: Derivative) -> Vec<f32> {
     let (w, h) = (slopes.width, slopes.height);
-    if w == 0 || h == 0 {
-        return vec![];
-    }
-    // Both real fields in one complex transform: z = p + i·q.
-    let mut z: Vec<Complex32> = slopes.dx.iter().zip(&slopes.dy_up).map(|(&p, &q)| Complex32::new(p, q)).collect();
-    let mut planner = FftPlanner::new();
-    let (row_forward, row_inverse) = (planner.plan_fft_forward(w), planner.plan_fft_inverse(w));
-    let (column_forward, column_inverse) = (planner.plan_fft_forward(h), planner.plan_fft_inverse(h));
-    fft_rows(&mut z, &*row_forward);
-    // Columns as rows of the transpose: t[kx][row].
-    let mut t = transpose(&z, w, h);
-    fft_rows(&mut t, &*column_forward);
-    // t[kx][ky] = Z(kx, ky); P = (Z(k) + conj Z(−k)) / 2, Q = (Z(k) − conj Z(−k)) / 2i.
-    let phases = |n: usize| -> Vec<Phase> {
-        (0..n).map(|k| Phase::new(TAU * signed_frequency(k, n) as f32 / n as f32)).collect()
-    };
-    let (phases_y, mut solved) = (phases(h), vec![Complex32::ZERO; w * h]);
-    solved.par_chunks_mut(h).enumerate().for_each(|(kx, out)| {
-        let phase_x = Phase::new(TAU * signed_frequency(kx, w) as f32 / w as f32);
-        let mirror_x = (w - kx) % w;
-        for ((ky, out), phase_y) in out.iter_mut().enumerate().zip(&phases_y) {
-            let (a, b) = (t[kx * h + ky], t[mirror_x * h + (h - ky) % h].conj());
-            let p = (a + b) * 0.5;
-            let q = (a - b) * Complex32::new(0.0, -0.5);
-            let (dx, dy) = derivative.symbols(&phase_x, phase_y);
-            let denominator = dx.norm_sqr() + dy.norm_sqr();
-            *out = if denominator > BLIND { (dx.conj() * p + dy.conj() * q) / denominator } else { Complex32::ZERO };
+    let mut packed = PackedSlopes::new(w, h, border);
+    packed.fill(|y, out| {
+        let (dx, dy_up) = (&slopes.dx[y * w..][..w], &slopes.dy_up[y * w..][..w]);
+        for ((out, &p), &q) in out.iter_mut().zip(dx).zip(dy_up) {
+            *out = Complex32::new(p, q);
         }
     });
-    drop(t);
-    fft_rows(&mut solved, &*column_inverse);
-    let mut rows = transpose(&solved, h, w);
-    drop(solved);
-    fft_rows(&mut rows, &*row_inverse);
-    let n = (w * h) as f32;
-    rows.iter().map(|c| c.re / n).collect()
+    packed.solve(derivative).to_vec()
 }
 
 /// Frequency index `k` of an `n`-point transform as a signed frequency in `−n/2..n/2`.
-fn signed_frequency(k: usize, n: usize) -> i64 {
+pub(super) fn signed_frequency(k: usize, n: usize) -> i64 {
     if k <= n / 2 { k as i64 } else { k as i64 - n as i64 }
-}
-
-/// Transforms every row (`fft.len()` values) of `data` in place, rows in parallel.
-fn fft_rows(data: &mut [Complex32], fft: &dyn Fft<f32>) {
-    let scratch_len = fft.get_inplace_scratch_len();
-    data.par_chunks_mut(fft.len() * 16)
-        .for_each_init(|| vec![Complex32::ZERO; scratch_len], |scratch, rows| fft.process_with_scratch(rows, scratch));
-}
-
-/// The transpose of a `width × height` row-major matrix (`height × width` out), in cache
-/// blocks, output rows in parallel.
-fn transpose(data: &[Complex32], width: usize, height: usize) -> Vec<Complex32> {
-    const BLOCK: usize = 32;
-    let mut out = vec![Complex32::ZERO; width * height];
-    out.par_chunks_mut(height * BLOCK).enumerate().for_each(|(block, out)| {
-        let x0 = block * BLOCK;
-        let columns = out.len() / height;
-        for y0 in (0..height).step_by(BLOCK) {
-            for dx in 0..columns {
-                for y in y0..(y0 + BLOCK).min(height) {
-                    out[dx * height + y] = data[y * width + x0 + dx];
-                }
-            }
-        }
-    });
-    out
 }
 
 #[cfg(test)]
 mod tests {
+    use std::f32::consts::TAU;
+
     use super::*;
     use crate::height::HeightField;
     use crate::names::Named;
@@ -228,11 +143,11 @@ mod tests {
         a.iter().zip(b).map(|(x, y)| ((x - ma) - (y - mb)).abs()).fold(0.0, f32::max)
     }
 
-    /// Every kernel's own symbol undoes it on a tiling field of an odd and an even size, within
-    /// f32 rounding.
+    /// Every kernel's own symbol undoes it on a tiling field of odd and even sizes, within f32
+    /// rounding; 100 and 75 texels across take more than one batch of columns.
     #[test]
     fn the_kernel_symbol_inverts_the_kernel() {
-        for (w, h) in [(32, 24), (27, 15)] {
+        for (w, h) in [(32, 24), (27, 15), (100, 66), (75, 40)] {
             let field = field(w, h);
             for &kernel in Kernel::all() {
                 let heights =
@@ -255,6 +170,37 @@ mod tests {
         let expected = 0.3 * shortfall(TAU / 32.0) + 0.2 * shortfall(TAU / 16.0);
         let error = max_error_after_mean(&heights, &field.samples);
         assert!((error - expected).abs() < 1e-4, "{error} vs {expected}");
+    }
+
+    /// The clamped solve (the upper half of the even extension stored, the lower half read as
+    /// conjugates) equals the wrapped solve of the whole extension built by hand, cropped and
+    /// its mean removed; 70 texels across are 140 in the extension, three batches of columns.
+    #[test]
+    fn the_clamped_solve_equals_the_wrapped_solve_of_the_mirrored_slopes() {
+        let (w, h) = (70usize, 45usize);
+        let texel = |i: usize| ((i * 7919 % 1000) as f32 / 1000.0 - 0.5) * 0.1;
+        let slopes = Slopes {
+            width: w,
+            height: h,
+            dx: (0..w * h).map(texel).collect(),
+            dy_up: (0..w * h).map(|i| texel(i + 17)).collect(),
+        };
+        let (mut dx, mut dy_up) = (vec![], vec![]);
+        for y in 0..2 * h {
+            let (source_y, flip_y) = if y < h { (y, 1.0) } else { (2 * h - 1 - y, -1.0) };
+            for x in 0..2 * w {
+                let (source_x, flip_x) = if x < w { (x, 1.0) } else { (2 * w - 1 - x, -1.0) };
+                dx.push(flip_x * slopes.dx[source_y * w + source_x]);
+                dy_up.push(flip_y * slopes.dy_up[source_y * w + source_x]);
+            }
+        }
+        let derivative = Derivative::Kernel(Kernel::Sobel3);
+        let extended = integrate(&Slopes { width: 2 * w, height: 2 * h, dx, dy_up }, derivative, Border::Wrap);
+        let cropped: Vec<f32> = extended.chunks_exact(2 * w).take(h).flat_map(|row| row[..w].to_vec()).collect();
+        let clamped = integrate(&slopes, derivative, Border::Clamp);
+        let error = max_error_after_mean(&clamped, &cropped);
+        let relief = cropped.iter().fold(0.0f32, |m, &v| m.max(v.abs()));
+        assert!(error < 1e-5 * relief.max(1.0), "{error} of {relief}");
     }
 
     /// A bowl that does not tile comes back with a clamped border (mirrored solve) close to

@@ -11,6 +11,7 @@
 
 pub mod integrate;
 pub mod rows;
+pub mod spectrum;
 
 use glam::Vec3;
 
