@@ -23,8 +23,8 @@ mod read;
 mod relief;
 
 pub use fragment::{Footprint, Fragment, Map, Varyings};
-pub use relief::MarchValues;
 use read::{BumpSample, SurfaceSample};
+pub use relief::MarchValues;
 
 use glam::{Mat3, Vec3};
 

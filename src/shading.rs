@@ -311,7 +311,13 @@ mod tests {
 
     /// The right path of a tangent-space normal map, as the chain runs it: decode, strength,
     /// the frame from `tangent` against `n`, to world space.
-    fn perturbed_normal(n: Vec3, tangent: Vec4, texel: NormalTexel, strength: f32, convention: NormalConvention) -> Vec3 {
+    fn perturbed_normal(
+        n: Vec3,
+        tangent: Vec4,
+        texel: NormalTexel,
+        strength: f32,
+        convention: NormalConvention,
+    ) -> Vec3 {
         let (t, b, _) = tangent_frame(tangent, n);
         tangent_to_world(t, b, n, tangent_space_normal(decode_normal(texel, convention), strength))
     }

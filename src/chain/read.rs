@@ -97,9 +97,8 @@ pub fn read(
             .map(|rgba| BumpSample::NormalMap(NormalTexel { rgba, correction: rgb(Map::BumpCorrection) })),
         BumpKind::HeightInShader => fragment.size(Map::Bump).and_then(|_| {
             // Every pixel of the quad samples at its own UV with the quad's footprint.
-            let height = |v: &Varyings| {
-                fragment.sample(Map::Bump, v.uv, footprint).map_or(0.0, |t| height_sample(t.truncate()))
-            };
+            let height =
+                |v: &Varyings| fragment.sample(Map::Bump, v.uv, footprint).map_or(0.0, |t| height_sample(t.truncate()));
             let (dx, dy) = fragment.derivatives(|v| v.position.extend(height(v)))?;
             Some(BumpSample::HeightSlopes { dp_dx: dx.truncate(), dp_dy: dy.truncate(), dh_dx: dx.w, dh_dy: dy.w })
         }),

@@ -58,7 +58,8 @@ pub fn step(material: &Material, fragment: &impl Fragment, at: &Varyings, facing
     let interpolated = fragment.derivatives(|v| v.uv);
     let unshifted = Step { marched: None, uv: at.uv, footprint: interpolated, height_footprint: interpolated };
     let on = parallax.technique != Parallax::Off && depth_m != 0.0 && fragment.size(Map::Height).is_some();
-    let Some(((dp_dx, dp_dy), (duv_dx, duv_dy))) = on.then(|| fragment.derivatives(|v| v.position)).flatten().zip(interpolated)
+    let Some(((dp_dx, dp_dy), (duv_dx, duv_dy))) =
+        on.then(|| fragment.derivatives(|v| v.position)).flatten().zip(interpolated)
     else {
         return unshifted;
     };

@@ -171,7 +171,8 @@ impl ProbeScene {
         let at = pixel.varyings();
         // The normal map's texel holding the read UV at mip 0, as stored.
         let read_uv = chain.march.map_or(at.uv, |m| m.uv);
-        let normal_map = instance.textures.bump.filter(|_| matches!(instance.bump, BumpKind::TangentSpace | BumpKind::ObjectSpace));
+        let normal_map =
+            instance.textures.bump.filter(|_| matches!(instance.bump, BumpKind::TangentSpace | BumpKind::ObjectSpace));
         let nearest = normal_map.map(|t| {
             let texture = &self.scene().textures[t];
             let xy = nearest_texel(texture, read_uv, material.detail_wrap);
