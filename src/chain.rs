@@ -126,9 +126,7 @@ pub fn shade(bump: BumpKind, material: &Material, fragment: &impl Fragment, fram
     let surface = read::read(bump, material, fragment, &at, (step.uv, step.footprint), n, frame);
     let (dimmed, visibility) = relief::shadowed(material, fragment, &step, at.position, frame);
     let values = lit(bump, material, &surface, &dimmed);
-    let frame_tb = values.tangent.zip(values.bitangent);
-    let march = relief::values(material, fragment, &step, visibility, frame_tb, values.normal, values.view_dir);
-    ChainValues { march, ..values }
+    ChainValues { march: relief::values(material, fragment, &step, visibility, &values), ..values }
 }
 
 /// The chain after the texture reads: the frame, the bump, every light of `frame` (already

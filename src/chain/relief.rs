@@ -7,6 +7,7 @@
 
 use glam::{Vec2, Vec3};
 
+use super::ChainValues;
 use super::fragment::{Footprint, Fragment, Map, Varyings};
 use super::parallax::{March, MarchInputs, light_in_tangent_space, march, soft_shadow};
 use super::read::relief_height;
@@ -101,21 +102,22 @@ pub fn shadowed(
     (dimmed, visibility)
 }
 
-/// What the chain shows of the march: `view_dir`, `tangent`, `bitangent` and `normal` from
-/// the chain's frame, the height at the hit read again.
-#[allow(clippy::too_many_arguments)]
+/// What the chain shows of the march: the view direction in the chain's frame (`values`), the
+/// height at the hit read again.
 pub fn values(
     material: &Material,
     fragment: &impl Fragment,
     step: &Step,
     light_visibility: [f32; MAX_LIGHTS],
-    frame_tb: Option<(Vec3, Vec3)>,
-    normal: Vec3,
-    view_dir: Vec3,
+    values: &ChainValues,
 ) -> Option<MarchValues> {
     let (m, _) = step.marched?;
+    let v = values.view_dir;
     Some(MarchValues {
-        view_tangent: frame_tb.map(|(t, b)| Vec3::new(view_dir.dot(t), view_dir.dot(b), view_dir.dot(normal))),
+        view_tangent: values
+            .tangent
+            .zip(values.bitangent)
+            .map(|(t, b)| Vec3::new(v.dot(t), v.dot(b), v.dot(values.normal))),
         layers: m.layers,
         layer_hit: m.layer_hit,
         uv: m.uv,
