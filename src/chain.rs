@@ -1,22 +1,32 @@
-//! The one CPU shading chain: the twin of the fragment stage of `shaders/mesh.wgsl`, step by
-//! step, returning every intermediate value. [`shade`] takes what the fragment shader reads at
-//! one surface point — the interpolated vertex outputs and the filtered texture samples, a
-//! [`SurfaceSample`] — and runs the same formulas ([`crate::shading`]) in the same order: the
-//! geometric normal, the tangent frame, the bump by the instance's [`BumpKind`], the lighting
-//! in the frame's [`ShadingMode`] with the material's (or the overriding) shading model, and
-//! the colour the frame's [`ViewMode`] stores. The pixel probe and the CPU reference tests
-//! call it; neither holds shading math of its own.
+//! The one CPU shading chain: the twin of the fragment stage of `shaders/mesh.wgsl` (with
+//! `parallax.wgsl`, `mistakes.wgsl`, `legacy.wgsl`, `lights.wgsl`, `pbr.wgsl`), step by step,
+//! returning every intermediate value. [`shade`] takes what the fragment shader gets — the
+//! interpolated vertex outputs and a texture sampler with quad derivatives, a [`Fragment`] —
+//! and runs the same formulas ([`crate::shading`]) in the same order: the parallax march and
+//! the UV it shifts ([`parallax`]), the texture reads there, the geometric normal, the tangent
+//! frame, the bump by the instance's [`BumpKind`] (the classic [`mistakes`] beside the right
+//! path), every light dimmed by the relief's soft shadow and lit in the frame's
+//! [`ShadingMode`] with the material's (or the overriding) shading model (or a [`legacy`]
+//! look), and the colour the frame's [`ViewMode`] stores. The pixel probe, the report and the
+//! CPU reference tests call it; none of them holds a shading step of its own.
 //!
 //! Spaces and units follow the crate conventions: positions in metres, world space; vectors
 //! unit length, world space unless named tangent space; colours linear RGB 0..1 unless named
 //! stored (what the target holds: sRGB-encoded for the lit picture, `0.5·v + 0.5` for
 //! vector views).
 
+pub mod fragment;
 pub mod legacy;
 pub mod mistakes;
 pub mod parallax;
+mod read;
+mod relief;
 
-use glam::{Mat3, Vec3, Vec4};
+pub use fragment::{Footprint, Fragment, Map, Varyings};
+use read::{BumpSample, SurfaceSample};
+pub use relief::MarchValues;
+
+use glam::{Mat3, Vec3};
 
 use crate::frame::{BumpKind, FrameParams, LegacyLook, LightingSpace, ShadingMode, ViewMode};
 use crate::math::{linear_to_srgb, normalize_or, smoothstep};
@@ -30,66 +40,15 @@ use crate::shading::{
     world_vectors,
 };
 
-/// What the fragment shader reads at one surface point.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SurfaceSample {
-    /// World-space position, metres.
-    pub position: Vec3,
-    /// The interpolated vertex normal taken by the normal matrix (not normalised).
-    pub world_normal: Vec3,
-    /// Whether the point is on a front face (else a back face of a double-sided material).
-    pub front_facing: bool,
-    /// The interpolated tangent taken by the model matrix, its `w` times `sign(det(model))`;
-    /// `None` where the mesh is drawn without a tangent stream.
-    pub world_tangent: Option<Vec4>,
-    /// The normal matrix (inverse-transpose of the model matrix): object-space maps need it.
-    pub normal_matrix: Mat3,
-    /// The filtered base colour texture, linear; `None` without one (white).
-    pub base_color: Option<Vec3>,
-    /// The bump texture's reading, by the instance's [`BumpKind`]; `None` without a bump.
-    pub bump: Option<BumpSample>,
-    /// The filtered metallic-roughness texture (B metal, G rough); `None` without one.
-    pub metallic_roughness: Option<Vec3>,
-    /// The occlusion texture's red; `None` without one.
-    pub occlusion: Option<f32>,
-    /// The filtered gloss (specular) map; `None` without one.
-    pub gloss: Option<Vec3>,
-    /// The filtered emissive texture, linear; `None` without one.
-    pub emissive: Option<Vec3>,
-    /// The clear-coat textures at the layer's coordinates: strength (red), roughness
-    /// (green), the normal map's RGB; `None` where the material has none.
-    pub clearcoat: Option<f32>,
-    pub clearcoat_roughness: Option<f32>,
-    pub clearcoat_normal: Option<Vec3>,
-    /// The per-vertex light direction and half vector ([`legacy::vertex_vectors`]),
-    /// interpolated (perspective-correct) as the vertex stage passes them on.
-    pub vertex_light: Vec3,
-    pub vertex_half: Vec3,
-    /// The height map's neighbours for the emboss look; `None` where no height map is bound
-    /// (only normal-mapped surfaces with a height map, uploaded for parallax or emboss).
-    pub emboss: Option<legacy::EmbossSample>,
-    /// The triangle's inverse frame (world → tangent space) for tangent-space lighting
-    /// ([`crate::shading::spaces::triangle_inverse_tbn`], from screen-space derivatives on the
-    /// GPU); `None`: the inverse of the point's own T, B, N (the same where the frame is the
-    /// triangle's, as on the flat wall).
-    pub triangle_frame: Option<Mat3>,
-}
-
-/// What the bump texture gives at a point.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum BumpSample {
-    /// The normal map's filtered texel (and X-Ray's `bump#`), linear (tangent- or
-    /// object-space maps).
-    NormalMap(NormalTexel),
-    /// Screen-space derivatives for Blinn's bump from the height map: of the position
-    /// (metres per pixel, world space) and of the decoded height sample ([`crate::shading::height_sample`],
-    /// full range per pixel, before the depth flip, range and strength).
-    HeightSlopes { dp_dx: Vec3, dp_dy: Vec3, dh_dx: f32, dh_dy: f32 },
-}
-
 /// Every value along the chain at one point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ChainValues {
+    /// The parallax step ([`MarchValues`]); `None`: parallax off, depth 0, no height map bound,
+    /// or no quad derivatives. The textures are read at its shifted UV.
+    pub march: Option<MarchValues>,
+    /// The normal map's filtered texel as read (RGBA 0..1 linear, with X-Ray's `bump#`),
+    /// before any mistake; `None` without a normal map.
+    pub texel: Option<NormalTexel>,
     /// The decoded normal-map vector ([`decode_normal`]): tangent space, or model space for an
     /// object-space map. `None` without a normal map.
     pub decoded: Option<Vec3>,
@@ -155,9 +114,24 @@ pub struct LightTerms {
     pub radiance: Vec3,
 }
 
-/// The shading chain at one point of an instance bumped by `bump`, drawn with `material`
-/// under `frame` (whose lights carry the ambient light).
-pub fn shade(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &FrameParams) -> ChainValues {
+/// The fragment stage at `fragment` on an instance bumped by `bump`, drawn with `material`
+/// under `frame` (whose lights carry the ambient light), in the shader's order: the parallax
+/// step (the UV and footprint the textures are read with), the texture reads, the frame, the
+/// bump, every light dimmed by the relief's soft shadow, and the colour the view stores.
+pub fn shade(bump: BumpKind, material: &Material, fragment: &impl Fragment, frame: &FrameParams) -> ChainValues {
+    let at = fragment.varyings();
+    let facing = if fragment.front_facing() { 1.0 } else { -1.0 };
+    let step = relief::step(material, fragment, &at, facing, frame);
+    let n = normalize_or(at.world_normal, Vec3::Z) * facing;
+    let surface = read::read(bump, material, fragment, &at, (step.uv, step.footprint), n, frame);
+    let (dimmed, visibility) = relief::shadowed(material, fragment, &step, at.position, frame);
+    let values = lit(bump, material, &surface, &dimmed);
+    ChainValues { march: relief::values(material, fragment, &step, visibility, &values), ..values }
+}
+
+/// The chain after the texture reads: the frame, the bump, every light of `frame` (already
+/// dimmed by the relief's shadow) and the view's colour at `point`.
+fn lit(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &FrameParams) -> ChainValues {
     let shading = &frame.shading;
     let facing = if point.front_facing { 1.0 } else { -1.0 };
     let n = normalize_or(point.world_normal, Vec3::Z) * facing;
@@ -328,6 +302,11 @@ pub fn shade(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: 
         ViewMode::Difference | ViewMode::UvCheck => None,
     };
     ChainValues {
+        march: None,
+        texel: match point.bump {
+            Some(BumpSample::NormalMap(texel)) => Some(texel),
+            _ => None,
+        },
         decoded,
         strength,
         after_strength,

@@ -80,21 +80,22 @@ pub fn tangent_space_normal(decoded: Vec3, strength: f32) -> Vec3 {
     normalize_or(Vec3::new(decoded.x * strength, decoded.y * strength, decoded.z.max(0.0)), Vec3::Z)
 }
 
-/// The normal after a tangent-space normal map: decode the texel ([`decode_normal`]), clamp
-/// `z ≥ 0` (a tangent-space normal never points into the surface), scale by `(s, s, 1)`,
-/// normalise, take it from tangent to world space with `T` (Gram-Schmidt against `n_geo`)
-/// and `B = w · cross(N, T)`. `n_geo` is unit.
-pub fn perturbed_normal(
-    n_geo: Vec3,
-    tangent: Vec4,
-    texel: NormalTexel,
-    strength: f32,
-    convention: NormalConvention,
-) -> Vec3 {
-    let n_tangent = tangent_space_normal(decode_normal(texel, convention), strength);
-    let t = orthonormalize_tangent(tangent.truncate(), n_geo);
-    let b = handedness(tangent) * n_geo.cross(t);
-    normalize_or(t * n_tangent.x + b * n_tangent.y + n_geo * n_tangent.z, n_geo)
+/// The tangent frame `(T, B, w)` from the interpolated world tangent and the unit geometric
+/// normal `n`: `T` by Gram-Schmidt against `n`, `w = ±1` from the tangent's `w`,
+/// `B = w · (N × T)` (the glTF rule). The twin of `tangent_frame` in `shaders/mesh.wgsl`; the
+/// classic mistakes' wrong frames sit beside it in [`crate::chain::mistakes`].
+pub fn tangent_frame(world_tangent: Vec4, n: Vec3) -> (Vec3, Vec3, f32) {
+    let w = handedness(world_tangent);
+    let t = orthonormalize_tangent(world_tangent.truncate(), n);
+    (t, w * n.cross(t), w)
+}
+
+/// A tangent-space normal `nt` ([`tangent_space_normal`]) in world space through the frame
+/// `t`, `b`, `n`: `normalize(T·nt.x + B·nt.y + N·nt.z)`, `n` the fallback. The one right path
+/// (`tangent_to_world` in `shaders/mistakes.wgsl` without a mistake); the classic mistakes'
+/// wrong ways sit beside it in [`crate::chain::mistakes`].
+pub fn tangent_to_world(t: Vec3, b: Vec3, n: Vec3, nt: Vec3) -> Vec3 {
+    normalize_or(t * nt.x + b * nt.y + n * nt.z, n)
 }
 
 /// The normal after an object-space normal map: the decoded model-space vector goes to world
@@ -217,7 +218,7 @@ pub fn surface_gradient_normal(n: Vec3, dp_dx: Vec3, dp_dy: Vec3, dh_dx: f32, dh
 
 /// Over-tilt threshold, degrees between the shading and the geometric normal. A
 /// tangent-space normal map can never point exactly below the surface here
-/// ([`perturbed_normal`] clamps `z ≥ 0`, so `N·N_geo ≥ 0`); what breaks the illusion is a
+/// ([`tangent_space_normal`] clamps `z ≥ 0`, so `N·N_geo ≥ 0`); what breaks the illusion is a
 /// normal that lies nearly in the surface plane (facets seen edge-on). The built-in bricks
 /// reach 50° at strength 1 and 78° at strength 4. Object-space maps with a large strength can
 /// go truly below (`N·N_geo < 0`), which is marked too.
@@ -306,6 +307,19 @@ mod tests {
         p.lights[0].position = Vec3::new(3.0, 0.0, -0.1);
         p.shading_normal = Vec3::new(1.0, 0.0, 0.2).normalize();
         assert!((blinn_phong(&p, &world_vectors(&p)) - p.albedo * 0.1).length() < 1e-7);
+    }
+
+    /// The right path of a tangent-space normal map, as the chain runs it: decode, strength,
+    /// the frame from `tangent` against `n`, to world space.
+    fn perturbed_normal(
+        n: Vec3,
+        tangent: Vec4,
+        texel: NormalTexel,
+        strength: f32,
+        convention: NormalConvention,
+    ) -> Vec3 {
+        let (t, b, _) = tangent_frame(tangent, n);
+        tangent_to_world(t, b, n, tangent_space_normal(decode_normal(texel, convention), strength))
     }
 
     #[test]

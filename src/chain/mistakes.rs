@@ -11,7 +11,7 @@ use glam::{Vec3, Vec4};
 use crate::frame::Mistake;
 use crate::math::{any_perpendicular, handedness, normalize_or, orthonormalize_tangent, srgb_to_linear};
 use crate::scene::{GreenAxis, Lights, NormalConvention};
-use crate::shading::{LightingVectors, NormalTexel};
+use crate::shading::{self, LightingVectors, NormalTexel};
 
 /// The texel as the shader reads it: through an sRGB view ([`Mistake::SrgbNormalMap`]) its
 /// colour channels are decoded from sRGB (alpha and `bump#` stay linear); else as filtered.
@@ -33,26 +33,30 @@ pub fn convention_read(mistake: Mistake, convention: NormalConvention) -> Normal
     }
 }
 
-/// The tangent frame `(T, B, w)` built from the interpolated tangent: correctly `T` by
-/// Gram-Schmidt against `n`, `B = w · (N × T)`; `B = N × T` with `w` dropped (reported +1)
-/// for [`Mistake::HandednessIgnored`]; `T` only normalised, `B = w · (N × T)` (shorter than 1
-/// where `T` leans on `N`) for [`Mistake::NoGramSchmidt`].
+/// The tangent frame `(T, B, w)` built from the interpolated tangent: the right one
+/// ([`shading::tangent_frame`]), or the mistake's ([`frame_without_handedness`],
+/// [`frame_without_gram_schmidt`]).
 pub fn tangent_frame(mistake: Mistake, world_tangent: Vec4, n: Vec3) -> (Vec3, Vec3, f32) {
-    let w = handedness(world_tangent);
     match mistake {
-        Mistake::HandednessIgnored => {
-            let t = orthonormalize_tangent(world_tangent.truncate(), n);
-            (t, n.cross(t), 1.0)
-        }
-        Mistake::NoGramSchmidt => {
-            let t = normalize_or(world_tangent.truncate(), any_perpendicular(n));
-            (t, w * n.cross(t), w)
-        }
-        _ => {
-            let t = orthonormalize_tangent(world_tangent.truncate(), n);
-            (t, w * n.cross(t), w)
-        }
+        Mistake::HandednessIgnored => frame_without_handedness(world_tangent, n),
+        Mistake::NoGramSchmidt => frame_without_gram_schmidt(world_tangent, n),
+        _ => shading::tangent_frame(world_tangent, n),
     }
+}
+
+/// [`Mistake::HandednessIgnored`]: `T` by Gram-Schmidt, `B = N × T` with `w` dropped
+/// (reported +1).
+pub fn frame_without_handedness(world_tangent: Vec4, n: Vec3) -> (Vec3, Vec3, f32) {
+    let t = orthonormalize_tangent(world_tangent.truncate(), n);
+    (t, n.cross(t), 1.0)
+}
+
+/// [`Mistake::NoGramSchmidt`]: `T` only normalised, `B = w · (N × T)` (shorter than 1 where
+/// `T` leans on `N`).
+pub fn frame_without_gram_schmidt(world_tangent: Vec4, n: Vec3) -> (Vec3, Vec3, f32) {
+    let w = handedness(world_tangent);
+    let t = normalize_or(world_tangent.truncate(), any_perpendicular(n));
+    (t, w * n.cross(t), w)
 }
 
 /// The normal lighting starts from: the interpolated normal as it comes (times `facing`) for
@@ -65,19 +69,27 @@ pub fn base_normal(mistake: Mistake, raw_normal: Vec3, facing: f32, n: Vec3) -> 
 }
 
 /// The tangent-space normal `nt` in world space through `T`, `B` and `base` (the
-/// [`base_normal`]): correctly `normalize(T·nt.x + B·nt.y + N·nt.z)`; with seed 000's typo
-/// ([`Mistake::TbnTypo`]) the world y takes `N.z` where `N.y` belongs; without
-/// re-normalisation ([`Mistake::NoRenormalization`]) the sum is not normalised.
+/// [`base_normal`]): the right path ([`shading::tangent_to_world`]), or the mistake's
+/// ([`world_with_tbn_typo`], [`world_without_renormalization`]).
 pub fn to_world(mistake: Mistake, t: Vec3, b: Vec3, base: Vec3, nt: Vec3) -> Vec3 {
-    let sum = t * nt.x + b * nt.y + base * nt.z;
     match mistake {
-        Mistake::TbnTypo => {
-            let typo = Vec3::new(sum.x, t.y * nt.x + b.y * nt.y + base.z * nt.z, sum.z);
-            normalize_or(typo, base)
-        }
-        Mistake::NoRenormalization => sum,
-        _ => normalize_or(sum, base),
+        Mistake::TbnTypo => world_with_tbn_typo(t, b, base, nt),
+        Mistake::NoRenormalization => world_without_renormalization(t, b, base, nt),
+        _ => shading::tangent_to_world(t, b, base, nt),
     }
+}
+
+/// [`Mistake::TbnTypo`] (`TBN[1].z = N.z` instead of `N.y`): the world y takes `N.z` where
+/// `N.y` belongs, then normalised.
+pub fn world_with_tbn_typo(t: Vec3, b: Vec3, base: Vec3, nt: Vec3) -> Vec3 {
+    let sum = t * nt.x + b * nt.y + base * nt.z;
+    let typo = Vec3::new(sum.x, t.y * nt.x + b.y * nt.y + base.z * nt.z, sum.z);
+    normalize_or(typo, base)
+}
+
+/// [`Mistake::NoRenormalization`]: `T·nt.x + B·nt.y + base·nt.z`, not normalised.
+pub fn world_without_renormalization(t: Vec3, b: Vec3, base: Vec3, nt: Vec3) -> Vec3 {
+    t * nt.x + b * nt.y + base * nt.z
 }
 
 /// The direction towards light `i` (counted among the lights that are on, so 0 is the

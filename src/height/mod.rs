@@ -214,16 +214,6 @@ impl Kernel {
     }
 }
 
-/// `round(255 · (0.5·v + 0.5))` per component.
-pub fn encode_unit_vector(v: Vec3) -> [u8; 3] {
-    (v * 0.5 + 0.5).to_array().map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)
-}
-
-/// `normalize(2·rgb − 1)` for RGB values in 0..1; a zero vector decodes to +Z.
-pub fn decode_normal(rgb: Vec3) -> Vec3 {
-    normalize_or(rgb * 2.0 - 1.0, Vec3::Z)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -270,11 +260,14 @@ mod tests {
         assert!(field.to_normal_map(Kernel::CentralDifference, Border::Wrap, "n").texel(3, 3)[1] < 128);
     }
 
+    /// The baker's 8-bit encoding ([`rows::unorm8`]) read back by the shader's decode
+    /// ([`crate::shading::decode_normal`]) gives the vector back.
     #[test]
     fn decode_inverts_encode() {
         let v = Vec3::new(0.3, -0.5, 0.81).normalize();
-        let e = encode_unit_vector(v);
-        let d = decode_normal(Vec3::new(e[0] as f32, e[1] as f32, e[2] as f32) / 255.0);
+        let e = v.to_array().map(rows::unorm8);
+        let texel = crate::shading::NormalTexel::rgb(Vec3::new(e[0] as f32, e[1] as f32, e[2] as f32) / 255.0);
+        let d = crate::shading::decode_normal(texel, Default::default());
         assert!(d.angle_between(v) < 0.01);
     }
 }

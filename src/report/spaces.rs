@@ -3,20 +3,20 @@
 //! CPU chain ([`crate::chain::shade`], held equal to the GPU by tests/lighting_spaces.rs).
 //!
 //! Three points per triangle, at barycentric weights (4, 1, 1)/6 and their rotations; each
-//! triangle's inverse frame from its edges; the normal map read at the nearest texel of mip 0. The lit picture is compared in 8-bit sRGB
+//! triangle's inverse frame from its edges (the chain's derivatives are the differences along
+//! two edges, [`TrianglePoint`]); the normal map read at the nearest texel of mip 0. The lit picture is compared in 8-bit sRGB
 //! steps; the vectors by the angle between the light direction a space lights with and the
 //! exact one, both in the pixel's own frame — for the diffuse term, the angle between the
 //! shading normal of that space and the one of world space.
 
-use glam::{Vec2, Vec3, Vec4};
+use glam::{Mat3, UVec2, Vec2, Vec3, Vec4};
 
 use crate::chain::legacy::vertex_vectors;
-use crate::chain::{BumpSample, SurfaceSample, shade};
+use crate::chain::{Footprint, Fragment, Map, Varyings, shade};
 use crate::frame::{BumpKind, FrameParams, LightingSpace, SceneOptions, ShadingSettings};
 use crate::math::{linear_to_srgb, normal_matrix, normalize_or};
 use crate::prepare::PreparedScene;
-use crate::scene::Scene;
-use crate::shading::NormalTexel;
+use crate::scene::{Scene, TextureImage};
 use crate::shading::spaces::triangle_inverse_tbn;
 
 /// One surface, one space against world space.
@@ -73,34 +73,26 @@ pub fn space_rows(scene: &Scene) -> Vec<SpaceRow> {
                 let normal = mix3(&|k| corners[k].1);
                 let tangent = corners.iter().zip(weights).fold(Vec4::ZERO, |sum, (c, w)| sum + c.2 * w);
                 let uv = corners.iter().zip(weights).fold(Vec2::ZERO, |sum, (c, w)| sum + c.3 * w);
-                let texel = texture
-                    .texel((uv.x * texture.width as f32).floor() as i64, (uv.y * texture.height as f32).floor() as i64);
                 let front_facing = normal.dot(eye - position) >= 0.0 || !material.double_sided;
                 let facing = if front_facing { 1.0 } else { -1.0 };
                 let to_tangent = triangle_inverse_tbn(b.0 - a.0, c.0 - a.0, b.3 - a.3, c.3 - a.3, face_normal * facing);
                 let (vertex_light, vertex_half) = vertex_vectors(position, normal, params.lights.first_on(), eye);
-                let point = SurfaceSample {
+                let at = Varyings {
                     position,
                     world_normal: normal,
-                    front_facing,
+                    uv,
                     world_tangent: Some(tangent),
-                    normal_matrix: glam::Mat3::from_mat4(normals),
-                    base_color: None,
-                    bump: Some(BumpSample::NormalMap(NormalTexel::rgb(
-                        Vec3::new(texel[0] as f32, texel[1] as f32, texel[2] as f32) / 255.0,
-                    ))),
-                    metallic_roughness: None,
-                    occlusion: None,
-                    gloss: None,
-                    emissive: None,
-                    clearcoat: None,
-                    clearcoat_roughness: None,
-                    clearcoat_normal: None,
                     // No mistake or legacy look is drawn here: the per-vertex vectors at the point.
                     vertex_light,
                     vertex_half,
-                    emboss: None,
-                    triangle_frame: Some(to_tangent),
+                };
+                let corner_at = |k: usize| Varyings { position: corners[k].0, uv: corners[k].3, ..at };
+                let point = TrianglePoint {
+                    at,
+                    corners: [corner_at(0), corner_at(1), corner_at(2)],
+                    front_facing,
+                    normal_matrix: Mat3::from_mat4(normals),
+                    normal_map: texture,
                 };
                 let shaded = |space: LightingSpace| {
                     let frame =
@@ -136,6 +128,49 @@ pub fn space_rows(scene: &Scene) -> Vec<SpaceRow> {
         }
     }
     rows
+}
+
+/// A point of a triangle as the report reads it: derivatives are the differences along the
+/// triangle's edges from corner 0 (the quad's up to a 2×2 change of basis, which the triangle
+/// frame does not see); only the normal map is bound, read at the nearest texel of mip 0
+/// (RGB, alpha 1, whatever the footprint).
+struct TrianglePoint<'a> {
+    at: Varyings,
+    corners: [Varyings; 3],
+    front_facing: bool,
+    normal_matrix: Mat3,
+    normal_map: &'a TextureImage,
+}
+
+impl Fragment for TrianglePoint<'_> {
+    fn varyings(&self) -> Varyings {
+        self.at
+    }
+
+    fn front_facing(&self) -> bool {
+        self.front_facing
+    }
+
+    fn normal_matrix(&self) -> Mat3 {
+        self.normal_matrix
+    }
+
+    fn derivatives<T: std::ops::Sub<Output = T> + Copy>(&self, value: impl Fn(&Varyings) -> T) -> Option<(T, T)> {
+        let [a, b, c] = self.corners.each_ref().map(value);
+        Some((b - a, c - a))
+    }
+
+    fn sample(&self, map: Map, uv: Vec2, _: Footprint) -> Option<Vec4> {
+        let t = self.normal_map;
+        (map == Map::Bump).then(|| {
+            let texel = t.texel((uv.x * t.width as f32).floor() as i64, (uv.y * t.height as f32).floor() as i64);
+            Vec3::new(texel[0] as f32, texel[1] as f32, texel[2] as f32).extend(255.0) / 255.0
+        })
+    }
+
+    fn size(&self, map: Map) -> Option<UVec2> {
+        (map == Map::Bump).then(|| UVec2::new(self.normal_map.width, self.normal_map.height))
+    }
 }
 
 /// The largest angle over the lights that are on between the light direction taken by the

@@ -73,11 +73,6 @@ impl NormalLayout {
             NormalLayout::Xray => "X-Ray pair (bump + bump#)",
         }
     }
-
-    /// Whether z is rebuilt from x and y.
-    pub fn rebuilds_z(self) -> bool {
-        matches!(self, NormalLayout::Rg | NormalLayout::Ag)
-    }
 }
 
 /// How a normal map's texels decode to a unit vector (crate conventions: linear, by the

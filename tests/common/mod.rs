@@ -6,17 +6,16 @@
 use std::path::{Path, PathBuf};
 
 use bumpview::chain::legacy::vertex_vectors;
-use bumpview::chain::{BumpSample, ChainValues, SurfaceSample, shade};
+use bumpview::chain::{ChainValues, Footprint, Fragment, Map, Varyings, shade};
 use bumpview::frame::BumpKind;
 use bumpview::frame::{FrameParams, SceneOptions, ViewMode};
 use bumpview::probe::{ProbeReadout, ProbeScene};
 use bumpview::render::capture::render_image;
 use bumpview::render::{Gpu, Renderer};
 use bumpview::scene::builtin::{WALL_Z, teaching_scene, wall_uv};
-use bumpview::scene::{OrbitCamera, Scene, TextureImage};
-use bumpview::shading::NormalTexel;
+use bumpview::scene::{Material, OrbitCamera, Scene, TextureImage};
 use bumpview::state::ViewerState;
-use glam::{Mat3, Vec2, Vec3, Vec4};
+use glam::{Mat3, UVec2, Vec2, Vec3, Vec4};
 
 pub fn renderer_for(scene: &Scene) -> Renderer {
     let gpu =
@@ -112,32 +111,60 @@ pub fn percentile(sorted: &[f32], p: f32) -> f32 {
 /// the wall's frame T = +X, w = +1 (its MikkTSpace frame, tests/debug_views.rs).
 pub fn wall_chain(scene: &Scene, params: &FrameParams, size: [u32; 2], x: u32, y: u32) -> ChainValues {
     let p = hit_plane(&params.camera, size, x, y, Vec3::Z, WALL_Z).expect("the wall fills the view");
-    let uv = wall_uv(p);
-    let material = &scene.materials[0];
-    let sample = |t: usize| sample_bilinear(&scene.textures[t], uv);
-    let surface = SurfaceSample {
+    // The wall is flat and the light and eye vectors are only read by the legacy looks and
+    // the per-vertex mistakes: the values at the point itself.
+    let (vertex_light, vertex_half) = vertex_vectors(p, Vec3::Z, params.lights.first_on(), params.camera.eye());
+    let at = Varyings {
         position: p,
         world_normal: Vec3::Z,
-        front_facing: true,
+        uv: wall_uv(p),
         world_tangent: Some(Vec4::new(1.0, 0.0, 0.0, 1.0)),
-        normal_matrix: Mat3::IDENTITY,
-        base_color: material.base_color_texture.map(sample),
-        bump: material.normal_map.as_ref().map(|m| BumpSample::NormalMap(NormalTexel::rgb(sample(m.texture)))),
-        metallic_roughness: None,
-        occlusion: None,
-        gloss: material.gloss_texture.map(sample),
-        emissive: None,
-        clearcoat: None,
-        clearcoat_roughness: None,
-        clearcoat_normal: None,
-        // The wall is flat and the light and eye vectors are only read by the legacy looks and
-        // the per-vertex mistakes: the values at the point itself.
-        vertex_light: vertex_vectors(p, Vec3::Z, params.lights.first_on(), params.camera.eye()).0,
-        vertex_half: vertex_vectors(p, Vec3::Z, params.lights.first_on(), params.camera.eye()).1,
-        emboss: None,
-        triangle_frame: None,
+        vertex_light,
+        vertex_half,
     };
-    shade(BumpKind::TangentSpace, material, &surface, params)
+    let material = &scene.materials[0];
+    shade(BumpKind::TangentSpace, material, &WallPoint { at, scene, material }, params)
+}
+
+/// A point of the wall as [`wall_chain`] reads it: a front face, no pixel grid (no
+/// derivatives: no parallax, the point's own frame for tangent-space lighting), the base
+/// colour, normal map (RGB, alpha 1) and gloss bilinear at mip 0 with repeat addressing.
+struct WallPoint<'a> {
+    at: Varyings,
+    scene: &'a Scene,
+    material: &'a Material,
+}
+
+impl Fragment for WallPoint<'_> {
+    fn varyings(&self) -> Varyings {
+        self.at
+    }
+
+    fn front_facing(&self) -> bool {
+        true
+    }
+
+    fn normal_matrix(&self) -> Mat3 {
+        Mat3::IDENTITY
+    }
+
+    fn derivatives<T: std::ops::Sub<Output = T> + Copy>(&self, _: impl Fn(&Varyings) -> T) -> Option<(T, T)> {
+        None
+    }
+
+    fn sample(&self, map: Map, uv: Vec2, _: Footprint) -> Option<Vec4> {
+        let texture = match map {
+            Map::BaseColor => self.material.base_color_texture,
+            Map::Bump => self.material.normal_map.as_ref().map(|m| m.texture),
+            Map::Gloss => self.material.gloss_texture,
+            _ => None,
+        };
+        texture.map(|t| sample_bilinear(&self.scene.textures[t], uv).extend(1.0))
+    }
+
+    fn size(&self, _: Map) -> Option<UVec2> {
+        None
+    }
 }
 
 /// A loaded scene is sane: per mesh, every position, normal, UV and supplied tangent finite,
