@@ -63,7 +63,8 @@ fn tangent_space_normal(texel: NormalSample, strength: f32, flags: u32) -> vec3<
     return normalize_or(scaled, vec3<f32>(0.0, 0.0, 1.0));
 }
 
-// shading::perturbed_normal (through mistakes.wgsl's tangent_to_world); `n` is the base
+// shading::tangent_space_normal, then shading::tangent_to_world (through mistakes.wgsl's
+// tangent_to_world, which holds the classic mistakes beside it); `n` is the base
 // normal, `flags` carries the map's convention bits.
 fn perturbed_normal(n: vec3<f32>, frame_tb: TangentFrame, texel: NormalSample, strength: f32, flags: u32) -> vec3<f32> {
     let nt = tangent_space_normal(texel, strength, flags);
