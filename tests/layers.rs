@@ -8,7 +8,7 @@ use std::path::Path;
 /// The library's top-level modules by layer, lowest first. A module may use a module only
 /// from a lower row: rows of one layer (the renderer and the probe, say) never use each other.
 const LAYERS: &[&[&str]] = &[
-    &["math", "error", "atomic", "counters", "names"],
+    &["math", "error", "atomic", "read", "counters", "names"],
     &["texture"],
     &["height"],
     &["scene"],

@@ -26,7 +26,8 @@ pub const MIN_SIDE: u32 = 2;
 /// Decodes the image file `path` (PNG, JPEG, TGA or BMP; TGA by extension), refusing sizes
 /// outside [`MIN_SIDE`]..=[`MAX_SIDE`] from the header.
 pub fn read_image(path: &Path) -> Result<DynamicImage, BakeError> {
-    let bytes = std::fs::read(path).map_err(|e| BakeError::new(path, format!("cannot read: {e}")))?;
+    let bytes = crate::read::read_file(path, crate::read::FileKind::Image)
+        .map_err(|e| BakeError::new(path, format!("cannot read: {e}")))?;
     let format = image::guess_format(&bytes)
         .ok()
         .or_else(|| ImageFormat::from_path(path).ok().filter(|&f| f == ImageFormat::Tga))

@@ -16,7 +16,7 @@ use glam::{Mat4, Vec3, Vec4};
 
 use super::gltf_mesh::{UvChoice, primitive_mesh};
 use super::image::decode_texture;
-use super::uri::{UriTarget, read_uri, resolve_uri};
+use super::uri::{NOT_PORTABLE_NOTE, UriTarget, read_uri, resolve_uri};
 use crate::error::{LoadError, LoadWarning};
 use crate::scene::{
     Clearcoat, Instance, Material, NormalMap, Occlusion, SamplerWrap, Scene, ShadingModel, TextureImage, TextureKind,
@@ -24,13 +24,19 @@ use crate::scene::{
 };
 
 /// Extensions a file may list in `extensionsRequired`.
-const SUPPORTED_REQUIRED: [&str; 3] = ["KHR_texture_transform", "KHR_mesh_quantization", "KHR_draco_mesh_compression"];
+const SUPPORTED_REQUIRED: [&str; 5] = [
+    "KHR_texture_transform",
+    "KHR_mesh_quantization",
+    "KHR_draco_mesh_compression",
+    "KHR_materials_clearcoat",
+    "KHR_materials_emissive_strength",
+];
 /// Blinn-Phong exponents a glTF roughness maps to.
 const SHININESS: std::ops::RangeInclusive<f32> = 1.0..=1024.0;
 
 /// Loads a `.gltf` or `.glb` file. The camera and light are left to the caller.
 pub fn load(path: &Path) -> Result<Scene, LoadError> {
-    let bytes = super::read_file(path, "glTF")?;
+    let bytes = super::read_file(path, crate::read::FileKind::Mesh, "glTF")?;
     let (document, blob) = parse(&bytes, path)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let mut warnings = vec![];
@@ -52,7 +58,9 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
             if data.len() < buffer.length() {
                 let problem =
                     format!("buffer {} should hold {} bytes but has {}", buffer.index(), buffer.length(), data.len());
-                return Err(LoadError::new(&source, format!("{problem} (truncated?)")));
+                let outside = warnings.iter().any(|w| matches!(w, LoadWarning::NotPortable { file, .. } if *file == source));
+                let note = if outside { format!("; {NOT_PORTABLE_NOTE}") } else { String::new() };
+                return Err(LoadError::new(&source, format!("{problem} (truncated?){note}")));
             }
             Ok((data, source))
         })
