@@ -199,7 +199,10 @@ mod tests {
         let existing = dir.join("d/old.png");
         std::fs::write(&existing, b"old").unwrap();
         let kept = check_outputs(&[&input], &[&existing], false).unwrap_err();
-        assert_eq!(kept.to_string(), format!("{}: exists and was kept: pass --force to replace it", existing.display()));
+        assert_eq!(
+            kept.to_string(),
+            format!("{}: exists and was kept: pass --force to replace it", existing.display())
+        );
         assert_eq!(check_outputs(&[&input], &[&existing], true), Ok(()));
         assert_eq!(check_outputs(&[&input], &[&dir.join("d/new.png")], false), Ok(()));
         #[cfg(unix)]

@@ -122,9 +122,13 @@ fn offset() -> impl Strategy<Value = u64> {
 }
 
 fn view() -> impl Strategy<Value = View> {
-    let stride = prop::sample::select(vec![None, None, Some(4), Some(8), Some(12), Some(16), Some(24), Some(252), Some(0)]);
-    (offset(), prop_oneof![3 => 0u64..260, 1 => Just(u64::MAX / 2)], stride)
-        .prop_map(|(offset, length, stride)| View { offset, length, stride })
+    let stride =
+        prop::sample::select(vec![None, None, Some(4), Some(8), Some(12), Some(16), Some(24), Some(252), Some(0)]);
+    (offset(), prop_oneof![3 => 0u64..260, 1 => Just(u64::MAX / 2)], stride).prop_map(|(offset, length, stride)| View {
+        offset,
+        length,
+        stride,
+    })
 }
 
 fn count() -> impl Strategy<Value = u64> {
@@ -159,15 +163,16 @@ fn accessor(views: usize) -> impl Strategy<Value = Accessor> {
 
 fn wiring(accessors: usize) -> impl Strategy<Value = Wiring> {
     let some = move || prop::option::of(0..accessors);
-    (0..accessors, some(), some(), some(), some(), prop::sample::select(vec![4u32, 4, 5, 6, 0]))
-        .prop_map(|(position, normal, texcoord, tangent, indices, mode)| Wiring {
+    (0..accessors, some(), some(), some(), some(), prop::sample::select(vec![4u32, 4, 5, 6, 0])).prop_map(
+        |(position, normal, texcoord, tangent, indices, mode)| Wiring {
             position,
             normal,
             texcoord,
             tangent,
             indices,
             mode,
-        })
+        },
+    )
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -181,7 +186,12 @@ fn rewired() -> impl Strategy<Value = (Vec<View>, Vec<Accessor>, Wiring, Vec<(us
         let n = views.len();
         prop::collection::vec(accessor(n), 1..6).prop_flat_map(move |accessors| {
             let m = accessors.len();
-            (Just(views.clone()), Just(accessors), wiring(m), prop::collection::vec((any::<usize>(), any::<u8>()), 0..4))
+            (
+                Just(views.clone()),
+                Just(accessors),
+                wiring(m),
+                prop::collection::vec((any::<usize>(), any::<u8>()), 0..4),
+            )
         })
     })
 }
@@ -204,7 +214,8 @@ proptest! {
 /// One triangle: 3 float positions (accessor 0) and indices 0, 1, 2 as accessor 1 of
 /// `component` type and type `kind`.
 fn triangle_with_indices(component: u32, kind: &'static str, normalized: bool) -> String {
-    let positions = Accessor { view: Some(0), offset: 0, component: 5126, normalized: false, count: 3, kind: "VEC3", sparse: None };
+    let positions =
+        Accessor { view: Some(0), offset: 0, component: 5126, normalized: false, count: 3, kind: "VEC3", sparse: None };
     let indices = Accessor { view: Some(1), offset: 0, component, normalized, count: 3, kind, sparse: None };
     let mut bytes: Vec<u8> = [0., 0., 0., 1., 0., 0., 0., 1., 0.].iter().flat_map(|f: &f32| f.to_le_bytes()).collect();
     let index_bytes: Vec<u8> = match component {
@@ -227,10 +238,30 @@ fn triangle_with_indices(component: u32, kind: &'static str, normalized: bool) -
 fn index_accessors_gltf_forbids_are_refused_naming_primitive_and_accessor() {
     let path = scratch("indices.gltf");
     for (component, kind, normalized, expected) in [
-        (5126, "SCALAR", false, "mesh #0: index accessor 1 has component type F32, which glTF does not allow for indices"),
-        (5120, "SCALAR", false, "mesh #0: index accessor 1 has component type I8, which glTF does not allow for indices"),
-        (5122, "SCALAR", false, "mesh #0: index accessor 1 has component type I16, which glTF does not allow for indices"),
-        (5121, "SCALAR", true, "mesh #0: index accessor 1 has normalised component type U8, which glTF does not allow for indices"),
+        (
+            5126,
+            "SCALAR",
+            false,
+            "mesh #0: index accessor 1 has component type F32, which glTF does not allow for indices",
+        ),
+        (
+            5120,
+            "SCALAR",
+            false,
+            "mesh #0: index accessor 1 has component type I8, which glTF does not allow for indices",
+        ),
+        (
+            5122,
+            "SCALAR",
+            false,
+            "mesh #0: index accessor 1 has component type I16, which glTF does not allow for indices",
+        ),
+        (
+            5121,
+            "SCALAR",
+            true,
+            "mesh #0: index accessor 1 has normalised component type U8, which glTF does not allow for indices",
+        ),
         (5125, "VEC3", false, "mesh #0: index accessor 1 has 3 components per element, 1 expected"),
     ] {
         std::fs::write(&path, triangle_with_indices(component, kind, normalized)).unwrap();

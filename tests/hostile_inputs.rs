@@ -118,7 +118,14 @@ fn no_command_writes_over_its_inputs_and_outputs_need_force() {
         args.extend(to_height.then_some("--to-height"));
         let output = bumpview(&args);
         assert_eq!(output.status.code(), Some(2), "{args:?}");
-        assert_eq!(ours(&output), [format!("bumpview: {}: is also an input ({}): refusing to write over it, nothing was written", a.display(), a.display())]);
+        assert_eq!(
+            ours(&output),
+            [format!(
+                "bumpview: {}: is also an input ({}): refusing to write over it, nothing was written",
+                a.display(),
+                a.display()
+            )]
+        );
     }
     let second = dir.join("a_normal.png");
     grey_png(&second);
@@ -136,7 +143,10 @@ fn no_command_writes_over_its_inputs_and_outputs_need_force() {
     std::fs::write(&out, b"kept").unwrap();
     let output = bumpview(&["bake", text(&a), "--out", text(&out)]);
     assert_eq!(output.status.code(), Some(2));
-    assert_eq!(ours(&output), [format!("bumpview: {}: exists and was kept: pass --force to replace it", out.display())]);
+    assert_eq!(
+        ours(&output),
+        [format!("bumpview: {}: exists and was kept: pass --force to replace it", out.display())]
+    );
     assert_eq!(std::fs::read(&out).unwrap(), b"kept");
     let output = bumpview(&["render", "--out", text(&out), "--size", "8x8"]);
     assert_eq!(output.status.code(), Some(2));

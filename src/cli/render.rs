@@ -7,7 +7,6 @@ use std::num::NonZeroU32;
 use std::path::{Path, PathBuf};
 
 use bumpview::atomic::check_outputs;
-
 use bumpview::error::{LoadWarning, escape_controls};
 use bumpview::frame::{
     FrameQuality, LegacyLook, LegacySettings, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS,

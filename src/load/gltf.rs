@@ -18,6 +18,7 @@ use super::gltf_mesh::{UvChoice, primitive_mesh};
 use super::image::decode_texture;
 use super::uri::{NOT_PORTABLE_NOTE, UriTarget, read_uri, resolve_uri};
 use crate::error::{LoadError, LoadWarning};
+use crate::read::FileKind;
 use crate::scene::{
     Clearcoat, Instance, Material, NormalMap, Occlusion, SamplerWrap, Scene, ShadingModel, TextureImage, TextureKind,
     Wrap,
@@ -36,7 +37,7 @@ const SHININESS: std::ops::RangeInclusive<f32> = 1.0..=1024.0;
 
 /// Loads a `.gltf` or `.glb` file. The camera and light are left to the caller.
 pub fn load(path: &Path) -> Result<Scene, LoadError> {
-    let bytes = super::read_file(path, crate::read::FileKind::Mesh, "glTF")?;
+    let bytes = super::read_file(path, FileKind::Mesh, "glTF")?;
     let (document, blob) = parse(&bytes, path)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let mut warnings = vec![];
@@ -53,12 +54,13 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
                     })?;
                     (blob, path.to_owned())
                 }
-                gltf::buffer::Source::Uri(uri) => read_uri(uri, base, path, "buffer", &mut warnings)?,
+                gltf::buffer::Source::Uri(uri) => read_uri(uri, base, path, FileKind::Buffer, &mut warnings)?,
             };
             if data.len() < buffer.length() {
                 let problem =
                     format!("buffer {} should hold {} bytes but has {}", buffer.index(), buffer.length(), data.len());
-                let outside = warnings.iter().any(|w| matches!(w, LoadWarning::NotPortable { file, .. } if *file == source));
+                let outside =
+                    warnings.iter().any(|w| matches!(w, LoadWarning::NotPortable { file, .. } if *file == source));
                 let note = if outside { format!("; {NOT_PORTABLE_NOTE}") } else { String::new() };
                 return Err(LoadError::new(&source, format!("{problem} (truncated?){note}")));
             }
@@ -396,7 +398,7 @@ impl Loader<'_> {
                 if let Some(file) = target.filter(|f| f != self.path && !self.scene.files.contains(f)) {
                     self.scene.files.push(file);
                 }
-                match read_uri(uri, self.base, self.path, "image", &mut self.scene.warnings) {
+                match read_uri(uri, self.base, self.path, FileKind::Image, &mut self.scene.warnings) {
                     Ok(read) => read,
                     Err(unreadable) => return Ok(Err(unreadable)),
                 }

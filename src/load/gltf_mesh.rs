@@ -107,10 +107,19 @@ pub fn primitive_mesh(
         Some(p) => p.into_iter().map(Vec3::from).collect(),
         None => return Err(LoadError::new(path, format!("{name}: a primitive has no POSITION attribute"))),
     };
-    mesh.normals = attribute!(Semantic::Normals, AccessorUse::Normals, 3).unwrap_or_default().into_iter().map(Vec3::from).collect();
-    mesh.uvs = attribute!(Semantic::TexCoords(uv.set), AccessorUse::TexCoords, 2).unwrap_or_default().into_iter().map(Vec2::from).collect();
+    mesh.normals = attribute!(Semantic::Normals, AccessorUse::Normals, 3)
+        .unwrap_or_default()
+        .into_iter()
+        .map(Vec3::from)
+        .collect();
+    mesh.uvs = attribute!(Semantic::TexCoords(uv.set), AccessorUse::TexCoords, 2)
+        .unwrap_or_default()
+        .into_iter()
+        .map(Vec2::from)
+        .collect();
     transform_uvs(&mut mesh.uvs, uv.offset, uv.rotation, uv.scale);
-    mesh.tangents = attribute!(Semantic::Tangents, AccessorUse::Tangents, 4).map(|t| t.into_iter().map(Vec4::from).collect());
+    mesh.tangents =
+        attribute!(Semantic::Tangents, AccessorUse::Tangents, 4).map(|t| t.into_iter().map(Vec4::from).collect());
     let list: Vec<u32> = match &draco {
         Some(decoded) => decoded.indices.clone(),
         None => match primitive.indices() {

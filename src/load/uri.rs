@@ -1,6 +1,8 @@
 //! The URIs a glTF file refers to its buffers and images by: base64 `data:` URIs, files
 //! relative to the glTF's folder (`%20` and other escapes decoded), absolute paths and `file:`
-//! URIs. Remote (`http:`, `https:`) and other schemes are never fetched.
+//! URIs (`file:///PATH` and `file://localhost/PATH` are `/PATH`; other hosts are refused). Remote
+//! (`http:`, `https:`) and other schemes are never fetched. Files are read bounded
+//! ([`crate::read`]).
 
 use std::path::{Path, PathBuf};
 
@@ -73,20 +75,21 @@ fn file_uri_path(rest: &str) -> Option<&str> {
 /// The note an error about a file outside the glTF's folder ends with.
 pub const NOT_PORTABLE_NOTE: &str = "it lies outside the model's folder: the model is not portable";
 
-/// The bytes a buffer or image URI points to and the file to name in errors; a file outside
-/// the glTF's folder adds a [`LoadWarning::NotPortable`] to `warnings`.
+/// The bytes a buffer or image URI points to (read as `kind`, [`read_file`]) and the file to
+/// name in errors; a file outside the glTF's folder adds a [`LoadWarning::NotPortable`] to
+/// `warnings`, and an error reading it ends with [`NOT_PORTABLE_NOTE`].
 pub fn read_uri(
     uri: &str,
     base: &Path,
     gltf_path: &Path,
-    what: &str,
+    kind: FileKind,
     warnings: &mut Vec<LoadWarning>,
 ) -> Result<(Vec<u8>, PathBuf), LoadError> {
+    let what = kind.name();
     let (path, outside) = match resolve_uri(uri, base, gltf_path, what)? {
         UriTarget::Data(bytes) => return Ok((bytes, gltf_path.to_owned())),
         UriTarget::File { path, outside } => (path, outside),
     };
-    let kind = if what == "image" { FileKind::Image } else { FileKind::Buffer };
     let bytes = read_file(&path, kind).map_err(|e| {
         let referrer = gltf_path.file_name().unwrap_or_default().to_string_lossy();
         let note = if outside { format!("; {NOT_PORTABLE_NOTE}") } else { String::new() };

@@ -188,7 +188,8 @@ impl Preset {
                 return Err(bad(key, &angle.to_string(), "a finite number of degrees"));
             }
         }
-        let triples = [("camera.target", c.target), ("light.position", self.light.position), ("light.color", self.light.color)];
+        let triples =
+            [("camera.target", c.target), ("light.position", self.light.position), ("light.color", self.light.color)];
         for (key, triple) in triples {
             if let Some(triple) = triple.filter(|t| !t.iter().all(|v| v.is_finite())) {
                 return Err(bad(key, &format!("{triple:?}"), "three finite numbers"));
