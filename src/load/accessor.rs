@@ -19,6 +19,8 @@ pub enum AccessorProblem {
     Components { expected: usize, found: usize },
     /// Its component type (normalised or not) is not one glTF allows for the use.
     ComponentType { data_type: DataType, normalized: bool, use_: AccessorUse },
+    /// A count of 0 (glTF requires at least 1).
+    Empty,
     /// Neither a buffer view nor sparse values.
     NoData,
     /// Without a buffer view, more elements than the largest buffer read could hold.
@@ -49,6 +51,7 @@ impl std::fmt::Display for AccessorProblem {
                 let normalized = if *normalized { "normalised " } else { "" };
                 write!(f, "has {normalized}component type {data_type:?}, which glTF does not allow for {}", use_.name())
             }
+            AccessorProblem::Empty => write!(f, "has a count of 0 (glTF requires at least 1)"),
             AccessorProblem::NoData => write!(f, "has neither a bufferView nor sparse values"),
             AccessorProblem::TooMany { count } => {
                 write!(f, "has {count} elements and no bufferView: more than a buffer read here could hold")
@@ -92,9 +95,6 @@ where
     let found = accessor.dimensions().multiplicity();
     if found != N {
         return Err(AccessorProblem::Components { expected: N, found });
-    }
-    if accessor.count() == 0 {
-        return Ok(vec![]);
     }
     let normalized = accessor.normalized();
     let get = |buffer: gltf::Buffer| buffers.get(buffer.index()).map(Vec::as_slice);

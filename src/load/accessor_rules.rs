@@ -15,7 +15,7 @@
 //! | TANGENT  | VEC4   | not norm. | signed, normalised           | —            |
 //! | TEXCOORD | VEC2   | not norm. | either                       | —            |
 //!
-//! Layout (§3.6.2.4, §3.6.2.3): the offset is a multiple of the component size, in the view
+//! Layout (§3.6.2.4, §3.6.2.3): a count of at least 1; the offset is a multiple of the component size, in the view
 //! and in the buffer; a view's stride is at least one element; every element (and every
 //! sparse index and value) lies inside its view and the view inside its buffer's bytes;
 //! sparse indices are unsigned, strictly increasing and below the accessor's count.
@@ -75,8 +75,7 @@ impl AccessorUse {
 }
 
 /// Checks accessor `index` of `root` for `use_` against the rules of the module doc, with
-/// `buffers` the bytes of the document's buffers. An accessor of count 0 passes (it holds
-/// nothing to read).
+/// `buffers` the bytes of the document's buffers.
 pub fn check_accessor(
     root: &gltf::json::Root,
     index: usize,
@@ -97,7 +96,7 @@ pub fn check_accessor(
     }
     let count = accessor.count.0;
     if count == 0 {
-        return Ok(());
+        return Err(AccessorProblem::Empty);
     }
     let element = (data_type.size() * dimensions.multiplicity()) as u64;
     let offset = accessor.byte_offset.map_or(0, |o| o.0);

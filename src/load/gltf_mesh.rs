@@ -128,9 +128,11 @@ pub fn primitive_mesh(
                 let index = accessor.index();
                 check_accessor(document.as_json(), index, AccessorUse::Indices, buffers)
                     .map_err(|p| LoadError::new(path, format!("{name}: index accessor {index} {p}")))?;
-                // (The reader underflows on a count of 0: it is not asked then.)
-                let indices = (accessor.count() > 0).then(|| reader.read_indices()).flatten();
-                indices.map_or_else(Vec::new, |i| i.into_u32().collect())
+                let indices = reader.read_indices();
+                indices
+                    .ok_or_else(|| LoadError::new(path, format!("{name}: index accessor {index} has no data")))?
+                    .into_u32()
+                    .collect()
             }
             None => (0..mesh.positions.len() as u32).collect(),
         },
