@@ -181,7 +181,10 @@ fn scratch(name: &str) -> PathBuf {
     dir.join(name)
 }
 
-fn rewired() -> impl Strategy<Value = (Vec<View>, Vec<Accessor>, Wiring, Vec<(usize, u8)>)> {
+/// A random document: views, accessors, what the primitive reads, and bytes to overwrite.
+type Document = (Vec<View>, Vec<Accessor>, Wiring, Vec<(usize, u8)>);
+
+fn rewired() -> impl Strategy<Value = Document> {
     prop::collection::vec(view(), 1..4).prop_flat_map(|views| {
         let n = views.len();
         prop::collection::vec(accessor(n), 1..6).prop_flat_map(move |accessors| {

@@ -167,7 +167,7 @@ fn check_run<'b>(
     if stride < element {
         return Err(AccessorProblem::Stride { stride, element });
     }
-    if offset % component != 0 || view_offset.wrapping_add(offset) % component != 0 {
+    if !offset.is_multiple_of(component) || !view_offset.wrapping_add(offset).is_multiple_of(component) {
         return Err(AccessorProblem::Misaligned { offset, component });
     }
     let buffer = buffers.get(view.buffer.value()).ok_or(AccessorProblem::Missing)?;
