@@ -392,3 +392,27 @@ fn index_accessors_gltf_forbids_are_refused_naming_primitive_and_accessor() {
         assert_eq!(scene.meshes[0].indices, [0, 1, 2], "{component}");
     }
 }
+
+/// A sparse accessor without a bufferView is `count` zeros under its sparse values: 2^40 of
+/// them (4 TiB once read as floats) are refused from the JSON, before anything is allocated.
+#[test]
+fn a_sparse_accessor_without_a_view_is_bounded() {
+    let path = scratch("sparse.gltf");
+    let positions = Accessor {
+        view: None,
+        offset: 0,
+        component: 5126,
+        normalized: false,
+        count: 1 << 40,
+        kind: "VEC3",
+        sparse: Some(Sparse { count: 1, indices: (1, 0, 5121), values: (0, 0) }),
+    };
+    let mut bytes: Vec<u8> = [0f32, 1., 0.].iter().flat_map(|f| f.to_le_bytes()).collect();
+    bytes.extend([0, 0, 0, 0]);
+    let views = [View { offset: 0, length: 12, stride: None }, View { offset: 12, length: 1, stride: None }];
+    let wiring = Wiring { position: 0, normal: None, texcoord: None, tangent: None, indices: None, mode: 4 };
+    std::fs::write(&path, document(&views, &[positions], &wiring, &bytes)).unwrap();
+    let message = load_scene(&path).map(|_| ()).unwrap_err().to_string();
+    let problem = "has 1099511627776 elements and no bufferView: more than the 1024 MiB a buffer may hold once read";
+    assert_eq!(message, format!("{}: mesh #0: accessor 0 (Positions) {problem}", path.display()));
+}

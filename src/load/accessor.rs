@@ -7,6 +7,7 @@
 use gltf::accessor::{DataType, Item, Iter};
 
 use super::accessor_rules::{AccessorUse, check_accessor};
+use crate::read::FileKind;
 
 /// Why an accessor cannot be read for its use ([`super::accessor_rules`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -23,7 +24,7 @@ pub enum AccessorProblem {
     Empty,
     /// Neither a buffer view nor sparse values.
     NoData,
-    /// Without a buffer view, more elements than the largest buffer read could hold.
+    /// Without a buffer view, more elements than fit in a buffer's cap once read as floats.
     TooMany { count: u64 },
     /// Its buffer view's stride is shorter than one element.
     Stride { stride: u64, element: u64 },
@@ -54,7 +55,8 @@ impl std::fmt::Display for AccessorProblem {
             AccessorProblem::Empty => write!(f, "has a count of 0 (glTF requires at least 1)"),
             AccessorProblem::NoData => write!(f, "has neither a bufferView nor sparse values"),
             AccessorProblem::TooMany { count } => {
-                write!(f, "has {count} elements and no bufferView: more than a buffer read here could hold")
+                let mib = FileKind::Buffer.cap() >> 20;
+                write!(f, "has {count} elements and no bufferView: more than the {mib} MiB a buffer may hold once read")
             }
             AccessorProblem::Stride { stride, element } => {
                 write!(f, "has a byteStride of {stride} bytes, shorter than its {element}-byte elements")

@@ -104,9 +104,10 @@ pub fn check_accessor(
         Some(view) => {
             check_run(root, view.value(), offset, count, element, data_type.size() as u64, buffers)?;
         }
-        // No view: `count` zeros (under sparse values), bounded like a buffer-backed accessor.
+        // No view: `count` zeros under the sparse values, read as 4-byte numbers (floats or
+        // u32 indices): at most a buffer's cap of them, however small the file.
         None if accessor.sparse.is_some() => {
-            if count > FileKind::Buffer.cap() / element {
+            if count > FileKind::Buffer.cap() / (4 * dimensions.multiplicity() as u64) {
                 return Err(AccessorProblem::TooMany { count });
             }
         }
