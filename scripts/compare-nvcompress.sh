@@ -55,7 +55,7 @@ timed() {
 }
 
 for ((i = 0; i < runs; i++)); do
-    timed "$work/bumpview.times" "$bumpview" bake "$input" --out "$work/normal.png"
+    timed "$work/bumpview.times" "$bumpview" bake "$input" --out "$work/normal.png" --force
     timed "$work/nvcompress.times" nvcompress -tonormal -repeat -nomips -rgb "$input" "$work/normal.dds"
 done
 

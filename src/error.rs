@@ -82,3 +82,29 @@ pub enum PresetSceneError {
     #[error(transparent)]
     Load(#[from] LoadError),
 }
+
+/// `text` with every control character (ESC, newline, DEL, C1 controls…) written as Rust
+/// escapes it, `\u{1b}`: text from files (names, URIs, paths) printed to a terminal, which
+/// would otherwise act on its escape sequences. Idempotent: the result has no control
+/// characters.
+pub fn escape_controls(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.chars().any(char::is_control) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let escaped =
+        text.chars().map(|c| if c.is_control() { format!("\\u{{{:x}}}", c as u32) } else { c.to_string() }).collect();
+    std::borrow::Cow::Owned(escaped)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::escape_controls;
+
+    #[test]
+    fn control_characters_are_escaped_and_the_rest_kept() {
+        assert_eq!(escape_controls("a\u{1b}[31mred\nb\u{7f}\u{9b}é"), "a\\u{1b}[31mred\\u{a}b\\u{7f}\\u{9b}é");
+        assert_eq!(escape_controls("plain ünïcode"), "plain ünïcode");
+        let once = escape_controls("\u{1b}]0;title\u{7}").into_owned();
+        assert_eq!(escape_controls(&once), once);
+    }
+}

@@ -49,6 +49,7 @@ pub mod math;
 pub mod names;
 pub mod prepare;
 pub mod probe;
+pub mod read;
 pub mod render;
 pub mod report;
 pub mod scene;

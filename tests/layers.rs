@@ -14,7 +14,7 @@ use std::path::Path;
 /// its layer. A module may use a module only from a lower row: modules of one row (the
 /// renderer and the probe, say) never use each other.
 const LAYERS: &[(&str, &[&str])] = &[
-    ("data", &["math", "error", "atomic", "counters", "names"]),
+    ("data", &["math", "error", "atomic", "read", "counters", "names"]),
     ("data", &["texture"]),
     ("data", &["height"]),
     ("data", &["scene"]),

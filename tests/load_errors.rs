@@ -207,7 +207,7 @@ fn render_draws_a_mesh_file_or_fails_with_the_loaders_one_line() {
     assert_eq!(image::open(&out).unwrap().width(), 64);
 
     std::fs::write(dir.join("broken.gltf"), "{").unwrap();
-    let output = run(&["render", "--out", out_arg, dir.join("broken.gltf").to_str().unwrap()]);
+    let output = run(&["render", "--force", "--out", out_arg, dir.join("broken.gltf").to_str().unwrap()]);
     assert!(!output.status.success());
     let stderr = String::from_utf8_lossy(&output.stderr);
     let lines: Vec<&str> = stderr.lines().filter(|l| l.starts_with("bumpview:")).collect();

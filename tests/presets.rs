@@ -94,6 +94,7 @@ fn a_saved_state_renders_the_same_pixels_as_the_flags_and_again() {
         &s(&saved),
         "--out",
         &s(&normal),
+        "--force",
     ]);
     let text = std::fs::read_to_string(&saved).unwrap();
     assert!(text.contains("view = \"normal\"") && text.contains("tangents = \"per-face\""), "{text}");

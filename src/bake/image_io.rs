@@ -47,7 +47,8 @@ pub fn read_image_admitted(
     path: &Path,
     admit: impl FnOnce(&Header) -> Result<(), BakeError>,
 ) -> Result<DynamicImage, BakeError> {
-    let bytes = std::fs::read(path).map_err(|e| BakeError::new(path, format!("cannot read: {e}")))?;
+    let bytes = crate::read::read_file(path, crate::read::FileKind::Image)
+        .map_err(|e| BakeError::new(path, format!("cannot read: {e}")))?;
     let format = image::guess_format(&bytes)
         .ok()
         .or_else(|| ImageFormat::from_path(path).ok().filter(|&f| f == ImageFormat::Tga))

@@ -160,6 +160,15 @@ fn pair<T>(sides: [&str; 2], parse: impl Fn(&str) -> Result<T, String>) -> Resul
     Ok([parse(sides[0])?, parse(sides[1])?])
 }
 
+/// A finite number above zero.
+pub fn parse_positive(text: &str) -> Result<f32, String> {
+    text.trim()
+        .parse::<f32>()
+        .ok()
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .ok_or_else(|| format!("{text:?}: expected a number above 0"))
+}
+
 pub fn parse_finite(text: &str) -> Result<f32, String> {
     text.trim()
         .parse::<f32>()
@@ -182,6 +191,8 @@ mod tests {
         assert_eq!(parse_vec3("1, -2,3.5"), Ok(Vec3::new(1.0, -2.0, 3.5)));
         assert!(parse_vec3("1,2").is_err() && parse_vec3("1,2,nan").is_err());
         assert!(parse_finite("inf").is_err());
+        assert_eq!(parse_positive("0.02"), Ok(0.02));
+        assert!(parse_positive("0").is_err() && parse_positive("-1").is_err() && parse_positive("nan").is_err());
         assert_eq!(parse_pixel("400, 300"), Ok([400, 300]));
         assert!(parse_pixel("400").is_err() && parse_pixel("-1,2").is_err());
     }

@@ -1,7 +1,10 @@
 //! `bumpview bake`: height maps to tangent-space normal map PNGs, or normal maps back to
 //! height maps (`--to-height`), many files in parallel ([`bumpview::bake`]).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+
+use bumpview::atomic::check_outputs;
+use bumpview::error::escape_controls;
 
 use bumpview::bake::{BakeOptions, Direction, TexelSize, Units, bake_all, plan_outputs};
 use bumpview::height::rows::Channels;
@@ -9,6 +12,7 @@ use bumpview::height::{Border, Kernel};
 use bumpview::scene::GreenAxis;
 
 use super::{Failure, args, progress};
+use args::parse_positive;
 
 #[derive(clap::Args)]
 pub struct BakeArgs {
@@ -68,15 +72,10 @@ pub struct BakeArgs {
     /// (8 bytes a texel, 16 with --border clamp, plus the decoded image) [default: 4096].
     #[arg(long, value_name = "MIB", requires = "to_height", value_parser = clap::value_parser!(u64).range(1..=1 << 24))]
     max_memory: Option<u64>,
-}
-
-/// A finite number above zero.
-fn parse_positive(text: &str) -> Result<f32, String> {
-    text.trim()
-        .parse::<f32>()
-        .ok()
-        .filter(|v| v.is_finite() && *v > 0.0)
-        .ok_or_else(|| format!("{text:?}: expected a number above 0"))
+    /// Replace outputs that exist (without it, an existing output is kept and nothing is
+    /// baked). An input is never written over, even with --force.
+    #[arg(long)]
+    force: bool,
 }
 
 impl BakeArgs {
@@ -115,15 +114,19 @@ impl BakeArgs {
 
 /// Bakes every input, files in parallel, with a progress bar on a terminal; one line per
 /// file written (stdout) or failed (stderr; a single input's failure is the one line).
-/// Fails (exit 1) when any file failed.
+/// Fails (exit 1) when any file failed; an output that is an input, or that exists without
+/// `--force`, is a bad `--out` (exit 2) found before any file is read.
 pub fn run(args: &BakeArgs) -> Result<(), Failure> {
     let direction = if args.to_height { Direction::ToHeight } else { Direction::ToNormal };
     let outputs = plan_outputs(&args.inputs, &args.out, direction).map_err(|e| Failure::Failed(e.to_string()))?;
+    let inputs: Vec<&Path> = args.inputs.iter().map(PathBuf::as_path).collect();
+    let planned: Vec<&Path> = outputs.iter().map(PathBuf::as_path).collect();
+    check_outputs(&inputs, &planned, args.force).map_err(|e| Failure::BadArguments(e.to_string()))?;
     let pairs: Vec<_> = args.inputs.iter().cloned().zip(outputs).collect();
     let bar = progress::bar(pairs.len() as u64, "bake");
     let results = bake_all(&pairs, direction, &args.options(), &|result| {
         if let Ok(baked) = result {
-            bar.set_message(baked.output.display().to_string());
+            bar.set_message(escape_controls(&baked.output.display().to_string()).into_owned());
         }
         bar.inc(1);
     });
@@ -139,10 +142,11 @@ pub fn run(args: &BakeArgs) -> Result<(), Failure> {
                     let clipped = if clipped > 0 { format!(", {clipped} texels clipped") } else { String::new() };
                     format!(", relief {relief:.3} of the full range{clipped}")
                 });
-                println!("wrote {} ({}x{}{relief})", baked.output.display(), baked.width, baked.height);
+                let output = baked.output.display().to_string();
+                println!("wrote {} ({}x{}{relief})", escape_controls(&output), baked.width, baked.height);
             }
             Err(error) => {
-                eprintln!("bumpview: {error}");
+                eprintln!("bumpview: {}", escape_controls(&error.to_string()));
                 failed += 1;
             }
         }

@@ -4,6 +4,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use bumpview::check::{Severity, check_scene};
+use bumpview::error::escape_controls;
 use bumpview::load::{is_image_path, load_scene, texture_scene};
 use bumpview::scene::{MaterialOverrides, NormalLayout};
 
@@ -27,7 +28,7 @@ pub struct CheckArgs {
 pub fn run(args: &CheckArgs) -> ExitCode {
     let mut worst = Severity::Clean;
     for path in &args.files {
-        println!("{}", path.display());
+        println!("{}", escape_controls(&path.display().to_string()));
         let loaded = if is_image_path(path) { texture_scene(path) } else { load_scene(path) };
         let severity = match loaded {
             Ok(scene) => {
@@ -36,11 +37,12 @@ pub fn run(args: &CheckArgs) -> ExitCode {
                 if args.normal_layout.is_some() {
                     report.normal_maps.iter_mut().for_each(|m| m.layout_reason = "given by --normal-layout".into());
                 }
-                print!("{}", report.to_text());
+                // Names and paths in it come from the files.
+                report.to_text().lines().for_each(|line| println!("{}", escape_controls(line)));
                 report.severity()
             }
             Err(e) => {
-                println!("  error: {e}");
+                println!("  error: {}", escape_controls(&e.to_string()));
                 Severity::Error
             }
         };

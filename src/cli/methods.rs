@@ -47,7 +47,7 @@ pub struct MaterialArgs {
     #[arg(long)]
     pub depth_map: bool,
     /// Metres spanned by a height map's full range (world units).
-    #[arg(long, value_name = "METRES", value_parser = args::parse_finite)]
+    #[arg(long, value_name = "METRES", value_parser = args::parse_positive)]
     pub height_range: Option<f32>,
     /// Height→normal kernel for every height map (re-makes its normal map). `--kernel` only
     /// makes the built-in brick map.

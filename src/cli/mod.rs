@@ -19,7 +19,7 @@ mod viewer;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use bumpview::error::{PresetError, PresetSceneError, RenderError};
+use bumpview::error::{PresetError, PresetSceneError, RenderError, escape_controls};
 use clap::{Parser, Subcommand};
 
 #[derive(Parser)]
@@ -64,7 +64,8 @@ enum Command {
 }
 
 /// Why a command failed: its arguments (exit status 2, as for flags clap rejects) or the
-/// work itself (exit status 1). Either is one line on stderr.
+/// work itself (exit status 1). Either is one line on stderr, control characters escaped
+/// ([`escape_controls`]: the message may quote text from files).
 pub enum Failure {
     BadArguments(String),
     Failed(String),
@@ -101,11 +102,11 @@ pub fn run(mut cli: Cli) -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failure::BadArguments(message)) => {
-            eprintln!("bumpview: {message}");
+            eprintln!("bumpview: {}", escape_controls(&message));
             ExitCode::from(2)
         }
         Err(Failure::Failed(message)) => {
-            eprintln!("bumpview: {message}");
+            eprintln!("bumpview: {}", escape_controls(&message));
             ExitCode::FAILURE
         }
     }

@@ -4,15 +4,16 @@
 //! get the same clamps.
 
 use std::num::NonZeroU32;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
-use bumpview::error::LoadWarning;
+use bumpview::atomic::check_outputs;
+use bumpview::error::{LoadWarning, escape_controls};
 use bumpview::frame::{
     FrameQuality, LegacyLook, LegacySettings, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS,
-    Mistake, Parallax, SceneUploads, ViewMode,
+    Mistake, Parallax, SceneUploads, ShadingSettings, ViewMode,
 };
 use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
-use bumpview::render::export::{TileGrid, caption, render_grid};
+use bumpview::render::export::{MAX_EXPORT_PIXELS, TileGrid, caption, render_grid};
 use bumpview::render::timing::{TimedPicture, time_frames};
 use bumpview::render::{Gpu, Renderer};
 use bumpview::state::interactive::InteractiveQuality;
@@ -28,6 +29,14 @@ use super::start::{Started, start};
 
 /// `render`'s size when neither `--size` nor the preset gives one.
 pub const DEFAULT_RENDER_SIZE: [u32; 2] = [1280, 720];
+
+/// The most frames `--frames` times without `--no-budget`: about 110 s of frame and floor
+/// pairs at 1280x720 on lavapipe (58 + 52 ms a pair), well under a second on a desktop GPU.
+pub const MAX_FRAMES: u32 = 1000;
+
+/// The most tiles `--grid` draws without `--no-budget`: an 8x8 grid; each tile is a full
+/// render (and a caption).
+pub const MAX_TILES: usize = 64;
 
 #[derive(clap::Args)]
 pub struct RenderArgs {
@@ -154,6 +163,14 @@ pub struct RenderArgs {
     /// drawing it without and warning on stderr.
     #[arg(long)]
     strict: bool,
+    /// Replace --out (and --save-preset) when it exists; without it an existing file is kept
+    /// and nothing is drawn. An input is never written over, even with --force.
+    #[arg(long)]
+    force: bool,
+    /// Lift the work budgets: at most 1000 --frames and 64 tiles per --grid. (The pixels of
+    /// an export stay limited to 2^28, 1 GiB of RGBA.)
+    #[arg(long)]
+    no_budget: bool,
     #[command(flatten)]
     lights: LightArgs,
     #[command(flatten)]
@@ -236,6 +253,53 @@ impl RenderArgs {
         })
     }
 
+    /// The PNG to write: `--out`, else the preset's path with `.png`; `None` with `--frames`.
+    fn out_path(&self) -> Option<PathBuf> {
+        match (&self.out, &self.preset) {
+            _ if self.frames.is_some() => None,
+            (Some(out), _) => Some(out.clone()),
+            (None, Some(preset)) => Some(preset.with_extension("png")),
+            (None, None) => None,
+        }
+    }
+
+    /// Every file this command writes: the PNG and the `--save-preset` file.
+    fn outputs(&self) -> Vec<PathBuf> {
+        self.out_path().into_iter().chain(self.save_preset.clone()).collect()
+    }
+
+    /// Refuses, before any work, more frames or tiles than the budgets ([`MAX_FRAMES`],
+    /// [`MAX_TILES`]; lifted by `--no-budget`) and an export of more than
+    /// [`MAX_EXPORT_PIXELS`] pixels drawn (size × supersampling² × tiles), naming the limit.
+    fn budget(&self, capture: &CapturePreset) -> Result<(), Failure> {
+        let bad = |message: String| Err(Failure::BadArguments(message));
+        if let Some(frames) = self.frames.filter(|f| f.get() > MAX_FRAMES && !self.no_budget) {
+            return bad(format!("--frames {frames}: at most {MAX_FRAMES} frames are timed (--no-budget lifts this)"));
+        }
+        // The tile count from the spec alone (tiles' shading is made once the scene is read).
+        let tiles = match (&self.grid, self.row) {
+            (Some(spec), _) if !spec.is_empty() => {
+                let grid = TileGrid::parse(spec, &ShadingSettings::default());
+                grid.map_err(|e| Failure::BadArguments(format!("--grid {e}")))?.tiles.len()
+            }
+            (Some(_), _) => TileGrid::default_grid(&ShadingSettings::default()).tiles.len(),
+            (None, true) => TileGrid::default_row(&ShadingSettings::default()).tiles.len(),
+            (None, false) => 1,
+        };
+        if tiles > MAX_TILES && !self.no_budget {
+            return bad(format!("--grid of {tiles} tiles: at most {MAX_TILES} are drawn (--no-budget lifts this)"));
+        }
+        if let Some([width, height]) = capture.size {
+            let k = u64::from(capture.supersample);
+            let pixels = u64::from(width) * u64::from(height) * k * k * tiles as u64;
+            if pixels > MAX_EXPORT_PIXELS {
+                let what = format!("{width}x{height}, {tiles} tile(s), supersampled {k}x");
+                return bad(format!("{what} is {pixels} pixels to draw, over the limit of {MAX_EXPORT_PIXELS}"));
+            }
+        }
+        Ok(())
+    }
+
     /// The screenshot settings: the flags over the preset's.
     fn capture(&self, preset: CapturePreset) -> CapturePreset {
         CapturePreset {
@@ -247,15 +311,26 @@ impl RenderArgs {
     }
 }
 
-/// Draws the picture and writes the PNG (and the preset, with `--save-preset`).
+/// Draws the picture and writes the PNG (and the preset, with `--save-preset`). The work
+/// asked for and the outputs are checked before any file but the preset is read
+/// ([`RenderArgs::budget`], [`RenderArgs::outputs`]).
 pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let preset = match &args.preset {
         Some(path) => Preset::load(path)?,
         None => Preset::default(),
     };
+    args.budget(&args.capture(preset.capture))?;
+    let outputs = args.outputs();
+    let outputs: Vec<&Path> = outputs.iter().map(PathBuf::as_path).collect();
+    let given = args.inputs.files().over(preset.files.clone());
+    let inputs: Vec<&Path> = given.paths().into_iter().chain(args.preset.as_deref()).collect();
+    check_outputs(&inputs, &outputs, args.force).map_err(|e| Failure::BadArguments(e.to_string()))?;
     let Started { files, capture, scene, mut state } = start(preset, args.inputs.files(), &args.methods)?;
+    // The files the model refers to (its buffers and textures), known once it is read.
+    let referred: Vec<&Path> = scene.files.iter().map(PathBuf::as_path).collect();
+    check_outputs(&referred, &outputs, true).map_err(|e| Failure::BadArguments(e.to_string()))?;
     for warning in &scene.warnings {
-        eprintln!("bumpview: warning: {warning}");
+        eprintln!("bumpview: warning: {}", escape_controls(&warning.to_string()));
     }
     let unreadable = scene.warnings.iter().filter(|w| matches!(w, LoadWarning::UnreadableTexture { .. })).count();
     if args.strict && unreadable > 0 {
@@ -277,10 +352,8 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         let size = capture.size.unwrap_or(DEFAULT_RENDER_SIZE);
         return time(&scene, &state, size, frames, args.interactive);
     }
-    let out = match (&args.out, &args.preset) {
-        (Some(out), _) => out.clone(),
-        (None, Some(preset)) => preset.with_extension("png"),
-        (None, None) => unreachable!("clap requires --out without --preset or --frames"),
+    let Some(out) = args.out_path() else {
+        unreachable!("clap requires --out without --preset or --frames");
     };
     let gpu = Gpu::headless()?;
     let mut renderer = Renderer::from_gpu(&gpu);

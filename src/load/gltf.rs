@@ -16,21 +16,28 @@ use glam::{Mat4, Vec3, Vec4};
 
 use super::gltf_mesh::{UvChoice, primitive_mesh};
 use super::image::decode_texture;
-use super::uri::{UriTarget, read_uri, resolve_uri};
+use super::uri::{NOT_PORTABLE_NOTE, UriTarget, read_uri, resolve_uri};
 use crate::error::{LoadError, LoadWarning};
+use crate::read::FileKind;
 use crate::scene::{
     Clearcoat, Instance, Material, NormalMap, Occlusion, SamplerWrap, Scene, ShadingModel, TextureImage, TextureKind,
     Wrap,
 };
 
 /// Extensions a file may list in `extensionsRequired`.
-const SUPPORTED_REQUIRED: [&str; 3] = ["KHR_texture_transform", "KHR_mesh_quantization", "KHR_draco_mesh_compression"];
+const SUPPORTED_REQUIRED: [&str; 5] = [
+    "KHR_texture_transform",
+    "KHR_mesh_quantization",
+    "KHR_draco_mesh_compression",
+    "KHR_materials_clearcoat",
+    "KHR_materials_emissive_strength",
+];
 /// Blinn-Phong exponents a glTF roughness maps to.
 const SHININESS: std::ops::RangeInclusive<f32> = 1.0..=1024.0;
 
 /// Loads a `.gltf` or `.glb` file. The camera and light are left to the caller.
 pub fn load(path: &Path) -> Result<Scene, LoadError> {
-    let bytes = super::read_file(path, "glTF")?;
+    let bytes = super::read_file(path, FileKind::Mesh, "glTF")?;
     let (document, blob) = parse(&bytes, path)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let mut warnings = vec![];
@@ -47,12 +54,15 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
                     })?;
                     (blob, path.to_owned())
                 }
-                gltf::buffer::Source::Uri(uri) => read_uri(uri, base, path, "buffer", &mut warnings)?,
+                gltf::buffer::Source::Uri(uri) => read_uri(uri, base, path, FileKind::Buffer, &mut warnings)?,
             };
             if data.len() < buffer.length() {
                 let problem =
                     format!("buffer {} should hold {} bytes but has {}", buffer.index(), buffer.length(), data.len());
-                return Err(LoadError::new(&source, format!("{problem} (truncated?)")));
+                let outside =
+                    warnings.iter().any(|w| matches!(w, LoadWarning::NotPortable { file, .. } if *file == source));
+                let note = if outside { format!("; {NOT_PORTABLE_NOTE}") } else { String::new() };
+                return Err(LoadError::new(&source, format!("{problem} (truncated?){note}")));
             }
             Ok((data, source))
         })
@@ -388,7 +398,7 @@ impl Loader<'_> {
                 if let Some(file) = target.filter(|f| f != self.path && !self.scene.files.contains(f)) {
                     self.scene.files.push(file);
                 }
-                match read_uri(uri, self.base, self.path, "image", &mut self.scene.warnings) {
+                match read_uri(uri, self.base, self.path, FileKind::Image, &mut self.scene.warnings) {
                     Ok(read) => read,
                     Err(unreadable) => return Ok(Err(unreadable)),
                 }

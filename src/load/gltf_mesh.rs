@@ -10,6 +10,7 @@ use gltf::json::Value;
 use gltf::mesh::{Mode, Semantic};
 
 use super::accessor::read_vectors;
+use super::accessor_rules::{AccessorUse, check_accessor};
 use super::draco;
 use super::mesh_ops::{check, transform_uvs, with_flat_normals};
 use crate::error::LoadError;
@@ -84,7 +85,7 @@ pub fn primitive_mesh(
     };
     // Each attribute: from the Draco stream when the primitive is compressed, else its accessor.
     macro_rules! attribute {
-        ($semantic:expr, $n:literal) => {{
+        ($semantic:expr, $use:expr, $n:literal) => {{
             let semantic = $semantic;
             match (&draco, primitive.get(&semantic)) {
                 (Some(decoded), Some(_)) => decoded.attribute::<$n>(&semantic).map(Some).map_err(|p| {
@@ -93,7 +94,7 @@ pub fn primitive_mesh(
                 (None, Some(accessor)) => {
                     let index = accessor.index();
                     Some(
-                        read_vectors::<$n>(accessor, buffers).map_err(|p| {
+                        read_vectors::<$n>(document, accessor, $use, buffers).map_err(|p| {
                             LoadError::new(path, format!("{name}: accessor {index} ({semantic:?}) {p}"))
                         })?,
                     )
@@ -102,20 +103,36 @@ pub fn primitive_mesh(
             }
         }};
     }
-    mesh.positions = match attribute!(Semantic::Positions, 3) {
+    mesh.positions = match attribute!(Semantic::Positions, AccessorUse::Positions, 3) {
         Some(p) => p.into_iter().map(Vec3::from).collect(),
         None => return Err(LoadError::new(path, format!("{name}: a primitive has no POSITION attribute"))),
     };
-    mesh.normals = attribute!(Semantic::Normals, 3).unwrap_or_default().into_iter().map(Vec3::from).collect();
-    mesh.uvs = attribute!(Semantic::TexCoords(uv.set), 2).unwrap_or_default().into_iter().map(Vec2::from).collect();
+    mesh.normals = attribute!(Semantic::Normals, AccessorUse::Normals, 3)
+        .unwrap_or_default()
+        .into_iter()
+        .map(Vec3::from)
+        .collect();
+    mesh.uvs = attribute!(Semantic::TexCoords(uv.set), AccessorUse::TexCoords, 2)
+        .unwrap_or_default()
+        .into_iter()
+        .map(Vec2::from)
+        .collect();
     transform_uvs(&mut mesh.uvs, uv.offset, uv.rotation, uv.scale);
-    mesh.tangents = attribute!(Semantic::Tangents, 4).map(|t| t.into_iter().map(Vec4::from).collect());
+    mesh.tangents =
+        attribute!(Semantic::Tangents, AccessorUse::Tangents, 4).map(|t| t.into_iter().map(Vec4::from).collect());
     let list: Vec<u32> = match &draco {
         Some(decoded) => decoded.indices.clone(),
-        None => match reader.read_indices() {
-            Some(i) => i.into_u32().collect(),
-            None if primitive.indices().is_some() => {
-                return Err(LoadError::new(path, format!("{name}: the index accessor lies outside its buffer")));
+        None => match primitive.indices() {
+            // The rules first: the gltf crate's index reader panics on what glTF forbids.
+            Some(accessor) => {
+                let index = accessor.index();
+                check_accessor(document.as_json(), index, AccessorUse::Indices, buffers)
+                    .map_err(|p| LoadError::new(path, format!("{name}: index accessor {index} {p}")))?;
+                let indices = reader.read_indices();
+                indices
+                    .ok_or_else(|| LoadError::new(path, format!("{name}: index accessor {index} has no data")))?
+                    .into_u32()
+                    .collect()
             }
             None => (0..mesh.positions.len() as u32).collect(),
         },

@@ -14,7 +14,7 @@ const FORMATS: [ImageFormat; 4] = [ImageFormat::Png, ImageFormat::Jpeg, ImageFor
 
 /// Reads and decodes the image file at `path` as a texture of `kind`.
 pub fn load_texture(path: &Path, kind: TextureKind) -> Result<TextureImage, LoadError> {
-    let bytes = super::read_file(path, "image")?;
+    let bytes = super::read_file(path, crate::read::FileKind::Image, "image")?;
     decode_texture(&bytes, path, kind)
 }
 

@@ -4,6 +4,7 @@
 //! problem; none panics on any input.
 
 mod accessor;
+mod accessor_rules;
 mod draco;
 mod files;
 mod framing;
@@ -20,6 +21,7 @@ use std::path::Path;
 pub use crate::error::LoadError;
 use glam::Vec3;
 
+use crate::read::FileKind;
 use crate::scene::Scene;
 pub use files::{
     SceneFiles, TextureSlot, add_height_map, is_image_path, replace_textures, texture_scene, xray_pair_beside,
@@ -42,9 +44,10 @@ pub fn load_scene(path: &Path) -> Result<Scene, LoadError> {
     Ok(scene)
 }
 
-/// The bytes of `path`; `what` says what the file is for in the error ("image", "buffer"...).
-fn read_file(path: &Path, what: &str) -> Result<Vec<u8>, LoadError> {
-    std::fs::read(path).map_err(|e| LoadError::new(path, format!("could not read the {what} file: {e}")))
+/// The bytes of `path` read as `kind` ([`crate::read::read_file`]: regular files only, up to
+/// the kind's cap); `what` says what the file is for in the error ("image", "glTF"...).
+fn read_file(path: &Path, kind: FileKind, what: &str) -> Result<Vec<u8>, LoadError> {
+    crate::read::read_file(path, kind).map_err(|e| LoadError::new(path, format!("could not read the {what} file: {e}")))
 }
 
 /// A scene without content; [`frame_scene`] sets its view.

@@ -41,7 +41,7 @@ pub fn load_libraries(
     let mut names = HashMap::new();
     for library in libraries {
         let path = base.join(library.replace('\\', "/"));
-        let text = std::fs::read(&path).map_err(|e| {
+        let text = crate::read::read_file(&path, crate::read::FileKind::MaterialLibrary).map_err(|e| {
             let obj_name = obj.file_name().unwrap_or_default().to_string_lossy();
             LoadError::new(&path, format!("could not read the material library that {obj_name} names: {e}"))
         })?;

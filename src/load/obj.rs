@@ -35,7 +35,7 @@ struct ObjData {
 /// Loads an `.obj` file and the `.mtl` libraries it names. The camera and light are left
 /// to the caller.
 pub fn load(path: &Path) -> Result<Scene, LoadError> {
-    let bytes = super::read_file(path, "OBJ")?;
+    let bytes = super::read_file(path, crate::read::FileKind::Mesh, "OBJ")?;
     let text = String::from_utf8_lossy(&bytes);
     let data = parse(&text, path)?;
     if data.groups.iter().all(|(_, t)| t.is_empty()) {

@@ -1,12 +1,15 @@
 //! The URIs a glTF file refers to its buffers and images by: base64 `data:` URIs, files
 //! relative to the glTF's folder (`%20` and other escapes decoded), absolute paths and `file:`
-//! URIs. Remote (`http:`, `https:`) and other schemes are never fetched.
+//! URIs (`file:///PATH` and `file://localhost/PATH` are `/PATH`; other hosts are refused). Remote
+//! (`http:`, `https:`) and other schemes are never fetched. Files are read bounded
+//! ([`crate::read`]).
 
 use std::path::{Path, PathBuf};
 
 use base64::Engine;
 
 use crate::error::{LoadError, LoadWarning};
+use crate::read::{FileKind, read_file};
 
 /// Where a buffer or image URI points.
 pub enum UriTarget {
@@ -35,7 +38,10 @@ pub fn resolve_uri(uri: &str, base: &Path, gltf_path: &Path, what: &str) -> Resu
     });
     let relative = match scheme.map(str::to_ascii_lowercase).as_deref() {
         None => uri,
-        Some("file") => uri["file:".len()..].strip_prefix("//").unwrap_or(&uri["file:".len()..]),
+        Some("file") => file_uri_path(&uri["file:".len()..]).ok_or_else(|| {
+            let problem = format!("the {what} {uri:?} names a file on another host: only local files are read");
+            LoadError::new(gltf_path, problem)
+        })?,
         Some(remote @ ("http" | "https")) => {
             let problem = format!("the {what} {uri:?} is remote ({remote}): remote files are not fetched");
             return Err(LoadError::new(gltf_path, problem));
@@ -53,22 +59,41 @@ pub fn resolve_uri(uri: &str, base: &Path, gltf_path: &Path, what: &str) -> Resu
     Ok(UriTarget::File { path, outside })
 }
 
-/// The bytes a buffer or image URI points to and the file to name in errors; a file outside
-/// the glTF's folder adds a [`LoadWarning::NotPortable`] to `warnings`.
+/// The path of a `file:` URI after its scheme (RFC 8089): `//HOST/PATH` with an empty host or
+/// `localhost` is the absolute `/PATH`; without `//` the rest is the path; `None` for another
+/// host. (`file:///C:/x` on Windows is `C:/x`.)
+fn file_uri_path(rest: &str) -> Option<&str> {
+    let Some(authority_and_path) = rest.strip_prefix("//") else { return Some(rest) };
+    let (host, path) = authority_and_path.split_at(authority_and_path.find('/').unwrap_or(authority_and_path.len()));
+    if !(host.is_empty() || host.eq_ignore_ascii_case("localhost")) {
+        return None;
+    }
+    let drive = path.get(1..3).is_some_and(|d| d.starts_with(|c: char| c.is_ascii_alphabetic()) && d.ends_with(':'));
+    Some(if cfg!(windows) && drive { &path[1..] } else { path })
+}
+
+/// The note an error about a file outside the glTF's folder ends with.
+pub const NOT_PORTABLE_NOTE: &str = "it lies outside the model's folder: the model is not portable";
+
+/// The bytes a buffer or image URI points to (read as `kind`, [`read_file`]) and the file to
+/// name in errors; a file outside the glTF's folder adds a [`LoadWarning::NotPortable`] to
+/// `warnings`, and an error reading it ends with [`NOT_PORTABLE_NOTE`].
 pub fn read_uri(
     uri: &str,
     base: &Path,
     gltf_path: &Path,
-    what: &str,
+    kind: FileKind,
     warnings: &mut Vec<LoadWarning>,
 ) -> Result<(Vec<u8>, PathBuf), LoadError> {
+    let what = kind.name();
     let (path, outside) = match resolve_uri(uri, base, gltf_path, what)? {
         UriTarget::Data(bytes) => return Ok((bytes, gltf_path.to_owned())),
         UriTarget::File { path, outside } => (path, outside),
     };
-    let bytes = std::fs::read(&path).map_err(|e| {
+    let bytes = read_file(&path, kind).map_err(|e| {
         let referrer = gltf_path.file_name().unwrap_or_default().to_string_lossy();
-        LoadError::new(&path, format!("could not read the {what} file that {referrer} refers to: {e}"))
+        let note = if outside { format!("; {NOT_PORTABLE_NOTE}") } else { String::new() };
+        LoadError::new(&path, format!("could not read the {what} file that {referrer} refers to: {e}{note}"))
     })?;
     if outside {
         warnings.push(LoadWarning::NotPortable { uri: uri.to_owned(), file: path.clone() });

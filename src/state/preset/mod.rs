@@ -29,7 +29,7 @@ use crate::load::SceneFiles;
 use crate::names::{Named, parse_or_auto};
 use crate::render::capture::MAX_SUPERSAMPLE;
 use crate::scene::{Light, MAX_LIGHTS, Scene};
-use crate::state::{SplitView, ViewerState};
+use crate::state::{DIFFERENCE_RANGE, SplitView, ViewerState};
 
 mod sections;
 
@@ -157,7 +157,8 @@ impl Preset {
     /// Reads a preset file; relative file paths in it become relative to its folder.
     pub fn load(path: &Path) -> Result<Preset, PresetError> {
         let in_file = |message: String| PresetError(format!("{}: {message}", path.display()));
-        let text = std::fs::read_to_string(path).map_err(|e| in_file(e.to_string()))?;
+        let bytes = crate::read::read_file(path, crate::read::FileKind::Preset).map_err(|e| in_file(e.to_string()))?;
+        let text = String::from_utf8(bytes).map_err(|_| in_file("not UTF-8 text".into()))?;
         let mut preset = Preset::from_toml(&text).map_err(|e| in_file(e.0))?;
         let folder = path.parent().unwrap_or(Path::new(""));
         preset.files = preset.files.resolved(folder);
@@ -182,10 +183,17 @@ impl Preset {
         if let Some(f) = c.fov_y_deg.filter(|f| !(f.is_finite() && *f > 0.0 && *f < 180.0)) {
             return Err(bad("camera.fov_y_deg", &f.to_string(), "degrees between 0 and 180"));
         }
-        let finite = [c.yaw_deg, c.pitch_deg].into_iter().flatten().all(f64::is_finite)
-            && [c.target, self.light.position, self.light.color].into_iter().flatten().flatten().all(f32::is_finite);
-        if !finite {
-            return Err(PresetError("camera and light values must be finite numbers".into()));
+        for (key, angle) in [("camera.yaw_deg", c.yaw_deg), ("camera.pitch_deg", c.pitch_deg)] {
+            if let Some(angle) = angle.filter(|a| !a.is_finite()) {
+                return Err(bad(key, &angle.to_string(), "a finite number of degrees"));
+            }
+        }
+        let triples =
+            [("camera.target", c.target), ("light.position", self.light.position), ("light.color", self.light.color)];
+        for (key, triple) in triples {
+            if let Some(triple) = triple.filter(|t| !t.iter().all(|v| v.is_finite())) {
+                return Err(bad(key, &format!("{triple:?}"), "three finite numbers"));
+            }
         }
         if self.lights.len() > MAX_LIGHTS {
             return Err(bad("lights", &format!("{} entries", self.lights.len()), &format!("at most {MAX_LIGHTS}")));
@@ -206,6 +214,10 @@ impl Preset {
         let s = &self.shading;
         if !s.strength.is_finite() {
             return Err(bad("shading.strength", &s.strength.to_string(), "a finite number"));
+        }
+        if !(DIFFERENCE_RANGE.start..=DIFFERENCE_RANGE.end).contains(&s.difference_range_deg) {
+            let range = format!("degrees, {} to {}", DIFFERENCE_RANGE.start, DIFFERENCE_RANGE.end);
+            return Err(bad("shading.difference_range_deg", &s.difference_range_deg.to_string(), &range));
         }
         let view = named("shading.view", &s.view)?;
         let model = named_or_auto("shading.model", &s.model)?;
