@@ -233,5 +233,6 @@ pub fn gpu_against_probe(
         worst[0],
         worst[1]
     );
+    assert!(!readouts.is_empty(), "no pixel compared: nothing of the scene fills a pixel's neighbourhood");
     readouts
 }
