@@ -80,9 +80,10 @@ fn normalised_heights(path: &Path) -> Vec<f32> {
 
 /// What the bake writes: `--normal-convention directx` stores the OpenGL map with green
 /// inverted (each 16-bit green `65535 − g` within a level, red and blue the same); `--strength
-/// 2` doubles every texel's slopes x/z and y/z (within 1e-3 of the slope, 16-bit rounding);
+/// 2` doubles every texel's slopes x/z and y/z against `--strength 1` (within 1e-3 of the
+/// slope and 2e-4: 16-bit rounding moves a slope by about 3e-5);
 /// `--to-height` of the baked map gives the heights back (less their means, over their
-/// ranges: within 0.01 at every texel).
+/// ranges: within 2e-3 at every texel; measured 4.2e-4).
 #[test]
 fn baked_content_follows_the_convention_and_strength_and_comes_back() {
     let dir = temp_dir("content");
@@ -96,17 +97,18 @@ fn baked_content_follows_the_convention_and_strength_and_comes_back() {
     };
     let opengl = normals(&bake("gl.png", &[]));
     let directx = normals(&bake("dx.png", &["--normal-convention", "directx"]));
+    let single = normals(&bake("x1.png", &["--strength", "1"]));
     let double = normals(&bake("x2.png", &["--strength", "2"]));
     let level = 2.0 / 65535.0;
-    for ((gl, dx), x2) in opengl.iter().zip(&directx).zip(&double) {
+    for ((gl, dx), (x1, x2)) in opengl.iter().zip(&directx).zip(single.iter().zip(&double)) {
         assert!((gl[0] - dx[0]).abs() <= level && (gl[2] - dx[2]).abs() <= level, "{gl:?} {dx:?}");
         assert!((gl[1] + dx[1]).abs() <= level, "green not flipped: {gl:?} {dx:?}");
         for c in 0..2 {
-            let (slope, doubled) = (gl[c] / gl[2], x2[c] / x2[2]);
-            assert!((doubled - 2.0 * slope).abs() < 1e-3 * (1.0 + slope.abs()), "{c}: {slope} doubled {doubled}");
+            let (slope, doubled) = (x1[c] / x1[2], x2[c] / x2[2]);
+            assert!((doubled - 2.0 * slope).abs() < 2e-4 + 1e-3 * slope.abs(), "{c}: {slope} doubled {doubled}");
         }
     }
-    let sloped = opengl.iter().filter(|n| n[0].abs() > 0.1 && n[1].abs() > 0.1).count();
+    let sloped = single.iter().filter(|n| n[0].abs() > 0.01 && n[1].abs() > 0.01).count();
     assert!(sloped > 100, "only {sloped} texels sloped in both directions");
     let back = dir.join("back.png");
     let output = bumpview(&["bake", "--to-height", text(&dir.join("gl.png")), "--out", text(&back)]);
@@ -117,11 +119,11 @@ fn baked_content_follows_the_convention_and_strength_and_comes_back() {
         .map(|(a, b)| (a - b).abs())
         .fold(0.0f32, f32::max);
     println!("round trip: worst {worst:.2e} of the range");
-    assert!(worst < 0.01, "round trip off by {worst} of the range");
+    assert!(worst < 2e-3, "round trip off by {worst} of the range");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// Each case prints exactly one line on stderr, starting `bumpview:`, and exits 1 (the work
+/// Each case prints one message on stderr, its first line starting `bumpview:`, and exits 1 (the work
 /// failed: not an image, 1×1, a 30000² header, an unwritable output) or 2 (bad flag or value).
 #[test]
 fn bad_inputs_and_flags_give_one_line_and_their_status() {
@@ -160,7 +162,9 @@ fn bad_inputs_and_flags_give_one_line_and_their_status() {
         let stderr = String::from_utf8_lossy(&output.stderr);
         let lines: Vec<&str> = stderr.lines().collect();
         assert_eq!(output.status.code(), Some(status), "{args:?}: {stderr}");
-        assert!(lines.len() == 1 && lines[0].starts_with("bumpview:"), "{args:?}: {stderr}");
+        // One message: clap's may go on under its first line (e.g. the possible values).
+        let ours = lines.iter().filter(|l| l.starts_with("bumpview:")).count();
+        assert!(ours == 1 && lines[0].starts_with("bumpview:"), "{args:?}: {stderr}");
     }
     assert!(!out.exists());
     std::fs::remove_dir_all(&dir).unwrap();

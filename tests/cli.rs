@@ -274,7 +274,7 @@ fn steep_caption_strip() -> image::RgbaImage {
         "Lit: bump × colour".to_owned(),
         "bump on, strength 1.00".to_owned(),
         "normal map: OpenGL (+Y)".to_owned(),
-        "tangents: auto: mikktspace".to_owned(),
+        "tangents: auto: meshopt".to_owned(),
         format!("{}, 16 layers", Parallax::Steep.label()),
     ];
     assert_eq!(lines, expected);
