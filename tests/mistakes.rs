@@ -139,8 +139,9 @@ fn without_gram_schmidt_a_leaning_tangent_tips_the_bump() {
 /// interpolated normal N' of length L, the mistaken normal `T·x + B·y + N'·z` has length
 /// `sqrt(x² + y² + L²·z²)`: between L and 1 at every pixel, where L comes from the hit's
 /// weights and the triangle's vertex normals (computed here from the mesh). Mid-edge L is
-/// `cos(half the angle between the two vertex normals)`; the shortest normals seen reach at
-/// least half-way from 1 to that of the widest edge.
+/// `cos(half the angle between the two vertex normals)`; the shortest normal seen is within a
+/// tenth of the shortening of the widest edge's mid-point (measured: 0.99472 at 140 pixels
+/// against 0.99466 for the widest edge, 11.85°).
 #[test]
 fn no_renormalisation_shortens_normals_only_where_they_bend() {
     let (scene, params) = wall_scene();
@@ -180,7 +181,7 @@ fn no_renormalisation_shortens_normals_only_where_they_bend() {
         widest.to_degrees()
     );
     assert!(on_torus > 20, "only {on_torus} torus pixels");
-    assert!(shortest <= 1.0 - 0.5 * (1.0 - mid_edge), "shortest {shortest}, mid-edge {mid_edge}");
+    assert!(shortest <= 1.0 - 0.9 * (1.0 - mid_edge), "shortest {shortest}, mid-edge {mid_edge}");
 }
 
 /// The readouts on the close wall (the light 0.35 m in front of it, each triangle about as

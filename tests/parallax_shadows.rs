@@ -14,11 +14,13 @@ use glam::Vec3;
 
 const SIZE: [u32; 2] = [256, 256];
 
-/// Median and 90th percentile of |GPU − probe| over the shadowed points alone (steps).
-const SHADOWED_BOUNDS: [f32; 2] = [99.0, 99.0];
+/// Median and 90th percentile of |GPU − probe| over the shadowed points alone, 8-bit steps
+/// (measured: steep 0.43 / 0.62, occlusion 0.50 / 0.69, relief 0.50 / 0.74 at 40-47 points).
+const SHADOWED_BOUNDS: [f32; 2] = [1.0, 2.0];
 
-/// The same at strength 0, over the points strength 1 shadows (steps).
-const ZERO_STRENGTH_BOUNDS: [f32; 2] = [99.0, 99.0];
+/// The same at strength 0, over the points strength 1 shadows (measured: median 0.54, 90th
+/// percentile 1.13, at 47 points; a shadow there darkens them by tens of steps).
+const ZERO_STRENGTH_BOUNDS: [f32; 2] = [1.0, 3.0];
 
 /// The close wall from 60° off its normal, lit from far to its left, low over it.
 fn grazing(technique: Parallax, shadow_strength: f32) -> FrameParams {
@@ -105,9 +107,16 @@ fn zero_strength_is_no_shadow_and_shadows_only_darken() {
     assert!(at_zero.iter().all(|p| p.1 == 1.0), "the CPU chain shadows at strength 0");
     let mut diffs: Vec<f32> = at_zero.iter().zip(&shadowed_at_one).filter(|(_, s)| **s).map(|(p, _)| p.0).collect();
     diffs.sort_by(f32::total_cmp);
-    println!("strength 0 at the {} points strength 1 shadows: GPU against CPU median {}, max {}", diffs.len(), percentile(&diffs, 0.5), diffs[diffs.len() - 1]);
+    println!(
+        "strength 0 at the {} points strength 1 shadows: GPU against CPU median {}, 90% within {}, max {}",
+        diffs.len(),
+        percentile(&diffs, 0.5),
+        percentile(&diffs, 0.9),
+        diffs[diffs.len() - 1]
+    );
     assert!(diffs.len() > 20, "{} shadowed points", diffs.len());
-    assert!(percentile(&diffs, 0.5) <= ZERO_STRENGTH_BOUNDS[0] && percentile(&diffs, 0.9) <= ZERO_STRENGTH_BOUNDS[1], "{diffs:?}");
+    let (p50, p90) = (percentile(&diffs, 0.5), percentile(&diffs, 0.9));
+    assert!(p50 <= ZERO_STRENGTH_BOUNDS[0] && p90 <= ZERO_STRENGTH_BOUNDS[1], "{diffs:?}");
     let scene = scene();
     let mut renderer = renderer_for(&scene);
     renderer.set_scene(&scene, SceneOptions { parallax: true, ..Default::default() });
