@@ -278,8 +278,9 @@ fn steep_caption_strip() -> image::RgbaImage {
         format!("{}, 16 layers", Parallax::Steep.label()),
     ];
     assert_eq!(lines, expected);
-    let picture = render_grid(&mut renderer, &CaptureOptions::plain([96, 64]), &state.frame_params(), &grid, Some(&[lines]))
-        .unwrap();
+    let picture =
+        render_grid(&mut renderer, &CaptureOptions::plain([96, 64]), &state.frame_params(), &grid, Some(&[lines]))
+            .unwrap();
     picture.view(0, 64, 96, picture.height() - 64).to_image()
 }
 

@@ -77,13 +77,8 @@ fn face_on_every_technique_agrees_with_displacement() {
     let off = image_error(&bench.picture(0.0, settings(Parallax::Off, None), 0).unwrap(), &reference, None).rmse;
     eprintln!("Off: RMSE {off}");
     assert!(off < 0.03, "off: {off}");
-    for technique in [
-        Parallax::Offset,
-        Parallax::OffsetLimited,
-        Parallax::Steep,
-        Parallax::Occlusion,
-        Parallax::Relief,
-    ] {
+    for technique in [Parallax::Offset, Parallax::OffsetLimited, Parallax::Steep, Parallax::Occlusion, Parallax::Relief]
+    {
         let layers = technique.marches().then_some(16);
         let image = bench.picture(0.0, settings(technique, layers), 0).unwrap();
         let error = image_error(&image, &reference, None);

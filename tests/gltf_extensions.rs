@@ -11,7 +11,6 @@ use bumpview::scene::Scene;
 use common::{asset, assets};
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
-
 /// Every drawn triangle's corners in world space, each triangle's corners rotated to start at
 /// its smallest, sorted: equal for equal geometry whatever the vertex order.
 fn world_triangles(scene: &Scene) -> Vec<[[i64; 3]; 3]> {

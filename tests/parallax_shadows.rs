@@ -51,7 +51,8 @@ fn gpu_against_probe(technique: Parallax, shadow_strength: f32) -> Vec<(f32, f32
             assert!((0.0..=1.0).contains(&march.light_visibility[0]), "{march:?}");
             let cpu = readout.shown_bytes().unwrap();
             let gpu = image.get_pixel(x, y);
-            points.push(((0..3).map(|c| (gpu[c] as f32 - cpu[c]).abs()).fold(0.0, f32::max), march.light_visibility[0]));
+            points
+                .push(((0..3).map(|c| (gpu[c] as f32 - cpu[c]).abs()).fold(0.0, f32::max), march.light_visibility[0]));
         }
     }
     points

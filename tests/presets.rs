@@ -308,9 +308,21 @@ fn a_preset_saved_from_one_folder_loads_from_any_other() {
     // Inside it: stored relative, and the moved folder still loads.
     run(&project, &[first.as_slice(), &["--out", "c.png", "--save-preset", "here.toml"]].concat());
     let text = std::fs::read_to_string(project.join("here.toml")).unwrap();
-    assert!(text.contains("mesh = \"cubecopy/cube.obj\"") && text.contains("color = \"cubecopy/cube-diffuse.jpg\""), "{text}");
+    assert!(
+        text.contains("mesh = \"cubecopy/cube.obj\"") && text.contains("color = \"cubecopy/cube-diffuse.jpg\""),
+        "{text}"
+    );
     std::fs::rename(&project, dir.join("moved")).unwrap();
-    run(Path::new("/"), &["render", "--preset", dir.join("moved/here.toml").to_str().unwrap(), "--out", dir.join("d.png").to_str().unwrap()]);
+    run(
+        Path::new("/"),
+        &[
+            "render",
+            "--preset",
+            dir.join("moved/here.toml").to_str().unwrap(),
+            "--out",
+            dir.join("d.png").to_str().unwrap(),
+        ],
+    );
     assert_eq!(pixels(&dir.join("moved/c.png")), pixels(&dir.join("d.png")));
     std::fs::remove_dir_all(&dir).unwrap();
 }

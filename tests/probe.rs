@@ -175,10 +175,9 @@ fn picks_on_the_asset_meshes_hit_on_the_ray() {
 fn probe_frames_match_the_rendered_debug_views_on_assets() {
     let base = assets();
     let size = [128, 128];
-    for relative in [
-        "gltf/NormalTangentMirrorTest/glTF/NormalTangentMirrorTest.gltf",
-        "gltf/TwoSidedPlane/glTF/TwoSidedPlane.gltf",
-    ] {
+    for relative in
+        ["gltf/NormalTangentMirrorTest/glTF/NormalTangentMirrorTest.gltf", "gltf/TwoSidedPlane/glTF/TwoSidedPlane.gltf"]
+    {
         let scene = load_scene(&asset(&base, relative)).unwrap();
         let probe_scene = ProbeScene::new(&scene, &SceneOptions::default());
         let mut renderer = renderer_for(&scene);

@@ -7,8 +7,11 @@ use std::time::{Duration, Instant};
 /// Runs the viewer under Xvfb at 1280×800 with `args` for 10 frames and returns the window
 /// it captured. Without `xvfb-run` the test fails, saying what to install.
 fn run_viewer(test: &str, args: &[&str]) -> image::RgbImage {
-    let has_xvfb_run =
-        Command::new("sh").args(["-c", "command -v xvfb-run"]).stdout(Stdio::null()).status().is_ok_and(|s| s.success());
+    let has_xvfb_run = Command::new("sh")
+        .args(["-c", "command -v xvfb-run"])
+        .stdout(Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success());
     assert!(has_xvfb_run, "the window tests need xvfb-run: apt-get install xvfb xauth");
     let capture = std::env::temp_dir().join(format!("bumpview-window-{test}-{}.png", std::process::id()));
     let mut child = Command::new("xvfb-run")

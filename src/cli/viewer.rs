@@ -11,10 +11,8 @@ use crate::app;
 pub fn run(cli: &Cli) -> Result<(), Failure> {
     // `--exit-after` runs (scripts, tests) neither restore nor save the last state.
     let last_state = app::last_state_file().filter(|_| cli.exit_after.is_none());
-    let command_line = cli.preset.is_some()
-        || !cli.inputs.files().is_empty()
-        || !cli.methods.is_empty()
-        || !cli.picture.is_empty();
+    let command_line =
+        cli.preset.is_some() || !cli.inputs.files().is_empty() || !cli.methods.is_empty() || !cli.picture.is_empty();
     let mut notice = None;
     let restored = match (&cli.preset, &last_state) {
         (Some(path), _) => Some(Preset::load(path)?),
