@@ -18,10 +18,17 @@ fn main() -> ExitCode {
             ExitCode::SUCCESS
         }
         Err(e) => {
-            // One line: the first line of clap's message names the bad flag or value.
-            let message = e.to_string();
-            eprintln!("bumpview: {}", message.lines().next().unwrap_or("bad arguments").trim_start_matches("error: "));
+            eprintln!("bumpview: {}", whole_message(&e.to_string()));
             ExitCode::from(2)
         }
     }
+}
+
+/// clap's message for a bad command line, whole: what is wrong and what is allowed (the
+/// missing flags, the ones it conflicts with, the possible values, the usage line), without its
+/// `error: ` prefix and closing pointer to `--help`, so it starts on the `bumpview:` line.
+fn whole_message(message: &str) -> String {
+    let message = message.trim_start_matches("error: ");
+    let lines: Vec<&str> = message.lines().filter(|l| !l.starts_with("For more information, try")).collect();
+    lines.join("\n").trim_end().to_owned()
 }

@@ -5,8 +5,6 @@
 
 mod common;
 
-use std::path::PathBuf;
-
 use bumpview::frame::{FrameParams, SceneOptions, ShadingMode, ViewMode};
 use bumpview::load::load_scene;
 use bumpview::names::Named;
@@ -18,10 +16,9 @@ use bumpview::shading::pbr::{ClearcoatInputs, PbrInputs, metallic_roughness};
 use common::*;
 use glam::Vec3;
 
-fn clearcoat_test() -> Option<Scene> {
-    let base = assets()?;
-    let path: PathBuf = base.parent().unwrap().join("assets-extensions/gltf/ClearCoatTest/glTF/ClearCoatTest.gltf");
-    Some(load_scene(&path).unwrap_or_else(|e| panic!("{e}")))
+fn clearcoat_test() -> Scene {
+    let path = asset(&assets(), "gltf/ClearCoatTest/glTF/ClearCoatTest.gltf");
+    load_scene(&path).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Per-channel |GPU − probe| in 8-bit steps at every third pixel of a 256² view of `params`' picture whose
@@ -64,7 +61,7 @@ fn gpu_against_probe(scene: &Scene, params: &FrameParams, keep: impl Fn(&str) ->
 /// wall's bound is 3), and the Clear-coat normal view within 2 steps at 95%.
 #[test]
 fn the_coated_column_matches_the_cpu_chain() {
-    let Some(scene) = clearcoat_test() else { return };
+    let scene = clearcoat_test();
     let coated = |name: &str| name.ends_with("_Coated");
     // The camera on the coated column, which then fills most of the view.
     let column: Vec<&Instance> = scene.instances.iter().filter(|i| coated(&scene.materials[i.material].name)).collect();
@@ -131,7 +128,7 @@ fn a_coat_is_the_dimmed_base_plus_a_black_dielectric() {
 /// coat's textures; a material that emits nothing uploads no emissive texture.
 #[test]
 fn an_invisible_coat_or_emission_costs_nothing() {
-    let Some(scene) = clearcoat_test() else { return };
+    let scene = clearcoat_test();
     let mut without = scene.clone();
     without.materials.iter_mut().for_each(|m| m.clearcoat = None);
     let mut zero = scene.clone();

@@ -3,6 +3,9 @@
 
 use std::process::Command;
 
+use bumpview::render::export::caption_strip_height;
+use image::GenericImageView;
+
 fn bumpview(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_bumpview")).args(args).output().expect("run bumpview")
 }
@@ -86,6 +89,32 @@ fn failures_exit_non_zero_with_one_line() {
     assert!(stderr_lines(&unwritable)[0].contains("/nonexistent-dir/x.png"));
     let grid = bumpview(&["render", "--out", "x.png", "--grid", "flat,shiny"]);
     assert!(stderr_lines(&grid)[0].contains("shading-normal"), "{:?}", stderr_lines(&grid));
+}
+
+/// A bad command line's message is whole: what is wrong and what is allowed (the missing
+/// flag, the flag it conflicts with, the possible values), on one `bumpview:` line and the
+/// lines clap adds under it, exit status 2.
+#[test]
+fn command_line_errors_name_the_problem_and_what_is_allowed() {
+    let cases: [(&[&str], &[&str]); 8] = [
+        (&["render"], &["required", "--out"]),
+        (&["render", "--out", "x.png", "--captions"], &["required", "--row", "--grid"]),
+        (&["render", "--out", "x.png", "--split-sides", "1,2"], &["required", "--split"]),
+        (&["render", "--out", "x.png", "--cube-map-size", "16"], &["required", "--legacy"]),
+        (&["--capture-window", "x.png"], &["required", "--exit-after"]),
+        (&["render", "--frames", "5", "--row"], &["cannot be used with", "--row"]),
+        (&["render", "--out", "x.png", "--legacy", "dot3", "--cube-map-size", "12"], &["'12'", "8, 16, 32, 64"]),
+        (&["render", "--out", "x.png", "--view", "sideways"], &["'sideways'", "lit", "shading-normal"]),
+    ];
+    for (args, expected) in cases {
+        let output = bumpview(args);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{args:?}: {stderr}");
+        assert_eq!(stderr_lines(&output).len(), 1, "{args:?}: {stderr}");
+        for text in expected {
+            assert!(stderr.contains(text), "{args:?}: {text:?} missing from {stderr}");
+        }
+    }
 }
 
 /// `--height-kernel` re-makes loaded height maps' normal maps: on the built-in scene it gives
@@ -221,6 +250,40 @@ fn frames_flag_errors() {
     }
 }
 
+/// The caption strip `--parallax steep --parallax-layers 16 --grid bumped --captions` should
+/// draw under its 96 × 64 tile: the library's caption of that tile (checked to name the
+/// technique and its layers, the view, the strength, the convention and the tangents), drawn
+/// as `render_grid` draws captions.
+fn steep_caption_strip() -> image::RgbaImage {
+    use bumpview::frame::{Parallax, SceneUploads};
+    use bumpview::render::capture::CaptureOptions;
+    use bumpview::render::export::{TileGrid, caption, render_grid};
+    use bumpview::state::{Command as ViewerCommand, ViewerState};
+
+    let scene = bumpview::scene::builtin::teaching_scene();
+    let mut state = ViewerState::new(&scene);
+    state.apply(ViewerCommand::SetParallax(Parallax::Steep));
+    state.apply(ViewerCommand::SetParallaxLayers([16, 16]));
+    let grid = TileGrid::parse("bumped", &state.shading).unwrap();
+    let gpu = bumpview::render::Gpu::headless().unwrap();
+    let mut renderer = bumpview::render::Renderer::from_gpu(&gpu);
+    let uploads = SceneUploads { main: state.scene_options_drawing(&grid.tiles), split_right: None };
+    renderer.set_scene_uploads(&scene, &uploads);
+    let lines = caption(&renderer, &scene, &state.scene_options, &grid.tiles[0]);
+    let expected = [
+        "Lit: bump × colour".to_owned(),
+        "bump on, strength 1.00".to_owned(),
+        "normal map: OpenGL (+Y)".to_owned(),
+        "tangents: auto: meshopt".to_owned(),
+        format!("{}, 16 layers", Parallax::Steep.label()),
+    ];
+    assert_eq!(lines, expected);
+    let picture =
+        render_grid(&mut renderer, &CaptureOptions::plain([96, 64]), &state.frame_params(), &grid, Some(&[lines]))
+            .unwrap();
+    picture.view(0, 64, 96, picture.height() - 64).to_image()
+}
+
 /// The parallax flags reach the picture and the saved preset; depth 0 is the plain picture;
 /// layers outside 1–256, steps over 16 and a negative depth are bad values (exit 2); tile
 /// captions name the technique and its layers; `--split parallax` takes two techniques.
@@ -253,7 +316,8 @@ fn parallax_flags_draw_save_and_caption_the_technique() {
     render("split.png", &["--split", "parallax", "--split-sides", "offset,relief"]);
     let grid =
         render("grid.png", &["--parallax", "steep", "--parallax-layers", "16", "--grid", "bumped", "--captions"]);
-    assert!(grid.height() > 64, "a caption strip");
+    assert_eq!(grid.height(), 64 + caption_strip_height(96, 5), "a strip of five caption lines");
+    assert_eq!(steep_caption_strip(), grid.view(0, 64, 96, grid.height() - 64).to_image(), "the steep tile's caption");
 
     for bad in [&["--parallax-layers", "0,8"][..], &["--parallax-layers", "8,300"], &["--parallax-steps", "17"]] {
         let output = bumpview(&[&["render", "--out", &path("bad.png")][..], bad].concat());

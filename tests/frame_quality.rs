@@ -11,6 +11,11 @@ use common::*;
 
 const SIZE: [u32; 2] = [160, 100];
 
+/// Pixels from a differing pixel within which an edge must pass (a pixel centre seeing another
+/// triangle or nothing): an edge crossing the pixel's square lies within one pixel of a
+/// neighbour's centre.
+const EDGE_REACH: i64 = 1;
+
 fn frame(renderer: &mut bumpview::render::Renderer, msaa: Msaa) -> Vec<[u8; 4]> {
     let params = default_params(&scene());
     let options = DrawOptions { msaa, ..Default::default() };
@@ -37,6 +42,26 @@ fn one_sample_frames_differ_from_full_quality_only_along_edges() {
     // drawn wrong (wrong pipeline, missing geometry, no resolve) differs almost everywhere.
     assert!(share < 0.08, "{:.1}% of pixels differ", 100.0 * share);
     assert!(differing > 0, "4x MSAA smooths some edge");
+    // Where they differ: each differing pixel has, within `EDGE_REACH` pixels, a pixel whose
+    // centre sees another triangle or nothing (the probe's pick, on the CPU): an edge crosses
+    // it. A frame that differs inside triangles fails.
+    let probe = bumpview::probe::ProbeScene::new(&scene, &Default::default());
+    let camera = default_params(&scene).camera;
+    let seen = |x: i64, y: i64| {
+        let inside = x >= 0 && y >= 0 && x < SIZE[0] as i64 && y < SIZE[1] as i64;
+        inside.then(|| probe.pick(&camera, SIZE, [x as u32, y as u32]).map(|p| (p.instance, p.triangle)))
+    };
+    let off_edges: Vec<[i64; 2]> = (0..full.len())
+        .filter(|&i| full[i] != interactive[i])
+        .map(|i| [(i % SIZE[0] as usize) as i64, (i / SIZE[0] as usize) as i64])
+        .filter(|&[x, y]| {
+            let centre = seen(x, y).flatten();
+            let reach = -EDGE_REACH..=EDGE_REACH;
+            !reach.clone().any(|dy| reach.clone().any(|dx| seen(x + dx, y + dy).is_some_and(|s| s != centre)))
+        })
+        .collect();
+    println!("{} differing pixels with no edge within {EDGE_REACH} pixels: {off_edges:?}", off_edges.len());
+    assert!(off_edges.is_empty(), "pixels differ away from triangle edges: {off_edges:?}");
     let samples: Vec<u32> = renderer.built_pipelines().iter().map(|k| k.samples).collect();
     assert!(samples.contains(&1) && samples.contains(&renderer.sample_count(IMAGE_FORMAT)), "{samples:?}");
 }

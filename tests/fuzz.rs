@@ -51,9 +51,9 @@ fn seed_gltf() -> String {
 const SEED_OBJ: &str =
     "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1 4/4/1\n";
 
-/// Seeds from the third-party assets when `BUMPVIEW_TEST_ASSETS` is set (they must exist then).
+/// Seeds from the repository's fixtures (tests/fixtures); each must exist.
 fn asset_seeds(relative: &[&str]) -> Vec<(String, Vec<u8>)> {
-    let Some(base) = std::env::var_os("BUMPVIEW_TEST_ASSETS").map(PathBuf::from) else { return vec![] };
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures");
     relative
         .iter()
         .map(|r| {
@@ -69,7 +69,6 @@ fn mesh_seeds() -> Vec<(String, Vec<u8>)> {
     seeds.extend(asset_seeds(&[
         "gltf/Box/glTF-Binary/Box.glb",
         "gltf/BoxTextured/glTF-Binary/BoxTextured.glb",
-        "gltf/NormalTangentMirrorTest/glTF-Binary/NormalTangentMirrorTest.glb",
         "obj/learn-wgpu-cube/cube.obj",
     ]));
     seeds

@@ -11,13 +11,6 @@ use bumpview::scene::Scene;
 use common::{asset, assets};
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
-/// `../assets-extensions`, beside the shared assets (shared/assets-extensions/README.md).
-fn extension_assets(base: &Path) -> PathBuf {
-    let dir = base.parent().expect("the assets folder has a parent").join("assets-extensions");
-    assert!(dir.is_dir(), "{} is missing", dir.display());
-    dir
-}
-
 /// Every drawn triangle's corners in world space, each triangle's corners rotated to start at
 /// its smallest, sorted: equal for equal geometry whatever the vertex order.
 fn world_triangles(scene: &Scene) -> Vec<[[i64; 3]; 3]> {
@@ -44,8 +37,8 @@ fn world_triangles(scene: &Scene) -> Vec<[[i64; 3]; 3]> {
 /// stream quantizes positions), with unit normals.
 #[test]
 fn the_draco_box_is_the_plain_box() {
-    let Some(base) = assets() else { return };
-    let draco = load_scene(&extension_assets(&base).join("gltf/Box-Draco/Box.gltf")).unwrap_or_else(|e| panic!("{e}"));
+    let base = assets();
+    let draco = load_scene(&asset(&base, "gltf/Box-Draco/Box.gltf")).unwrap_or_else(|e| panic!("{e}"));
     let plain = load_scene(&asset(&base, "gltf/Box/glTF/Box.gltf")).unwrap();
     assert_eq!(world_triangles(&draco).len(), 12);
     assert_eq!(world_triangles(&draco), world_triangles(&plain));
@@ -58,8 +51,8 @@ fn the_draco_box_is_the_plain_box() {
 /// each along a face axis, within the bytes' 1/127 steps.
 #[test]
 fn the_quantized_cube_reads_as_floats() {
-    let Some(base) = assets() else { return };
-    let path = extension_assets(&base).join("gltf/AnimatedMorphCube/glTF-Quantized/AnimatedMorphCube.gltf");
+    let base = assets();
+    let path = asset(&base, "gltf/AnimatedMorphCube/glTF-Quantized/AnimatedMorphCube.gltf");
     let scene = load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
     let (lo, hi) = bumpview::load::bounds(&scene).unwrap();
     let size = hi - lo;
@@ -161,9 +154,9 @@ fn fill(scene: &Scene, aspect: f32) -> (f32, f32) {
 /// (then it spans most of the width); under a node that scales it 100× and moves it, the same.
 #[test]
 fn a_loaded_model_fills_two_thirds_of_the_views_height() {
-    let Some(base) = assets() else { return };
+    let base = assets();
     let mut models = vec![];
-    for folder in [base.join("gltf"), base.join("obj"), extension_assets(&base).join("gltf")] {
+    for folder in [base.join("gltf"), base.join("obj")] {
         collect_models(&folder, &mut models);
     }
     assert!(models.len() >= 15, "{models:?}");

@@ -94,6 +94,7 @@ fn green_flipped_mirrors_the_bitangent_component() {
 fn ignored_handedness_flips_only_mirrored_surfaces() {
     let (scene, params) = wall_scene();
     let same = pairs(&scene, &params, Mistake::HandednessIgnored, WALL);
+    assert!(same.len() > 100, "only {} pixels compared", same.len());
     assert!(same.iter().all(|(r, w)| (*r - *w).length() < 1e-6));
     let mut mirrored = scene.clone();
     mirrored.instances[0].transform = Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0));
@@ -134,21 +135,53 @@ fn without_gram_schmidt_a_leaning_tangent_tips_the_bump() {
 }
 
 /// No re-normalisation changes nothing on the flat wall (its interpolated normal is unit) and
-/// shortens the torus's normals between vertices: the shortest interpolated normal is
-/// about `cos(half the angle between neighbouring vertex normals)`.
+/// shortens the torus's normals between vertices. With T and B unit and orthogonal to the
+/// interpolated normal N' of length L, the mistaken normal `T·x + B·y + N'·z` has length
+/// `sqrt(x² + y² + L²·z²)`: between L and 1 at every pixel, where L comes from the hit's
+/// weights and the triangle's vertex normals (computed here from the mesh). Mid-edge L is
+/// `cos(half the angle between the two vertex normals)`; the shortest normal seen is within a
+/// tenth of the shortening of the widest edge's mid-point (measured: 0.99472 at 140 pixels
+/// against 0.99466 for the widest edge, 11.85°).
 #[test]
 fn no_renormalisation_shortens_normals_only_where_they_bend() {
     let (scene, params) = wall_scene();
     let same = pairs(&scene, &params, Mistake::NoRenormalization, WALL);
+    assert!(same.len() > 100, "only {} pixels compared", same.len());
     assert!(same.iter().all(|(r, w)| (*r - *w).length() < 1e-5));
     let mut params = default_params(&scene);
     params.camera.target = bumpview::scene::builtin::TORUS_CENTER;
     params.camera.distance = 1.2;
-    let found = pairs(&scene, &params, Mistake::NoRenormalization, CURVED);
-    let shortest = found.iter().map(|(_, w)| w.length()).fold(f32::INFINITY, f32::min);
-    let short = found.iter().filter(|(_, w)| w.length() < 0.999).count();
-    println!("no re-normalisation on the torus: shortest normal {shortest:.4}, {short} of {} below 0.999", found.len());
-    assert!(shortest < 0.999 && short > 10, "{shortest} {short}");
+    params.shading.mistake = Mistake::NoRenormalization;
+    let readouts = gpu_against_probe(&scene, &SceneOptions::default(), &params, SIZE, 9, CURVED);
+    let torus = scene.meshes.iter().position(|m| m.name == "torus").expect("the built-in torus");
+    let normals = &scene.meshes[torus].normals;
+    let widest = scene.meshes[torus]
+        .indices
+        .chunks_exact(3)
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .map(|(a, b)| normals[a as usize].angle_between(normals[b as usize]))
+        .fold(0.0f32, f32::max);
+    let mid_edge = (widest / 2.0).cos();
+    let (mut shortest, mut on_torus) = (1.0f32, 0);
+    for (pixel, r) in &readouts {
+        let instance = &scene.instances[r.point.instance];
+        if instance.mesh != torus {
+            continue;
+        }
+        let corners = &scene.meshes[torus].indices[3 * r.point.triangle..3 * r.point.triangle + 3];
+        let weights = r.point.barycentric;
+        let interpolated: Vec3 = (0..3).map(|i| normals[corners[i] as usize].normalize() * weights[i]).sum();
+        let (length, shown) = (interpolated.length(), r.chain.shading_normal.length());
+        assert!(shown >= length - 1e-4 && shown <= 1.0 + 1e-5, "{pixel:?}: |n| {shown}, interpolated {length}");
+        shortest = shortest.min(shown);
+        on_torus += 1;
+    }
+    println!(
+        "no re-normalisation on the torus: shortest normal {shortest:.5} at {on_torus} pixels; widest edge {:.2}°, mid-edge length {mid_edge:.5}",
+        widest.to_degrees()
+    );
+    assert!(on_torus > 20, "only {on_torus} torus pixels");
+    assert!(shortest <= 1.0 - 0.9 * (1.0 - mid_edge), "shortest {shortest}, mid-edge {mid_edge}");
 }
 
 /// The readouts on the close wall (the light 0.35 m in front of it, each triangle about as

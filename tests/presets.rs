@@ -276,3 +276,54 @@ fn supersampling_changes_only_edges() {
     let max = diff.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1)).map(|(i, _)| i as i64).unwrap();
     assert!(edge(max % w, max / w), "the largest difference is not at an edge");
 }
+
+/// `--save-preset` writes a preset that loads from any working directory: a model given
+/// relative to the working directory, outside the preset's folder, is stored absolute; one
+/// inside it is stored relative to it, so the folder can move with its files. Either renders
+/// the same pixels from another directory.
+#[test]
+fn a_preset_saved_from_one_folder_loads_from_any_other() {
+    let dir = temp_dir("preset-paths");
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/obj/learn-wgpu-cube");
+    let copy = dir.join("project/cubecopy");
+    std::fs::create_dir_all(&copy).unwrap();
+    for file in ["cube.obj", "cube.mtl", "cube-diffuse.jpg", "cube-normal.png"] {
+        std::fs::copy(fixture.join(file), copy.join(file)).unwrap();
+    }
+    std::fs::create_dir_all(dir.join("project/presets")).unwrap();
+    let run = |cwd: &Path, args: &[&str]| {
+        let output = Command::new(env!("CARGO_BIN_EXE_bumpview")).current_dir(cwd).args(args).output().unwrap();
+        assert!(output.status.success(), "{args:?} in {}: {}", cwd.display(), String::from_utf8_lossy(&output.stderr));
+    };
+    let project = dir.join("project");
+    let small = ["--size", "48x32", "--camera", "30,20,4"];
+    // Outside the preset's folder: stored absolute.
+    let first = [["render", "cubecopy/cube.obj", "--color", "cubecopy/cube-diffuse.jpg"].as_slice(), &small].concat();
+    run(&project, &[first.as_slice(), &["--out", "a.png", "--save-preset", "presets/cube.toml"]].concat());
+    let text = std::fs::read_to_string(project.join("presets/cube.toml")).unwrap();
+    let absolute = std::path::absolute(project.join("cubecopy/cube.obj")).unwrap();
+    assert!(text.contains(&format!("mesh = {:?}", absolute.to_str().unwrap())), "{text}");
+    let preset = project.join("presets/cube.toml");
+    run(&dir, &["render", "--preset", preset.to_str().unwrap(), "--out", "b.png"]);
+    assert_eq!(pixels(&project.join("a.png")), pixels(&dir.join("b.png")));
+    // Inside it: stored relative, and the moved folder still loads.
+    run(&project, &[first.as_slice(), &["--out", "c.png", "--save-preset", "here.toml"]].concat());
+    let text = std::fs::read_to_string(project.join("here.toml")).unwrap();
+    assert!(
+        text.contains("mesh = \"cubecopy/cube.obj\"") && text.contains("color = \"cubecopy/cube-diffuse.jpg\""),
+        "{text}"
+    );
+    std::fs::rename(&project, dir.join("moved")).unwrap();
+    run(
+        Path::new("/"),
+        &[
+            "render",
+            "--preset",
+            dir.join("moved/here.toml").to_str().unwrap(),
+            "--out",
+            dir.join("d.png").to_str().unwrap(),
+        ],
+    );
+    assert_eq!(pixels(&dir.join("moved/c.png")), pixels(&dir.join("d.png")));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -91,6 +91,19 @@ pub struct LightArgs {
 }
 
 impl LightArgs {
+    /// Whether no lighting flag was given.
+    #[cfg(any(feature = "ui", test))]
+    pub fn is_empty(&self) -> bool {
+        let Self { light, directional_light, attenuation, ambient, specular, shininess, lighting_space } = self;
+        light.is_empty()
+            && directional_light.is_empty()
+            && attenuation.is_none()
+            && ambient.is_none()
+            && specular.is_none()
+            && shininess.is_none()
+            && lighting_space.is_none()
+    }
+
     /// The flags as commands on `lights` (the lights the picture starts with: the scene's or
     /// the preset's), in the order they apply.
     pub fn commands(&self, start: &[Light]) -> Result<Vec<Command>, Failure> {

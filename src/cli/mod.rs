@@ -9,6 +9,7 @@ mod check;
 mod inputs;
 mod lights;
 mod methods;
+mod picture;
 mod progress;
 mod render;
 mod report;
@@ -44,6 +45,8 @@ pub struct Cli {
     preset: Option<PathBuf>,
     #[command(flatten)]
     methods: methods::MethodArgs,
+    #[command(flatten)]
+    picture: picture::PictureArgs,
     #[command(flatten)]
     inputs: inputs::InputArgs,
 }

@@ -1,30 +1,26 @@
 //! `bumpview render`: the built-in scene or a mesh drawn offscreen (no window, no display)
 //! into a PNG, or with `--frames N` timed against the adapter's floor. Its picture flags are
-//! the viewer's [`Command`]s, applied by [`ViewerState::apply`] as the panel's are, so they
-//! get the same clamps.
+//! the viewer's ([`PictureArgs`]).
 
 use std::num::NonZeroU32;
 use std::path::{Path, PathBuf};
 
 use bumpview::atomic::check_outputs;
 use bumpview::error::{LoadWarning, escape_controls};
-use bumpview::frame::{
-    FrameQuality, LegacyLook, LegacySettings, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS,
-    Mistake, Parallax, SceneUploads, ShadingSettings, ViewMode,
-};
+use bumpview::frame::{FrameQuality, SceneUploads, ShadingSettings};
 use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
 use bumpview::render::export::{MAX_EXPORT_PIXELS, TileGrid, caption, render_grid};
 use bumpview::render::timing::{TimedPicture, time_frames};
 use bumpview::render::{Gpu, Renderer};
 use bumpview::state::interactive::InteractiveQuality;
 use bumpview::state::preset::{CapturePreset, Preset};
-use bumpview::state::{Command, SplitDifference, ViewerState};
+use bumpview::state::{Command, ViewerState};
 
 use super::Failure;
 use super::args;
 use super::inputs::InputArgs;
-use super::lights::LightArgs;
 use super::methods::MethodArgs;
+use super::picture::PictureArgs;
 use super::start::{Started, start};
 
 /// `render`'s size when neither `--size` nor the preset gives one.
@@ -69,91 +65,16 @@ pub struct RenderArgs {
     /// Render at K times the size (1 to 4) and downsample with a box filter in linear light.
     #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_SUPERSAMPLE)))]
     supersample: Option<u32>,
-    /// What to show [default: lit].
-    #[arg(long, value_parser = args::named::<ViewMode>())]
-    view: Option<ViewMode>,
-    /// Bump mapping on or off [default: on].
-    #[arg(long, value_parser = args::parse_on_off, action = clap::ArgAction::Set)]
-    bump: Option<bool>,
-    /// Bump strength (0 is flat, negative inverts the relief), clamped to −2…4 as the
-    /// viewer's slider [default: 1].
-    #[arg(long, value_parser = args::parse_finite, allow_hyphen_values = true)]
-    strength: Option<f32>,
-    /// Camera YAW,PITCH,DISTANCE: degrees about +Y (0 looks along −Z), degrees above the
-    /// target (clamped to ±89), metres from it (positive; clamped to 0.05…500).
-    #[arg(long, value_parser = args::parse_triple, allow_hyphen_values = true)]
-    camera: Option<[f32; 3]>,
-    /// Parallax technique on normal-mapped surfaces with a height map: off, offset (Kaneko
-    /// 2001), offset-limited (Welsh 2004), steep (McGuire 2005), occlusion (Tatarchuk 2006) or
-    /// relief (Policarpo 2005) [default: off].
-    #[arg(long, value_parser = args::named::<Parallax>())]
-    parallax: Option<Parallax>,
-    /// The searches' layers MIN,MAX (1 to 256 each; MAX face-on, MIN at grazing views)
-    /// [default: 8,32].
-    #[arg(long, value_name = "MIN,MAX", value_parser = args::parse_layers)]
-    parallax_layers: Option<[u32; 2]>,
-    /// Relief mapping's binary-search steps, 0 to 16 [default: 5].
-    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_PARALLAX_STEPS)))]
-    parallax_steps: Option<u32>,
-    /// The relief's depth in metres, 0 or more [default: each material's height range].
-    #[arg(long, value_name = "METRES", value_parser = args::parse_finite)]
-    parallax_depth: Option<f32>,
-    /// Soft self-shadows of the searches (steep, occlusion, relief; Tatarchuk 2006) at
-    /// STRENGTH, 0 (off) to 4 [default without the flag: off; with it and no value: 1].
-    #[arg(long, value_name = "STRENGTH", num_args = 0..=1, default_missing_value = "1", value_parser = args::parse_finite)]
-    parallax_shadows: Option<f32>,
-    /// Displacement, the ground truth: meshes whose material has a height map tessellated at
-    /// LEVEL (4^LEVEL triangles per triangle, 0 to 10; 0 is off) and moved along their
-    /// normals by the parallax depth, shaded with the displaced surface's normals. Its vertex
-    /// count and memory go to stderr [default: 0].
-    #[arg(long, value_name = "LEVEL", value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_DISPLACEMENT_LEVEL)))]
-    displacement: Option<u32>,
-    /// A legacy look in the lit views: dot3 (diffuse N·L alone, L normalised per vertex and
-    /// interpolated) or emboss (the 2D light-map bump on surfaces with a height map)
-    /// [default: off].
-    #[arg(long, value_parser = args::named::<LegacyLook>())]
-    legacy: Option<LegacyLook>,
-    /// With --legacy dot3: re-normalise L through a normalization cube map of this face size
-    /// (8, 16, 32 or 64).
-    #[arg(long, value_name = "N", requires = "legacy", value_parser = clap::builder::PossibleValuesParser::new(["8", "16", "32", "64"]))]
-    cube_map_size: Option<String>,
-    /// Draw with one classic mistake: tbn-typo (seed 000's TBN[1].z = N.z where N.y
-    /// belongs), handedness-ignored (B = N × T, w dropped), srgb-normal-map (the map sampled
-    /// through an sRGB view), no-renormalization (interpolated normals used as they come),
-    /// no-gram-schmidt (T not made orthogonal to N), green-flipped (the other green
-    /// convention), half-vector-per-vertex (H interpolated, Cg 8.1.4), light-per-vertex (L
-    /// normalised per vertex before interpolation, seed 003) [default: none].
-    #[arg(long, value_parser = args::named::<Mistake>())]
-    mistake: Option<Mistake>,
-    /// Hide the light marker.
-    #[arg(long)]
-    no_light_marker: bool,
-    /// Draw T/B/N glyphs (red, green, blue lines) at vertices of meshes with tangent frames.
-    #[arg(long)]
-    glyphs: bool,
-    /// Split view, left │ right, as one image: bump (off │ on), view (lit │ shading-normal),
-    /// strength (1 │ 3), mode (colour-only │ bump-colour), tangents (per-face │ mikktspace),
-    /// convention (opengl │ directx), bump-source (normal-map │ height-in-shader), parallax
-    /// (steep │ occlusion), lighting-space (world │ tangent), mistake (none │ tbn-typo) or
-    /// displacement (a parallax technique │ displacement at a level, `--split-sides occlusion,6`)
-    /// [default: the preset's].
-    #[arg(long, value_name = "KIND", value_parser = args::named::<SplitDifference>(), conflicts_with = "tiles")]
-    split: Option<SplitDifference>,
-    /// With --split: the two sides instead of the defaults above, e.g. `averaged-uniform,mikktspace`
-    /// for tangents or `0.5,2` for strength.
-    #[arg(long, value_name = "LEFT,RIGHT", requires = "split")]
-    split_sides: Option<String>,
-    /// With --split: the divider as a fraction of the width, 0 to 1 [default: 0.5].
-    #[arg(long, value_name = "FRACTION", value_parser = args::parse_finite, requires = "split")]
-    split_at: Option<f32>,
+    #[command(flatten)]
+    pub(super) picture: PictureArgs,
     /// A row of tiles of --size side by side: flat │ bumped │ Tangent view.
-    #[arg(long, group = "tiles")]
+    #[arg(long, group = "tiles", conflicts_with = "split")]
     row: bool,
     /// A grid of tiles of --size: rows separated by `;`, tiles by `,`, each NAME[@STRENGTH]
     /// with NAME flat, bumped, bump-only, colour-only, a view name, or a parallax technique
     /// with an optional fixed layer count (`steep:8,occlusion:8,relief:8`); without SPEC
     /// `flat,bumped,bump-only;tangent,bitangent,shading-normal`.
-    #[arg(long, value_name = "SPEC", num_args = 0..=1, default_missing_value = "", group = "tiles")]
+    #[arg(long, value_name = "SPEC", num_args = 0..=1, default_missing_value = "", group = "tiles", conflicts_with = "split")]
     grid: Option<String>,
     /// With --row or --grid: a caption strip under each tile (view and mode, strength,
     /// normal-map convention, tangent source).
@@ -172,74 +93,12 @@ pub struct RenderArgs {
     #[arg(long)]
     no_budget: bool,
     #[command(flatten)]
-    lights: LightArgs,
+    pub(super) methods: MethodArgs,
     #[command(flatten)]
-    methods: MethodArgs,
-    #[command(flatten)]
-    inputs: InputArgs,
+    pub(super) inputs: InputArgs,
 }
 
 impl RenderArgs {
-    /// The picture flags as the viewer's commands, in the order they apply. Values no command
-    /// takes (a camera distance that is not positive, a divider outside the view) are bad
-    /// arguments, as the README says; the others are clamped by the commands.
-    fn commands(&self, state: &ViewerState) -> Result<Vec<Command>, Failure> {
-        let mut commands = self.lights.commands(state.lights.as_slice())?;
-        commands.extend(self.view.map(Command::SetView));
-        commands.extend(self.bump.map(Command::SetBump));
-        commands.extend(self.strength.map(Command::SetStrength));
-        commands.extend(self.parallax.map(Command::SetParallax));
-        commands.extend(self.mistake.map(Command::SetMistake));
-        if let Some(look) = self.legacy {
-            let cube_map_size = self.cube_map_size.as_deref().and_then(|n| n.parse().ok());
-            commands.push(Command::SetLegacy(LegacySettings { look, cube_map_size }));
-        }
-        commands.extend(self.parallax_layers.map(Command::SetParallaxLayers));
-        commands.extend(self.parallax_steps.map(Command::SetParallaxSteps));
-        if let Some(depth) = self.parallax_depth {
-            if depth < 0.0 {
-                return Err(Failure::BadArguments(format!("--parallax-depth {depth}: expected metres, 0 or more")));
-            }
-            commands.push(Command::SetParallaxDepth(Some(depth)));
-        }
-        if let Some(strength) = self.parallax_shadows {
-            if !(0.0..=MAX_PARALLAX_SHADOW_STRENGTH).contains(&strength) {
-                let message =
-                    format!("--parallax-shadows {strength}: expected a strength, 0 to {MAX_PARALLAX_SHADOW_STRENGTH}");
-                return Err(Failure::BadArguments(message));
-            }
-            commands.push(Command::SetParallaxShadows(strength));
-        }
-        commands.extend(self.displacement.map(Command::SetDisplacement));
-        if self.no_light_marker {
-            commands.push(Command::SetLightMarker(false));
-        }
-        if self.glyphs {
-            commands.push(Command::SetGlyphs(true));
-        }
-        if let Some([yaw, pitch, distance]) = self.camera {
-            if distance <= 0.0 {
-                return Err(Failure::BadArguments(format!("--camera: distance {distance} must be positive")));
-            }
-            commands.push(Command::PointCamera { yaw: yaw.to_radians(), pitch: pitch.to_radians(), distance });
-        }
-        if let Some(difference) = self.split {
-            commands.extend([Command::SetSplit(true), Command::SetSplitDifference(difference)]);
-            if let Some(sides) = &self.split_sides {
-                let sides = args::parse_split_sides(difference, sides);
-                commands.push(sides.map_err(|e| Failure::BadArguments(format!("--split-sides {e}")))?);
-            }
-        }
-        if let Some(at) = self.split_at {
-            if !(0.0..=1.0).contains(&at) {
-                let message = format!("--split-at {at}: expected a fraction of the width, 0 to 1");
-                return Err(Failure::BadArguments(message));
-            }
-            commands.push(Command::SetSplitDivider(at));
-        }
-        Ok(commands)
-    }
-
     /// The tile grid asked for, made from the current shading (`None`: a single picture).
     fn grid(&self, state: &ViewerState) -> Result<Option<TileGrid>, Failure> {
         Ok(match (&self.grid, self.row) {
@@ -336,9 +195,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     if args.strict && unreadable > 0 {
         return Err(Failure::Failed(format!("--strict: the model opened without {unreadable} texture(s)")));
     }
-    for command in args.commands(&state)? {
-        state.apply(command);
-    }
+    args.picture.apply(&mut state)?;
     let capture = args.capture(capture);
     let grid = args.grid(&state)?;
     if grid.is_some() {

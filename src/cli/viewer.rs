@@ -11,7 +11,8 @@ use crate::app;
 pub fn run(cli: &Cli) -> Result<(), Failure> {
     // `--exit-after` runs (scripts, tests) neither restore nor save the last state.
     let last_state = app::last_state_file().filter(|_| cli.exit_after.is_none());
-    let command_line = cli.preset.is_some() || !cli.inputs.files().is_empty() || !cli.methods.is_empty();
+    let command_line =
+        cli.preset.is_some() || !cli.inputs.files().is_empty() || !cli.methods.is_empty() || !cli.picture.is_empty();
     let mut notice = None;
     let restored = match (&cli.preset, &last_state) {
         (Some(path), _) => Some(Preset::load(path)?),
@@ -21,13 +22,15 @@ pub fn run(cli: &Cli) -> Result<(), Failure> {
         _ => None,
     };
     let from_last = restored.is_some() && cli.preset.is_none();
-    let started = match start(restored.unwrap_or_default(), cli.inputs.files(), &cli.methods) {
+    let mut started = match start(restored.unwrap_or_default(), cli.inputs.files(), &cli.methods) {
         Err(e) if from_last => {
             notice = Some(format!("last state not restored: {e}"));
             start(Preset::default(), cli.inputs.files(), &cli.methods)?
         }
         started => started?,
     };
+    // The picture flags, as `render` applies them.
+    cli.picture.apply(&mut started.state)?;
     app::run(app::Options {
         exit_after: cli.exit_after,
         capture_window: cli.capture_window.clone(),

@@ -121,6 +121,18 @@ impl SceneFiles {
         self.map(|path| folder.join(path))
     }
 
+    /// These files as a preset in `folder` stores them, so that [`Self::resolved`] finds them
+    /// again whatever the working directory: a file under `folder` relative to it (the folder
+    /// can move with its files), any other absolute (against the current directory).
+    pub fn relative_to(&self, folder: &Path) -> SceneFiles {
+        let absolute = |path: &Path| std::path::absolute(path).unwrap_or_else(|_| path.to_owned());
+        let folder = absolute(if folder.as_os_str().is_empty() { Path::new(".") } else { folder });
+        self.map(|path| {
+            let path = absolute(path);
+            path.strip_prefix(&folder).map_or(path.clone(), Path::to_owned)
+        })
+    }
+
     /// These files with paths made absolute against the current directory (unchanged where
     /// that fails), so that file-change events, which name absolute paths, match them.
     pub fn absolute(&self) -> SceneFiles {

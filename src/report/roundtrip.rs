@@ -86,11 +86,18 @@ pub fn agreement(surface: String, reference: &Reference) -> Agreement {
 mod tests {
     use super::*;
 
+    /// (0.48, 0.6, 0.64) is unit; `0.5·c + 0.5` = (0.74, 0.8, 0.82) lies at (188.7, 204, 209.1)
+    /// of 255 levels and (48 495.9, 52 428, 53 738.7) of 65 535, none near a half: stored, it
+    /// decodes from the levels rounded by hand, so rounding to 10 or 12 bits fails.
     #[test]
     fn storing_rounds_to_the_levels() {
-        let n = Vec3::new(0.3, -0.4, 0.866).normalize();
+        let n = Vec3::new(0.48, 0.6, 0.64);
         assert_eq!(stored(n, None), n.to_array());
-        let eight = Vec3::from_array(stored(n, Some(8)));
-        assert!(eight.angle_between(n) < 0.01 && eight != n);
+        let decoded = |levels: [f32; 3], of: f32| (Vec3::from_array(levels) / of * 2.0 - 1.0).normalize();
+        for (bits, levels, of) in [(8, [189.0, 204.0, 209.0], 255.0), (16, [48496.0, 52428.0, 53739.0], 65535.0)] {
+            let expected = decoded(levels, of);
+            let got = Vec3::from_array(stored(n, Some(bits)));
+            assert!((got - expected).abs().max_element() < 1e-6, "{bits} bits: {got} against {expected}");
+        }
     }
 }

@@ -76,21 +76,16 @@ pub fn decode_debug(pixel: &image::Rgba<u8>) -> Vec3 {
     (Vec3::new(unit(pixel[0]), unit(pixel[1]), unit(pixel[2])) * 2.0 - 1.0).normalize_or_zero()
 }
 
-/// The third-party asset folder, or `None` (with a notice) when `BUMPVIEW_TEST_ASSETS` is unset.
-pub fn assets() -> Option<PathBuf> {
-    match std::env::var_os("BUMPVIEW_TEST_ASSETS") {
-        Some(dir) => Some(PathBuf::from(dir)),
-        None => {
-            eprintln!("notice: BUMPVIEW_TEST_ASSETS is unset; skipping the tests on third-party assets");
-            None
-        }
-    }
+/// The third-party models, textures and height maps the tests read: tests/fixtures in the
+/// repository (its README names each file's source and licence). Never missing on a clone.
+pub fn assets() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures")
 }
 
-/// A file in the asset folder; it must exist.
+/// A file under [`assets`]; a missing one fails the test, naming it.
 pub fn asset(base: &Path, relative: &str) -> PathBuf {
     let path = base.join(relative);
-    assert!(path.is_file(), "BUMPVIEW_TEST_ASSETS is set but {} is missing", path.display());
+    assert!(path.is_file(), "test fixture {} is missing (tests/fixtures/README.md lists them)", path.display());
     path
 }
 
@@ -265,5 +260,6 @@ pub fn gpu_against_probe(
         worst[0],
         worst[1]
     );
+    assert!(!readouts.is_empty(), "no pixel compared: nothing of the scene fills a pixel's neighbourhood");
     readouts
 }

@@ -165,9 +165,13 @@ impl Preset {
         Ok(preset)
     }
 
-    /// Writes the preset atomically ([`crate::atomic::write_atomically`]).
+    /// Writes the preset atomically ([`crate::atomic::write_atomically`]), its files relative
+    /// to its folder or absolute ([`SceneFiles::relative_to`]), so it loads from any working
+    /// directory.
     pub fn save(&self, path: &Path) -> Result<(), PresetError> {
-        crate::atomic::write_bytes_atomically(path, self.to_toml().as_bytes())
+        let files = self.files.relative_to(path.parent().unwrap_or(Path::new("")));
+        let stored = Preset { files, ..self.clone() };
+        crate::atomic::write_bytes_atomically(path, stored.to_toml().as_bytes())
             .map_err(|e| PresetError(format!("could not write {}: {e}", path.display())))
     }
 
