@@ -4,7 +4,8 @@
 //! Commands are the lines of fenced code blocks that start with `bumpview ` (or `$ bumpview `,
 //! or `cargo run --release -- `), continued over `\` line ends; a line holding `[`, `…` or `|`
 //! is a synopsis and is not run. Each runs in a fresh folder holding the files the pages name
-//! (`model.glb`, `model.gltf`, `other.obj`, `height.png`, …, made or copied here), as written,
+//! (`model.glb`, `model.gltf`, `other.obj`, `height.png`, made here or copied from
+//! `tests/fixtures`), as written,
 //! except that pictures are drawn small (`--size 96x54` where no size is given), the viewer
 //! closes after a few frames under Xvfb (`--exit-after 3`) and the report runs `--quick`. A
 //! `$ ` command followed by output lines must print lines of the same shape on stdout (numbers
@@ -181,12 +182,13 @@ fn shape(line: &str) -> String {
 
 /// The files the pages' commands name, made or copied into `dir`.
 fn lay_out_inputs(dir: &Path) {
-    let fixtures = root().join("tests/fixtures");
-    for (name, from) in [("model.glb", "gltf/NormalTangentTest.glb"), ("model.gltf", "gltf/NormalTangentTest.gltf")] {
-        let source = fixtures.join(from);
-        if source.exists() {
-            std::fs::copy(&source, dir.join(name)).unwrap();
-        }
+    let fixtures = root().join("tests/fixtures/gltf");
+    std::fs::copy(fixtures.join("BoxTextured/glTF-Binary/BoxTextured.glb"), dir.join("model.glb")).unwrap();
+    // model.gltf: NormalTangentTest with its buffer and textures beside it.
+    for entry in std::fs::read_dir(fixtures.join("NormalTangentTest/glTF")).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().replace("NormalTangentTest.gltf", "model.gltf");
+        std::fs::copy(&path, dir.join(name)).unwrap();
     }
     std::fs::write(
         dir.join("other.obj"),
