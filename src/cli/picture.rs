@@ -64,12 +64,12 @@ pub struct PictureArgs {
     /// (8, 16, 32 or 64).
     #[arg(long, value_name = "N", requires = "legacy", value_parser = clap::builder::PossibleValuesParser::new(["8", "16", "32", "64"]))]
     cube_map_size: Option<String>,
-    /// Draw with one classic mistake: tbn-typo (seed 000's TBN[1].z = N.z where N.y
-    /// belongs), handedness-ignored (B = N × T, w dropped), srgb-normal-map (the map sampled
+    /// Draw with one classic mistake: tbn-typo (the GLSL practicum's TBN[1].z = N.z where
+    /// N.y belongs), handedness-ignored (B = N × T, w dropped), srgb-normal-map (the map sampled
     /// through an sRGB view), no-renormalization (interpolated normals used as they come),
     /// no-gram-schmidt (T not made orthogonal to N), green-flipped (the other green
     /// convention), half-vector-per-vertex (H interpolated, Cg 8.1.4), light-per-vertex (L
-    /// normalised per vertex before interpolation, seed 003) [default: none].
+    /// normalised per vertex before interpolation, as the ARB-era shaders did) [default: none].
     #[arg(long, value_parser = args::named::<Mistake>())]
     mistake: Option<Mistake>,
     /// Hide the light marker.

@@ -1,6 +1,7 @@
-//! In which space the lit views light a surface (seeds 000, 001, 003): the same formulas with
-//! the normal, light and view vectors taken into world, tangent or view space first; and where
-//! a frame's light markers are.
+//! In which space the lit views light a surface (world per pixel; tangent, as the ARB-era
+//! shaders did; view, as the GLSL practicum does): the same formulas with the normal, light and
+//! view vectors taken into world, tangent or view space first; and where a frame's light
+//! markers are.
 
 use super::FrameParams;
 use crate::scene::LightKind;
