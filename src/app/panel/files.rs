@@ -22,11 +22,15 @@ pub(super) fn heading(ui: &mut egui::Ui, controller: &Controller, actions: &mut 
         if open.on_hover_text("a glTF (.gltf, .glb) or OBJ mesh, or a texture; or drop files on the window").clicked() {
             actions.push(Action::ShowDialog(None));
         }
-        if let Some(busy) = controller.busy() {
+    });
+    // On a row of its own that wraps: a long stage name must not widen the panel (and so
+    // shrink the view) while a scene job runs.
+    if let Some(busy) = controller.busy() {
+        ui.horizontal_wrapped(|ui| {
             ui.add(egui::Spinner::new());
             ui.label(busy);
-        }
-    });
+        });
+    }
     match &files.status {
         Some(Status::Done(message)) => {
             ui.label(message);

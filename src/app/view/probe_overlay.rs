@@ -22,8 +22,13 @@ pub(super) fn show(
     let pixel = probe.shown_at(camera, size)?;
     let point = rect.min + egui::vec2(pixel.x, pixel.y) * (rect.width() / size[0] as f32);
     paint_marker(ui.painter(), point);
-    // The window opens towards the larger free side, so it covers the view away from the point.
-    let right = point.x < rect.center().x;
+    // The window opens on the side where it fits beside the marker (its size from the last
+    // frame), else towards the larger free side, so it never covers the point it describes.
+    let id = egui::Id::unique("probe readout");
+    let width = ui.ctx().memory(|m| m.area_rect(id)).map_or(0.0, |r| r.width());
+    let fits_right = point.x + WINDOW_OFFSET + width <= rect.max.x;
+    let fits_left = point.x - WINDOW_OFFSET - width >= rect.min.x;
+    let right = if fits_right != fits_left { fits_right } else { point.x < rect.center().x };
     let below = point.y < rect.center().y;
     let pivot = match (right, below) {
         (true, true) => egui::Align2::LEFT_TOP,
@@ -33,12 +38,9 @@ pub(super) fn show(
     };
     let offset = egui::vec2(if right { WINDOW_OFFSET } else { -WINDOW_OFFSET }, if below { 4.0 } else { -4.0 });
     let mut action = None;
-    egui::Area::new(egui::Id::unique("probe readout"))
-        .order(egui::Order::Foreground)
-        .fixed_pos(point + offset)
-        .pivot(pivot)
-        .constrain_to(rect)
-        .show(ui.ctx(), |ui| {
+    egui::Area::new(id).order(egui::Order::Foreground).fixed_pos(point + offset).pivot(pivot).constrain_to(rect).show(
+        ui.ctx(),
+        |ui| {
             egui::Frame::popup(ui.style()).show(ui, |ui| {
                 ui.horizontal(|ui| {
                     ui.strong(format!("Probe at pixel ({}, {})", report.pixel[0], report.pixel[1]));
@@ -54,7 +56,8 @@ pub(super) fn show(
                     Err(why) => ui.weak(*why),
                 };
             });
-        });
+        },
+    );
     action
 }
 
