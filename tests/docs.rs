@@ -200,7 +200,11 @@ fn lay_out_inputs(dir: &Path) {
 }
 
 fn has_xvfb_run() -> bool {
-    Command::new("sh").args(["-c", "command -v xvfb-run"]).status().is_ok_and(|s| s.success())
+    Command::new("sh")
+        .args(["-c", "command -v xvfb-run"])
+        .stdout(std::process::Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success())
 }
 
 /// Runs one documented `bumpview` command in `dir` as the module's doc says; the failure, if any.
