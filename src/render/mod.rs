@@ -24,6 +24,7 @@ pub mod shaders;
 mod targets;
 pub mod timing;
 mod uniforms;
+pub mod upload;
 
 use std::sync::Arc;
 
@@ -40,6 +41,7 @@ use pipelines::{PipelineKey, Pipelines};
 use scene_gpu::GpuScene;
 use targets::{Attachments, begin_scene_pass};
 use uniforms::FrameUniform;
+pub use upload::{ReferenceFrames, SceneUpload, Uploader};
 
 /// Where to draw: a view of a 2D texture of `format`, `size` pixels.
 pub struct RenderTarget<'a> {
@@ -88,10 +90,10 @@ pub struct Renderer {
     frame_groups: frame_group::FrameGroups,
     /// The floor's pipelines ([`Self::draw_floor`]), by format and sample count.
     floor: floor::FloorPipelines,
-    scene: Option<GpuScene>,
+    scene: Option<Arc<GpuScene>>,
     /// The split view's right half, when it differs from the left in GPU data
     /// ([`Self::set_split_scene`]); else the right half is drawn from `scene` too.
-    split_scene: Option<GpuScene>,
+    split_scene: Option<Arc<GpuScene>>,
     /// The attachments of the last frame drawn with each sample count.
     targets: Attachments,
     counters: WorkCounters,
@@ -141,11 +143,12 @@ impl Renderer {
         self.set_prepared(Arc::new(PreparedScene::new(scene, &options)));
     }
 
-    /// Replaces the scene with one prepared already (e.g. off the UI thread).
+    /// Replaces the scene with one prepared already, uploading it now (on this thread; an
+    /// [`Uploader`] uploads on another).
     pub fn set_prepared(&mut self, prepared: Arc<PreparedScene>) {
-        let gpu = self.upload(prepared);
-        self.notices = gpu.notices.clone();
-        self.scene = Some(gpu);
+        let upload = self.uploader().upload(prepared, ReferenceFrames::OnFirstUse);
+        let split = self.held(true);
+        self.install(upload, split);
     }
 
     /// Gives the split view's right half its own upload of `scene` made with `options` (two
@@ -155,9 +158,40 @@ impl Renderer {
         self.set_split_prepared(options.map(|options| Arc::new(PreparedScene::new(scene, &options))));
     }
 
-    /// [`Self::set_split_scene`] with a scene prepared already.
+    /// [`Self::set_split_scene`] with a scene prepared already, uploaded now.
     pub fn set_split_prepared(&mut self, prepared: Option<Arc<PreparedScene>>) {
-        self.split_scene = prepared.map(|prepared| self.upload(prepared));
+        let split = prepared.map(|prepared| self.uploader().upload(prepared, ReferenceFrames::OnFirstUse));
+        split.iter().for_each(|split| self.count_new(split));
+        self.split_scene = split.map(|s| s.0);
+    }
+
+    /// Something to upload scenes with on any thread, for [`Self::install`].
+    pub fn uploader(&self) -> Uploader {
+        Uploader { device: self.device.clone(), queue: self.queue.clone(), layouts: self.pipelines.layouts.clone() }
+    }
+
+    /// Shows `main`, and `split` as the split view's right half (`None`: drawn from `main`):
+    /// a swap, nothing is uploaded here. The work of an upload not held already is added to
+    /// the counters, so an upload kept (or moved between the halves) counts once.
+    pub fn install(&mut self, main: SceneUpload, split: Option<SceneUpload>) {
+        std::iter::once(&main).chain(&split).for_each(|upload| self.count_new(upload));
+        self.notices = main.0.notices.clone();
+        self.scene = Some(main.0);
+        self.split_scene = split.map(|s| s.0);
+    }
+
+    /// Adds `upload`'s work to the counters unless it is held already.
+    fn count_new(&mut self, upload: &SceneUpload) {
+        if !self.scene.iter().chain(&self.split_scene).any(|held| Arc::ptr_eq(held, &upload.0)) {
+            self.counters += upload.0.work;
+        }
+    }
+
+    /// The main upload (`split_half` false) or the split view's right half's own one (true;
+    /// `None` when it is drawn from the main one), to install again or hand to a job.
+    pub fn held(&self, split_half: bool) -> Option<SceneUpload> {
+        let held = if split_half { &self.split_scene } else { &self.scene };
+        held.clone().map(SceneUpload)
     }
 
     /// [`Self::set_scene`] and [`Self::set_split_scene`] for what a viewer state asks.
@@ -169,7 +203,7 @@ impl Renderer {
     /// The scene options of the uploads the renderer holds, as [`Self::set_scene_uploads`] takes
     /// them (`None` before the first scene), to compare with what a viewer state asks.
     pub fn uploads(&self) -> Option<SceneUploads> {
-        let options = |scene: &GpuScene| scene.prepared.options.clone();
+        let options = |scene: &Arc<GpuScene>| scene.prepared.options.clone();
         let main = options(self.scene.as_ref()?);
         Some(SceneUploads { main, split_right: self.split_scene.as_ref().map(options) })
     }
@@ -180,11 +214,6 @@ impl Renderer {
     pub fn prepared(&self, split_half: bool) -> Option<&Arc<PreparedScene>> {
         let split = self.split_scene.as_ref().filter(|_| split_half);
         split.or(self.scene.as_ref()).map(|s| &s.prepared)
-    }
-
-    fn upload(&mut self, prepared: Arc<PreparedScene>) -> GpuScene {
-        let layouts = &self.pipelines.layouts;
-        scene_gpu::upload(&self.device, &self.queue, layouts, prepared, &mut self.counters)
     }
 
     /// Whether the device can draw the wireframe overlay (`POLYGON_MODE_LINE`).
@@ -322,8 +351,8 @@ impl Renderer {
     /// The upload a half is drawn from.
     fn scene_in(&self, slot: SceneSlot) -> Option<&GpuScene> {
         match slot {
-            SceneSlot::Main => self.scene.as_ref(),
-            SceneSlot::Split => self.split_scene.as_ref(),
+            SceneSlot::Main => self.scene.as_deref(),
+            SceneSlot::Split => self.split_scene.as_deref(),
         }
     }
 
@@ -380,21 +409,17 @@ impl Renderer {
     }
 
     /// Makes what the halves' views need of their scene uploads and the uploads lack: the
-    /// reference frames of the Difference view, the glyph lines.
+    /// reference frames of the Difference view (unless made with the upload,
+    /// [`ReferenceFrames::WithUpload`]).
     fn prepare_scenes(&mut self, halves: &[Half]) -> Result<(), RenderError> {
         for half in halves {
-            // The scene is borrowed field by field ([`Self::scene_in`] would borrow all of
-            // `self`), as the counters change meanwhile.
             let scene = match half.scene {
-                SceneSlot::Main => self.scene.as_mut(),
-                SceneSlot::Split => self.split_scene.as_mut(),
+                SceneSlot::Main => self.scene.as_ref(),
+                SceneSlot::Split => self.split_scene.as_ref(),
             }
             .ok_or(RenderError::NoScene)?;
             if half.shading.view == ViewMode::Difference {
                 scene.ensure_reference_frames(&self.device, &mut self.counters);
-            }
-            if half.shading.tbn_glyphs {
-                scene.ensure_glyphs(&self.device);
             }
         }
         Ok(())

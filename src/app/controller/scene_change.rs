@@ -2,15 +2,16 @@
 //! opened or reloaded, a kernel change, and any option the GPU data depends on (tangent method,
 //! bump source, conventions, the split view's halves), and the scene given at start — becomes
 //! one scene job ([`super::scene_job`]); the job's one action installs its result: the UI
-//! thread only uploads it.
+//! thread only swaps in the uploads the job made.
 
 use std::sync::Arc;
 use std::time::Instant;
 
 use bumpview::frame::SceneUploads;
 use bumpview::height::Kernel;
+use bumpview::frame::ViewMode;
 use bumpview::names::Named;
-use bumpview::prepare::PreparedScene;
+use bumpview::render::ReferenceFrames;
 
 use super::scene_job::{Ready, SceneReady, Source};
 use super::{Controller, watched_files};
@@ -50,7 +51,7 @@ impl Controller {
     /// load in flight is asked for again with the new options (its files are read once).
     pub(super) fn sync_uploads(&mut self) {
         let (source, aimed) = match self.jobs.in_flight() {
-            Some((source, uploads)) => (source.clone(), Some(uploads.clone())),
+            Some((source, uploads, _)) => (source.clone(), Some(uploads.clone())),
             None => (self.shown(), self.renderer.uploads()),
         };
         let wanted = self.planned_uploads(source.purpose());
@@ -59,12 +60,21 @@ impl Controller {
         }
     }
 
-    /// The scene shown, with its prepared scenes and facts for the job to reuse.
+    /// The scene shown, with its uploads and facts for the job to reuse.
     fn shown(&self) -> Source {
-        let main = self.renderer.prepared(false);
-        let split = self.renderer.uploads().and_then(|u| u.split_right).and(self.renderer.prepared(true));
-        let held = main.into_iter().chain(split).cloned().collect();
+        let held = self.renderer.held(false).into_iter().chain(self.renderer.held(true)).collect();
         Source::Shown { scene: Arc::clone(&self.scene), held, facts: self.facts.clone() }
+    }
+
+    /// Whether a half of the view shows the Difference view now, so new uploads had better
+    /// bring its reference frames (else the first frame drawn from them makes them).
+    fn reference_frames(&self) -> ReferenceFrames {
+        let shown = self.state.split_frame().map_or(vec![self.state.shading], |s| vec![s.left, s.right]);
+        if shown.iter().any(|shading| shading.view == ViewMode::Difference) {
+            ReferenceFrames::WithUpload
+        } else {
+            ReferenceFrames::OnFirstUse
+        }
     }
 
     /// Starts the job making `source` ready for the options the state asks, superseding the
@@ -78,7 +88,8 @@ impl Controller {
             }
         };
         let wake = self.waker();
-        if let Err(message) = self.jobs.start(source, uploads, label, wake) {
+        let reference = self.reference_frames();
+        if let Err(message) = self.jobs.start(source, uploads, reference, label, wake) {
             self.files.status = Some(Status::Failed(message));
         }
     }
@@ -86,7 +97,7 @@ impl Controller {
     /// Takes in a scene job's action: a superseded job's is dropped; the latest's outcome goes
     /// to the files (recent list, status) when it loaded any, and its scene is installed.
     pub(super) fn scene_ready(&mut self, ready: SceneReady) {
-        let aimed = self.jobs.in_flight().map(|(_, uploads)| uploads.clone());
+        let aimed = self.jobs.in_flight().map(|(_, uploads, _)| uploads.clone());
         let Some(SceneReady { load, outcome, .. }) = self.jobs.accept(ready) else { return };
         self.failed = None;
         let purpose = load.as_ref().map_or(Purpose::Reload, |job| job.purpose);
@@ -107,9 +118,9 @@ impl Controller {
         }
     }
 
-    /// Shows a scene a job made ready: uploads what the renderer does not hold yet, timed. A
-    /// new mesh is framed by its default camera and light; otherwise camera, light and
-    /// settings stay.
+    /// Shows a scene a job made ready: swaps in its uploads (made on the worker), timed. A new
+    /// mesh is framed by its default camera and light; otherwise camera, light and settings
+    /// stay.
     fn install(&mut self, ready: Ready, purpose: Purpose) {
         let Ready { scene, uploads: _, main, split, facts, mut times } = ready;
         if purpose == Purpose::Open {
@@ -120,21 +131,8 @@ impl Controller {
         }
         self.state.default_camera = scene.default_camera;
         let started = Instant::now();
-        let held = |prepared: Option<&Arc<PreparedScene>>, new: &Arc<PreparedScene>| {
-            prepared.is_some_and(|held| Arc::ptr_eq(held, new))
-        };
-        if !held(self.renderer.prepared(false), &main) {
-            self.renderer.set_prepared(main);
-        }
-        let split_held = self.renderer.uploads().is_some_and(|u| u.split_right.is_some());
-        let same_split = match &split {
-            Some(split) => split_held && held(self.renderer.prepared(true), split),
-            None => !split_held,
-        };
-        if !same_split {
-            self.renderer.set_split_prepared(split);
-        }
-        times.upload_ms = started.elapsed().as_secs_f64() * 1e3;
+        self.renderer.install(main, split);
+        times.install_ms = started.elapsed().as_secs_f64() * 1e3;
         self.last_job = Some(times);
         if !Arc::ptr_eq(&self.scene, &scene) {
             self.scene = scene;

@@ -87,8 +87,9 @@ pub(super) fn stats(ui: &mut egui::Ui, controller: &Controller) {
     ));
     if let Some(job) = controller.last_job() {
         ui.small(format!(
-            "last scene change: load {:.0} ms, prepare {:.0} ms, measure {:.0} ms (off the UI thread); upload {:.0} ms",
-            job.load_ms, job.prepare_ms, job.measure_ms, job.upload_ms
+            "last scene change: load {:.0} ms, prepare {:.0} ms, upload {:.0} ms, measure {:.0} ms (off the UI thread); \
+             install {:.1} ms",
+            job.load_ms, job.prepare_ms, job.upload_ms, job.measure_ms, job.install_ms
         ));
     }
 }
