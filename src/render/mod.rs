@@ -172,12 +172,16 @@ impl Renderer {
 
     /// Shows `main`, and `split` as the split view's right half (`None`: drawn from `main`):
     /// a swap, nothing is uploaded here. The work of an upload not held already is added to
-    /// the counters, so an upload kept (or moved between the halves) counts once.
-    pub fn install(&mut self, main: SceneUpload, split: Option<SceneUpload>) {
+    /// the counters, so an upload kept (or moved between the halves) counts once. Returns the
+    /// uploads no longer held, for the caller to free where it likes (freeing a large one
+    /// takes milliseconds).
+    pub fn install(&mut self, main: SceneUpload, split: Option<SceneUpload>) -> Vec<SceneUpload> {
         std::iter::once(&main).chain(&split).for_each(|upload| self.count_new(upload));
         self.notices = main.0.notices.clone();
-        self.scene = Some(main.0);
-        self.split_scene = split.map(|s| s.0);
+        let old_main = self.scene.replace(main.0);
+        let old_split = std::mem::replace(&mut self.split_scene, split.map(|s| s.0));
+        let held = |old: &Arc<GpuScene>| self.scene.iter().chain(&self.split_scene).any(|h| Arc::ptr_eq(h, old));
+        old_main.into_iter().chain(old_split).filter(|old| !held(old)).map(SceneUpload).collect()
     }
 
     /// Adds `upload`'s work to the counters unless it is held already.

@@ -131,14 +131,24 @@ impl Controller {
         }
         self.state.default_camera = scene.default_camera;
         let started = Instant::now();
-        self.renderer.install(main, split);
+        let replaced = self.renderer.install(main, split);
         times.install_ms = started.elapsed().as_secs_f64() * 1e3;
         self.last_job = Some(times);
+        let mut replaced_scene = None;
         if !Arc::ptr_eq(&self.scene, &scene) {
-            self.scene = scene;
+            replaced_scene = Some(std::mem::replace(&mut self.scene, scene));
             self.probe.scene_changed();
         }
+        free_elsewhere((replaced, replaced_scene));
         self.facts = Some(facts);
         self.revision += 1;
     }
+}
+
+/// Frees what a scene change replaced (uploads, the scene) on a thread of its own: freeing a
+/// 1M-triangle upload (its buffers, textures and prepared scene) took up to 40 ms on the UI
+/// thread. When no thread can be started it is freed here.
+fn free_elsewhere(replaced: impl Send + 'static) {
+    // On failure the closure, and so `replaced`, is dropped here.
+    let _ = std::thread::Builder::new().name("bumpview-free".into()).spawn(move || drop(replaced));
 }
