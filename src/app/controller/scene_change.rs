@@ -8,8 +8,8 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use bumpview::frame::SceneUploads;
-use bumpview::height::Kernel;
 use bumpview::frame::ViewMode;
+use bumpview::height::Kernel;
 use bumpview::names::Named;
 use bumpview::render::ReferenceFrames;
 
