@@ -94,11 +94,15 @@ impl Controller {
         }
     }
 
-    /// Takes in a scene job's action: a superseded job's is dropped; the latest's outcome goes
-    /// to the files (recent list, status) when it loaded any, and its scene is installed.
+    /// Takes in a scene job's action: a superseded job's is freed (off the UI thread); the
+    /// latest's outcome goes to the files (recent list, status) when it loaded any, and its
+    /// scene is installed.
     pub(super) fn scene_ready(&mut self, ready: SceneReady) {
         let aimed = self.jobs.in_flight().map(|(_, uploads, _)| uploads.clone());
-        let Some(SceneReady { load, outcome, .. }) = self.jobs.accept(ready) else { return };
+        let SceneReady { load, outcome, .. } = match self.jobs.accept(ready) {
+            Ok(ready) => ready,
+            Err(superseded) => return free_elsewhere(superseded),
+        };
         self.failed = None;
         let purpose = load.as_ref().map_or(Purpose::Reload, |job| job.purpose);
         match (load, outcome) {

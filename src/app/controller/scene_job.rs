@@ -207,14 +207,14 @@ impl SceneJobs {
         self.receiver.recv_timeout(timeout).ok()
     }
 
-    /// `ready` if it is the latest job's (which then is no longer in flight); `None` for a
-    /// superseded job's, which must not be installed.
-    pub fn accept(&mut self, ready: SceneReady) -> Option<SceneReady> {
+    /// `Ok(ready)` if it is the latest job's (which then is no longer in flight); `Err(ready)`
+    /// for a superseded job's, which must not be installed (only freed).
+    pub fn accept(&mut self, ready: SceneReady) -> Result<SceneReady, SceneReady> {
         if ready.generation != self.latest.load(Ordering::SeqCst) {
-            return None;
+            return Err(ready);
         }
         self.busy = None;
-        Some(ready)
+        Ok(ready)
     }
 }
 
