@@ -20,11 +20,8 @@ fn root() -> PathBuf {
 /// README.md and every page under docs/, with their text.
 fn pages() -> Vec<(PathBuf, String)> {
     let mut paths = vec![root().join("README.md")];
-    let mut docs: Vec<PathBuf> = std::fs::read_dir(root().join("docs"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "md"))
-        .collect();
+    let mut docs: Vec<PathBuf> =
+        std::fs::read_dir(root().join("docs")).unwrap().map(|e| e.unwrap().path()).filter(|p| p.extension().is_some_and(|e| e == "md")).collect();
     docs.sort();
     paths.extend(docs);
     paths.into_iter().map(|p| (p.clone(), std::fs::read_to_string(&p).unwrap())).collect()
@@ -105,10 +102,7 @@ fn every_link_points_at_a_file_and_section_that_exist() {
 
 #[test]
 fn the_link_check_can_fail() {
-    assert_eq!(
-        links("see [a](docs/x.md#b-c) and ![p](assets/p.png)\n```\n[not](a link)\n```"),
-        ["docs/x.md#b-c", "assets/p.png"]
-    );
+    assert_eq!(links("see [a](docs/x.md#b-c) and ![p](assets/p.png)\n```\n[not](a link)\n```"), ["docs/x.md#b-c", "assets/p.png"]);
     assert_eq!(anchor(" Lighting spaces"), "lighting-spaces");
     assert_eq!(anchor("Error against run time: `bumpview report`"), "error-against-run-time-bumpview-report");
 }
@@ -182,7 +176,10 @@ fn shape(line: &str) -> String {
 /// The files the pages' commands name, made or copied into `dir`.
 fn lay_out_inputs(dir: &Path) {
     let fixtures = root().join("tests/fixtures");
-    for (name, from) in [("model.glb", "gltf/NormalTangentTest.glb"), ("model.gltf", "gltf/NormalTangentTest.gltf")] {
+    for (name, from) in [
+        ("model.glb", "gltf/NormalTangentTest.glb"),
+        ("model.gltf", "gltf/NormalTangentTest.gltf"),
+    ] {
         let source = fixtures.join(from);
         if source.exists() {
             std::fs::copy(&source, dir.join(name)).unwrap();
@@ -231,8 +228,7 @@ fn run(documented: &Documented, dir: &Path) -> Result<(), String> {
     } else {
         Command::new(env!("CARGO_BIN_EXE_bumpview"))
     };
-    let output =
-        command.args(&args).current_dir(dir).env("XDG_CONFIG_HOME", dir).output().map_err(|e| e.to_string())?;
+    let output = command.args(&args).current_dir(dir).env("XDG_CONFIG_HOME", dir).output().map_err(|e| e.to_string())?;
     let stdout = String::from_utf8_lossy(&output.stdout);
     let stderr = String::from_utf8_lossy(&output.stderr);
     // `check` exits 1 for warnings: the page says so.
@@ -257,9 +253,7 @@ fn every_documented_command_runs() {
         for documented in commands(&name, &text) {
             let words: Vec<&str> = documented.line.split_whitespace().collect();
             let bench_or_test = words.iter().position(|w| *w == "--bench" || *w == "--test");
-            if words[0] == "cargo" && words.get(1) != Some(&"run")
-                || words.starts_with(&["cargo", "run", "--release"]) && words.len() == 3
-            {
+            if words[0] == "cargo" && words.get(1) != Some(&"run") || words.starts_with(&["cargo", "run", "--release"]) && words.len() == 3 {
                 // `cargo test`, `cargo bench --bench NAME`, `cargo run --release` (the viewer,
                 // as the viewer test runs it): the targets they name exist.
                 if let Some(at) = bench_or_test {

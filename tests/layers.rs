@@ -311,7 +311,8 @@ fn use_tree(chars: &[char], at: &mut usize, prefix: &mut Vec<String>, out: &mut 
                 break;
             }
             _ => {
-                let ident: String = chars[*at..].iter().take_while(|c| c.is_alphanumeric() || **c == '_').collect();
+                let ident: String =
+                    chars[*at..].iter().take_while(|c| c.is_alphanumeric() || **c == '_').collect();
                 *at += ident.len();
                 if !ident.is_empty() && ident != "self" {
                     prefix.push(ident);
@@ -411,11 +412,7 @@ fn every_module_uses_only_lower_layers() {
 #[test]
 fn the_design_page_draws_this_table() {
     let page = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/design.md")).unwrap();
-    assert!(
-        page.contains(&drawing()),
-        "docs/design.md must draw the layers as tests/layers.rs states them:\n{}",
-        drawing()
-    );
+    assert!(page.contains(&drawing()), "docs/design.md must draw the layers as tests/layers.rs states them:\n{}", drawing());
 }
 
 /// Counter-tests: each way of breaking the layers that a simpler reader missed is seen.
