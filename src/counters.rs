@@ -14,3 +14,13 @@ pub struct WorkCounters {
     /// Frames drawn by [`crate::render::Renderer::render`].
     pub frames_drawn: u64,
 }
+
+impl std::ops::AddAssign for WorkCounters {
+    fn add_assign(&mut self, other: WorkCounters) {
+        self.tangent_frames_generated += other.tangent_frames_generated;
+        self.scenes_uploaded += other.scenes_uploaded;
+        self.textures_uploaded += other.textures_uploaded;
+        self.pipelines_built += other.pipelines_built;
+        self.frames_drawn += other.frames_drawn;
+    }
+}

@@ -289,3 +289,59 @@ fn mesh_pipelines_are_specialised_to_the_materials_features() {
     assert!(!glossy_features[0].0 && glossy_features[0].1 != 0, "wall and floor: the gloss map");
     assert_eq!(glossy_features[1], (true, 0), "the torus: nothing optional");
 }
+
+/// A scene uploaded on another thread (a renderer's [`bumpview::render::Uploader`], as a
+/// scene job does) is shown by `install`, a swap: nothing is counted before it is installed,
+/// its upload counts once when it is, and installing it again or swapping the halves counts
+/// nothing; it draws the same pixels as the renderer's own upload of the same options. Made
+/// with its reference frames, the Difference view generates none on the UI thread.
+#[test]
+fn an_upload_made_on_another_thread_installs_as_a_swap_counted_once() {
+    use std::sync::Arc;
+
+    use bumpview::frame::{SceneOptions, ViewMode};
+    use bumpview::prepare::PreparedScene;
+    use bumpview::render::{ReferenceFrames, SceneUpload, Uploader};
+    let upload_on_a_thread = |uploader: Uploader, scene: &bumpview::scene::Scene, reference| -> SceneUpload {
+        let prepared = Arc::new(PreparedScene::new(scene, &SceneOptions::default()));
+        std::thread::spawn(move || uploader.upload(prepared, reference)).join().unwrap()
+    };
+    let scene = scene();
+    let mut renderer = renderer_for(&scene);
+    let params = default_params(&scene);
+    let expected = render_image(&mut renderer, [64, 48], &params).unwrap();
+    let first = renderer.held(false).unwrap();
+    let before = renderer.counters();
+    let upload = upload_on_a_thread(renderer.uploader(), &scene, ReferenceFrames::OnFirstUse);
+    assert_eq!(renderer.counters(), before, "nothing counted before it is installed");
+    assert_eq!(upload.prepared().options, first.prepared().options);
+
+    renderer.install(first.clone(), Some(upload.clone()));
+    let installed = renderer.counters();
+    assert_eq!(installed.scenes_uploaded, before.scenes_uploaded + 1);
+    assert_eq!(installed.textures_uploaded, 2 * before.textures_uploaded, "colour and normal map once more");
+    let vertices: u64 = scene.meshes.iter().map(|m| m.positions.len() as u64).sum();
+    assert_eq!(installed.tangent_frames_generated, before.tangent_frames_generated + vertices);
+    assert_eq!(renderer.held(true), Some(upload.clone()));
+    renderer.install(upload.clone(), Some(first));
+    renderer.install(upload.clone(), None);
+    assert_eq!(renderer.counters(), installed, "held uploads are not counted again");
+    assert_eq!(renderer.held(false), Some(upload));
+    assert!(render_image(&mut renderer, [64, 48], &params).unwrap() == expected, "draws as the renderer's own");
+
+    let mut without_analytic = scene.clone();
+    without_analytic.meshes.iter_mut().for_each(|m| m.analytic_tangents = None);
+    let upload = upload_on_a_thread(renderer.uploader(), &without_analytic, ReferenceFrames::WithUpload);
+    let before = renderer.counters();
+    renderer.install(upload, None);
+    assert_eq!(
+        renderer.counters().tangent_frames_generated,
+        before.tangent_frames_generated + 2 * vertices,
+        "the drawn frames and the reference frames, made on the thread"
+    );
+    let mut difference = params;
+    difference.shading.view = ViewMode::Difference;
+    let counted = renderer.counters().tangent_frames_generated;
+    render_image(&mut renderer, [64, 48], &difference).unwrap();
+    assert_eq!(renderer.counters().tangent_frames_generated, counted, "none made when drawn");
+}

@@ -8,6 +8,9 @@
 //! attachments, the scene uploads); each kind of thing drawn — meshes, wireframe, T/B/N glyphs,
 //! light markers — has its own file under `render/draw/` that plans its passes from a frame's
 //! per-draw values and records them. The WGSL is split by pass ([`shaders`]).
+//!
+//! A prepared scene can be uploaded without the renderer, on any thread ([`Uploader`], e.g. a
+//! scene job's worker), and shown by [`Renderer::install`], a swap that uploads nothing.
 
 mod bindings;
 pub mod capture;
@@ -17,6 +20,7 @@ mod floor;
 mod frame_group;
 pub mod glyphs;
 pub mod gpu;
+mod held;
 mod legacy;
 pub mod pipelines;
 mod scene_gpu;
@@ -24,14 +28,13 @@ pub mod shaders;
 mod targets;
 pub mod timing;
 mod uniforms;
+pub mod upload;
 
 use std::sync::Arc;
 
 use crate::counters::WorkCounters;
 use crate::error::RenderError;
-use crate::frame::{FrameParams, Msaa, SceneOptions, SceneUploads, ShadingSettings, SplitFrame, ViewMode};
-use crate::prepare::PreparedScene;
-use crate::scene::Scene;
+use crate::frame::{FrameParams, Msaa, ShadingSettings, SplitFrame, ViewMode};
 use crate::tangent::TangentMethod;
 pub use draw::wireframe::WIREFRAME_UNSUPPORTED;
 use draw::{FramePipelines, HalfPlan};
@@ -40,6 +43,7 @@ use pipelines::{PipelineKey, Pipelines};
 use scene_gpu::GpuScene;
 use targets::{Attachments, begin_scene_pass};
 use uniforms::FrameUniform;
+pub use upload::{ReferenceFrames, SceneUpload, Uploader};
 
 /// Where to draw: a view of a 2D texture of `format`, `size` pixels.
 pub struct RenderTarget<'a> {
@@ -88,10 +92,10 @@ pub struct Renderer {
     frame_groups: frame_group::FrameGroups,
     /// The floor's pipelines ([`Self::draw_floor`]), by format and sample count.
     floor: floor::FloorPipelines,
-    scene: Option<GpuScene>,
+    scene: Option<Arc<GpuScene>>,
     /// The split view's right half, when it differs from the left in GPU data
     /// ([`Self::set_split_scene`]); else the right half is drawn from `scene` too.
-    split_scene: Option<GpuScene>,
+    split_scene: Option<Arc<GpuScene>>,
     /// The attachments of the last frame drawn with each sample count.
     targets: Attachments,
     counters: WorkCounters,
@@ -132,59 +136,6 @@ impl Renderer {
 
     pub fn queue(&self) -> &wgpu::Queue {
         &self.queue
-    }
-
-    /// Replaces the scene with `scene` prepared with `options` ([`PreparedScene::new`]) and
-    /// uploads what it uses. A split scene ([`Self::set_split_scene`]) is kept: replace or
-    /// drop it too when the scene changes.
-    pub fn set_scene(&mut self, scene: &Scene, options: SceneOptions) {
-        self.set_prepared(Arc::new(PreparedScene::new(scene, &options)));
-    }
-
-    /// Replaces the scene with one prepared already (e.g. off the UI thread).
-    pub fn set_prepared(&mut self, prepared: Arc<PreparedScene>) {
-        let gpu = self.upload(prepared);
-        self.notices = gpu.notices.clone();
-        self.scene = Some(gpu);
-    }
-
-    /// Gives the split view's right half its own upload of `scene` made with `options` (two
-    /// tangent methods, two conventions, two bump sources), or with `None` drops it, so the
-    /// right half is drawn from the main scene again. Its notices are added to the main ones.
-    pub fn set_split_scene(&mut self, scene: &Scene, options: Option<SceneOptions>) {
-        self.set_split_prepared(options.map(|options| Arc::new(PreparedScene::new(scene, &options))));
-    }
-
-    /// [`Self::set_split_scene`] with a scene prepared already.
-    pub fn set_split_prepared(&mut self, prepared: Option<Arc<PreparedScene>>) {
-        self.split_scene = prepared.map(|prepared| self.upload(prepared));
-    }
-
-    /// [`Self::set_scene`] and [`Self::set_split_scene`] for what a viewer state asks.
-    pub fn set_scene_uploads(&mut self, scene: &Scene, uploads: &SceneUploads) {
-        self.set_scene(scene, uploads.main.clone());
-        self.set_split_scene(scene, uploads.split_right.clone());
-    }
-
-    /// The scene options of the uploads the renderer holds, as [`Self::set_scene_uploads`] takes
-    /// them (`None` before the first scene), to compare with what a viewer state asks.
-    pub fn uploads(&self) -> Option<SceneUploads> {
-        let options = |scene: &GpuScene| scene.prepared.options.clone();
-        let main = options(self.scene.as_ref()?);
-        Some(SceneUploads { main, split_right: self.split_scene.as_ref().map(options) })
-    }
-
-    /// The prepared scene the main picture (`split_half` false) or the split view's right
-    /// half (true; the main one when the right half has no upload of its own) is drawn from:
-    /// what the probe of that picture wraps.
-    pub fn prepared(&self, split_half: bool) -> Option<&Arc<PreparedScene>> {
-        let split = self.split_scene.as_ref().filter(|_| split_half);
-        split.or(self.scene.as_ref()).map(|s| &s.prepared)
-    }
-
-    fn upload(&mut self, prepared: Arc<PreparedScene>) -> GpuScene {
-        let layouts = &self.pipelines.layouts;
-        scene_gpu::upload(&self.device, &self.queue, layouts, prepared, &mut self.counters)
     }
 
     /// Whether the device can draw the wireframe overlay (`POLYGON_MODE_LINE`).
@@ -322,8 +273,8 @@ impl Renderer {
     /// The upload a half is drawn from.
     fn scene_in(&self, slot: SceneSlot) -> Option<&GpuScene> {
         match slot {
-            SceneSlot::Main => self.scene.as_ref(),
-            SceneSlot::Split => self.split_scene.as_ref(),
+            SceneSlot::Main => self.scene.as_deref(),
+            SceneSlot::Split => self.split_scene.as_deref(),
         }
     }
 
@@ -380,21 +331,17 @@ impl Renderer {
     }
 
     /// Makes what the halves' views need of their scene uploads and the uploads lack: the
-    /// reference frames of the Difference view, the glyph lines.
+    /// reference frames of the Difference view (unless made with the upload,
+    /// [`ReferenceFrames::WithUpload`]).
     fn prepare_scenes(&mut self, halves: &[Half]) -> Result<(), RenderError> {
         for half in halves {
-            // The scene is borrowed field by field ([`Self::scene_in`] would borrow all of
-            // `self`), as the counters change meanwhile.
             let scene = match half.scene {
-                SceneSlot::Main => self.scene.as_mut(),
-                SceneSlot::Split => self.split_scene.as_mut(),
+                SceneSlot::Main => self.scene.as_ref(),
+                SceneSlot::Split => self.split_scene.as_ref(),
             }
             .ok_or(RenderError::NoScene)?;
             if half.shading.view == ViewMode::Difference {
                 scene.ensure_reference_frames(&self.device, &mut self.counters);
-            }
-            if half.shading.tbn_glyphs {
-                scene.ensure_glyphs(&self.device);
             }
         }
         Ok(())

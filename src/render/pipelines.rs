@@ -79,6 +79,7 @@ pub struct PipelineKey {
 
 /// Bind group layouts ([`super::bindings`]): group 0 is the frame; group 1 the object and
 /// its material, with the bump texture only for variants that have one, or the light marker.
+#[derive(Clone)]
 pub struct Layouts {
     pub frame: wgpu::BindGroupLayout,
     pub plain_material: wgpu::BindGroupLayout,

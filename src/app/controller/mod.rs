@@ -139,6 +139,7 @@ impl Controller {
         let watch_wake = Arc::clone(&wake);
         let (mut watcher, watching) = Watcher::new(move || watch_wake());
         let watch_error = watching.and_then(|()| watcher.watch(&watched_files(&files.scene_files, &scene))).err();
+        let uploader = renderer.uploader();
         let mut controller = Controller {
             facts: None,
             state,
@@ -152,7 +153,7 @@ impl Controller {
             screenshot: ScreenshotForm::new(&capture),
             preset: PresetForm::default(),
             probe: Probe::default(),
-            jobs: SceneJobs::new(build),
+            jobs: SceneJobs::new(build, uploader),
             last_job: None,
             failed: None,
             view_size: None,

@@ -2,15 +2,16 @@
 //! opened or reloaded, a kernel change, and any option the GPU data depends on (tangent method,
 //! bump source, conventions, the split view's halves), and the scene given at start — becomes
 //! one scene job ([`super::scene_job`]); the job's one action installs its result: the UI
-//! thread only uploads it.
+//! thread only swaps in the uploads the job made.
 
 use std::sync::Arc;
 use std::time::Instant;
 
 use bumpview::frame::SceneUploads;
+use bumpview::frame::ViewMode;
 use bumpview::height::Kernel;
 use bumpview::names::Named;
-use bumpview::prepare::PreparedScene;
+use bumpview::render::ReferenceFrames;
 
 use super::scene_job::{Ready, SceneReady, Source};
 use super::{Controller, watched_files};
@@ -50,7 +51,7 @@ impl Controller {
     /// load in flight is asked for again with the new options (its files are read once).
     pub(super) fn sync_uploads(&mut self) {
         let (source, aimed) = match self.jobs.in_flight() {
-            Some((source, uploads)) => (source.clone(), Some(uploads.clone())),
+            Some((source, uploads, _)) => (source.clone(), Some(uploads.clone())),
             None => (self.shown(), self.renderer.uploads()),
         };
         let wanted = self.planned_uploads(source.purpose());
@@ -59,12 +60,21 @@ impl Controller {
         }
     }
 
-    /// The scene shown, with its prepared scenes and facts for the job to reuse.
+    /// The scene shown, with its uploads and facts for the job to reuse.
     fn shown(&self) -> Source {
-        let main = self.renderer.prepared(false);
-        let split = self.renderer.uploads().and_then(|u| u.split_right).and(self.renderer.prepared(true));
-        let held = main.into_iter().chain(split).cloned().collect();
+        let held = self.renderer.held(false).into_iter().chain(self.renderer.held(true)).collect();
         Source::Shown { scene: Arc::clone(&self.scene), held, facts: self.facts.clone() }
+    }
+
+    /// Whether a half of the view shows the Difference view now, so new uploads had better
+    /// bring its reference frames (else the first frame drawn from them makes them).
+    fn reference_frames(&self) -> ReferenceFrames {
+        let shown = self.state.split_frame().map_or(vec![self.state.shading], |s| vec![s.left, s.right]);
+        if shown.iter().any(|shading| shading.view == ViewMode::Difference) {
+            ReferenceFrames::WithUpload
+        } else {
+            ReferenceFrames::OnFirstUse
+        }
     }
 
     /// Starts the job making `source` ready for the options the state asks, superseding the
@@ -78,16 +88,21 @@ impl Controller {
             }
         };
         let wake = self.waker();
-        if let Err(message) = self.jobs.start(source, uploads, label, wake) {
+        let reference = self.reference_frames();
+        if let Err(message) = self.jobs.start(source, uploads, reference, label, wake) {
             self.files.status = Some(Status::Failed(message));
         }
     }
 
-    /// Takes in a scene job's action: a superseded job's is dropped; the latest's outcome goes
-    /// to the files (recent list, status) when it loaded any, and its scene is installed.
+    /// Takes in a scene job's action: a superseded job's is freed (off the UI thread); the
+    /// latest's outcome goes to the files (recent list, status) when it loaded any, and its
+    /// scene is installed.
     pub(super) fn scene_ready(&mut self, ready: SceneReady) {
-        let aimed = self.jobs.in_flight().map(|(_, uploads)| uploads.clone());
-        let Some(SceneReady { load, outcome, .. }) = self.jobs.accept(ready) else { return };
+        let aimed = self.jobs.in_flight().map(|(_, uploads, _)| uploads.clone());
+        let SceneReady { load, outcome, .. } = match self.jobs.accept(ready) {
+            Ok(ready) => ready,
+            Err(superseded) => return free_elsewhere(superseded),
+        };
         self.failed = None;
         let purpose = load.as_ref().map_or(Purpose::Reload, |job| job.purpose);
         match (load, outcome) {
@@ -107,9 +122,9 @@ impl Controller {
         }
     }
 
-    /// Shows a scene a job made ready: uploads what the renderer does not hold yet, timed. A
-    /// new mesh is framed by its default camera and light; otherwise camera, light and
-    /// settings stay.
+    /// Shows a scene a job made ready: swaps in its uploads (made on the worker), timed. A new
+    /// mesh is framed by its default camera and light; otherwise camera, light and settings
+    /// stay.
     fn install(&mut self, ready: Ready, purpose: Purpose) {
         let Ready { scene, uploads: _, main, split, facts, mut times } = ready;
         if purpose == Purpose::Open {
@@ -120,27 +135,24 @@ impl Controller {
         }
         self.state.default_camera = scene.default_camera;
         let started = Instant::now();
-        let held = |prepared: Option<&Arc<PreparedScene>>, new: &Arc<PreparedScene>| {
-            prepared.is_some_and(|held| Arc::ptr_eq(held, new))
-        };
-        if !held(self.renderer.prepared(false), &main) {
-            self.renderer.set_prepared(main);
-        }
-        let split_held = self.renderer.uploads().is_some_and(|u| u.split_right.is_some());
-        let same_split = match &split {
-            Some(split) => split_held && held(self.renderer.prepared(true), split),
-            None => !split_held,
-        };
-        if !same_split {
-            self.renderer.set_split_prepared(split);
-        }
-        times.upload_ms = started.elapsed().as_secs_f64() * 1e3;
+        let replaced = self.renderer.install(main, split);
+        times.install_ms = started.elapsed().as_secs_f64() * 1e3;
         self.last_job = Some(times);
+        let mut replaced_scene = None;
         if !Arc::ptr_eq(&self.scene, &scene) {
-            self.scene = scene;
+            replaced_scene = Some(std::mem::replace(&mut self.scene, scene));
             self.probe.scene_changed();
         }
+        free_elsewhere((replaced, replaced_scene));
         self.facts = Some(facts);
         self.revision += 1;
     }
+}
+
+/// Frees what a scene change replaced (uploads, the scene) on a thread of its own: freeing a
+/// 1M-triangle upload (its buffers, textures and prepared scene) took up to 40 ms on the UI
+/// thread. When no thread can be started it is freed here.
+fn free_elsewhere(replaced: impl Send + 'static) {
+    // On failure the closure, and so `replaced`, is dropped here.
+    let _ = std::thread::Builder::new().name("bumpview-free".into()).spawn(move || drop(replaced));
 }

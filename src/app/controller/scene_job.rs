@@ -1,9 +1,10 @@
 //! One background job per scene change: load the files when they changed, prepare the scene
 //! for the options it will be drawn with (tangent frames and drawn geometry,
 //! [`PreparedScene::new`]; the textures' mip chains, [`PreparedScene::precompute_mip_chains`])
-//! and measure it for the panel ([`SceneFacts`]), then hand the UI one
-//! [`Action::SceneReady`]. The UI thread only uploads what arrives; the window keeps drawing
-//! the previous scene meanwhile.
+//! and upload it to the GPU ([`Uploader`]), and measure it for the panel ([`SceneFacts`]), then
+//! hand the UI one [`Action::SceneReady`]. The UI thread only installs what arrives (a swap,
+//! [`bumpview::render::Renderer::install`]); the window keeps drawing the previous scene
+//! meanwhile.
 //!
 //! A newer job supersedes an older one: the older stops before its next stage, and a result
 //! it delivered anyway is dropped by [`SceneJobs::accept`], so no stale scene installs over a
@@ -18,6 +19,7 @@ use bumpview::frame::SceneUploads;
 use bumpview::height::Kernel;
 use bumpview::load::{LoadError, SceneFiles};
 use bumpview::prepare::PreparedScene;
+use bumpview::render::{ReferenceFrames, SceneUpload, Uploader};
 use bumpview::scene::Scene;
 
 use super::facts::SceneFacts;
@@ -62,9 +64,9 @@ pub enum Source {
     /// Files to load: opened, reloaded, a preset's, the built-in scene with another kernel.
     Load(Arc<Load>),
     /// The scene shown now, prepared for other options (or for the first time: the scene
-    /// given on the command line). `held` are its prepared scenes uploaded now, reused for the
-    /// options they were made with; `facts` its facts, reused where still true.
-    Shown { scene: Arc<Scene>, held: Vec<Arc<PreparedScene>>, facts: Option<Arc<SceneFacts>> },
+    /// given on the command line). `held` are its uploads drawn now, reused for the options
+    /// they were prepared with; `facts` its facts, reused where still true.
+    Shown { scene: Arc<Scene>, held: Vec<SceneUpload>, facts: Option<Arc<SceneFacts>> },
 }
 
 impl Source {
@@ -77,17 +79,19 @@ impl Source {
     }
 }
 
-/// How long a job's stages took on its worker, and the upload on the UI thread, milliseconds.
+/// How long a job's stages took on its worker, and the install on the UI thread, milliseconds.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct JobTimes {
     /// Reading the files (0 when the shown scene was prepared again or another job read them).
     pub load_ms: f64,
     /// Tangent frames, drawn geometry and mip chains of both uploads.
     pub prepare_ms: f64,
+    /// Uploading both to the GPU (0 when the uploads drawn were reused).
+    pub upload_ms: f64,
     /// The tangent method's timing and errors, `check`.
     pub measure_ms: f64,
-    /// The upload to the GPU when the result was installed (set by the UI thread).
-    pub upload_ms: f64,
+    /// Installing the result, on the UI thread (set there).
+    pub install_ms: f64,
 }
 
 /// A scene made ready by a job, to install.
@@ -96,8 +100,8 @@ pub struct Ready {
     pub scene: Arc<Scene>,
     /// The options `main` and `split` were prepared with.
     pub uploads: SceneUploads,
-    pub main: Arc<PreparedScene>,
-    pub split: Option<Arc<PreparedScene>>,
+    pub main: SceneUpload,
+    pub split: Option<SceneUpload>,
     pub facts: Arc<SceneFacts>,
     pub times: JobTimes,
 }
@@ -118,6 +122,8 @@ struct Busy {
     label: String,
     source: Source,
     uploads: SceneUploads,
+    /// Whether new uploads are made with the Difference view's reference frames.
+    reference: ReferenceFrames,
     /// What the worker is doing now.
     stage: Arc<Mutex<&'static str>>,
     started: Instant,
@@ -126,6 +132,7 @@ struct Busy {
 /// Runs scene jobs on worker threads, the latest only.
 pub struct SceneJobs {
     build: BuildFn,
+    uploader: Uploader,
     sender: mpsc::Sender<Action>,
     receiver: mpsc::Receiver<Action>,
     /// Number of the latest job started; workers read it to stop when superseded.
@@ -134,19 +141,21 @@ pub struct SceneJobs {
 }
 
 impl SceneJobs {
-    /// Jobs that load files with `build`.
-    pub fn new(build: BuildFn) -> SceneJobs {
+    /// Jobs that load files with `build` and upload with `uploader`.
+    pub fn new(build: BuildFn, uploader: Uploader) -> SceneJobs {
         let (sender, receiver) = mpsc::channel();
-        SceneJobs { build, sender, receiver, latest: Arc::new(AtomicU64::new(0)), busy: None }
+        SceneJobs { build, uploader, sender, receiver, latest: Arc::new(AtomicU64::new(0)), busy: None }
     }
 
     /// Starts a job making `source` ready for `uploads` on a new thread, superseding the one in
-    /// flight; `wake` is called from it when its action is sent. The error says why no thread
-    /// could be started (the scene shown stays).
+    /// flight; its new uploads are made with the reference frames when `reference` says so.
+    /// `wake` is called from it when its action is sent. The error says why no thread could be
+    /// started (the scene shown stays).
     pub fn start(
         &mut self,
         source: Source,
         uploads: SceneUploads,
+        reference: ReferenceFrames,
         label: String,
         wake: impl Fn() + Send + 'static,
     ) -> Result<(), String> {
@@ -157,6 +166,8 @@ impl SceneJobs {
             latest: Arc::clone(&self.latest),
             stage: Arc::clone(&stage),
             build: Arc::clone(&self.build),
+            uploader: self.uploader.clone(),
+            reference,
         };
         let (job_source, job_uploads, sender) = (source.clone(), uploads.clone(), self.sender.clone());
         let run = move || {
@@ -167,7 +178,7 @@ impl SceneJobs {
             }
         };
         let spawned = std::thread::Builder::new().name("bumpview-scene".into()).spawn(run);
-        self.busy = spawned.is_ok().then(|| Busy { label, source, uploads, stage, started: Instant::now() });
+        self.busy = spawned.is_ok().then(|| Busy { label, source, uploads, reference, stage, started: Instant::now() });
         spawned.map(drop).map_err(|e| format!("could not start a thread to make the scene ready: {e}"))
     }
 
@@ -180,9 +191,9 @@ impl SceneJobs {
         })
     }
 
-    /// The source and options of the job in flight.
-    pub fn in_flight(&self) -> Option<(&Source, &SceneUploads)> {
-        self.busy.as_ref().map(|busy| (&busy.source, &busy.uploads))
+    /// The source, options and reference frames of the job in flight.
+    pub fn in_flight(&self) -> Option<(&Source, &SceneUploads, ReferenceFrames)> {
+        self.busy.as_ref().map(|busy| (&busy.source, &busy.uploads, busy.reference))
     }
 
     /// The actions jobs have sent since the last call.
@@ -196,14 +207,14 @@ impl SceneJobs {
         self.receiver.recv_timeout(timeout).ok()
     }
 
-    /// `ready` if it is the latest job's (which then is no longer in flight); `None` for a
-    /// superseded job's, which must not be installed.
-    pub fn accept(&mut self, ready: SceneReady) -> Option<SceneReady> {
+    /// `Ok(ready)` if it is the latest job's (which then is no longer in flight); `Err(ready)`
+    /// for a superseded job's, which must not be installed (only freed).
+    pub fn accept(&mut self, ready: SceneReady) -> Result<SceneReady, SceneReady> {
         if ready.generation != self.latest.load(Ordering::SeqCst) {
-            return None;
+            return Err(ready);
         }
         self.busy = None;
-        Some(ready)
+        Ok(ready)
     }
 }
 
@@ -213,6 +224,8 @@ struct Worker {
     latest: Arc<AtomicU64>,
     stage: Arc<Mutex<&'static str>>,
     build: BuildFn,
+    uploader: Uploader,
+    reference: ReferenceFrames,
 }
 
 impl Worker {
@@ -247,14 +260,12 @@ impl Worker {
             }
             Source::Shown { scene, held, facts } => (scene, held, facts),
         };
-        let started = Instant::now();
-        let prepared = |options| self.prepared(&scene, &held, options);
-        let main = prepared(&uploads.main)?;
+        let mut made = |options| self.uploaded(&scene, &held, options, &mut times);
+        let main = made(&uploads.main)?;
         let split = match &uploads.split_right {
-            Some(options) => Some(prepared(options)?),
+            Some(options) => Some(made(options)?),
             None => None,
         };
-        times.prepare_ms = milliseconds(started);
         self.current()?;
         self.set("measuring the tangent method, checking");
         let started = Instant::now();
@@ -264,24 +275,32 @@ impl Worker {
         Some(Ok(Ready { scene, uploads, main, split, facts, times }))
     }
 
-    /// `scene` prepared with `options`, or the one of `held` made with them; `None` once
-    /// superseded.
-    fn prepared(
+    /// `scene` prepared with `options` and uploaded, or the one of `held` made with them;
+    /// the stages' times are added to `times`. `None` once superseded.
+    fn uploaded(
         &self,
         scene: &Scene,
-        held: &[Arc<PreparedScene>],
+        held: &[SceneUpload],
         options: &bumpview::frame::SceneOptions,
-    ) -> Option<Arc<PreparedScene>> {
-        if let Some(held) = held.iter().find(|p| p.options == *options) {
-            return Some(Arc::clone(held));
+        times: &mut JobTimes,
+    ) -> Option<SceneUpload> {
+        if let Some(held) = held.iter().find(|u| u.prepared().options == *options) {
+            return Some(held.clone());
         }
         self.current()?;
         self.set("tangent frames and geometry");
+        let started = Instant::now();
         let mut prepared = PreparedScene::new(scene, options);
         self.current()?;
         self.set("mip chains");
         prepared.precompute_mip_chains();
-        Some(Arc::new(prepared))
+        times.prepare_ms += milliseconds(started);
+        self.current()?;
+        self.set("uploading to the GPU");
+        let started = Instant::now();
+        let upload = self.uploader.upload(Arc::new(prepared), self.reference);
+        times.upload_ms += milliseconds(started);
+        Some(upload)
     }
 
     /// `Some` while this is the latest job.

@@ -42,7 +42,8 @@ fn the_scene_given_at_start_is_prepared_by_a_job() {
 }
 
 /// An option change only starts a job: when `apply` returns, the renderer still holds the old
-/// upload and the state the new option; the job's one action installs the new upload.
+/// upload and the state the new option; the job's one action brings the new upload, made on
+/// its worker, and installing it draws that upload.
 #[test]
 fn an_option_change_is_prepared_off_the_ui_thread() {
     let mut controller = controller();
@@ -55,8 +56,15 @@ fn an_option_change_is_prepared_off_the_ui_thread() {
 
     let ready = controller.jobs.wait(JOB_TIMEOUT).expect("the job's action");
     assert!(matches!(&ready, Action::SceneReady(ready) if ready.load.is_none()), "a re-prepare loads nothing");
+    let Action::SceneReady(job) = &ready else { unreachable!("matched above") };
+    let uploaded = job.outcome.as_ref().expect("the scene").main.clone();
     controller.apply([ready]);
     assert_eq!(drawn_method(&controller), Some(TangentMethod::PerFace));
+    assert_eq!(
+        controller.renderer().held(false),
+        Some(uploaded),
+        "the job's upload is drawn, none made on the UI thread"
+    );
     assert_eq!(controller.renderer().counters().scenes_uploaded, 2);
     assert!(controller.busy().is_none());
 }

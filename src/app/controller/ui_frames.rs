@@ -1,7 +1,7 @@
 //! A measurement, ignored by default: the UI thread's frames while a scene job re-prepares a
 //! 1M-triangle scene (the built-in scene with a 1000 × 500 torus). Each simulated frame does
 //! what the window's frame does on the UI thread besides the panel: take in what jobs sent
-//! (the install and its upload included), apply the frame's actions and, in the "drawing"
+//! (the install included; the upload is the job's, on its worker), apply the frame's actions and, in the "drawing"
 //! runs, orbit the camera a little and draw the old scene with 4× MSAA into a 960 × 600
 //! texture. Run it with
 //! `cargo test --bin bumpview ui_frames -- --ignored --nocapture --test-threads 1`.
@@ -29,8 +29,8 @@ fn ms(started: Instant) -> f64 {
     started.elapsed().as_secs_f64() * 1e3
 }
 
-/// One frame on the UI thread: its own work (taking in what jobs sent, the install and its
-/// upload included; when drawing, the orbit and recording and submitting the frame) and, when
+/// One frame on the UI thread: its own work (taking in what jobs sent, the install included;
+/// when drawing, the orbit and recording and submitting the frame) and, when
 /// drawing, the wait for lavapipe (a software GPU on the same CPU; a hardware GPU draws 1M
 /// triangles in about a millisecond and the window would not wait for it).
 struct Frame {
@@ -127,14 +127,16 @@ fn ui_frames_while_a_million_triangle_scene_re_prepares() {
             let job = controller.last_job().unwrap();
             println!(
                 "{kind}, {name}: {} frames while the job ran: UI work {}; lavapipe wait {}; \
-                 install frame {:.1} ms (upload {:.1} ms); job: load {:.0} ms, prepare {:.0} ms, measure {:.0} ms",
+                 install frame {:.1} ms (install {:.2} ms); job: load {:.0} ms, prepare {:.0} ms, \
+                 upload {:.0} ms, measure {:.0} ms",
                 during.len(),
                 summary(during.iter().map(|f| f.work_ms).collect()),
                 summary(during.iter().map(|f| f.gpu_wait_ms).collect()),
                 install.work_ms,
-                job.upload_ms,
+                job.install_ms,
                 job.load_ms,
                 job.prepare_ms,
+                job.upload_ms,
                 job.measure_ms,
             );
             controller.apply([Command::SetSplit(false).into()]);

@@ -6,7 +6,9 @@ use bumpview::scene::OrbitCamera;
 use crate::app::action::Action;
 use crate::app::probe::Probe;
 
-/// Points between the marker and the readout window.
+/// Points between the marker's centre and the readout window, across and down: more than the
+/// marker's reach (its ticks end 14 points out), so the window never covers the marker, even
+/// when the view is too narrow for it beside the marker and it is pushed back over the point.
 const WINDOW_OFFSET: f32 = 18.0;
 
 /// Draws the marker and the readout window for `probe` over the view at `rect` (`size` pixels)
@@ -36,7 +38,10 @@ pub(super) fn show(
         (false, true) => egui::Align2::RIGHT_TOP,
         (false, false) => egui::Align2::RIGHT_BOTTOM,
     };
-    let offset = egui::vec2(if right { WINDOW_OFFSET } else { -WINDOW_OFFSET }, if below { 4.0 } else { -4.0 });
+    let offset = egui::vec2(
+        if right { WINDOW_OFFSET } else { -WINDOW_OFFSET },
+        if below { WINDOW_OFFSET } else { -WINDOW_OFFSET },
+    );
     let mut action = None;
     egui::Area::new(id).order(egui::Order::Foreground).fixed_pos(point + offset).pivot(pivot).constrain_to(rect).show(
         ui.ctx(),

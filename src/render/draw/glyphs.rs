@@ -7,8 +7,8 @@ use crate::render::pipelines::Pass;
 use crate::render::scene_gpu::{GpuInstance, GpuScene};
 
 /// The instances of `scene` whose meshes have glyph lines, when `shading` asks for glyphs
-/// (their lines made already: [`GpuScene::ensure_glyphs`]). Each binds its variant's group-1
-/// layout.
+/// (their lines are made with the upload, [`crate::render::scene_gpu::upload`]). Each binds
+/// its variant's group-1 layout.
 pub fn plan(scene: &GpuScene, shading: &ShadingSettings) -> Vec<InstanceDraw> {
     let instances = scene.instances.iter().enumerate().filter(|(_, i)| shading.tbn_glyphs && has_glyphs(i, scene));
     instances.map(|(index, i)| InstanceDraw { instance: index, pass: Pass::Glyphs { variant: i.variant } }).collect()

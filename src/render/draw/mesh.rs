@@ -30,7 +30,7 @@ pub fn record(pass: &mut wgpu::RenderPass, pipelines: &FramePipelines, scene: &G
         if let Some(tangents) = &mesh.tangents {
             pass.set_vertex_buffer(3, tangents.slice(..));
         }
-        if let (Pass::Difference { .. }, Some(reference)) = (draw.pass, &mesh.reference_tangents) {
+        if let (Pass::Difference { .. }, Some(reference)) = (draw.pass, mesh.reference_tangents.get()) {
             pass.set_vertex_buffer(4, reference.slice(..));
         }
         pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
