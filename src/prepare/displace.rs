@@ -8,7 +8,8 @@
 //!
 //! Each triangle is cut into `n² = 4^level` triangles on a barycentric grid (vertices shared
 //! within a triangle; on a shared edge both triangles compute bit-identical positions, so the
-//! surface has no cracks). A vertex at barycentric `(b₁, b₂)` of the base triangle lies at
+//! surface has no cracks; where two surfaces or two normals meet at an edge, [`weld`](super::weld)
+//! joins them). A vertex at barycentric `(b₁, b₂)` of the base triangle lies at
 //! `P' = P + N̂ · (h − 1) · depth`, with `P`, the normal `N` and the UV interpolated linearly,
 //! `N̂ = N / |N|` and `h` the height map's bilinear sample (0..1, white = high, a depth map
 //! flipped) at the UV — the parallax convention: the mesh surface is the top of the relief.
@@ -21,6 +22,7 @@
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
+use super::weld::{EdgeVertex, weld};
 use crate::frame::{Displacement, MAX_DISPLACED_TRIANGLES, MAX_DISPLACEMENT_LEVEL};
 use crate::scene::sample::sample_bilinear;
 use crate::scene::{Material, Mesh, Scene, TextureImage};
@@ -123,7 +125,7 @@ pub fn displaced(
         let depth_m = displacement.depth_m.unwrap_or(map.range_m);
         let depth_m = if depth_m.is_finite() { depth_m } else { 0.0 };
         let heights = HeightLookup { texture: &scene.textures[map.texture], material, depth: map.depth };
-        let mesh = displace_mesh(&scene.meshes[mesh_index], level, depth_m, &heights);
+        let (mesh, edges) = displace_mesh(&scene.meshes[mesh_index], level, depth_m, &heights);
         stats.vertices += mesh.positions.len();
         stats.triangles += mesh.indices.len() / 3;
         stats.bytes += mesh.positions.len() * VERTEX_BYTES + mesh.indices.len() * 4;
@@ -133,9 +135,10 @@ pub fn displaced(
             height_map: None,
             ..material.clone()
         };
-        made.push(((mesh_index, material_index), mesh, flat));
+        made.push(((mesh_index, material_index), mesh, flat, edges));
     }
-    for ((mesh_index, material_index), mesh, material) in made {
+    weld_where_drawn_alike(&scene, &mut made);
+    for ((mesh_index, material_index), mesh, material, _) in made {
         scene.meshes.push(mesh);
         scene.materials.push(material);
         let (new_mesh, new_material) = (scene.meshes.len() - 1, scene.materials.len() - 1);
@@ -148,22 +151,55 @@ pub fn displaced(
     (scene, Some(stats))
 }
 
-/// `mesh` tessellated at `level` and displaced by `depth_m` metres of `heights`.
-fn displace_mesh(mesh: &Mesh, level: u32, depth_m: f32, heights: &HeightLookup) -> Mesh {
+/// Welds (see [`weld`](super::weld)) the displaced meshes drawn with one and the same
+/// transform (the built-in wall and floor: the identity), whose shared edges then meet in the
+/// world too; a mesh drawn with several transforms is welded only with itself.
+fn weld_where_drawn_alike(scene: &Scene, made: &mut [((usize, usize), Mesh, Material, Vec<EdgeVertex>)]) {
+    let transform_of = |pair: (usize, usize)| {
+        let mut transforms = scene.instances.iter().filter(|i| (i.mesh, i.material) == pair).map(|i| i.transform);
+        let first = transforms.next()?;
+        transforms.all(|t| t == first).then_some(first.to_cols_array().map(f32::to_bits))
+    };
+    let mut groups: Vec<(Option<[u32; 16]>, Vec<usize>)> = vec![];
+    for (k, entry) in made.iter().enumerate() {
+        let key = transform_of(entry.0);
+        match groups.iter_mut().find(|(g, _)| key.is_some() && *g == key) {
+            Some((_, members)) => members.push(k),
+            None => groups.push((key, vec![k])),
+        }
+    }
+    for (_, members) in groups {
+        let mut meshes: Vec<(&mut Vec<Vec3>, Vec<EdgeVertex>)> = made
+            .iter_mut()
+            .enumerate()
+            .filter(|(k, _)| members.contains(k))
+            .map(|(_, entry)| (&mut entry.1.positions, std::mem::take(&mut entry.3)))
+            .collect();
+        weld(&mut meshes);
+    }
+}
+
+/// `mesh` tessellated at `level` and displaced by `depth_m` metres of `heights`, with the
+/// vertices on its base triangles' edges (for [`weld`](super::weld)).
+fn displace_mesh(mesh: &Mesh, level: u32, depth_m: f32, heights: &HeightLookup) -> (Mesh, Vec<EdgeVertex>) {
     let n = 1u32 << level;
     let per_triangle = ((n + 1) * (n + 2) / 2) as usize;
-    let patches: Vec<(Vec<Vec3>, Vec<Vec3>, Vec<Vec2>)> = mesh
+    type Patch = (Vec<Vec3>, Vec<Vec3>, Vec<Vec2>, Vec<EdgeVertex>);
+    let patches: Vec<Patch> = mesh
         .indices
         .par_chunks_exact(3)
         .map(|corners| {
             let corners = [corners[0], corners[1], corners[2]].map(|i| i as usize);
             let (p, nrm, uv) =
                 (corners.map(|i| mesh.positions[i]), corners.map(|i| mesh.normals[i]), corners.map(|i| mesh.uvs[i]));
-            let mut out = (Vec::with_capacity(per_triangle), Vec::with_capacity(per_triangle), vec![]);
+            let mut out = (Vec::with_capacity(per_triangle), Vec::with_capacity(per_triangle), vec![], vec![]);
             for i in 0..=n {
                 for j in 0..=n - i {
                     let w = [(n - i - j) as f32 / n as f32, i as f32 / n as f32, j as f32 / n as f32];
-                    let (position, normal) = displaced_vertex(&p, &nrm, &uv, w, depth_m, heights);
+                    let (position, normal, edge) = displaced_vertex(&p, &nrm, &uv, w, depth_m, heights);
+                    if i == 0 || j == 0 || i + j == n {
+                        out.3.push(EdgeVertex { index: out.0.len() as u32, ..edge });
+                    }
                     out.0.push(position);
                     out.1.push(normal);
                     out.2.push(uv[0] * w[0] + uv[1] * w[1] + uv[2] * w[2]);
@@ -183,8 +219,10 @@ fn displace_mesh(mesh: &Mesh, level: u32, depth_m: f32, heights: &HeightLookup) 
     };
     // Vertex (i, j) of a patch: rows of n + 1 − i vertices.
     let index = |i: u32, j: u32| i * (n + 1) - i * (i.saturating_sub(1)) / 2 + j;
-    for (positions, normals, uvs) in patches {
+    let mut edges = vec![];
+    for (positions, normals, uvs, patch_edges) in patches {
         let base = out.positions.len() as u32;
+        edges.extend(patch_edges.into_iter().map(|e| EdgeVertex { index: base + e.index, ..e }));
         for i in 0..n {
             for j in 0..n - i {
                 out.indices.extend([index(i, j), index(i + 1, j), index(i, j + 1)].map(|v| base + v));
@@ -197,12 +235,13 @@ fn displace_mesh(mesh: &Mesh, level: u32, depth_m: f32, heights: &HeightLookup) 
         out.normals.extend(normals);
         out.uvs.extend(uvs);
     }
-    out
+    (out, edges)
 }
 
 /// The displaced position and normal at barycentric weights `w` of the triangle with corners
 /// `p`, normals `nrm` and UVs `uv` (the module's formulas). The normal has the length of the
-/// interpolated one, so at depth 0 it is exactly the undisplaced mesh's.
+/// interpolated one, so at depth 0 it is exactly the undisplaced mesh's. Also the vertex's
+/// base position, unit normal and lift (its index left 0).
 fn displaced_vertex(
     p: &[Vec3; 3],
     nrm: &[Vec3; 3],
@@ -210,16 +249,16 @@ fn displaced_vertex(
     w: [f32; 3],
     depth_m: f32,
     heights: &HeightLookup,
-) -> (Vec3, Vec3) {
+) -> (Vec3, Vec3, EdgeVertex) {
     let position = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
     let normal = nrm[0] * w[0] + nrm[1] * w[1] + nrm[2] * w[2];
     let at = uv[0] * w[0] + uv[1] * w[1] + uv[2] * w[2];
-    if depth_m == 0.0 {
-        return (position, normal);
-    }
     let face = (p[1] - p[0]).cross(p[2] - p[0]);
     let length = normal.length();
     let unit = if length > 1e-12 && normal.is_finite() { normal / length } else { face.normalize_or(Vec3::Z) };
+    if depth_m == 0.0 {
+        return (position, normal, EdgeVertex { index: 0, base: position, unit, lift: 0.0 });
+    }
     let lift = (heights.at(at) - 1.0) * depth_m;
     let gradient = heights.gradient(at);
     let along = |k: usize| {
@@ -233,7 +272,7 @@ fn displaced_vertex(
     // Oriented like the interpolated normal (the base triangle may wind against it).
     let side = if face.dot(unit) < 0.0 { -1.0 } else { 1.0 };
     let exact = (cross * side).normalize_or(unit);
-    (position + unit * lift, exact * length.max(1e-12))
+    (position + unit * lift, exact * length.max(1e-12), EdgeVertex { index: 0, base: position, unit, lift })
 }
 
 #[cfg(test)]
@@ -246,7 +285,7 @@ mod tests {
         let scene = teaching_scene();
         let wall = &scene.meshes[0];
         let heights = HeightLookup { texture: &scene.textures[2], material: &scene.materials[0], depth: false };
-        let mesh = displace_mesh(wall, 3, 0.0, &heights);
+        let (mesh, _) = displace_mesh(wall, 3, 0.0, &heights);
         let base = wall.indices.len() / 3;
         assert_eq!(mesh.indices.len() / 3, base * 64);
         assert_eq!(mesh.positions.len(), base * 45);
@@ -283,7 +322,7 @@ mod tests {
             square.uvs.push(Vec2::new(x, 1.0 - y));
         }
         square.indices = vec![0, 1, 2, 0, 2, 3];
-        let mesh = displace_mesh(&square, 5, 0.1, &heights);
+        let (mesh, _) = displace_mesh(&square, 5, 0.1, &heights);
         let expected_normal = Vec3::new(-0.1, 0.0, 1.0).normalize();
         let mut checked = 0;
         for ((p, n), uv) in mesh.positions.iter().zip(&mesh.normals).zip(&mesh.uvs) {

@@ -7,6 +7,7 @@
 //! the CPU probe samples and shades the same prepared scene, so both draw the same surface.
 
 pub mod displace;
+mod weld;
 mod repair;
 
 use std::borrow::Cow;
