@@ -7,8 +7,8 @@
 //! the CPU probe samples and shades the same prepared scene, so both draw the same surface.
 
 pub mod displace;
-mod weld;
 mod repair;
+mod weld;
 
 use std::borrow::Cow;
 
