@@ -84,3 +84,21 @@ fn displacement_and_shadows_draw_report_and_round_trip_through_a_preset() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A level past the triangle budget is drawn lower, and render's stderr line names the level
+/// asked, the level drawn and why (the built-in scene's 6400 base triangles at level 6 would be
+/// 26 214 400); with no split view on, nothing is said (or built) for a right half.
+#[test]
+fn a_capped_level_is_named_with_the_level_asked_and_no_split_copy_is_reported() {
+    let out = std::env::temp_dir().join(format!("bumpview-displacement-cap-{}.png", std::process::id()));
+    let output = bumpview(&["render", "--size", "96x64", "--out", out.to_str().unwrap(), "--displacement", "6"]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    let budget = bumpview::frame::MAX_DISPLACED_TRIANGLES;
+    let line = format!(
+        "bumpview: displacement: level 5 drawn, 6 asked (26214400 triangles would pass the budget of {budget}): 3590400 vertices, 6553600 triangles,"
+    );
+    assert!(stderr.contains(&line), "{line}\nin\n{stderr}");
+    assert!(!stderr.contains("split right"), "{stderr}");
+    std::fs::remove_file(&out).unwrap();
+}

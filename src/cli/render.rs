@@ -239,11 +239,17 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     Ok(())
 }
 
-/// Tells stderr what displacement drew (per half of a split view drawn from two uploads).
+/// Tells stderr what displacement drew, the level asked for and why it was lowered (per half
+/// of a split view drawn from two uploads; a right half without its own upload is drawn from
+/// the main one and not named).
 fn report_displacement(renderer: &Renderer) {
+    let split_upload = renderer.uploads().is_some_and(|u| u.split_right.is_some());
     for (half, name) in [(false, ""), (true, " (split right)")] {
+        if half && !split_upload {
+            continue;
+        }
         if let Some(stats) = renderer.prepared(half).and_then(|p| p.displacement) {
-            eprintln!("bumpview: displacement{name}: {}", stats.summary());
+            eprintln!("bumpview: displacement{name}: {}", stats.asked_and_drawn());
         }
     }
 }

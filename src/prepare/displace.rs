@@ -36,7 +36,12 @@ pub const VERTEX_BYTES: usize = 32;
 /// would exceed [`MAX_DISPLACED_TRIANGLES`]), and the displaced meshes' size.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DisplacementStats {
+    /// The level drawn.
     pub level: u32,
+    /// The level asked for; above `level` when the scene would have passed the budget.
+    pub asked: u32,
+    /// Triangles of the base meshes displaced (each cut into `4^level`).
+    pub base_triangles: usize,
     pub vertices: usize,
     pub triangles: usize,
     /// Vertex and index buffers, bytes.
@@ -48,6 +53,22 @@ impl DisplacementStats {
     pub fn summary(&self) -> String {
         let mib = self.bytes as f64 / (1024.0 * 1024.0);
         format!("level {}: {} vertices, {} triangles, {mib:.1} MiB", self.level, self.vertices, self.triangles)
+    }
+
+    /// [`Self::summary`], naming the level asked for and why it was not drawn when the level
+    /// was lowered: `level 5 drawn, 6 asked (26214400 triangles would pass the budget of
+    /// 8388608): …`.
+    pub fn asked_and_drawn(&self) -> String {
+        if self.asked == self.level {
+            return self.summary();
+        }
+        let would = self.base_triangles.saturating_mul(1 << (2 * self.asked));
+        let summary = self.summary();
+        let drawn = summary.split_once(": ").map_or(summary.as_str(), |(_, rest)| rest);
+        format!(
+            "level {} drawn, {} asked ({would} triangles would pass the budget of {MAX_DISPLACED_TRIANGLES}): {drawn}",
+            self.level, self.asked
+        )
     }
 }
 
@@ -117,7 +138,7 @@ pub fn displaced(
             base_triangles << (2 * asked)
         ));
     }
-    let mut stats = DisplacementStats { level, vertices: 0, triangles: 0, bytes: 0 };
+    let mut stats = DisplacementStats { level, asked, base_triangles, vertices: 0, triangles: 0, bytes: 0 };
     let mut made = vec![];
     for &(mesh_index, material_index) in &pairs {
         let material = &scene.materials[material_index];

@@ -41,7 +41,12 @@ pub fn show(
         section(ui, "Lit picture and overlays", true, |ui| picture::show(ui, &controller.state, &mut actions));
         section(ui, "Lights and specular", false, |ui| lights::show(ui, &controller.state, &mut actions));
         section(ui, "Parallax and displacement", false, |ui| {
-            let displaced = [false, true].map(|half| controller.renderer().prepared(half).and_then(|p| p.displacement));
+            // A right half without an upload of its own is drawn from the main one: not listed.
+            let renderer = controller.renderer();
+            let split_upload = renderer.uploads().is_some_and(|u| u.split_right.is_some());
+            let displaced = [false, true].map(|half| {
+                (!half || split_upload).then(|| renderer.prepared(half).and_then(|p| p.displacement)).flatten()
+            });
             parallax::show(ui, &controller.state, &mut actions);
             parallax::displacement(ui, &controller.state, displaced, &mut actions);
         });

@@ -73,7 +73,8 @@ pub(super) fn show(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Act
 }
 
 /// Displacement's level (0 off) and, per drawn scene (the split view's right half may have its
-/// own), the displaced meshes' vertices, triangles and memory.
+/// own), the displaced meshes' vertices, triangles and memory; the level drawn and why, in the
+/// warning colour, when it is below the slider's.
 pub(super) fn displacement(
     ui: &mut egui::Ui,
     state: &ViewerState,
@@ -87,9 +88,16 @@ pub(super) fn displacement(
     if ui.add(slider).on_hover_text(hint).changed() {
         actions.push(Command::SetDisplacement(level).into());
     }
+    // A level lowered past the triangle budget is said here, under the slider that asked for it.
     for (stats, half) in displaced.iter().zip(["", "split right: "]) {
-        if let Some(stats) = stats {
-            ui.weak(format!("{half}{}", stats.summary()));
+        match stats {
+            Some(stats) if stats.asked > stats.level => {
+                ui.colored_label(ui.visuals().warn_fg_color, format!("{half}{}", stats.asked_and_drawn()));
+            }
+            Some(stats) => {
+                ui.weak(format!("{half}{}", stats.summary()));
+            }
+            None => {}
         }
     }
 }
