@@ -141,3 +141,20 @@ fn the_displaced_wall_and_floor_show_no_crack_along_their_seam() {
         );
     }
 }
+
+/// With no split view on, displacement is prepared once: the right half has no upload of its
+/// own and is drawn from the main prepared scene (the same one, not a copy).
+#[test]
+fn no_displaced_copy_is_made_for_a_split_half_that_is_not_drawn() {
+    let scene = teaching_scene();
+    let mut state = bumpview::state::ViewerState::new(&scene);
+    state.apply(bumpview::state::Command::SetDisplacement(2));
+    let uploads = state.scene_uploads();
+    assert!(uploads.split_right.is_none(), "{uploads:?}");
+    let mut renderer = renderer_for(&scene);
+    renderer.set_scene_uploads(&scene, &uploads);
+    assert!(renderer.uploads().unwrap().split_right.is_none());
+    let (main, right) = (renderer.prepared(false).unwrap(), renderer.prepared(true).unwrap());
+    assert!(std::sync::Arc::ptr_eq(main, right));
+    assert_eq!(main.displacement.map(|s| s.level), Some(2));
+}
