@@ -319,6 +319,23 @@ mod tests {
         assert!((b - a).cross(c - a).dot(face) > 0.0);
     }
 
+    /// The built-in wall and floor, displaced 4 cm at level 2, share every vertex of their
+    /// seam bit for bit: each of the wall's vertices at v = 3 (8 cells × (5 along the bottom
+    /// edge of one triangle + the corner of the other)) is also a vertex of the floor.
+    #[test]
+    fn the_wall_and_floor_share_their_displaced_seam() {
+        let mut notices = vec![];
+        let (scene, _) = displaced(teaching_scene(), &Displacement { level: 2, depth_m: Some(0.04) }, &mut notices);
+        let [wall, floor] = [0, 1].map(|i| &scene.meshes[scene.instances[i].mesh]);
+        let key = |p: &Vec3| p.to_array().map(f32::to_bits);
+        let floor_points: std::collections::HashSet<_> = floor.positions.iter().map(key).collect();
+        let seam: Vec<&Vec3> =
+            wall.positions.iter().zip(&wall.uvs).filter(|(_, uv)| (uv.y - 3.0).abs() < 1e-5).map(|(p, _)| p).collect();
+        assert_eq!(seam.len(), 48);
+        assert!(seam.iter().all(|p| floor_points.contains(&key(p))), "{seam:?}");
+        assert!(seam.iter().any(|p| p.y < -0.01), "the seam moved down with the floor");
+    }
+
     /// A square with a height ramp `h = u` (16-bit texels at their centres, so bilinear
     /// filtering is exact inside) displaced 0.1 m: positions at `z = (u − 1) · 0.1` and the
     /// normal `(−0.1, 0, 1)` normalised (u runs along +x at one unit per metre).
