@@ -10,6 +10,7 @@ mod chart;
 mod convergence;
 mod csv;
 pub mod cube_map;
+pub mod exact_hit;
 pub mod gpu_time;
 mod markdown;
 pub mod measure;
@@ -20,6 +21,7 @@ pub mod spaces;
 pub mod stiff;
 pub mod surfaces;
 pub mod timing;
+pub mod uv_error;
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
