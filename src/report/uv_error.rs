@@ -84,6 +84,11 @@ impl Relief {
     }
 }
 
+/// The angles the report measures the wall from: 0° to 85° in 5° steps.
+pub fn report_angles() -> Vec<f32> {
+    (0..=17).map(|i| 5.0 * i as f32).collect()
+}
+
 /// `n × n` surface points over the tile, at the centres of an `n × n` grid.
 pub fn grid(n: u32) -> Vec<Vec2> {
     let cell = 1.0 / n as f32;
