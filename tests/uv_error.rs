@@ -67,3 +67,19 @@ fn relief_at_64_layers_is_within_a_twentieth_of_a_texel_at_70_degrees() {
     let e = uv_error(&relief, &points, &hits, 70.0, (Parallax::Relief, Some(64)));
     assert!(e.mean < 0.05 && e.p95 < 0.05, "{e:?}");
 }
+
+/// A wrong region needs the UV path to read both a brick face and mortar: within one face
+/// (or one joint) it is a shift, from a face into a joint it is not.
+#[test]
+fn a_wrong_region_spans_a_face_and_a_joint() {
+    use bumpview::height::HeightField;
+    use glam::DVec2;
+    // Eight texels across: a face (1.0) over the first four, a joint (0.0) over the rest.
+    let samples = vec![1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0];
+    let field = HeightField { width: 8, height: 1, samples, range_m: 0.01, texel_size_m: 0.125 };
+    let relief = Relief { field, depth_m: 0.01, tile_m: 1.0 };
+    let at = |u: f64| DVec2::new(u, 0.5);
+    assert!(!relief.crosses_region(at(0.1), at(0.4)), "within the face");
+    assert!(!relief.crosses_region(at(0.6), at(0.9)), "within the joint");
+    assert!(relief.crosses_region(at(0.3), at(0.7)) && relief.crosses_region(at(0.7), at(0.3)));
+}

@@ -21,9 +21,11 @@ use crate::height::HeightField;
 use crate::scene::bricks::brick_height_field;
 use crate::scene::builtin::BRICK_TILE_M;
 
-/// A height at or above this (0..1) is brick, below it mortar (the wall's mortar lies at
-/// about 0..0.06 and its faces at 0.8..1, joined by a 6-texel bevel).
-pub const BRICK_ABOVE: f64 = 0.5;
+/// A height at or above this (0..1) is a brick face, at or below [`MORTAR_BELOW`] mortar:
+/// the wall's faces lie at 0.8..1 and its mortar at about 0..0.06, joined by a 6-texel bevel
+/// that counts as neither (a small shift across the bevel is a shift, not a wrong region).
+pub const BRICK_ABOVE: f64 = 0.7;
+pub const MORTAR_BELOW: f64 = 0.3;
 /// The path between two UVs is checked for a region change at this spacing, texels.
 const REGION_STEP_TEXELS: f64 = 0.25;
 
@@ -74,13 +76,18 @@ impl Relief {
         exact_hit(uv.as_dvec2(), DVec2::new(shift, 0.0), self.texels(), |p| bilinear(&self.field, p))
     }
 
-    /// Whether the straight UV path from `a` to `b` leaves the region (brick or mortar,
-    /// [`BRICK_ABOVE`]) `a` lies in: the technique's UV on another brick, or across mortar.
+    /// Whether the straight UV path from `a` to `b` (both ends included) reads both a brick
+    /// face ([`BRICK_ABOVE`]) and mortar ([`MORTAR_BELOW`]): the technique's UV in or out of a
+    /// joint, or on another brick across one.
     pub fn crosses_region(&self, a: DVec2, b: DVec2) -> bool {
-        let brick = |p: DVec2| bilinear(&self.field, p) >= BRICK_ABOVE;
-        let start = brick(a);
         let steps = (((b - a) * self.texels()).length() / REGION_STEP_TEXELS).ceil() as u32;
-        (1..=steps).any(|i| brick(a + (b - a) * (f64::from(i) / f64::from(steps))) != start)
+        let (mut brick, mut mortar) = (false, false);
+        for i in 0..=steps {
+            let h = bilinear(&self.field, a + (b - a) * (f64::from(i) / f64::from(steps.max(1))));
+            brick |= h >= BRICK_ABOVE;
+            mortar |= h <= MORTAR_BELOW;
+        }
+        brick && mortar
     }
 }
 

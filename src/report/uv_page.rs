@@ -5,7 +5,7 @@
 use std::fmt::Write;
 
 use super::parallax::ParallaxRow;
-use super::uv_error::{BRICK_ABOVE, UvError};
+use super::uv_error::{BRICK_ABOVE, MORTAR_BELOW, UvError};
 
 /// The section: `rows` over a `grid × grid` grid of the wall, `gpu` the image study's rows.
 pub fn markdown(rows: &[UvError], gpu: &[ParallaxRow], grid: u32) -> String {
@@ -18,7 +18,8 @@ pub fn markdown(rows: &[UvError], gpu: &[ParallaxRow], grid: u32) -> String {
          (the chain's march, the probe's and the GPU's) and the UV of the view ray's exact first \
          intersection with the height field (a fine march then bisection to 1e-6 texel, heights \
          bilinear from level 0 as the GPU's sampler reads them). *Wrong region*: the share of points \
-         whose UV lies across a brick/mortar boundary (height {BRICK_ABOVE}) from the exact hit's. \
+         whose UV lies across a brick/mortar boundary from the exact hit's (the straight UV path between \
+         them reads both a brick face, height ≥ {BRICK_ABOVE}, and mortar, ≤ {MORTAR_BELOW}). \
          GPU ms: the image study's median frame time of the same case at that angle (— where it did \
          not draw the angle). No shading enters these numbers.\n"
     );
