@@ -16,6 +16,8 @@ use crate::height::HeightField;
 pub const MARCH_STEP_TEXELS: f64 = 1.0 / 16.0;
 /// The fine march takes at least this many steps down the relief's depth.
 pub const MIN_MARCH_STEPS: u32 = 256;
+/// ... and at most this many (a path over 65 536 texels takes longer steps).
+pub const MAX_MARCH_STEPS: u32 = 1 << 20;
 /// The bisection stops when the bracket is this short, texels.
 pub const BISECTION_TEXELS: f64 = 1e-6;
 
@@ -31,15 +33,19 @@ pub struct ExactHit {
 /// The first intersection of the ray entering at `uv` with UV shift `shift` over the relief's
 /// full depth, `texels` texels per UV unit on each axis, heights (0..1) from `height`.
 /// A ray whose path leaves the relief's bottom (depth 1) unhit stops there: every height is
-/// ≥ 0, so depth 1 is always at or below the surface.
+/// ≥ 0, so depth 1 is always at or below the surface. A shift that is not finite (a ray
+/// along the surface) returns the entry point.
 pub fn exact_hit(uv: DVec2, shift: DVec2, texels: DVec2, height: impl Fn(DVec2) -> f64) -> ExactHit {
     let path_texels = (shift * texels).length();
+    if !path_texels.is_finite() {
+        return ExactHit { depth: 0.0, uv };
+    }
     let below = |t: f64| t >= 1.0 - height(uv + shift * t);
     let at = |t: f64| ExactHit { depth: t, uv: uv + shift * t };
     if below(0.0) {
         return at(0.0);
     }
-    let steps = ((path_texels / MARCH_STEP_TEXELS).ceil() as u32).max(MIN_MARCH_STEPS);
+    let steps = ((path_texels / MARCH_STEP_TEXELS).ceil() as u32).clamp(MIN_MARCH_STEPS, MAX_MARCH_STEPS);
     let mut low = 0.0;
     let mut high = 1.0;
     for i in 1..=steps {
@@ -52,7 +58,11 @@ pub fn exact_hit(uv: DVec2, shift: DVec2, texels: DVec2, height: impl Fn(DVec2) 
     }
     // The bracket's length in texels (or in depth for a ray straight down).
     let scale = path_texels.max(1.0);
-    while (high - low) * scale > BISECTION_TEXELS {
+    // 64 halvings exhaust an f64 bracket: the cap only ends a path too long to resolve.
+    for _ in 0..64 {
+        if (high - low) * scale <= BISECTION_TEXELS {
+            break;
+        }
         let mid = 0.5 * (low + high);
         if below(mid) {
             high = mid;
@@ -114,6 +124,19 @@ mod tests {
             let hit = exact_hit(start, DVec2::new(shift, 0.0), TEXELS, sine);
             assert!(((hit.uv.x - u_hit) * 512.0).abs() < 1e-4, "{u_hit} {shift}: {hit:?}");
         }
+    }
+
+    /// Rays almost or exactly along the surface, and a height field of NaN, end with a finite
+    /// hit within the relief's depth.
+    #[test]
+    fn grazing_rays_and_nan_heights_end_finite() {
+        let sine = |uv: DVec2| 0.5 + 0.5 * (uv.x * 300.0).sin();
+        for shift in [1e12, f64::INFINITY, f64::NAN] {
+            let hit = exact_hit(DVec2::splat(0.5), DVec2::new(shift, 0.0), TEXELS, sine);
+            assert!(hit.uv.is_finite() && (0.0..=1.0).contains(&hit.depth), "{shift}: {hit:?}");
+        }
+        let hit = exact_hit(DVec2::splat(0.5), DVec2::new(0.1, 0.0), TEXELS, |_| f64::NAN);
+        assert!(hit.uv.is_finite() && hit.depth == 1.0, "{hit:?}");
     }
 
     /// Bilinear reads: a texel centre returns the texel, halfway between two their mean, and
