@@ -7,9 +7,10 @@
 //! The specimen is the built-in wall's brick height map (one 1 m tile, its 1 cm relief, u along
 //! +x and v down as on [`super::parallax::square_mesh`]), seen from `angle` degrees about +Y
 //! (the direction to the eye `(sin θ, 0, cos θ)`, the GPU study's cameras) by parallel rays:
-//! every point sees the same direction. Heights are read bilinearly from level 0 with repeat
-//! wrapping ([`bilinear`]) by both the technique and the exact hit: the mip level the GPU's
-//! footprint picks is left out, so the error is the technique's alone.
+//! every point sees the same direction. Heights (16 bits, as the GPU's texture holds them) are
+//! read bilinearly from level 0 with repeat wrapping ([`bilinear`]) by both the technique and
+//! the exact hit: the mip level the GPU's footprint picks is left out, so the error is the
+//! technique's alone.
 
 use glam::{DVec2, Vec2, Vec3};
 
@@ -40,9 +41,10 @@ pub struct Relief {
 }
 
 impl Relief {
-    /// The built-in wall's bricks at their own depth.
+    /// The built-in wall's bricks at their own depth, stored with 16 bits a sample as its
+    /// height texture is ([`crate::texture::encode_height`]).
     pub fn wall() -> Relief {
-        let field = brick_height_field(BRICK_TILE_M);
+        let field = brick_height_field(BRICK_TILE_M).quantized(16);
         Relief { depth_m: field.range_m, field, tile_m: BRICK_TILE_M }
     }
 
