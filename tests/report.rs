@@ -207,6 +207,17 @@ fn quick_report_writes_a_row_for_every_method_and_kernel_and_valid_charts() {
     // Occlusion beats steep at equal layers, and any search beats no parallax, at 70°.
     assert!(rmse("occlusion", "8") < rmse("steep", "8") && rmse("steep", "8") < rmse("off", ""), "{parallax}");
     assert!(markdown_mentions(&dir, "## Parallax: image error against frame time"));
+    // The UV error against the exact intersection: every angle 0°–85°, the GPU time beside
+    // the angles the image study drew.
+    assert!(markdown_mentions(&dir, "## Parallax: texture-space error against the exact intersection"));
+    for angle in (0..=85).step_by(5) {
+        assert!(markdown_mentions(&dir, &format!("| relief | 32 | {angle}° |")), "relief 32 at {angle}°");
+    }
+    let uv_line = |angle: &str| {
+        let markdown = std::fs::read_to_string(dir.join("report.md")).unwrap();
+        markdown.lines().find(|l| l.starts_with(&format!("| relief | 32 | {angle}° |"))).unwrap().to_owned()
+    };
+    assert!(!uv_line("70").ends_with("| — |") && uv_line("75").ends_with("| — |"), "{}", uv_line("70"));
     for chart in ["tangents.png", "kernels.png", "parallax-wall.png"] {
         let image = image::open(dir.join(chart)).unwrap_or_else(|e| panic!("{chart}: {e}"));
         let rgb = image.to_rgb8();

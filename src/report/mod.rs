@@ -10,6 +10,7 @@ mod chart;
 mod convergence;
 mod csv;
 pub mod cube_map;
+pub mod exact_hit;
 pub mod gpu_time;
 mod markdown;
 pub mod measure;
@@ -20,6 +21,8 @@ pub mod spaces;
 pub mod stiff;
 pub mod surfaces;
 pub mod timing;
+pub mod uv_error;
+mod uv_page;
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -76,6 +79,9 @@ pub struct Plan {
     pub quick: bool,
     /// The parallax family against displacement on the GPU.
     pub parallax: parallax::ParallaxPlan,
+    /// Points per side of the wall's grid the UV error is measured over (at the parallax
+    /// study's layer counts, [`uv_error::report_angles`]).
+    pub uv_grid: u32,
 }
 
 impl Plan {
@@ -92,6 +98,7 @@ impl Plan {
             repeats: Repeats { runs: 21, budget: Duration::from_secs(2) },
             quick: false,
             parallax: parallax::ParallaxPlan::full(None),
+            uv_grid: 64,
         }
     }
 
@@ -109,6 +116,7 @@ impl Plan {
             repeats: Repeats { runs: 3, budget: Duration::from_millis(50) },
             quick: true,
             parallax: parallax::ParallaxPlan::quick(),
+            uv_grid: 32,
         }
     }
 }
@@ -295,8 +303,11 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
         blinn: &blinn,
         charts: &charts,
     });
+    let uv_rows =
+        uv_error::study(&uv_error::Relief::wall(), &uv_error::report_angles(), &plan.parallax.layers, plan.uv_grid);
+    let uv_section = uv_page::markdown(&uv_rows, &study.rows, plan.uv_grid);
     let files = [
-        (MARKDOWN.to_owned(), (markdown::render(&page) + "\n" + &parallax_section).into_bytes()),
+        (MARKDOWN.to_owned(), (markdown::render(&page) + "\n" + &parallax_section + "\n" + &uv_section).into_bytes()),
         (CSV.to_owned(), csv::render(&rows, &orders).into_bytes()),
         (PARALLAX_CSV.to_owned(), parallax_page::csv(&study.rows).into_bytes()),
         (TANGENT_CHART.to_owned(), tangent_png),
