@@ -51,8 +51,8 @@ fn wall_scene() -> (Scene, FrameParams) {
     (scene, params)
 }
 
-/// Seed 000's typo on the wall (N = +Z, T = +X, B = +Y): the world y takes `N.z · n_t.z`, so
-/// every normal leans up by about 45° (exactly 45° for a flat texel).
+/// The GLSL practicum's typo on the wall (N = +Z, T = +X, B = +Y): the world y takes
+/// `N.z · n_t.z`, so every normal leans up by about 45° (exactly 45° for a flat texel).
 #[test]
 fn the_tbn_typo_leans_the_wall_up() {
     let (scene, params) = wall_scene();

@@ -16,12 +16,13 @@ pub enum LightingSpace {
     /// vectors per pixel in world space.
     #[default]
     World,
-    /// Seed 003: the light and view vectors taken into tangent space by the inverse of the
-    /// triangle's T, B, N (from its positions and UVs, not orthogonalised; the identity where
-    /// its UVs have no area) and normalised per pixel; the map's normal used as decoded.
+    /// As the ARB-era tangent-space shaders did: the light and view vectors taken into tangent
+    /// space by the inverse of the triangle's T, B, N (from its positions and UVs, not
+    /// orthogonalised; the identity where its UVs have no area) and normalised per pixel; the
+    /// map's normal used as decoded.
     Tangent,
-    /// Seed 000: the map's normal through T, B, N, then with the light and view vectors
-    /// rotated into view space by the camera's view matrix.
+    /// As the GLSL practicum does: the map's normal through T, B, N, then with the light and
+    /// view vectors rotated into view space by the camera's view matrix.
     View,
 }
 

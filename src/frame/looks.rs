@@ -10,8 +10,8 @@ pub enum Mistake {
     /// The correct picture.
     #[default]
     None,
-    /// Seed 000's transposition typo: the TBN matrix's `[1].z = Normal.z` where `Normal.y`
-    /// belongs, so the world normal's y takes `N.z · n_t.z`.
+    /// The GLSL practicum's transposition typo: the TBN matrix's `[1].z = Normal.z` where
+    /// `Normal.y` belongs, so the world normal's y takes `N.z · n_t.z`.
     TbnTypo,
     /// Handedness ignored: `B = N × T`, the tangent's `w` dropped.
     HandednessIgnored,

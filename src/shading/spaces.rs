@@ -27,9 +27,9 @@ pub fn inverse_tbn(t: Vec3, b: Vec3, n: Vec3) -> Mat3 {
 /// same from the triangle's edges and from a pixel's screen-space derivatives.
 pub const MIN_UV_AREA_PER_M2: f32 = 1e-6;
 
-/// Seed 003's per-triangle inverse frame (world → tangent space) from two differences across
-/// the triangle — its edges, or a pixel's screen-space derivatives — of the world position
-/// (`dp_a`, `dp_b`, metres) and of the texture coordinates (`duv_a`, `duv_b`, v down the
+/// The ARB-era shaders' per-triangle inverse frame (world → tangent space) from two
+/// differences across the triangle — its edges, or a pixel's screen-space derivatives — of the
+/// world position (`dp_a`, `dp_b`, metres) and of the texture coordinates (`duv_a`, `duv_b`, v down the
 /// image): `T = ∂P/∂u`, `B = −∂P/∂v` (v up, the map's green), `N` the face normal on the side
 /// of `normal`, each normalised but not orthogonalised, then [`inverse_tbn`]. The identity where
 /// the UVs have no area ([`MIN_UV_AREA_PER_M2`]).
