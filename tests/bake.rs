@@ -270,17 +270,8 @@ fn bad_inputs_fail_with_one_line_naming_the_file() {
     let tiny = dir.join("tiny.png");
     image::GrayImage::new(1, 1).save(&tiny).unwrap();
     let huge = dir.join("huge.png");
-    {
-        let file = std::fs::File::create(&huge).unwrap();
-        let mut encoder = png::Encoder::new(file, 30000, 30000);
-        encoder.set_color(png::ColorType::Grayscale);
-        let mut writer = encoder.write_header().unwrap();
-        // One zlib stream of ten zero bytes in a stored block: far from the 900 MB declared.
-        let mut zlib = vec![0x78, 0x01, 0x01, 10, 0, !10, 0xff];
-        zlib.extend([0; 10]);
-        zlib.extend([0, 10, 0, 1]);
-        writer.write_chunk(png::chunk::IDAT, &zlib).unwrap();
-    }
+    // Ten bytes of pixel data, far from the 900 MB declared.
+    common::header_only_png(&huge, 30000, png::ColorType::Grayscale, png::BitDepth::Eight);
     let (_, good) = sine_plane_png(&dir);
     let unwritable = dir.join("missing-folder").join("out.png");
     let cases = [
@@ -306,19 +297,6 @@ fn bad_inputs_fail_with_one_line_naming_the_file() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// A PNG whose header declares `side²` texels of `color` and whose pixel data is ten zero bytes:
-/// decoding it fails, so an error about memory came from the header alone.
-fn header_only_png(path: &Path, side: u32, color: png::ColorType, depth: png::BitDepth) {
-    let mut encoder = png::Encoder::new(std::fs::File::create(path).unwrap(), side, side);
-    encoder.set_color(color);
-    encoder.set_depth(depth);
-    let mut writer = encoder.write_header().unwrap();
-    let mut zlib = vec![0x78, 0x01, 0x01, 10, 0, !10, 0xff];
-    zlib.extend([0; 10]);
-    zlib.extend([0, 10, 0, 1]);
-    writer.write_chunk(png::chunk::IDAT, &zlib).unwrap();
-}
-
 const MIB: u64 = 1 << 20;
 
 /// `--to-height` refuses an input whose memory need is over the limit from its header, before
@@ -332,7 +310,7 @@ fn to_height_refuses_inputs_over_the_memory_limit_from_the_header() {
     // 4096² RGB 8-bit, wrapping: 3 B decoded + 8 B packed a texel = 11 · 16 MiB = 176 MiB
     // (the solve's 128 MiB + 4 MiB of column scratch is less; the file is under 1 KiB).
     let small = dir.join("rgb8.png");
-    header_only_png(&small, 4096, png::ColorType::Rgb, png::BitDepth::Eight);
+    common::header_only_png(&small, 4096, png::ColorType::Rgb, png::BitDepth::Eight);
     let with_limit = |mib: u64| BakeOptions { memory_limit: mib * MIB, ..Default::default() };
     let refused = to_height_file(&small, &out, &with_limit(175)).unwrap_err().to_string();
     let expected = "4096x4096 texels (Rgb8, border wrap) need 176 MiB to integrate, over the limit of 175 MiB";
@@ -343,7 +321,7 @@ fn to_height_refuses_inputs_over_the_memory_limit_from_the_header() {
     // 16384² RGB 16-bit, clamped: 6 B decoded + 16 B packed a texel = 22 · 256 MiB = 5632 MiB,
     // over the default 4096 MiB.
     let big = dir.join("rgb16.png");
-    header_only_png(&big, 16384, png::ColorType::Rgb, png::BitDepth::Sixteen);
+    common::header_only_png(&big, 16384, png::ColorType::Rgb, png::BitDepth::Sixteen);
     assert_eq!(DEFAULT_MEMORY_LIMIT, 4096 * MIB);
     let clamped = BakeOptions { border: Border::Clamp, ..Default::default() };
     let refused = to_height_file(&big, &out, &clamped).unwrap_err().to_string();

@@ -5,6 +5,8 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+mod common;
+
 fn bumpview(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_bumpview")).args(args).output().expect("run bumpview")
 }
@@ -134,16 +136,8 @@ fn bad_inputs_and_flags_give_one_line_and_their_status() {
     let tiny = dir.join("tiny.png");
     image::GrayImage::new(1, 1).save(&tiny).unwrap();
     let huge = dir.join("huge.png");
-    {
-        let mut encoder = png::Encoder::new(std::fs::File::create(&huge).unwrap(), 30000, 30000);
-        encoder.set_color(png::ColorType::Grayscale);
-        let mut writer = encoder.write_header().unwrap();
-        // A zlib stream of ten zero bytes in one stored block, far from the 900 MB declared.
-        let mut zlib = vec![0x78, 0x01, 0x01, 10, 0, !10, 0xff];
-        zlib.extend([0; 10]);
-        zlib.extend([0, 10, 0, 1]);
-        writer.write_chunk(png::chunk::IDAT, &zlib).unwrap();
-    }
+    // Ten bytes of pixel data, far from the 900 MB declared.
+    common::header_only_png(&huge, 30000, png::ColorType::Grayscale, png::BitDepth::Eight);
     let out = dir.join("out.png");
     let unwritable = dir.join("missing").join("out.png");
     let cases: [(Vec<&str>, i32); 9] = [
@@ -177,16 +171,8 @@ fn bad_inputs_and_flags_give_one_line_and_their_status() {
 fn to_height_memory_limit_is_named_and_raisable() {
     let dir = temp_dir("memory");
     let header_only = dir.join("rgb8.png");
-    {
-        // 4096² RGB 8-bit declared, ten zero bytes of data: needs 176 MiB (tests/bake.rs).
-        let mut encoder = png::Encoder::new(std::fs::File::create(&header_only).unwrap(), 4096, 4096);
-        encoder.set_color(png::ColorType::Rgb);
-        let mut writer = encoder.write_header().unwrap();
-        let mut zlib = vec![0x78, 0x01, 0x01, 10, 0, !10, 0xff];
-        zlib.extend([0; 10]);
-        zlib.extend([0, 10, 0, 1]);
-        writer.write_chunk(png::chunk::IDAT, &zlib).unwrap();
-    }
+    // 4096² RGB 8-bit declared, ten zero bytes of data: needs 176 MiB (tests/bake.rs).
+    common::header_only_png(&header_only, 4096, png::ColorType::Rgb, png::BitDepth::Eight);
     let out = dir.join("out.png");
     let run = |extra: &[&str]| {
         let mut args = vec!["bake", text(&header_only), "--out", text(&out)];

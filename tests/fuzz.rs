@@ -18,16 +18,6 @@ use bumpview::scene::{Mesh, Scene, TextureKind};
 use bumpview::tangent::{TangentMethod, tangents};
 use glam::{Vec2, Vec3};
 use proptest::prelude::*;
-use proptest::test_runner::{Config, FileFailurePersistence};
-
-fn config() -> Config {
-    let cases = std::env::var("BUMPVIEW_FUZZ_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(256);
-    Config {
-        cases,
-        failure_persistence: Some(Box::new(FileFailurePersistence::WithSource("proptest-regressions"))),
-        ..Config::default()
-    }
-}
 
 /// A tiny glTF: one triangle with positions, normals and UVs in a base64 buffer.
 fn seed_gltf() -> String {
@@ -185,7 +175,7 @@ fn scratch_dir() -> PathBuf {
 }
 
 proptest! {
-    #![proptest_config(config())]
+    #![proptest_config(common::fuzz_config())]
 
     /// glTF, GLB and OBJ: any mutation of a seed loads or fails with an error, no panic.
     #[test]

@@ -13,16 +13,6 @@ use std::path::PathBuf;
 use base64::Engine;
 use bumpview::load::load_scene;
 use proptest::prelude::*;
-use proptest::test_runner::{Config, FileFailurePersistence};
-
-fn config() -> Config {
-    let cases = std::env::var("BUMPVIEW_FUZZ_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(256);
-    Config {
-        cases,
-        failure_persistence: Some(Box::new(FileFailurePersistence::WithSource("proptest-regressions"))),
-        ..Config::default()
-    }
-}
 
 /// glTF's component types, and two it does not define.
 const COMPONENT_TYPES: [u32; 8] = [5120, 5121, 5122, 5123, 5125, 5126, 5124, 0];
@@ -298,7 +288,7 @@ fn apply(views: &mut [View], accessors: &mut [Accessor], wiring: &mut Wiring, ed
 }
 
 proptest! {
-    #![proptest_config(config())]
+    #![proptest_config(common::fuzz_config())]
 
     /// A valid triangle with a few accessors, views or roles changed (an attribute or the
     /// indices pointed at another accessor, a component type, count, offset, stride or

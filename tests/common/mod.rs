@@ -263,3 +263,28 @@ pub fn gpu_against_probe(
     assert!(!readouts.is_empty(), "no pixel compared: nothing of the scene fills a pixel's neighbourhood");
     readouts
 }
+
+/// A PNG whose header declares `side²` texels of `color` and whose pixel data is ten zero bytes:
+/// decoding it fails, so an error about memory came from the header alone.
+pub fn header_only_png(path: &Path, side: u32, color: png::ColorType, depth: png::BitDepth) {
+    let mut encoder = png::Encoder::new(std::fs::File::create(path).unwrap(), side, side);
+    encoder.set_color(color);
+    encoder.set_depth(depth);
+    let mut writer = encoder.write_header().unwrap();
+    let mut zlib = vec![0x78, 0x01, 0x01, 10, 0, !10, 0xff];
+    zlib.extend([0; 10]);
+    zlib.extend([0, 10, 0, 1]);
+    writer.write_chunk(png::chunk::IDAT, &zlib).unwrap();
+}
+
+/// The proptest settings of the fuzz targets: 256 cases (`BUMPVIEW_FUZZ_CASES` sets more),
+/// failing inputs kept beside the test file and replayed first.
+pub fn fuzz_config() -> proptest::test_runner::Config {
+    use proptest::test_runner::{Config, FileFailurePersistence};
+    let cases = std::env::var("BUMPVIEW_FUZZ_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(256);
+    Config {
+        cases,
+        failure_persistence: Some(Box::new(FileFailurePersistence::WithSource("proptest-regressions"))),
+        ..Config::default()
+    }
+}
