@@ -6,11 +6,10 @@
 
 mod lighting;
 mod looks;
-mod mip_filter;
 
 pub use lighting::LightingSpace;
 pub use looks::{CUBE_MAP_SIZES, LegacyLook, LegacySettings, Mistake};
-pub use mip_filter::MipFilter;
+pub use crate::texture::MipFilter;
 
 use crate::names::Named;
 use crate::scene::{

@@ -1,7 +1,10 @@
 //! How a normal map is filtered at a distance (issue 24): what its mip chain holds and how the
-//! highlight is widened from it. A scene option — it decides what is baked and uploaded — and
-//! a pipeline variant (the `MIP_FILTER` constant, shaders/mip_filter.wgsl). The formulas are
-//! in [`crate::shading::mip_filter`]; docs/mip-filtering.md lists them with their sources.
+//! highlight is widened from it. A scene option (`crate::frame::SceneOptions::mip_filter`,
+//! re-exported as `crate::frame::MipFilter`) — it decides what is baked and uploaded — and a
+//! pipeline variant (the `MIP_FILTER` constant, shaders/mip_filter.wgsl). Here, in the data
+//! layer, because the mip chains ([`super::TextureImage::mip_chain_filtered`]) depend on it;
+//! the formulas are `crate::shading::mip_filter`'s; docs/mip-filtering.md lists them with
+//! their sources.
 
 /// The mip-filtering method of normal maps. Named (as on the command line and in presets)
 /// `base-only`, `renormalized-box`, `toksvig`, `lean`, `vmf`, `geometric-specular-aa`.
@@ -57,6 +60,12 @@ impl MipFilter {
     /// for the shader to widen the lobe with (Toksvig, vMF).
     pub fn keeps_length(self) -> bool {
         matches!(self, MipFilter::Toksvig | MipFilter::Vmf)
+    }
+
+    /// Whether the method widens the highlight in the shader (Toksvig, LEAN, vMF, geometric
+    /// specular AA): only these get a `MIP_FILTER` pipeline variant of their own.
+    pub fn widens(self) -> bool {
+        !matches!(self, MipFilter::BaseOnly | MipFilter::RenormalizedBox)
     }
 
     /// Whether the method reads LEAN's two moment textures (made and uploaded only then).
