@@ -7,9 +7,9 @@
 mod lighting;
 mod looks;
 
+pub use crate::texture::MipFilter;
 pub use lighting::LightingSpace;
 pub use looks::{CUBE_MAP_SIZES, LegacyLook, LegacySettings, Mistake};
-pub use crate::texture::MipFilter;
 
 use crate::names::Named;
 use crate::scene::{
