@@ -184,3 +184,38 @@ fn lean_covariance_equals_the_slope_covariance_of_the_base_level_at_every_mip() 
     println!("LEAN covariance against the base level's: worst {worst:e}");
     assert!(worst < 1e-6, "{worst}");
 }
+
+/// No method makes or uploads a texture of its own: the built-in scene uploads its colour and
+/// normal maps (2 textures) under every method, each method's normal-map chain replacing the
+/// box one (base-only: one level). The methods that do not widen share the box pipelines; each
+/// widening method builds its own lit variants (the two instance kinds: double-sided wall and
+/// floor, single-sided torus), once.
+#[test]
+fn no_method_uploads_a_texture_it_does_not_read_and_only_widening_builds_pipelines() {
+    use bumpview::prepare::PreparedScene;
+    let scene = scene();
+    let params = default_params(&scene);
+    let mut renderer = renderer_for(&scene);
+    render_image(&mut renderer, [64, 48], &params).unwrap();
+    let box_pipelines = renderer.counters().pipelines_built;
+    for &filter in MipFilter::all() {
+        let options = SceneOptions { mip_filter: filter, ..Default::default() };
+        let mut fresh = renderer_for(&scene);
+        fresh.set_scene(&scene, options.clone());
+        render_image(&mut fresh, [64, 48], &params).unwrap();
+        let counters = fresh.counters();
+        // renderer_for uploads the default scene first: 2 textures, then 2 more with `options`.
+        assert_eq!(counters.textures_uploaded, 2 + 2, "{}", filter.name());
+        let drawn = if filter == MipFilter::Lean { MipFilter::RenormalizedBox } else { filter };
+        let expected = if drawn.widens() { box_pipelines } else { 0 };
+        renderer.set_scene(&scene, options.clone());
+        let before = renderer.counters().pipelines_built;
+        render_image(&mut renderer, [64, 48], &params).unwrap();
+        assert_eq!(renderer.counters().pipelines_built - before, expected, "{}", filter.name());
+        let prepared = PreparedScene::new(&scene, &options);
+        let normal_map = scene.materials[0].normal_map.as_ref().map(|m| m.texture).unwrap_or(0);
+        let levels = prepared.mip_chain(normal_map).len();
+        assert_eq!(levels == 1, filter == MipFilter::BaseOnly, "{}: {levels} levels", filter.name());
+        renderer.set_scene(&scene, SceneOptions::default());
+    }
+}
