@@ -525,6 +525,12 @@ impl SceneOptions {
     pub fn overrides_in_use(&self, index: usize) -> MaterialOverrides {
         self.materials.for_material(&self.per_material, index)
     }
+
+    /// The mip filter material `index`'s normal map is made and drawn with: its overrides'
+    /// ([`MaterialOverrides::mip_filter`]) where set, else [`Self::mip_filter`].
+    pub fn mip_filter_of(&self, index: usize) -> MipFilter {
+        self.overrides_in_use(index).mip_filter.unwrap_or(self.mip_filter)
+    }
 }
 
 /// The scene options the GPU data must be made with: `main` for the picture (and the split

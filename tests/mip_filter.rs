@@ -219,3 +219,36 @@ fn no_method_uploads_a_texture_it_does_not_read_and_only_widening_builds_pipelin
         renderer.set_scene(&scene, SceneOptions::default());
     }
 }
+
+/// A material's own method wins over the scene's (the torus Toksvig, the rest vMF); a preset
+/// keeps both and the split pair; the `mip-filter` split draws its two methods for every
+/// material, over per-material choices.
+#[test]
+fn per_material_methods_win_and_presets_keep_them() {
+    use bumpview::prepare::PreparedScene;
+    use bumpview::scene::MaterialOverrides;
+    use bumpview::state::preset::Preset;
+    use bumpview::state::{Command, SplitDifference, ViewerState};
+    let scene = scene();
+    let torus = scene.instances.iter().find(|i| i.material != scene.instances[0].material).map(|i| i.material);
+    let torus = torus.expect("two materials");
+    let mut state = ViewerState::new(&scene);
+    state.apply(Command::SetMipFilter(MipFilter::Vmf));
+    let own = MaterialOverrides { mip_filter: Some(MipFilter::Toksvig), ..Default::default() };
+    state.apply(Command::SetMaterialOverrides { material: Some(torus), overrides: own });
+    state.apply(Command::SetSplitMipFilters([MipFilter::BaseOnly, MipFilter::GeometricSpecularAa]));
+    let prepared = PreparedScene::new(&scene, &state.scene_options);
+    for instance in &prepared.instances {
+        let expected = if instance.material == torus { MipFilter::Toksvig } else { MipFilter::Vmf };
+        assert_eq!(instance.mip_filter, expected, "material {}", instance.material);
+    }
+    let preset = Preset::from_toml(&Preset::from_state(&state, Default::default()).to_toml()).unwrap();
+    assert_eq!(preset.to_state(&scene).unwrap(), state);
+    state.apply(Command::SetSplit(true));
+    state.apply(Command::SetSplitDifference(SplitDifference::MipFilter));
+    let uploads = state.scene_uploads();
+    let right = uploads.split_right.expect("a second upload");
+    for (options, method) in [(&uploads.main, MipFilter::BaseOnly), (&right, MipFilter::GeometricSpecularAa)] {
+        assert!(PreparedScene::new(&scene, options).instances.iter().all(|i| i.mip_filter == method));
+    }
+}

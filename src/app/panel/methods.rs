@@ -141,6 +141,15 @@ pub(super) fn conventions(ui: &mut egui::Ui, state: &ViewerState, materials: &[M
             ui.selectable_value(&mut new.border, choice, border_name(choice));
         }
     });
+    // The all-materials method is the methods section's "normal-map mips".
+    if target.is_some() {
+        let mip_name = |m: Option<MipFilter>| m.map_or("as all materials", MipFilter::label);
+        egui::ComboBox::from_label("normal-map mips").selected_text(mip_name(new.mip_filter)).show_ui(ui, |ui| {
+            for choice in std::iter::once(None).chain(MipFilter::all().iter().copied().map(Some)) {
+                ui.selectable_value(&mut new.mip_filter, choice, mip_name(choice));
+            }
+        });
+    }
     let mut range_mm = new.height_range_m.or(inherited.height_range_m).map_or(10.0, |m| m * 1e3);
     let drag = egui::DragValue::new(&mut range_mm).range(0.0..=1000.0).speed(0.1).suffix(" mm");
     let changed = ui
