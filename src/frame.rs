@@ -45,8 +45,9 @@ pub enum ViewMode {
     /// Tangent handedness `w`: green where +1, magenta where −1 (mirrored UV islands), grey
     /// where the mesh is drawn without tangents ([`handedness_color`]).
     Handedness,
-    /// The lit picture with pixels in [`OVER_TILT_COLOR`] where the shading normal tilts
-    /// past [`OVER_TILT_LIMIT_DEG`] from the geometric normal ([`over_tilted`]).
+    /// The lit picture in grey ([`crate::shading::over_tilt_grey`]) with pixels in
+    /// [`OVER_TILT_COLOR`] where the shading normal tilts past [`OVER_TILT_LIMIT_DEG`] from
+    /// the geometric normal ([`over_tilted`]).
     OverTilt,
     /// The clear-coat layer's normal (`KHR_materials_clearcoat`, after its normal map) where
     /// a material has a clear coat, else the geometric normal.

@@ -210,6 +210,6 @@ fn view_hint(mode: ViewMode) -> &'static str {
 /// The Over-tilt view's hint, with its threshold.
 fn over_tilt_hint() -> &'static str {
     const _: () = assert!(OVER_TILT_LIMIT_DEG == 75.0, "update the hint below");
-    "lit, red where the bumped normal tilts more than 75° from the surface normal (or below it): \
+    "lit in grey, red where the bumped normal tilts more than 75° from the surface normal (or below it): \
      the strength is too high there"
 }
