@@ -275,7 +275,7 @@ fn steep_caption_strip() -> image::RgbaImage {
         "bump on, strength 1.00".to_owned(),
         "normal map: OpenGL (+Y)".to_owned(),
         "tangents: auto: meshopt".to_owned(),
-        format!("{}, 16 layers", Parallax::Steep.label()),
+        "parallax: steep, 16 layers".to_owned(),
     ];
     assert_eq!(lines, expected);
     let picture =

@@ -194,7 +194,7 @@ fn lines(r: &ProbeReadout, mesh_name: &str) -> String {
         ]);
     }
     text.extend([
-        format!("lit in   {}", r.chain.lighting_space.label()),
+        format!("lit in   {}", r.chain.lighting_space.name()),
         format!("albedo   {}  linear", v3(r.chain.albedo)),
         format!("colour   {}  linear", v3(r.chain.color_linear)),
         format!("sRGB     {:.0} {:.0} {:.0}  (0–255)", srgb.x, srgb.y, srgb.z),

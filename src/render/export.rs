@@ -194,7 +194,7 @@ pub fn caption(renderer: &Renderer, scene: &Scene, options: &SceneOptions, shadi
         lines.push(format!("legacy look: {}", shading.legacy.caption()));
     }
     if shading.mistake != Mistake::None {
-        lines.push(format!("mistake: {}: {}", shading.mistake.label(), shading.mistake.explanation()));
+        lines.push(format!("mistake: {}: {}", shading.mistake.name(), shading.mistake.explanation()));
     }
     lines
 }
