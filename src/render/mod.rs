@@ -26,6 +26,7 @@ pub mod pipelines;
 mod scene_gpu;
 pub mod shaders;
 mod targets;
+pub mod text;
 pub mod timing;
 mod uniforms;
 pub mod upload;
