@@ -1,14 +1,15 @@
 //! Comparison exports: a grid of tiles (a row is a grid of one row), each the same camera and
 //! light under other shading settings, with an optional caption strip under each tile stating
 //! view, mode, strength, normal-map convention and tangent source, wrapped to the tile's width
-//! ([`text::wrap`]). Text is drawn on the CPU ([`text`]).
+//! ([`text::wrap`]); and single pictures ([`render_picture`]) with what the viewer draws over
+//! them ([`annotate`]). Text is drawn on the CPU ([`text`]).
 
-use super::capture::{CaptureOptions, render_capture};
-use super::{Renderer, text};
+use super::capture::{CaptureOptions, render_capture, render_capture_split};
+use super::{Renderer, annotate, text};
 use crate::error::RenderError;
 use crate::frame::{
     BumpSource, FrameParams, LegacyLook, LightingSpace, MAX_PARALLAX_LAYERS, Mistake, Parallax, STRENGTH_RANGE,
-    SceneOptions, ShadingMode, ShadingSettings, ViewMode,
+    SceneOptions, ShadingMode, ShadingSettings, SplitFrame, ViewMode,
 };
 use crate::names::Named;
 use crate::scene::Scene;
@@ -251,7 +252,7 @@ pub fn caption_strip_height(tile_width: u32, lines: usize) -> u32 {
 /// with `c = i mod columns`, `r = i div columns`, and `s` the caption strip's height: with
 /// `captions` (one list of lines per tile) [`caption_strip_height`] of the most lines a tile's
 /// caption wraps to ([`wrap_caption`]), else 0. The strip under a tile holds its wrapped
-/// lines.
+/// lines; a Difference or Over-tilt tile carries its key ([`annotate::legend`]).
 pub fn render_grid(
     renderer: &mut Renderer,
     options: &CaptureOptions,
@@ -275,6 +276,8 @@ pub fn render_grid(
         let tile = render_capture(renderer, options, &FrameParams { shading: *shading, ..*params })?;
         let (x0, y0) = (i as u32 % columns * width, i as u32 / columns * (height + strip));
         image::imageops::replace(&mut image, &tile, x0 as i64, y0 as i64);
+        let area = [x0, y0, x0 + width, y0 + height];
+        annotate::legend(&mut image, shading.view, shading.difference_range_deg, area, true);
         if let Some(lines) = captions.as_ref().and_then(|c| c.get(i)) {
             let [r, g, b] = CAPTION_BACKGROUND;
             for y in y0 + height..y0 + height + strip {
@@ -289,6 +292,33 @@ pub fn render_grid(
             }
         }
     }
+    Ok(image)
+}
+
+/// One picture as `render` and the viewer's screenshot export write it: the capture of
+/// `params` or, with `split` and its two labels, of the split view with its divider and labels
+/// drawn in ([`annotate::split`]); a half or picture in the Difference or Over-tilt view
+/// carries its key at its outer top corner ([`annotate::legend`]).
+pub fn render_picture(
+    renderer: &mut Renderer,
+    options: &CaptureOptions,
+    params: &FrameParams,
+    split: Option<(&SplitFrame, [&str; 2])>,
+) -> Result<image::RgbaImage, RenderError> {
+    let Some((split, labels)) = split else {
+        let mut image = render_capture(renderer, options, params)?;
+        let (width, height) = image.dimensions();
+        let shading = &params.shading;
+        annotate::legend(&mut image, shading.view, shading.difference_range_deg, [0, 0, width, height], true);
+        return Ok(image);
+    };
+    let mut image = render_capture_split(renderer, options, params, split)?;
+    let (width, height) = image.dimensions();
+    let divider = split.divider_pixels(width);
+    let [left, right] = [&split.left, &split.right];
+    annotate::legend(&mut image, left.view, left.difference_range_deg, [0, 0, divider, height], false);
+    annotate::legend(&mut image, right.view, right.difference_range_deg, [divider, 0, width, height], true);
+    annotate::split(&mut image, divider, labels);
     Ok(image)
 }
 
