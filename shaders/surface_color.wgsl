@@ -146,12 +146,14 @@ fn surface_color(
         case VIEW_UV_CHECK: { return stored(uv_check_color(in, n_geo)); }
         case VIEW_HANDEDNESS: { return stored(handedness_color(in, n_geo, frame_tb.w)); }
         case VIEW_CLEARCOAT_NORMAL: { return stored(0.5 * n_coat + 0.5); }
-        // shading::over_tilted: saturated red where N·N_geo < cos(OVER_TILT_LIMIT_DEG).
+        // shading::over_tilted: saturated red where N·N_geo < cos(OVER_TILT_LIMIT_DEG), over
+        // the lit picture in grey (shading::over_tilt_grey: its linear luminance).
         case VIEW_OVER_TILT: {
             if dot(n_shading, n_geo) < frame.over_tilt_cos {
                 return stored(vec3<f32>(1.0, 0.0, 0.0));
             }
-            return vec4<f32>(lit_or_legacy(in, n_geo, frame_tb, n_shading, n_coat), 1.0);
+            let lit = lit_or_legacy(in, n_geo, frame_tb, n_shading, n_coat);
+            return vec4<f32>(vec3<f32>(dot(lit, vec3<f32>(0.2126, 0.7152, 0.0722))), 1.0);
         }
         default: { return vec4<f32>(lit_or_legacy(in, n_geo, frame_tb, n_shading, n_coat), 1.0); }
     }

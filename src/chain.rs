@@ -38,8 +38,8 @@ use crate::shading::pbr::{ClearcoatInputs, PbrInputs, metallic_roughness};
 use crate::shading::spaces::{inverse_tbn, tangent_lighting_vectors, view_lighting_vectors};
 use crate::shading::{
     LightingInputs, NormalTexel, OVER_TILT_COLOR, SELF_SHADOW_FADE, blinn_phong, debug_color, decode_normal,
-    handedness_color, object_space_normal, over_tilted, packed_gloss, surface_gradient_normal, tangent_space_normal,
-    world_vectors,
+    handedness_color, object_space_normal, over_tilt_grey, over_tilted, packed_gloss, surface_gradient_normal,
+    tangent_space_normal, world_vectors,
 };
 
 /// Every value along the chain at one point.
@@ -314,7 +314,7 @@ fn lit(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &Frame
     let shown = match shading.view {
         ViewMode::Lit => Some(lit),
         ViewMode::OverTilt if over_tilted(n, shading_normal) => Some(OVER_TILT_COLOR),
-        ViewMode::OverTilt => Some(lit),
+        ViewMode::OverTilt => Some(over_tilt_grey(color_linear).map(linear_to_srgb)),
         ViewMode::Tangent => Some(debug_color(tangent_frame.map_or(zero, |f| f.0))),
         ViewMode::Bitangent => Some(debug_color(tangent_frame.map_or(zero, |f| f.1))),
         ViewMode::Normal => Some(debug_color(n)),

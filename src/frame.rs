@@ -46,8 +46,9 @@ pub enum ViewMode {
     /// Tangent handedness `w`: green where +1, magenta where −1 (mirrored UV islands), grey
     /// where the mesh is drawn without tangents ([`handedness_color`]).
     Handedness,
-    /// The lit picture with pixels in [`OVER_TILT_COLOR`] where the shading normal tilts
-    /// past [`OVER_TILT_LIMIT_DEG`] from the geometric normal ([`over_tilted`]).
+    /// The lit picture in grey ([`crate::shading::over_tilt_grey`]) with pixels in
+    /// [`OVER_TILT_COLOR`] where the shading normal tilts past [`OVER_TILT_LIMIT_DEG`] from
+    /// the geometric normal ([`over_tilted`]).
     OverTilt,
     /// The clear-coat layer's normal (`KHR_materials_clearcoat`, after its normal map) where
     /// a material has a clear coat, else the geometric normal.
@@ -216,18 +217,6 @@ pub enum Parallax {
 }
 
 impl Parallax {
-    /// A technique's name for people (labels and captions).
-    pub fn label(self) -> &'static str {
-        match self {
-            Parallax::Off => "no parallax",
-            Parallax::Offset => "parallax offset",
-            Parallax::OffsetLimited => "offset limiting",
-            Parallax::Steep => "steep parallax",
-            Parallax::Occlusion => "parallax occlusion",
-            Parallax::Relief => "relief mapping",
-        }
-    }
-
     /// The index the `PARALLAX` pipeline constant takes (shaders/parallax.wgsl).
     pub fn shader_index(self) -> u32 {
         self as u32
@@ -296,16 +285,22 @@ impl ParallaxSettings {
         (a.min(b), a.max(b))
     }
 
-    /// A caption: the technique and, for searches, its layers (and relief's steps, and the
-    /// shadows when on).
+    /// A caption: `parallax: ` and the technique's [`Named`] name; for searches, its layers
+    /// (and relief's steps, and the shadows when on); a depth set instead of the materials'
+    /// height ranges, in centimetres.
     pub fn caption(&self) -> String {
         let (low, high) = self.layer_range();
         let layers = if low == high { format!("{high} layers") } else { format!("{low}–{high} layers") };
         let shadows = if self.shadows_on() { ", shadows" } else { "" };
+        let depth = match self.depth_m {
+            Some(depth) => format!(", depth {:.2} cm", depth * 100.0),
+            None => String::new(),
+        };
+        let name = self.technique.name();
         match self.technique {
-            Parallax::Off | Parallax::Offset | Parallax::OffsetLimited => self.technique.label().to_owned(),
-            Parallax::Steep | Parallax::Occlusion => format!("{}, {layers}{shadows}", self.technique.label()),
-            Parallax::Relief => format!("{}, {layers} + {} steps{shadows}", self.technique.label(), self.steps),
+            Parallax::Off | Parallax::Offset | Parallax::OffsetLimited => format!("parallax: {name}{depth}"),
+            Parallax::Steep | Parallax::Occlusion => format!("parallax: {name}, {layers}{shadows}{depth}"),
+            Parallax::Relief => format!("parallax: {name}, {layers} + {} steps{shadows}{depth}", self.steps),
         }
     }
 
@@ -557,7 +552,7 @@ mod tests {
     }
 
     /// Tatarchuk's count: `max` face-on, `min` grazing, clamped to 1..=256 in either order;
-    /// captions name the technique and its layers.
+    /// captions name the technique by its one name, its layers and a changed depth.
     #[test]
     fn parallax_layers_follow_the_view_angle_and_captions_name_them() {
         let settings =
@@ -565,9 +560,16 @@ mod tests {
         assert_eq!([1.0, 0.5, 0.0, f32::NAN].map(|c| settings.layers(c)), [8, 20, 32, 32]);
         let swapped = ParallaxSettings { layers_min: 999, layers_max: 0, ..settings };
         assert_eq!(swapped.layer_range(), (1, 256));
-        assert_eq!(settings.caption(), "parallax occlusion, 8–32 layers");
+        assert_eq!(settings.caption(), "parallax: occlusion, 8–32 layers");
         let relief = ParallaxSettings { technique: Parallax::Relief, layers_min: 16, layers_max: 16, ..settings };
-        assert_eq!(relief.caption(), "relief mapping, 16 layers + 5 steps");
-        assert_eq!(ParallaxSettings { technique: Parallax::Offset, ..settings }.caption(), "parallax offset");
+        assert_eq!(relief.caption(), "parallax: relief, 16 layers + 5 steps");
+        let deep = ParallaxSettings { technique: Parallax::OffsetLimited, depth_m: Some(0.03), ..settings };
+        assert_eq!(deep.caption(), "parallax: offset-limited, depth 3.00 cm");
+        for &technique in Parallax::all() {
+            let caption = ParallaxSettings { technique, ..settings }.caption();
+            assert!(
+                caption.starts_with(&format!("parallax: {},", technique.name())) || caption.ends_with(technique.name())
+            );
+        }
     }
 }

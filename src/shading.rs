@@ -227,6 +227,13 @@ pub const OVER_TILT_LIMIT_DEG: f32 = 75.0;
 /// Stored colour of an over-tilted pixel (saturated red).
 pub const OVER_TILT_COLOR: Vec3 = Vec3::new(1.0, 0.0, 0.0);
 
+/// The Over-tilt view's picture under the marks: the lit colour (linear RGB) in grey, its
+/// Rec. 709 luminance in every channel, so the red marks cannot be taken for red bricks. The
+/// twin of the `VIEW_OVER_TILT` case in `shaders/surface_color.wgsl`.
+pub fn over_tilt_grey(linear: Vec3) -> Vec3 {
+    Vec3::splat(linear.dot(Vec3::new(0.2126, 0.7152, 0.0722)))
+}
+
 /// `cos(OVER_TILT_LIMIT_DEG)`, the `frame.over_tilt_cos` uniform.
 pub fn over_tilt_cos() -> f32 {
     OVER_TILT_LIMIT_DEG.to_radians().cos()

@@ -257,7 +257,7 @@ fn frames_flag_errors() {
 fn steep_caption_strip() -> image::RgbaImage {
     use bumpview::frame::{Parallax, SceneUploads};
     use bumpview::render::capture::CaptureOptions;
-    use bumpview::render::export::{TileGrid, caption, render_grid};
+    use bumpview::render::export::{TileGrid, caption, render_grid, wrap_caption};
     use bumpview::state::{Command as ViewerCommand, ViewerState};
 
     let scene = bumpview::scene::builtin::teaching_scene();
@@ -275,12 +275,15 @@ fn steep_caption_strip() -> image::RgbaImage {
         "bump on, strength 1.00".to_owned(),
         "normal map: OpenGL (+Y)".to_owned(),
         "tangents: auto: meshopt".to_owned(),
-        format!("{}, 16 layers", Parallax::Steep.label()),
+        "parallax: steep, 16 layers".to_owned(),
     ];
     assert_eq!(lines, expected);
+    let wrapped = wrap_caption(&lines, 96).len();
+    assert!(wrapped > 5, "the lines wrap to the 96-pixel tile: {wrapped}");
     let picture =
         render_grid(&mut renderer, &CaptureOptions::plain([96, 64]), &state.frame_params(), &grid, Some(&[lines]))
             .unwrap();
+    assert_eq!(picture.height(), 64 + caption_strip_height(96, wrapped), "a strip of the wrapped lines");
     picture.view(0, 64, 96, picture.height() - 64).to_image()
 }
 
@@ -316,7 +319,6 @@ fn parallax_flags_draw_save_and_caption_the_technique() {
     render("split.png", &["--split", "parallax", "--split-sides", "offset,relief"]);
     let grid =
         render("grid.png", &["--parallax", "steep", "--parallax-layers", "16", "--grid", "bumped", "--captions"]);
-    assert_eq!(grid.height(), 64 + caption_strip_height(96, 5), "a strip of five caption lines");
     assert_eq!(steep_caption_strip(), grid.view(0, 64, 96, grid.height() - 64).to_image(), "the steep tile's caption");
 
     for bad in [&["--parallax-layers", "0,8"][..], &["--parallax-layers", "8,300"], &["--parallax-steps", "17"]] {

@@ -105,3 +105,48 @@ fn every_name_reads_back_as_its_value() {
     assert_eq!(ShadingMode::from_name("bump-colour"), Some(ShadingMode::BumpTimesColour));
     assert_eq!(TangentMethod::from_name("averaged-area"), Some(TangentMethod::AveragedArea));
 }
+
+/// One name per technique: captions, split labels (and so the panel's and the exports'), the
+/// command line and the reports call every parallax technique, classic mistake, legacy look
+/// and lighting space by its [`Named`] name, which each caption line and label contains.
+#[test]
+fn captions_and_split_labels_name_each_technique_by_its_one_name() {
+    use bumpview::frame::{LegacySettings, ShadingSettings};
+    use bumpview::render::export::{CaptionScene, caption_lines};
+    use bumpview::state::SplitView;
+
+    let scene =
+        CaptionScene { convention: "OpenGL (+Y)".into(), tangents: "auto: mikktspace".into(), displacement: None };
+    let captioned = |shading: ShadingSettings| caption_lines(&shading, &scene).join("\n");
+    let lit = ShadingSettings::default();
+    for &technique in &Parallax::all()[1..] {
+        let caption = captioned(ShadingSettings {
+            parallax: bumpview::frame::ParallaxSettings { technique, ..lit.parallax },
+            ..lit
+        });
+        assert!(caption.contains(&format!("parallax: {}", technique.name())), "{caption}");
+        let split =
+            SplitView { difference: SplitDifference::Parallax, parallax: [technique; 2], ..SplitView::default() };
+        assert_eq!(split.labels()[0], format!("parallax: {}", technique.name()));
+    }
+    for &mistake in &Mistake::all()[1..] {
+        let caption = captioned(ShadingSettings { mistake, ..lit });
+        assert!(caption.contains(&format!("mistake: {}: ", mistake.name())), "{caption}");
+        let split = SplitView { difference: SplitDifference::Mistake, mistakes: [mistake; 2], ..SplitView::default() };
+        assert!(split.labels()[0].starts_with(&format!("{}: ", mistake.name())), "{:?}", split.labels());
+    }
+    for &look in &LegacyLook::all()[1..] {
+        let caption = captioned(ShadingSettings { legacy: LegacySettings { look, cube_map_size: None }, ..lit });
+        assert!(caption.contains(&format!("legacy look: {}: ", look.name())), "{caption}");
+    }
+    for &space in &LightingSpace::all()[1..] {
+        let caption = captioned(ShadingSettings { lighting_space: space, ..lit });
+        assert!(caption.contains(&format!("lighting space: {}", space.name())), "{caption}");
+        let split = SplitView {
+            difference: SplitDifference::LightingSpace,
+            lighting_spaces: [space; 2],
+            ..SplitView::default()
+        };
+        assert_eq!(split.labels()[0], format!("lighting space: {}", space.name()));
+    }
+}

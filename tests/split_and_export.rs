@@ -14,7 +14,9 @@ use bumpview::frame::ViewMode;
 use bumpview::frame::{FrameParams, SplitFrame};
 use bumpview::names::Named;
 use bumpview::render::capture::{CaptureOptions, render_capture, render_capture_split, render_float_split};
-use bumpview::render::export::{CAPTION_BACKGROUND, TileGrid, caption, caption_strip_height, render_grid};
+use bumpview::render::export::{
+    CAPTION_BACKGROUND, TileGrid, caption, caption_strip_height, render_grid, wrap_caption,
+};
 use bumpview::state::{Command, SplitDifference, ViewerState};
 
 const SIZE: [u32; 2] = [160, 96];
@@ -213,7 +215,10 @@ fn row_export_is_single_renders_side_by_side_with_a_caption_strip() {
     let tile = [128, 80];
     let options = CaptureOptions::plain(tile);
     let row = render_grid(&mut renderer, &options, &params, &grid, Some(&captions)).unwrap();
-    let strip = caption_strip_height(tile[0], 4);
+    // Each caption wrapped to the tile: the strip holds the most lines one wraps to.
+    let lines = captions.iter().map(|c| wrap_caption(c, tile[0]).len()).max().unwrap();
+    assert!(lines > 4, "at 128 pixels the tangents line wraps: {lines} lines");
+    let strip = caption_strip_height(tile[0], lines);
     assert_eq!(row.dimensions(), (3 * tile[0], tile[1] + strip));
     let plain = render_grid(&mut renderer, &options, &params, &grid, None).unwrap();
     assert_eq!(plain.dimensions(), (3 * tile[0], tile[1]));
@@ -282,7 +287,8 @@ fn grid_export_puts_each_tile_at_its_row_and_column_above_its_caption() {
     let tile = [96, 64];
     let options = CaptureOptions::plain(tile);
     let image = render_grid(&mut renderer, &options, &params, &grid, Some(&captions)).unwrap();
-    let strip = caption_strip_height(tile[0], 4);
+    let lines = captions.iter().map(|c| wrap_caption(c, tile[0]).len()).max().unwrap();
+    let strip = caption_strip_height(tile[0], lines);
     assert_eq!(image.dimensions(), (2 * tile[0], 2 * (tile[1] + strip)));
     for (i, shading) in grid.tiles.iter().enumerate() {
         let single = render_capture(&mut renderer, &options, &FrameParams { shading: *shading, ..params }).unwrap();

@@ -192,7 +192,7 @@ fn lines(r: &ProbeReadout, mesh_name: &str) -> String {
         None => format!("exponent {:.1} (k_s × {:.3})", mip.shininess, mip.energy),
     };
     text.extend([
-        format!("mips     {}, level {lod} (footprint)", mip.filter.label()),
+        format!("mips     {}, level {lod} (footprint)", mip.filter.name()),
         format!("  |Na| {:.3}  α² + {:.4}  {widened}", mip.length, mip.variance),
     ]);
     for (i, light) in r.chain.lights.iter().enumerate() {
@@ -204,7 +204,7 @@ fn lines(r: &ProbeReadout, mesh_name: &str) -> String {
         ]);
     }
     text.extend([
-        format!("lit in   {}", r.chain.lighting_space.label()),
+        format!("lit in   {}", r.chain.lighting_space.name()),
         format!("albedo   {}  linear", v3(r.chain.albedo)),
         format!("colour   {}  linear", v3(r.chain.color_linear)),
         format!("sRGB     {:.0} {:.0} {:.0}  (0–255)", srgb.x, srgb.y, srgb.z),

@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 use bumpview::atomic::check_outputs;
 use bumpview::error::{LoadWarning, escape_controls};
 use bumpview::frame::{FrameQuality, SceneUploads, ShadingSettings};
-use bumpview::render::capture::{MAX_SUPERSAMPLE, render_capture, render_capture_split, write_png_atomically};
-use bumpview::render::export::{MAX_EXPORT_PIXELS, TileGrid, caption, render_grid};
+use bumpview::render::capture::{MAX_SUPERSAMPLE, write_png_atomically};
+use bumpview::render::export::{MAX_EXPORT_PIXELS, TileGrid, caption, render_grid, render_picture};
 use bumpview::render::timing::{TimedPicture, time_frames};
 use bumpview::render::{Gpu, Renderer};
 use bumpview::state::interactive::InteractiveQuality;
@@ -228,10 +228,11 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
             .captions
             .then(|| grid.tiles.iter().map(|s| caption(&renderer, &scene, &state.scene_options, s)).collect());
         render_grid(&mut renderer, &options, &params, &grid, captions.as_deref())
-    } else if let Some(split) = state.split_frame() {
-        render_capture_split(&mut renderer, &options, &params, &split)
     } else {
-        render_capture(&mut renderer, &options, &params)
+        let split = state.split_frame();
+        let labels = state.split.labels();
+        let split = split.as_ref().map(|s| (s, [labels[0].as_str(), labels[1].as_str()]));
+        render_picture(&mut renderer, &options, &params, split)
     }?;
     write_png_atomically(&image, &out)?;
     let (width, height) = image.dimensions();

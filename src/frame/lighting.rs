@@ -27,15 +27,6 @@ pub enum LightingSpace {
 }
 
 impl LightingSpace {
-    /// A space's name for people (labels and captions).
-    pub fn label(self) -> &'static str {
-        match self {
-            LightingSpace::World => "world-space lighting",
-            LightingSpace::Tangent => "tangent-space lighting",
-            LightingSpace::View => "view-space lighting",
-        }
-    }
-
     /// The index the `LIGHTING_SPACE` pipeline constant takes.
     pub fn shader_index(self) -> u32 {
         self as u32

@@ -1,5 +1,8 @@
 //! The classic mistakes and the legacy looks a frame can be drawn with: pipeline variants
-//! of the lit views ([`crate::chain::mistakes`], [`crate::chain::legacy`]).
+//! of the lit views ([`crate::chain::mistakes`], [`crate::chain::legacy`]). Each is named once,
+//! by its [`Named`] name, on the command line, in the panel, in captions and split labels.
+
+use crate::names::Named;
 
 /// A classic mistake to draw the scene with, for the split view against the correct picture
 /// ([`crate::chain::mistakes`], `shaders/mistakes.wgsl`). A pipeline variant (the `MISTAKE`
@@ -34,21 +37,6 @@ pub enum Mistake {
 }
 
 impl Mistake {
-    /// The mistake's name for people (labels and captions).
-    pub fn label(self) -> &'static str {
-        match self {
-            Mistake::None => "no mistake",
-            Mistake::TbnTypo => "TBN typo",
-            Mistake::HandednessIgnored => "handedness ignored",
-            Mistake::SrgbNormalMap => "sRGB normal map",
-            Mistake::NoRenormalization => "no re-normalisation",
-            Mistake::NoGramSchmidt => "no Gram-Schmidt",
-            Mistake::GreenFlipped => "green flipped",
-            Mistake::HalfVectorPerVertex => "half vector per vertex",
-            Mistake::LightPerVertex => "light normalised per vertex",
-        }
-    }
-
     /// What goes wrong, in one line (panel and captions).
     pub fn explanation(self) -> &'static str {
         match self {
@@ -95,16 +83,11 @@ pub enum LegacyLook {
     Emboss,
 }
 
-impl LegacyLook {
-    /// A look's name for people (labels and captions).
-    pub fn label(self) -> &'static str {
-        match self {
-            LegacyLook::Off => "off",
-            LegacyLook::Dot3 => "DOT3 (N·L only)",
-            LegacyLook::Emboss => "emboss (2D light map)",
-        }
-    }
-}
+/// What the emboss look's lit disc is ([`crate::chain::legacy::emboss_brightness`]): its light
+/// map's spot `1 − r/128`, at 100 of its texels a metre, is centred on the light's offset along
+/// the surface's T and B (the slope shifts the lookup), so a surface is lit within 1.28 m of the
+/// point under the light whatever the light's height or `N·L`, and black beyond (no ambient).
+pub const EMBOSS_DISC: &str = "lit within 1.28 m of the point under the light, fading to the rim (the 2D light map's spot, not N·L); black beyond";
 
 /// The face sizes a normalization cube map may have (Cg tutorial 8.1.3).
 pub const CUBE_MAP_SIZES: [u32; 4] = [8, 16, 32, 64];
@@ -135,12 +118,15 @@ impl LegacySettings {
         self.cube_map_size.filter(|_| self.look == LegacyLook::Dot3)
     }
 
-    /// A caption, e.g. "DOT3 (N·L only), cube map 32²".
+    /// A caption: the look's [`Named`] name and what it draws, e.g. `dot3: N·L only, cube map 32²`;
+    /// emboss says what its lit disc is ([`EMBOSS_DISC`]).
     pub fn caption(self) -> String {
-        match self.cube_map_in_use() {
-            Some(size) => format!("{}, cube map {size}²", self.look.label()),
-            None if self.look == LegacyLook::Dot3 => format!("{}, L per vertex", self.look.label()),
-            None => self.look.label().to_owned(),
+        let name = self.look.name();
+        match (self.look, self.cube_map_in_use()) {
+            (LegacyLook::Off, _) => name.to_owned(),
+            (LegacyLook::Dot3, Some(size)) => format!("{name}: N·L only, cube map {size}²"),
+            (LegacyLook::Dot3, None) => format!("{name}: N·L only, L per vertex"),
+            (LegacyLook::Emboss, _) => format!("{name}: {EMBOSS_DISC}"),
         }
     }
 }

@@ -1,16 +1,15 @@
 //! Comparison exports: a grid of tiles (a row is a grid of one row), each the same camera and
 //! light under other shading settings, with an optional caption strip under each tile stating
-//! view, mode, strength, normal-map convention and tangent source. The captions are drawn on the CPU with the Hack
-//! font that `epaint_default_fonts` bundles, rasterised by `ab_glyph`.
+//! view, mode, strength, normal-map convention and tangent source, wrapped to the tile's width
+//! ([`text::wrap`]); and single pictures ([`render_picture`]) with what the viewer draws over
+//! them ([`annotate`]). Text is drawn on the CPU ([`text`]).
 
-use ab_glyph::{Font, FontRef, PxScale, ScaleFont, point};
-
-use super::Renderer;
-use super::capture::{CaptureOptions, render_capture};
+use super::capture::{CaptureOptions, render_capture, render_capture_split};
+use super::{Renderer, annotate, text};
 use crate::error::RenderError;
 use crate::frame::{
-    BumpSource, FrameParams, LegacyLook, MAX_PARALLAX_LAYERS, Mistake, Parallax, STRENGTH_RANGE, SceneOptions,
-    ShadingMode, ShadingSettings, ViewMode,
+    BumpSource, FrameParams, LegacyLook, LightingSpace, MAX_PARALLAX_LAYERS, Mistake, Parallax, STRENGTH_RANGE,
+    SceneOptions, ShadingMode, ShadingSettings, SplitFrame, ViewMode,
 };
 use crate::names::Named;
 use crate::scene::Scene;
@@ -144,11 +143,63 @@ fn parse_tile(text: &str, current: &ShadingSettings) -> Result<ShadingSettings, 
     Ok(tile)
 }
 
-/// The caption of a tile: view (and mode), bump and strength, the normal-map convention of the
-/// scene's materials (after `options`' overrides) and the tangent frames the renderer drew
-/// with (its current scene, made with `options`); with parallax on, the technique and its
-/// layers; with a classic mistake, the mistake and what it breaks.
+/// What a tile's caption says of the scene as the renderer drew it, beside the tile's shading.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CaptionScene {
+    /// The normal-map conventions of the scene's materials, e.g. `OpenGL (+Y)`, or `none`.
+    pub convention: String,
+    /// The tangent frames drawn with, e.g. `auto: meshopt`.
+    pub tangents: String,
+    /// What displacement drew ([`crate::prepare::displace::DisplacementStats::summary`]), if it drew.
+    pub displacement: Option<String>,
+}
+
+impl CaptionScene {
+    /// The scene facts of `renderer`'s current scene, made from `scene` with `options`: the
+    /// normal-map convention of the scene's materials (after `options`' overrides), the
+    /// tangent frames the renderer drew with, and the displacement it drew.
+    pub fn of(renderer: &Renderer, scene: &Scene, options: &SceneOptions) -> CaptionScene {
+        let mut greens: Vec<&str> = Vec::new();
+        for (index, material) in scene.materials.iter().enumerate() {
+            let Some(map) = &material.normal_map else { continue };
+            let green = options.overrides_in_use(index).green.unwrap_or(map.convention.green);
+            let name = green.label();
+            if !greens.contains(&name) {
+                greens.push(name);
+            }
+        }
+        let convention = if greens.is_empty() { "none".to_owned() } else { greens.join(", ") };
+        let tangents = if options.bump_source == BumpSource::HeightInShader {
+            "none (height in shader)".to_owned()
+        } else {
+            let mut names: Vec<&str> = Vec::new();
+            for method in renderer.tangent_methods().into_iter().flatten() {
+                if !names.contains(&method.name()) {
+                    names.push(method.name());
+                }
+            }
+            let used = if names.is_empty() { "none".to_owned() } else { names.join(", ") };
+            match options.tangent_method {
+                None => format!("auto: {used}"),
+                Some(_) => used,
+            }
+        };
+        let displacement = renderer.prepared(false).and_then(|p| p.displacement).map(|stats| stats.summary());
+        CaptionScene { convention, tangents, displacement }
+    }
+}
+
+/// The caption of a tile ([`caption_lines`] with [`CaptionScene::of`]).
 pub fn caption(renderer: &Renderer, scene: &Scene, options: &SceneOptions, shading: &ShadingSettings) -> Vec<String> {
+    caption_lines(shading, &CaptionScene::of(renderer, scene, options))
+}
+
+/// The caption of a tile, one line each: view (and mode), bump and strength, the normal-map
+/// convention and the tangent frames; a lighting space other than world; with parallax on,
+/// the technique, its layers and a changed depth; what displacement drew; with a legacy
+/// look, the look (emboss: what its disc is); with a classic mistake, the mistake and what it
+/// breaks. Techniques are named by their [`Named`] names, as on the command line.
+pub fn caption_lines(shading: &ShadingSettings, scene: &CaptionScene) -> Vec<String> {
     let view = match shading.view {
         ViewMode::Lit | ViewMode::OverTilt => format!("{}: {}", shading.view.label(), shading.mode.label()),
         other => format!("{} view", other.label()),
@@ -158,53 +209,39 @@ pub fn caption(renderer: &Renderer, scene: &Scene, options: &SceneOptions, shadi
     } else {
         format!("bump off (strength {:.2})", shading.strength)
     };
-    let mut greens: Vec<&str> = Vec::new();
-    for (index, material) in scene.materials.iter().enumerate() {
-        let Some(map) = &material.normal_map else { continue };
-        let green = options.overrides_in_use(index).green.unwrap_or(map.convention.green);
-        let name = green.label();
-        if !greens.contains(&name) {
-            greens.push(name);
-        }
+    let mut lines =
+        vec![view, bump, format!("normal map: {}", scene.convention), format!("tangents: {}", scene.tangents)];
+    if shading.lighting_space != LightingSpace::World {
+        lines.push(format!("lighting space: {}", shading.lighting_space.name()));
     }
-    let convention = if greens.is_empty() { "none".to_owned() } else { greens.join(", ") };
-    let tangents = if options.bump_source == BumpSource::HeightInShader {
-        "none (height in shader)".to_owned()
-    } else {
-        let mut names: Vec<&str> = Vec::new();
-        for method in renderer.tangent_methods().into_iter().flatten() {
-            if !names.contains(&method.name()) {
-                names.push(method.name());
-            }
-        }
-        let used = if names.is_empty() { "none".to_owned() } else { names.join(", ") };
-        match options.tangent_method {
-            None => format!("auto: {used}"),
-            Some(_) => used,
-        }
-    };
-    let mut lines = vec![view, bump, format!("normal map: {convention}"), format!("tangents: {tangents}")];
     if shading.parallax.technique != Parallax::Off {
         lines.push(shading.parallax.caption());
     }
-    if let Some(stats) = renderer.prepared(false).and_then(|p| p.displacement) {
-        lines.push(format!("displacement {}", stats.summary()));
+    if let Some(summary) = &scene.displacement {
+        lines.push(format!("displacement {summary}"));
     }
     if shading.legacy.look != LegacyLook::Off && shading.view.is_lit() {
         lines.push(format!("legacy look: {}", shading.legacy.caption()));
     }
     if shading.mistake != Mistake::None {
-        lines.push(format!("mistake: {}: {}", shading.mistake.label(), shading.mistake.explanation()));
+        lines.push(format!("mistake: {}: {}", shading.mistake.name(), shading.mistake.explanation()));
     }
     lines
 }
 
+/// `lines` as drawn under a tile `tile_width` pixels wide: each wrapped ([`text::wrap`]) to
+/// the tile's width less a margin of half the text size on either side.
+pub fn wrap_caption(lines: &[String], tile_width: u32) -> Vec<String> {
+    let px = caption_px(tile_width);
+    lines.iter().flat_map(|line| text::wrap(line, px, tile_width as f32 - px)).collect()
+}
+
 /// Text size of captions under tiles `tile_width` pixels wide, pixels.
-fn caption_px(tile_width: u32) -> f32 {
+pub fn caption_px(tile_width: u32) -> f32 {
     (tile_width as f32 / 30.0).clamp(11.0, 32.0)
 }
 
-/// Height of a caption strip of `lines` lines under tiles `tile_width` pixels wide.
+/// Height of a caption strip of `lines` lines (as drawn: [`wrap_caption`]) under tiles `tile_width` pixels wide.
 pub fn caption_strip_height(tile_width: u32, lines: usize) -> u32 {
     let px = caption_px(tile_width);
     (lines as f32 * px * 1.25 + px).ceil() as u32
@@ -213,8 +250,9 @@ pub fn caption_strip_height(tile_width: u32, lines: usize) -> u32 {
 /// Renders the tiles of `grid` (each a capture as `options` say, with `params`' camera and
 /// light) in rows with no gap: tile `i` is the pixels `[c·w, (c+1)·w) × [r·(h+s), r·(h+s)+h)`
 /// with `c = i mod columns`, `r = i div columns`, and `s` the caption strip's height: with
-/// `captions` (one list of lines per tile) [`caption_strip_height`], else 0. The strip under a
-/// tile holds its lines.
+/// `captions` (one list of lines per tile) [`caption_strip_height`] of the most lines a tile's
+/// caption wraps to ([`wrap_caption`]), else 0. The strip under a tile holds its wrapped
+/// lines; a Difference or Over-tilt tile carries its key ([`annotate::legend`]).
 pub fn render_grid(
     renderer: &mut Renderer,
     options: &CaptureOptions,
@@ -223,7 +261,8 @@ pub fn render_grid(
     captions: Option<&[Vec<String>]>,
 ) -> Result<image::RgbaImage, RenderError> {
     let [width, height] = options.size;
-    let lines = captions.map_or(0, |c| c.iter().map(Vec::len).max().unwrap_or(0));
+    let captions: Option<Vec<Vec<String>>> = captions.map(|c| c.iter().map(|l| wrap_caption(l, width)).collect());
+    let lines = captions.as_ref().map_or(0, |c| c.iter().map(Vec::len).max().unwrap_or(0));
     let strip = if captions.is_some() { caption_strip_height(width, lines) } else { 0 };
     let (columns, rows) = (grid.columns.max(1) as u64, grid.rows() as u64);
     let (total_width, total_height) = (u64::from(width) * columns, u64::from(height + strip) * rows);
@@ -237,7 +276,9 @@ pub fn render_grid(
         let tile = render_capture(renderer, options, &FrameParams { shading: *shading, ..*params })?;
         let (x0, y0) = (i as u32 % columns * width, i as u32 / columns * (height + strip));
         image::imageops::replace(&mut image, &tile, x0 as i64, y0 as i64);
-        if let Some(text) = captions.and_then(|c| c.get(i)) {
+        let area = [x0, y0, x0 + width, y0 + height];
+        annotate::legend(&mut image, shading.view, shading.difference_range_deg, area, true);
+        if let Some(lines) = captions.as_ref().and_then(|c| c.get(i)) {
             let [r, g, b] = CAPTION_BACKGROUND;
             for y in y0 + height..y0 + height + strip {
                 for x in x0..x0 + width {
@@ -245,40 +286,40 @@ pub fn render_grid(
                 }
             }
             let px = caption_px(width);
-            for (line, words) in text.iter().enumerate() {
+            for (line, words) in lines.iter().enumerate() {
                 let baseline = (y0 + height) as f32 + px * 0.5 + px * (1.25 * line as f32 + 1.0);
-                draw_text(&mut image, words, [x0, x0 + width], x0 as f32 + px * 0.5, baseline, px);
+                text::draw(&mut image, words, [x0, x0 + width], x0 as f32 + px * 0.5, baseline, px, CAPTION_TEXT);
             }
         }
     }
     Ok(image)
 }
 
-/// Draws `text` in Hack at `px` pixels, left end of the baseline at `(x, baseline)`, clipped to
-/// the columns `columns[0]..columns[1]`, blending [`CAPTION_TEXT`] by glyph coverage.
-fn draw_text(image: &mut image::RgbaImage, text: &str, columns: [u32; 2], x: f32, baseline: f32, px: f32) {
-    let font = FontRef::try_from_slice(epaint_default_fonts::HACK_REGULAR).expect("the bundled Hack font parses");
-    let scale = PxScale::from(px);
-    let scaled = font.as_scaled(scale);
-    let mut caret = x;
-    for c in text.chars() {
-        let id = font.glyph_id(c);
-        let glyph = id.with_scale_and_position(scale, point(caret, baseline));
-        caret += scaled.h_advance(id);
-        let Some(outlined) = font.outline_glyph(glyph) else { continue };
-        let bounds = outlined.px_bounds();
-        outlined.draw(|gx, gy, coverage| {
-            let (x, y) = (bounds.min.x as i64 + gx as i64, bounds.min.y as i64 + gy as i64);
-            let inside = x >= columns[0] as i64 && x < columns[1] as i64 && y >= 0 && y < image.height() as i64;
-            if inside {
-                let pixel = image.get_pixel_mut(x as u32, y as u32);
-                let a = coverage.clamp(0.0, 1.0);
-                for (channel, text) in pixel.0.iter_mut().zip(CAPTION_TEXT) {
-                    *channel = (*channel as f32 * (1.0 - a) + text as f32 * a).round() as u8;
-                }
-            }
-        });
-    }
+/// One picture as `render` and the viewer's screenshot export write it: the capture of
+/// `params` or, with `split` and its two labels, of the split view with its divider and labels
+/// drawn in ([`annotate::split`]); a half or picture in the Difference or Over-tilt view
+/// carries its key at its outer top corner ([`annotate::legend`]).
+pub fn render_picture(
+    renderer: &mut Renderer,
+    options: &CaptureOptions,
+    params: &FrameParams,
+    split: Option<(&SplitFrame, [&str; 2])>,
+) -> Result<image::RgbaImage, RenderError> {
+    let Some((split, labels)) = split else {
+        let mut image = render_capture(renderer, options, params)?;
+        let (width, height) = image.dimensions();
+        let shading = &params.shading;
+        annotate::legend(&mut image, shading.view, shading.difference_range_deg, [0, 0, width, height], true);
+        return Ok(image);
+    };
+    let mut image = render_capture_split(renderer, options, params, split)?;
+    let (width, height) = image.dimensions();
+    let divider = split.divider_pixels(width);
+    let [left, right] = [&split.left, &split.right];
+    annotate::legend(&mut image, left.view, left.difference_range_deg, [0, 0, divider, height], false);
+    annotate::legend(&mut image, right.view, right.difference_range_deg, [divider, 0, width, height], true);
+    annotate::split(&mut image, divider, labels);
+    Ok(image)
 }
 
 #[cfg(test)]

@@ -12,6 +12,7 @@
 //! A prepared scene can be uploaded without the renderer, on any thread ([`Uploader`], e.g. a
 //! scene job's worker), and shown by [`Renderer::install`], a swap that uploads nothing.
 
+mod annotate;
 mod bindings;
 pub mod capture;
 mod draw;
@@ -26,6 +27,7 @@ pub mod pipelines;
 mod scene_gpu;
 pub mod shaders;
 mod targets;
+pub mod text;
 pub mod timing;
 mod uniforms;
 pub mod upload;

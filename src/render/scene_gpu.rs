@@ -87,9 +87,6 @@ pub struct GpuScene {
     pub work: WorkCounters,
 }
 
-/// Light marker size, metres from centre to tip.
-pub const MARKER_RADIUS: f32 = 0.06;
-
 fn buffer<T: bytemuck::Pod>(device: &wgpu::Device, label: &str, data: &[T], usage: wgpu::BufferUsages) -> wgpu::Buffer {
     device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some(label),
@@ -217,9 +214,9 @@ impl SamplerCache {
     }
 }
 
-/// The light marker's geometry: an octahedron of radius [`MARKER_RADIUS`] around the origin.
-fn octahedron() -> (Vec<Vec3>, Vec<u32>) {
-    let positions = [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z].map(|v| v * MARKER_RADIUS).to_vec();
+/// The light marker's geometry: an octahedron of `radius` metres around the origin.
+fn octahedron(radius: f32) -> (Vec<Vec3>, Vec<u32>) {
+    let positions = [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z].map(|v| v * radius).to_vec();
     let mut indices = vec![];
     for (a, b) in [(0u32, 4u32), (4, 1), (1, 5), (5, 0)] {
         indices.extend([b, a, 2, a, b, 3]);
@@ -316,7 +313,7 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, pre
         })
         .collect();
 
-    let (positions, indices) = octahedron();
+    let (positions, indices) = octahedron(super::draw::markers::marker_radius(scene));
     let lights = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("light markers"),
         size: std::mem::size_of::<[MarkerUniform; MAX_LIGHTS]>() as u64,

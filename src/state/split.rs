@@ -175,15 +175,15 @@ impl SplitView {
             SplitDifference::Tangents => format!("tangents: {}", self.tangent_methods[i].name()),
             SplitDifference::Convention => format!("normal map: {}", self.conventions[i].label()),
             SplitDifference::BumpSource => self.bump_sources[i].label().to_owned(),
-            SplitDifference::Parallax => self.parallax[i].label().to_owned(),
+            SplitDifference::Parallax => format!("parallax: {}", self.parallax[i].name()),
             SplitDifference::Mistake => match self.mistakes[i] {
                 Mistake::None => "correct".to_owned(),
-                mistake => format!("{}: {}", mistake.label(), mistake.explanation()),
+                mistake => format!("{}: {}", mistake.name(), mistake.explanation()),
             },
-            SplitDifference::LightingSpace => self.lighting_spaces[i].label().to_owned(),
-            SplitDifference::Displacement if i == 0 => self.parallax[0].label().to_owned(),
+            SplitDifference::LightingSpace => format!("lighting space: {}", self.lighting_spaces[i].name()),
+            SplitDifference::Displacement if i == 0 => format!("parallax: {}", self.parallax[0].name()),
             SplitDifference::Displacement => format!("displacement, level {}", self.displacement_level),
-            SplitDifference::MipFilter => format!("mips: {}", self.mip_filters[i].label()),
+            SplitDifference::MipFilter => format!("mips: {}", self.mip_filters[i].name()),
         })
     }
 }

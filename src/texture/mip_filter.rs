@@ -34,18 +34,6 @@ pub enum MipFilter {
 }
 
 impl MipFilter {
-    /// A method's name for people (labels and captions).
-    pub fn label(self) -> &'static str {
-        match self {
-            MipFilter::BaseOnly => "base level only",
-            MipFilter::RenormalizedBox => "re-normalised box mips",
-            MipFilter::Toksvig => "Toksvig",
-            MipFilter::Lean => "LEAN",
-            MipFilter::Vmf => "vMF roughness",
-            MipFilter::GeometricSpecularAa => "geometric specular AA",
-        }
-    }
-
     /// The index the `MIP_FILTER` pipeline constant takes (shaders/mip_filter.wgsl).
     pub fn shader_index(self) -> u32 {
         self as u32

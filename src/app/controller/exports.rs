@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use bumpview::render::capture::{render_capture, render_capture_split, write_png_atomically};
+use bumpview::render::capture::write_png_atomically;
 use bumpview::render::export::{self, TileGrid, parse_size};
 use bumpview::state::preset::CapturePreset;
 
@@ -60,11 +60,10 @@ impl Controller {
         let size = self.capture_size()?;
         let options = CapturePreset { size: Some(size), ..self.screenshot.capture() }.options(size);
         let params = self.state.frame_params();
-        let image = match self.state.split_frame() {
-            Some(split) => render_capture_split(&mut self.renderer, &options, &params, &split),
-            None => render_capture(&mut self.renderer, &options, &params),
-        }
-        .map_err(|e| e.to_string())?;
+        let split = self.state.split_frame();
+        let labels = self.state.split.labels();
+        let split = split.as_ref().map(|s| (s, [labels[0].as_str(), labels[1].as_str()]));
+        let image = export::render_picture(&mut self.renderer, &options, &params, split).map_err(|e| e.to_string())?;
         let path = unused_screenshot_path(&self.screenshot_dir);
         write_png_atomically(&image, &path).map_err(|e| e.to_string())?;
         let shown = std::path::absolute(&path).unwrap_or(path);

@@ -114,9 +114,9 @@ fn model(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
         }
     }
     let mut space = shading.lighting_space;
-    egui::ComboBox::from_label("lighting space").selected_text(space.label()).show_ui(ui, |ui| {
+    egui::ComboBox::from_label("lighting space").selected_text(space.name()).show_ui(ui, |ui| {
         for &choice in LightingSpace::all() {
-            ui.selectable_value(&mut space, choice, choice.label());
+            ui.selectable_value(&mut space, choice, choice.name());
         }
     });
     if space != shading.lighting_space {

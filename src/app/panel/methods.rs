@@ -67,9 +67,9 @@ pub(super) fn methods(
 /// minify the surface and watch the highlight sparkle or hold (issue 24).
 fn mip_filter(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
     let mut filter = state.scene_options.mip_filter;
-    egui::ComboBox::from_label("normal-map mips").selected_text(filter.label()).show_ui(ui, |ui| {
+    egui::ComboBox::from_label("normal-map mips").selected_text(filter.name()).show_ui(ui, |ui| {
         for &choice in MipFilter::all() {
-            ui.selectable_value(&mut filter, choice, choice.label());
+            ui.selectable_value(&mut filter, choice, choice.name());
         }
     });
     if filter != state.scene_options.mip_filter {
@@ -143,7 +143,7 @@ pub(super) fn conventions(ui: &mut egui::Ui, state: &ViewerState, materials: &[M
     });
     // The all-materials method is the methods section's "normal-map mips".
     if target.is_some() {
-        let mip_name = |m: Option<MipFilter>| m.map_or("as all materials", MipFilter::label);
+        let mip_name = |m: Option<MipFilter>| m.map_or("as all materials", MipFilter::name);
         egui::ComboBox::from_label("normal-map mips").selected_text(mip_name(new.mip_filter)).show_ui(ui, |ui| {
             for choice in std::iter::once(None).chain(MipFilter::all().iter().copied().map(Some)) {
                 ui.selectable_value(&mut new.mip_filter, choice, mip_name(choice));

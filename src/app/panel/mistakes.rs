@@ -12,9 +12,9 @@ use crate::app::action::Action;
 pub(super) fn show(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
     let current = state.shading.mistake;
     let mut mistake = current;
-    egui::ComboBox::from_label("draw with").selected_text(mistake.label()).show_ui(ui, |ui| {
+    egui::ComboBox::from_label("draw with").selected_text(mistake.name()).show_ui(ui, |ui| {
         for &choice in Mistake::all() {
-            ui.selectable_value(&mut mistake, choice, choice.label()).on_hover_text(choice.explanation());
+            ui.selectable_value(&mut mistake, choice, choice.name()).on_hover_text(choice.explanation());
         }
     });
     if mistake != current {
@@ -28,9 +28,9 @@ pub(super) fn show(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Act
 pub(super) fn legacy(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
     let current = state.shading.legacy;
     let mut legacy = current;
-    egui::ComboBox::from_label("look").selected_text(legacy.look.label()).show_ui(ui, |ui| {
+    egui::ComboBox::from_label("look").selected_text(legacy.look.name()).show_ui(ui, |ui| {
         for &choice in LegacyLook::all() {
-            ui.selectable_value(&mut legacy.look, choice, choice.label());
+            ui.selectable_value(&mut legacy.look, choice, choice.name());
         }
     });
     if legacy.look == LegacyLook::Dot3 {

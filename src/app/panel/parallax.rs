@@ -15,9 +15,9 @@ use crate::app::action::Action;
 pub(super) fn show(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
     let settings = state.shading.parallax;
     let mut technique = settings.technique;
-    egui::ComboBox::from_label("technique").selected_text(technique.label()).show_ui(ui, |ui| {
+    egui::ComboBox::from_label("technique").selected_text(technique.name()).show_ui(ui, |ui| {
         for &choice in Parallax::all() {
-            ui.selectable_value(&mut technique, choice, choice.label());
+            ui.selectable_value(&mut technique, choice, choice.name());
         }
     });
     if technique != settings.technique {

@@ -106,21 +106,19 @@ fn split(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
         SplitDifference::BumpSource => {
             pair_combos(ui, "bump source", split.bump_sources, BumpSource::label).map(Command::SetSplitBumpSources)
         }
-        SplitDifference::LightingSpace => {
-            pair_combos(ui, "lighting space", split.lighting_spaces, LightingSpace::label)
-                .map(Command::SetSplitLightingSpaces)
-        }
+        SplitDifference::LightingSpace => pair_combos(ui, "lighting space", split.lighting_spaces, LightingSpace::name)
+            .map(Command::SetSplitLightingSpaces),
         SplitDifference::MipFilter => {
-            pair_combos(ui, "mip filter", split.mip_filters, MipFilter::label).map(Command::SetSplitMipFilters)
+            pair_combos(ui, "mip filter", split.mip_filters, MipFilter::name).map(Command::SetSplitMipFilters)
         }
         SplitDifference::Parallax => {
-            pair_combos(ui, "parallax", split.parallax, Parallax::label).map(Command::SetSplitParallax)
+            pair_combos(ui, "parallax", split.parallax, Parallax::name).map(Command::SetSplitParallax)
         }
         SplitDifference::Displacement => {
             let [mut technique, _] = split.parallax;
-            egui::ComboBox::from_label("left parallax").selected_text(technique.label()).show_ui(ui, |ui| {
+            egui::ComboBox::from_label("left parallax").selected_text(technique.name()).show_ui(ui, |ui| {
                 for &choice in Parallax::all() {
-                    ui.selectable_value(&mut technique, choice, choice.label());
+                    ui.selectable_value(&mut technique, choice, choice.name());
                 }
             });
             let mut level = split.displacement_level;
@@ -129,7 +127,7 @@ fn split(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
             (changed || technique != split.parallax[0]).then_some(Command::SetSplitDisplacement(technique, level))
         }
         SplitDifference::Mistake => {
-            let chosen = pair_combos(ui, "mistake", split.mistakes, Mistake::label).map(Command::SetSplitMistakes);
+            let chosen = pair_combos(ui, "mistake", split.mistakes, Mistake::name).map(Command::SetSplitMistakes);
             for (side, mistake) in ["left", "right"].into_iter().zip(split.mistakes) {
                 ui.weak(format!("{side}: {}", mistake.explanation()));
             }
@@ -214,6 +212,6 @@ fn view_hint(mode: ViewMode) -> &'static str {
 /// The Over-tilt view's hint, with its threshold.
 fn over_tilt_hint() -> &'static str {
     const _: () = assert!(OVER_TILT_LIMIT_DEG == 75.0, "update the hint below");
-    "lit, red where the bumped normal tilts more than 75° from the surface normal (or below it): \
+    "lit in grey, red where the bumped normal tilts more than 75° from the surface normal (or below it): \
      the strength is too high there"
 }
