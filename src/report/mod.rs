@@ -14,6 +14,8 @@ pub mod exact_hit;
 pub mod gpu_time;
 mod markdown;
 pub mod measure;
+pub mod mip_specimen;
+pub mod mip_study;
 pub mod parallax;
 pub mod parallax_page;
 pub mod roundtrip;
