@@ -46,9 +46,15 @@ fn specular_power(n: vec3<f32>, n_geo: vec3<f32>, l: vec3<f32>, v: vec3<f32>, sh
     return 0.0;
 }
 
-// The material's shininess, or the frame's for every material.
+// The material's shininess, or the frame's for every material, widened by the normal map's
+// mip filter (mip_filter.wgsl; unchanged without one).
 fn shininess() -> f32 {
-    return select(object.specular.a, frame.shininess, frame.shininess >= 0.0);
+    return mip_widened_shininess(select(object.specular.a, frame.shininess, frame.shininess >= 0.0)).x;
+}
+
+// The mip filter's energy factor on k_s for the widened exponent (1 without widening).
+fn shininess_energy() -> f32 {
+    return mip_widened_shininess(select(object.specular.a, frame.shininess, frame.shininess >= 0.0)).y;
 }
 
 // shading::light_term: one light's diffuse and specular with the self-shadow fade, from unit

@@ -4,7 +4,7 @@
 //
 // Entry points form the pipeline variants (src/render/pipelines.rs), each specialised by
 // pipeline constants (VIEW, SHADING_MODEL, MATERIAL_FEATURES, PARALLAX, MISTAKE, LEGACY,
-// LIGHTING_SPACE) so it compiles only what it draws:
+// LIGHTING_SPACE, MIP_FILTER) so it compiles only what it draws:
 //   vs_plain  + fs_plain          mesh without tangents, material without normal map
 //   vs_tangent + fs_tangent       mesh with tangents, material without normal map
 //   vs_tangent + fs_normal_mapped mesh with tangents and a tangent-space normal map, read at
@@ -19,8 +19,8 @@
 // and half vector, for the legacy looks and the per-vertex mistakes alone).
 //
 // Prepended at build time: frame.wgsl (the Frame uniform, group 0), object.wgsl (group 1),
-// common.wgsl, normal_map.wgsl, surface_color.wgsl, pbr.wgsl, parallax.wgsl, mistakes.wgsl
-// (the MISTAKE constant), legacy.wgsl (the LEGACY constant) and lights.wgsl (the lights and
+// common.wgsl, normal_map.wgsl, mip_filter.wgsl (the MIP_FILTER constant), surface_color.wgsl,
+// pbr.wgsl, parallax.wgsl, mistakes.wgsl (the MISTAKE constant), legacy.wgsl (the LEGACY constant) and lights.wgsl (the lights and
 // the classic model's lighting spaces).
 
 // ---- vertex stages ----
@@ -62,11 +62,13 @@ fn normal_mapped_surface(vertex: VertexOutput, front_facing: bool) -> vec4<f32> 
     in.uv = parallax_uv(vertex.uv, n, vertex.world_position);
     let frame_tb = mistaken_frame(in.world_tangent, n);
     let texel = mistaken_texel(sample_normal_map(in.uv));
+    set_mip_variance_from_texel(texel.texel, frame.strength * object.normal_scale);
     var n_shading = base_normal(vertex.world_normal, front_facing, n);
     if frame.bump_enabled != 0u {
         let strength = frame.strength * object.normal_scale;
         n_shading = perturbed_normal(n_shading, frame_tb, texel, strength, mistaken_flags(object.flags));
     }
+    set_mip_variance_from_normal(n_shading);
     return surface_color(in, n, frame_tb, n_shading, clearcoat_normal(in, n, frame_tb));
 }
 
@@ -88,6 +90,7 @@ fn normal_mapped_tangent_space_surface(vertex: VertexOutput, front_facing: bool)
     in.uv = parallax_uv(vertex.uv, n, vertex.world_position);
     let frame_tb = mistaken_frame(in.world_tangent, n);
     let texel = mistaken_texel(sample_normal_map(in.uv));
+    set_mip_variance_from_texel(texel.texel, frame.strength * object.normal_scale);
     var n_shading = base_normal(vertex.world_normal, front_facing, n);
     tangent_space.normal = vec3<f32>(0.0, 0.0, 1.0);
     if frame.bump_enabled != 0u {
@@ -96,6 +99,7 @@ fn normal_mapped_tangent_space_surface(vertex: VertexOutput, front_facing: bool)
         n_shading = perturbed_normal(n_shading, frame_tb, texel, strength, flags);
         tangent_space.normal = tangent_space_normal(texel, strength, flags);
     }
+    set_mip_variance_from_normal(n_shading);
     return surface_color(in, n, frame_tb, n_shading, clearcoat_normal(in, n, frame_tb));
 }
 
@@ -103,6 +107,7 @@ fn normal_mapped_tangent_space_surface(vertex: VertexOutput, front_facing: bool)
 fn object_space_surface(in: VertexOutput, front_facing: bool) -> vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
     let texel = mistaken_texel(sample_normal_map(in.uv));
+    set_mip_variance_from_texel(texel.texel, frame.strength * object.normal_scale);
     var n_shading = base_normal(in.world_normal, front_facing, n);
     if frame.bump_enabled != 0u {
         let facing = select(-1.0, 1.0, front_facing);
@@ -110,6 +115,7 @@ fn object_space_surface(in: VertexOutput, front_facing: bool) -> vec4<f32> {
         let n_map = facing * normalize_or((object.normal_matrix * vec4<f32>(model_normal, 0.0)).xyz, n);
         n_shading = normalize_or(n + frame.strength * object.normal_scale * (n_map - n), n);
     }
+    set_mip_variance_from_normal(n_shading);
     // No tangents: the T and B views show the zero vector (mid grey), and no coat normal map.
     return surface_color(in, n, TangentFrame(vec3<f32>(0.0), vec3<f32>(0.0), 0.0), n_shading, n);
 }

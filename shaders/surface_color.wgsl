@@ -54,7 +54,7 @@ fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>, n_coat: v
         if has(HAS_GLOSS) {
             k_s *= textureSample(gloss_texture, detail_sampler, in.uv).rgb;
         }
-        k_s *= packed_gloss;
+        k_s *= packed_gloss * shininess_energy();
         return blinn_phong(albedo, k_s, n_geo, n_shading, in.world_position) + emission;
     }
     // Each texture is sampled only where the material has it (has(): the pipeline leaves the
@@ -81,7 +81,7 @@ fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>, n_coat: v
     let inputs = PbrInputs(
         albedo,
         object.metallic * metal_rough.b,
-        object.roughness * metal_rough.g,
+        mip_widened_roughness(object.roughness * metal_rough.g),
         occlusion,
         n_geo,
         n_shading,

@@ -17,18 +17,20 @@
 
 pub mod fragment;
 pub mod legacy;
+mod mip;
 pub mod mistakes;
 pub mod parallax;
 mod read;
 mod relief;
 
 pub use fragment::{Footprint, Fragment, Map, Varyings};
+pub use mip::{MipInputs, MipValues};
 use read::{BumpSample, SurfaceSample};
 pub use relief::MarchValues;
 
 use glam::{Mat3, Vec3};
 
-use crate::frame::{BumpKind, FrameParams, LegacyLook, LightingSpace, ShadingMode, ViewMode};
+use crate::frame::{BumpKind, FrameParams, LegacyLook, LightingSpace, MipFilter, ShadingMode, ViewMode};
 use crate::math::{linear_to_srgb, normalize_or, smoothstep};
 use crate::scene::{MAX_LIGHTS, Material, ShadingModel};
 use crate::shading::lights::incident;
@@ -88,6 +90,9 @@ pub struct ChainValues {
     /// The space the point is lit in: the frame's for the classic model on tangent-space
     /// normal-mapped surfaces with a tangent frame, else world space.
     pub lighting_space: LightingSpace,
+    /// The normal map's mip filtering at the point ([`MipValues`]): the method, the level of
+    /// detail, `|Na|`, and the exponent it widens to (the roughness: [`MipValues::roughness`]).
+    pub mip: MipValues,
     /// The lit colour in the frame's shading mode, linear RGB.
     pub color_linear: Vec3,
     /// What the frame's view stores, 0..1; `None` for the Difference and UV check views,
@@ -125,13 +130,27 @@ pub fn shade(bump: BumpKind, material: &Material, fragment: &impl Fragment, fram
     let n = normalize_or(at.world_normal, Vec3::Z) * facing;
     let surface = read::read(bump, material, fragment, &at, (step.uv, step.footprint), n, frame);
     let (dimmed, visibility) = relief::shadowed(material, fragment, &step, at.position, frame);
-    let values = lit(bump, material, &surface, &dimmed);
+    let filter = fragment.mip_filter();
+    // Geometric specular AA differentiates the shading normal over the quad: each pixel's own
+    // chain up to its normal (its own UV, without the parallax shift).
+    let normal_derivatives = (filter == MipFilter::GeometricSpecularAa)
+        .then(|| {
+            fragment.derivatives(|v| {
+                let n = normalize_or(v.world_normal, Vec3::Z) * facing;
+                let surface = read::read(bump, material, fragment, v, (v.uv, step.footprint), n, frame);
+                lit(bump, material, &surface, frame, MipInputs::NONE).shading_normal
+            })
+        })
+        .flatten();
+    let lod = mip::normal_map_lod(fragment, step.footprint).filter(|_| surface.bump.is_some());
+    let values = lit(bump, material, &surface, &dimmed, MipInputs { filter, normal_derivatives, lod });
     ChainValues { march: relief::values(material, fragment, &step, visibility, &values), ..values }
 }
 
-/// The chain after the texture reads: the frame, the bump, every light of `frame` (already
-/// dimmed by the relief's shadow) and the view's colour at `point`.
-fn lit(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &FrameParams) -> ChainValues {
+/// The chain after the texture reads: the frame, the bump, the mip filter's widening (by
+/// `mip`), every light of `frame` (already dimmed by the relief's shadow) and the view's
+/// colour at `point`.
+fn lit(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &FrameParams, mip: MipInputs) -> ChainValues {
     let shading = &frame.shading;
     let facing = if point.front_facing { 1.0 } else { -1.0 };
     let n = normalize_or(point.world_normal, Vec3::Z) * facing;
@@ -179,6 +198,8 @@ fn lit(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &Frame
         Some(BumpSample::NormalMap(raw)) => map.map_or(1.0, |m| packed_gloss(raw, m.convention.layout)),
         _ => 1.0,
     };
+    let shininess = shading.shininess.unwrap_or(material.shininess).max(1.0);
+    let mip = MipValues::new(mip, texel, strength, shading.bump_enabled, shininess);
     let eye = frame.camera.eye();
     let view_dir = normalize_or(eye - point.position, n);
     let albedo = point.base_color.unwrap_or(Vec3::ONE) * material.base_color_factor.truncate();
@@ -190,8 +211,8 @@ fn lit(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &Frame
         position: point.position,
         eye,
         lights: frame.lights,
-        specular: material.specular * point.gloss.unwrap_or(Vec3::ONE) * gloss,
-        shininess: shading.shininess.unwrap_or(material.shininess).max(1.0),
+        specular: material.specular * point.gloss.unwrap_or(Vec3::ONE) * (gloss * mip.energy),
+        shininess: mip.shininess,
         specular_mode: shading.specular,
     };
     // The world-space directions the lighting sees: the per-vertex mistakes replace the first
@@ -270,7 +291,7 @@ fn lit(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &Frame
             metallic_roughness(&PbrInputs {
                 base_color: lit_albedo,
                 metallic: material.metallic * metal_rough.z,
-                roughness: material.roughness * metal_rough.y,
+                roughness: mip.roughness(material.roughness * metal_rough.y),
                 occlusion: 1.0 + occlusion_strength * (point.occlusion.unwrap_or(1.0) - 1.0),
                 geometric_normal: n,
                 shading_normal,
@@ -323,6 +344,7 @@ fn lit(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &Frame
         albedo,
         shading_model,
         lighting_space,
+        mip,
         color_linear,
         shown,
     }

@@ -9,6 +9,7 @@ mod looks;
 
 pub use lighting::LightingSpace;
 pub use looks::{CUBE_MAP_SIZES, LegacyLook, LegacySettings, Mistake};
+pub use crate::texture::MipFilter;
 
 use crate::names::Named;
 use crate::scene::{
@@ -492,6 +493,9 @@ pub struct SceneOptions {
     /// normal ([`crate::tangent::without_gram_schmidt`]): on while a picture shows
     /// [`Mistake::NoGramSchmidt`] (`ViewerState::scene_uploads` sets it).
     pub tangents_without_gram_schmidt: bool,
+    /// How every material's normal map is mip-filtered ([`MipFilter`]): it decides the mip
+    /// chain baked and uploaded, and the pipeline variant (`MIP_FILTER`).
+    pub mip_filter: MipFilter,
 }
 
 impl SceneOptions {

@@ -8,6 +8,7 @@
 //! colours are linear RGB.
 
 pub mod lights;
+pub mod mip_filter;
 pub mod pbr;
 pub mod spaces;
 

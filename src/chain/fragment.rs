@@ -11,6 +11,8 @@ use std::ops::Sub;
 
 use glam::{Mat3, UVec2, Vec2, Vec3, Vec4};
 
+use crate::frame::MipFilter;
+
 /// The vertex stage's outputs at one point, interpolated perspective-correct.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Varyings {
@@ -74,4 +76,10 @@ pub trait Fragment {
     fn sample(&self, map: Map, uv: Vec2, footprint: Footprint) -> Option<Vec4>;
     /// Level 0's size in texels of `map`; `None` where the instance binds no texture there.
     fn size(&self, map: Map) -> Option<UVec2>;
+    /// How the instance's normal map is mip-filtered as drawn (its `MIP_FILTER` pipeline
+    /// constant and mip chain, [`crate::prepare::PreparedInstance::mip_filter`]); readers
+    /// without one draw today's re-normalised box mips.
+    fn mip_filter(&self) -> MipFilter {
+        MipFilter::RenormalizedBox
+    }
 }

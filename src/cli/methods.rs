@@ -1,7 +1,7 @@
 //! The flags for the numerical methods and texture conventions behind a picture, shared by the
 //! viewer and `render`, and the viewer [`Command`]s they stand for.
 
-use bumpview::frame::BumpSource;
+use bumpview::frame::{BumpSource, MipFilter};
 use bumpview::height::{Border, Kernel};
 use bumpview::scene::{GreenAxis, MaterialOverrides, NormalLayout, ShadingModel};
 use bumpview::state::{Command, ViewerState};
@@ -22,6 +22,12 @@ pub struct MethodArgs {
     /// bump by screen-space derivatives, no tangents) [default: normal-map].
     #[arg(long, value_parser = args::named::<BumpSource>())]
     pub bump_source: Option<BumpSource>,
+    /// How normal maps are mip-filtered at a distance: base-only (no mips), renormalized-box
+    /// (2×2 box, re-normalised), toksvig (Toksvig 2004), lean (Olano & Baker 2010), vmf
+    /// (roughness from a von Mises–Fisher fit, Karis 2018) or geometric-specular-aa
+    /// (Tokuyoshi & Kaplanyan 2019) [default: renormalized-box].
+    #[arg(long, value_name = "NAME", value_parser = args::named::<MipFilter>())]
+    pub mip_filter: Option<MipFilter>,
     #[command(flatten)]
     pub materials: MaterialArgs,
 }
@@ -85,6 +91,7 @@ impl MethodArgs {
         self.tangents.is_none()
             && self.kernel.is_none()
             && self.bump_source.is_none()
+            && self.mip_filter.is_none()
             && m.overrides().is_empty()
             && m.shading.is_none()
     }
@@ -98,6 +105,9 @@ impl MethodArgs {
         }
         if let Some(source) = self.bump_source {
             commands.push(Command::SetBumpSource(source));
+        }
+        if let Some(filter) = self.mip_filter {
+            commands.push(Command::SetMipFilter(filter));
         }
         let overrides = self.materials.overrides();
         if !overrides.is_empty() {

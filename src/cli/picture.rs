@@ -81,8 +81,9 @@ pub struct PictureArgs {
     /// Split view, left │ right, as one image: bump (off │ on), view (lit │ shading-normal),
     /// strength (1 │ 3), mode (colour-only │ bump-colour), tangents (per-face │ mikktspace),
     /// convention (opengl │ directx), bump-source (normal-map │ height-in-shader), parallax
-    /// (steep │ occlusion), lighting-space (world │ tangent), mistake (none │ tbn-typo) or
-    /// displacement (a parallax technique │ displacement at a level, `--split-sides occlusion,6`)
+    /// (steep │ occlusion), lighting-space (world │ tangent), mistake (none │ tbn-typo),
+    /// mip-filter (renormalized-box │ toksvig) or displacement (a parallax technique │
+    /// displacement at a level, `--split-sides occlusion,6`)
     /// [default: the preset's].
     #[arg(long, value_name = "KIND", value_parser = args::named::<SplitDifference>())]
     split: Option<SplitDifference>,

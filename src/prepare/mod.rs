@@ -15,8 +15,8 @@ use std::borrow::Cow;
 use glam::{Mat4, Vec4};
 use rayon::prelude::*;
 
-use crate::frame::{BumpKind, SceneOptions, bump_kind};
-use crate::scene::{Material, Mesh, Scene, TextureImage};
+use crate::frame::{BumpKind, MipFilter, SceneOptions, bump_kind};
+use crate::scene::{Material, Mesh, Scene, TextureImage, TextureKind};
 use crate::tangent::{self, TangentMethod};
 
 /// What a drawn instance needs from its pipeline: by its [`BumpKind`], plus whether the mesh
@@ -124,6 +124,9 @@ pub struct PreparedInstance {
     pub bump: BumpKind,
     pub variant: Variant,
     pub textures: InstanceTextures,
+    /// How its normal map is mip-filtered as drawn ([`mip_filter_of`]): the scene option's
+    /// method, or [`MipFilter::RenormalizedBox`] where that method cannot apply.
+    pub mip_filter: MipFilter,
 }
 
 impl PreparedInstance {
@@ -190,13 +193,15 @@ impl PreparedScene {
                 let material = &scene.materials[instance.material];
                 let bump = bump_kind(&scene, instance.mesh, instance.material, options.bump_source);
                 let variant = variant_of(bump, &scene.meshes[instance.mesh], material);
+                let textures = InstanceTextures::of(material, variant, options.parallax);
                 PreparedInstance {
                     mesh: instance.mesh,
                     material: instance.material,
                     transform: instance.transform,
                     bump,
                     variant,
-                    textures: InstanceTextures::of(material, variant, options.parallax),
+                    textures,
+                    mip_filter: mip_filter_of(options.mip_filter, variant, textures.bump.map(|t| &scene.textures[t])),
                 }
             })
             .collect();
@@ -248,25 +253,65 @@ impl PreparedScene {
     }
 
     /// The mip chain of texture `index` as it is sampled (level 0 first, box-filtered down to
-    /// one texel; see [`TextureImage::mip_chain`]): the one made ahead, else made now.
+    /// one texel; see [`TextureImage::mip_chain`]; a normal map's by its instances' method,
+    /// [`TextureImage::mip_chain_filtered`]): the one made ahead, else made now.
     pub fn mip_chain(&self, index: usize) -> Cow<'_, [TextureImage]> {
         match &self.mip_chains[index] {
             Some(chain) => Cow::Borrowed(chain),
-            None => Cow::Owned(self.scene.textures[index].mip_chain()),
+            None => Cow::Owned(self.made_mip_chain(index)),
+        }
+    }
+
+    /// The mip filter of texture `index` where an instance reads it as its normal map (the
+    /// first such instance's; one texture drawn with two methods takes the first).
+    pub fn normal_map_filter(&self, index: usize) -> Option<MipFilter> {
+        let reads = |i: &&PreparedInstance| {
+            i.textures.bump == Some(index) && matches!(i.variant, Variant::NormalMapped | Variant::ObjectSpace)
+        };
+        self.instances.iter().find(reads).map(|i| i.mip_filter)
+    }
+
+    /// Texture `index`'s mip chain, made now.
+    fn made_mip_chain(&self, index: usize) -> Vec<TextureImage> {
+        let texture = &self.scene.textures[index];
+        match self.normal_map_filter(index) {
+            Some(filter) => texture.mip_chain_filtered(filter),
+            None => texture.mip_chain(),
         }
     }
 
     /// Makes the mip chains of every texture an instance binds now (textures in parallel), so
     /// that uploading the scene, on the UI thread, only copies them to the GPU.
     pub fn precompute_mip_chains(&mut self) {
-        let used: Vec<bool> = (0..self.scene.textures.len()).map(|index| self.uses_texture(index)).collect();
-        self.mip_chains =
-            self.scene.textures.par_iter().zip(used).map(|(texture, used)| used.then(|| texture.mip_chain())).collect();
+        let used: Vec<usize> = (0..self.scene.textures.len()).filter(|&index| self.uses_texture(index)).collect();
+        let made: Vec<(usize, Vec<TextureImage>)> =
+            used.par_iter().map(|&index| (index, self.made_mip_chain(index))).collect();
+        self.mip_chains = vec![None; self.scene.textures.len()];
+        for (index, chain) in made {
+            self.mip_chains[index] = Some(chain);
+        }
     }
 
     /// Number of triangles drawn.
     pub fn triangle_count(&self) -> usize {
         self.instances.iter().map(|i| self.meshes[i.mesh].mesh.indices.len() / 3).sum()
+    }
+}
+
+/// The mip filter an instance of `variant` whose bump texture is `bump` is drawn with:
+/// `chosen` where it applies, else [`MipFilter::RenormalizedBox`] (today's mips, no widening).
+/// Only normal maps (tangent- or object-space) are filtered; the methods that read the
+/// averaged normal's length or LEAN's moments need an RGB map ([`TextureKind::NormalMap`]:
+/// packed layouts average channel by channel); LEAN is not drawn yet (see
+/// docs/mip-filtering.md).
+pub fn mip_filter_of(chosen: MipFilter, variant: Variant, bump: Option<&TextureImage>) -> MipFilter {
+    let normal_map = matches!(variant, Variant::NormalMapped | Variant::ObjectSpace);
+    let rgb = bump.is_some_and(|t| t.kind == TextureKind::NormalMap);
+    match chosen {
+        _ if !normal_map || bump.is_none() => MipFilter::RenormalizedBox,
+        MipFilter::Lean => MipFilter::RenormalizedBox,
+        MipFilter::Toksvig | MipFilter::Vmf if !rgb => MipFilter::RenormalizedBox,
+        _ => chosen,
     }
 }
 

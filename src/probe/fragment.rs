@@ -152,4 +152,8 @@ impl Fragment for Pixel<'_> {
     fn size(&self, map: Map) -> Option<UVec2> {
         self.mips(map).map(|(chain, _)| UVec2::new(chain[0].width, chain[0].height))
     }
+
+    fn mip_filter(&self) -> crate::frame::MipFilter {
+        self.instance.mip_filter
+    }
 }

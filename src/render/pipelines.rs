@@ -8,7 +8,7 @@ use std::collections::HashMap;
 use super::bindings;
 use super::shaders::{self, Wgsl};
 use crate::counters::WorkCounters;
-use crate::frame::{LegacyLook, LegacySettings, LightingSpace, Mistake, Parallax, ViewMode};
+use crate::frame::{LegacyLook, LegacySettings, LightingSpace, MipFilter, Mistake, Parallax, ViewMode};
 use crate::prepare::Variant;
 use crate::scene::ShadingModel;
 
@@ -48,6 +48,10 @@ pub enum Pass {
         /// On lavapipe that is what saves their cost, as it runs both sides of a branch on a
         /// uniform, texture samples included.
         features: u32,
+        /// How the normal map's highlight is widened (the `MIP_FILTER` constant,
+        /// shaders/mip_filter.wgsl); [`MipFilter::RenormalizedBox`] (no widening) outside the
+        /// lit views and for the methods that do not widen ([`MipFilter::widens`]).
+        mip_filter: MipFilter,
     },
     /// The Difference view of a mesh with a tangent stream: it adds the reference stream
     /// and binds the same group-1 layout as `variant`.
@@ -230,6 +234,7 @@ fn build(
             legacy,
             lighting_space,
             features,
+            mip_filter,
             ..
         } => {
             let (vs, fs, buffers): (_, _, &[_]) = match variant {
@@ -260,6 +265,9 @@ fn build(
             }
             if lighting_space != LightingSpace::World {
                 constants.push(("LIGHTING_SPACE", f64::from(lighting_space.shader_index())));
+            }
+            if mip_filter.widens() {
+                constants.push(("MIP_FILTER", f64::from(mip_filter.shader_index())));
             }
             (layouts.material(variant), vs, fs, buffers, cull, constants)
         }

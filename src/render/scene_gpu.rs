@@ -45,6 +45,9 @@ pub struct GpuInstance {
     /// The optional textures and lobes its material has ([`super::uniforms::MATERIAL_FEATURES`]
     /// bits of the object uniform's flags), which its mesh pipelines are specialised to.
     pub features: u32,
+    /// How its normal map is mip-filtered ([`crate::prepare::PreparedInstance::mip_filter`];
+    /// the `MIP_FILTER` constant of its lit pipelines).
+    pub mip_filter: crate::frame::MipFilter,
     pub bind_group: wgpu::BindGroup,
 }
 
@@ -307,6 +310,7 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, pre
                 shading_model: material.shading_model,
                 parallax_height: instance.textures.height.is_some(),
                 features: object.features(),
+                mip_filter: instance.mip_filter,
                 bind_group,
             }
         })

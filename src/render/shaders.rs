@@ -40,6 +40,7 @@ macro_rules! mesh_files {
             MESH_COMMON[0],
             MESH_COMMON[1],
             wgsl_file!("normal_map.wgsl"),
+            wgsl_file!("mip_filter.wgsl"),
             wgsl_file!("surface_color.wgsl"),
             wgsl_file!("pbr.wgsl"),
             wgsl_file!("parallax.wgsl"),

@@ -15,7 +15,7 @@ use glam::{Vec2, Vec3};
 
 use crate::frame::{
     BumpSource, FrameParams, LegacyLook, LegacySettings, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS,
-    MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS, Mistake, Msaa, Parallax, STRENGTH_RANGE, SceneOptions,
+    MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS, MipFilter, Mistake, Msaa, Parallax, STRENGTH_RANGE, SceneOptions,
     SceneUploads, ShadingMode, ShadingSettings, SplitFrame, ViewMode,
 };
 use crate::height::Kernel;
@@ -73,6 +73,10 @@ pub enum Command {
     /// Tangent frames by this method (`None`: the mesh's own, else MikkTSpace by meshoptimizer).
     SetTangentMethod(Option<TangentMethod>),
     SetBumpSource(BumpSource),
+    /// How every material's normal map is mip-filtered (re-makes GPU data).
+    SetMipFilter(MipFilter),
+    /// The two methods of [`SplitDifference::MipFilter`].
+    SetSplitMipFilters([MipFilter; 2]),
     /// Height→normal kernel of the built-in brick normal map.
     SetKernel(Kernel),
     /// The Difference view's colour scale spans 0 to this many degrees.
@@ -302,6 +306,8 @@ impl ViewerState {
             Command::Tick(_) => {}
             Command::SetTangentMethod(method) => self.scene_options.tangent_method = method,
             Command::SetBumpSource(source) => self.scene_options.bump_source = source,
+            Command::SetMipFilter(filter) => self.scene_options.mip_filter = filter,
+            Command::SetSplitMipFilters(filters) => self.split.mip_filters = filters,
             Command::SetKernel(kernel) => self.kernel = kernel,
             Command::SetDifferenceRange(degrees) if degrees.is_finite() => {
                 self.shading.difference_range_deg = degrees.clamp(DIFFERENCE_RANGE.start, DIFFERENCE_RANGE.end)

@@ -2,7 +2,7 @@
 //! upload) or in GPU data (a second upload for the right half).
 
 use crate::frame::{
-    BumpSource, LightingSpace, Mistake, Parallax, SceneOptions, ShadingMode, ShadingSettings, ViewMode,
+    BumpSource, LightingSpace, MipFilter, Mistake, Parallax, SceneOptions, ShadingMode, ShadingSettings, ViewMode,
 };
 use crate::names::Named;
 use crate::scene::GreenAxis;
@@ -12,7 +12,7 @@ use crate::tangent::TangentMethod;
 /// lighting space are uniforms or pipeline variants, so both halves share one scene upload; the others change GPU data
 /// ([`SplitDifference::changes_gpu_data`]), so the right half is drawn from a second upload of
 /// the scene. Named `bump`, `view`, `strength`, `mode`, `tangents`, `convention`,
-/// `bump-source`, `parallax`, `mistake`, `lighting-space`, `displacement`.
+/// `bump-source`, `parallax`, `mistake`, `lighting-space`, `displacement`, `mip-filter`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
 #[strum(serialize_all = "kebab-case")]
 pub enum SplitDifference {
@@ -40,6 +40,9 @@ pub enum SplitDifference {
     /// The left parallax technique (`parallax[0]`) │ displacement at `displacement_level`, the
     /// ground truth (same depth).
     Displacement,
+    /// Two normal-map mip filters ([`MipFilter`]; re-normalised box │ Toksvig by default):
+    /// different mip chains, so a second upload.
+    MipFilter,
 }
 
 impl SplitDifference {
@@ -52,6 +55,7 @@ impl SplitDifference {
                 | SplitDifference::Convention
                 | SplitDifference::BumpSource
                 | SplitDifference::Displacement
+                | SplitDifference::MipFilter
         )
     }
 }
@@ -74,6 +78,8 @@ pub struct SplitView {
     pub lighting_spaces: [LightingSpace; 2],
     /// The right half's displacement level in [`SplitDifference::Displacement`].
     pub displacement_level: u32,
+    /// The two methods of [`SplitDifference::MipFilter`].
+    pub mip_filters: [MipFilter; 2],
 }
 
 impl Default for SplitView {
@@ -92,6 +98,7 @@ impl Default for SplitView {
             mistakes: [Mistake::None, Mistake::TbnTypo],
             lighting_spaces: [LightingSpace::World, LightingSpace::Tangent],
             displacement_level: 6,
+            mip_filters: [MipFilter::RenormalizedBox, MipFilter::Toksvig],
         }
     }
 }
@@ -111,7 +118,10 @@ impl SplitView {
                 SplitDifference::LightingSpace => s.lighting_space = self.lighting_spaces[i],
                 SplitDifference::Displacement if i == 0 => s.parallax.technique = self.parallax[0],
                 SplitDifference::Displacement => {}
-                SplitDifference::Tangents | SplitDifference::Convention | SplitDifference::BumpSource => {}
+                SplitDifference::Tangents
+                | SplitDifference::Convention
+                | SplitDifference::BumpSource
+                | SplitDifference::MipFilter => {}
             }
             s
         };
@@ -135,6 +145,7 @@ impl SplitView {
                 }
                 SplitDifference::BumpSource => options.bump_source = self.bump_sources[i],
                 SplitDifference::Displacement => options.displacement.level = [0, self.displacement_level][i],
+                SplitDifference::MipFilter => options.mip_filter = self.mip_filters[i],
                 SplitDifference::Bump
                 | SplitDifference::View
                 | SplitDifference::Strength
@@ -165,6 +176,7 @@ impl SplitView {
             SplitDifference::LightingSpace => self.lighting_spaces[i].label().to_owned(),
             SplitDifference::Displacement if i == 0 => self.parallax[0].label().to_owned(),
             SplitDifference::Displacement => format!("displacement, level {}", self.displacement_level),
+            SplitDifference::MipFilter => format!("mips: {}", self.mip_filters[i].label()),
         })
     }
 }

@@ -2,7 +2,7 @@
 //! and the light.
 
 use bumpview::frame::{
-    BumpSource, LightingSpace, MAX_DISPLACEMENT_LEVEL, Mistake, Parallax, STRENGTH_RANGE, ShadingMode, ViewMode,
+    BumpSource, LightingSpace, MAX_DISPLACEMENT_LEVEL, MipFilter, Mistake, Parallax, STRENGTH_RANGE, ShadingMode, ViewMode,
 };
 use bumpview::names::Named;
 use bumpview::scene::GreenAxis;
@@ -108,6 +108,9 @@ fn split(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
         SplitDifference::LightingSpace => {
             pair_combos(ui, "lighting space", split.lighting_spaces, LightingSpace::label)
                 .map(Command::SetSplitLightingSpaces)
+        }
+        SplitDifference::MipFilter => {
+            pair_combos(ui, "mip filter", split.mip_filters, MipFilter::label).map(Command::SetSplitMipFilters)
         }
         SplitDifference::Parallax => {
             pair_combos(ui, "parallax", split.parallax, Parallax::label).map(Command::SetSplitParallax)

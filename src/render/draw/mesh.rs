@@ -2,7 +2,7 @@
 //! to the half's view, or with the Difference pass.
 
 use super::{FramePipelines, InstanceDraw};
-use crate::frame::{LegacySettings, LightingSpace, Parallax, ShadingSettings, ViewMode};
+use crate::frame::{LegacySettings, LightingSpace, MipFilter, Parallax, ShadingSettings, ViewMode};
 use crate::prepare::Variant;
 use crate::render::pipelines::Pass;
 use crate::render::scene_gpu::{GpuInstance, GpuScene};
@@ -43,7 +43,7 @@ pub fn record(pass: &mut wgpu::RenderPass, pipelines: &FramePipelines, scene: &G
 /// lit view to the shading model (the frame's override, else the material's), where a
 /// height map is bound for it, to the parallax technique, and to the material's features.
 fn drawn_pass(instance: &GpuInstance, scene: &GpuScene, shading: &ShadingSettings) -> Pass {
-    let GpuInstance { variant, cull_back_faces, mirrored, features, .. } = *instance;
+    let GpuInstance { variant, cull_back_faces, mirrored, features, mip_filter, .. } = *instance;
     if shading.view == ViewMode::Difference && scene.prepared.meshes[instance.mesh].frames.is_some() {
         return Pass::Difference { variant, cull_back_faces, mirrored };
     }
@@ -56,6 +56,10 @@ fn drawn_pass(instance: &GpuInstance, scene: &GpuScene, shading: &ShadingSetting
         (Variant::NormalMapped, Some(ShadingModel::BlinnPhong)) => shading.lighting_space,
         _ => LightingSpace::World,
     };
+    // The highlight widening is the lit views' (the debug views show the normal as drawn);
+    // the methods that do not widen share the plain pipelines.
+    let widens = lighting.is_some() && mip_filter.widens();
+    let mip_filter = if widens { mip_filter } else { MipFilter::RenormalizedBox };
     Pass::Mesh {
         variant,
         cull_back_faces,
@@ -67,5 +71,6 @@ fn drawn_pass(instance: &GpuInstance, scene: &GpuScene, shading: &ShadingSetting
         legacy,
         lighting_space,
         features,
+        mip_filter,
     }
 }

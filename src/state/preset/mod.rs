@@ -306,6 +306,7 @@ impl Preset {
                 parallax: false,
                 displacement: Displacement { level: scene.displacement, depth_m: None },
                 tangents_without_gram_schmidt: false,
+                mip_filter: named("scene.mip_filter", &scene.mip_filter)?,
             },
             kernel: self.kernel()?,
             split: self.split.to_split()?,

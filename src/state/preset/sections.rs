@@ -20,7 +20,7 @@ use super::*;
 pub struct SplitPreset {
     pub enabled: bool,
     /// A [`SplitDifference`] name: `bump`, `view`, `strength`, `mode`, `tangents`,
-    /// `convention`, `bump-source`, `parallax`, `lighting-space` or `displacement`.
+    /// `convention`, `bump-source`, `parallax`, `lighting-space`, `displacement` or `mip-filter`.
     pub difference: String,
     /// The divider, a fraction of the width (0..1).
     pub divider: f32,
@@ -43,6 +43,8 @@ pub struct SplitPreset {
     pub lighting_spaces: [String; 2],
     /// The right half's displacement level in the `displacement` split (1 to 10).
     pub displacement_level: u32,
+    /// [`MipFilter`](crate::frame::MipFilter) names, left and right.
+    pub mip_filters: [String; 2],
 }
 
 impl Default for SplitPreset {
@@ -67,6 +69,7 @@ impl From<&SplitView> for SplitPreset {
             mistakes: names(s.mistakes),
             lighting_spaces: names(s.lighting_spaces),
             displacement_level: s.displacement_level,
+            mip_filters: names(s.mip_filters),
         }
     }
 }
@@ -99,6 +102,7 @@ impl SplitPreset {
             mistakes: named_pair("split.mistakes", &self.mistakes)?,
             lighting_spaces: named_pair("split.lighting_spaces", &self.lighting_spaces)?,
             displacement_level: self.displacement_level,
+            mip_filters: named_pair("split.mip_filters", &self.mip_filters)?,
         })
     }
 }
@@ -276,6 +280,8 @@ pub struct ScenePreset {
     /// Displacement's tessellation level, 0 (off) to 10: materials with a height map drawn
     /// as displaced geometry, the depth the parallax depth.
     pub displacement: u32,
+    /// A [`MipFilter`](crate::frame::MipFilter) name: how every normal map is mip-filtered.
+    pub mip_filter: String,
 }
 
 /// [`MaterialOverrides`] by name; a missing key keeps the material's own setting.
@@ -359,6 +365,7 @@ impl ScenePreset {
             materials: OverridesPreset::from(&options.materials),
             per_material: options.per_material.iter().map(|(i, o)| (i.to_string(), o.into())).collect(),
             displacement: options.displacement.level,
+            mip_filter: options.mip_filter.name().to_owned(),
         }
     }
 }

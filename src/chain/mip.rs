@@ -1,0 +1,70 @@
+//! The chain's normal-map mip filtering step ([`crate::shading::mip_filter`], the twin of
+//! `shaders/mip_filter.wgsl`): what the instance's method adds to `α²` at the point and the
+//! exponent and roughness it widens, with the level of detail the normal map is read at.
+
+use glam::Vec3;
+
+use super::fragment::{Footprint, Fragment, Map};
+use crate::frame::MipFilter;
+use crate::shading::NormalTexel;
+use crate::shading::mip_filter::{alpha_variance, widened_roughness, widened_shininess};
+
+/// What the mip filtering step takes besides the texel: the method, the screen-space
+/// derivatives of the shading normal (geometric specular AA only; `None` otherwise or without
+/// a quad) and the normal map's level of detail.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MipInputs {
+    pub filter: MipFilter,
+    pub normal_derivatives: Option<(Vec3, Vec3)>,
+    pub lod: Option<f32>,
+}
+
+impl MipInputs {
+    /// No filtering (the plain chain: the neighbours geometric specular AA differentiates).
+    pub const NONE: MipInputs = MipInputs { filter: MipFilter::RenormalizedBox, normal_derivatives: None, lod: None };
+}
+
+/// The mip filtering step's values at one point (the probe's readout).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MipValues {
+    /// The instance's method.
+    pub filter: MipFilter,
+    /// The level of detail the normal map's footprint asks for (`log2` of its longer side in
+    /// level-0 texels; below 0 magnified, read at level 0); `None` without a normal map or a
+    /// footprint.
+    pub lod: Option<f32>,
+    /// `|Na|`, the filtered texel's alpha for the methods that keep it ([`MipFilter::keeps_length`]),
+    /// else 1.
+    pub length: f32,
+    /// What the method adds to `α²` ([`alpha_variance`]); 0 without widening.
+    pub variance: f32,
+    /// The classic exponent after widening and the factor on `k_s` that keeps the lobe's
+    /// energy ([`widened_shininess`]).
+    pub shininess: f32,
+    pub energy: f32,
+}
+
+impl MipValues {
+    /// The values at a point read with `texel` (`None`: no normal map), the bump `strength`,
+    /// the bump on or off, and the unwidened `shininess`.
+    pub fn new(inputs: MipInputs, texel: Option<NormalTexel>, strength: f32, bump_on: bool, shininess: f32) -> Self {
+        let filter = inputs.filter;
+        let length = texel.filter(|_| filter.keeps_length()).map_or(1.0, |t| t.rgba.w);
+        let variance = alpha_variance(filter, length, strength, bump_on, inputs.normal_derivatives);
+        let (shininess, energy) = widened_shininess(filter, shininess, variance);
+        MipValues { filter, lod: inputs.lod, length, variance, shininess, energy }
+    }
+
+    /// A perceptual roughness widened by [`Self::variance`] ([`widened_roughness`]).
+    pub fn roughness(&self, roughness: f32) -> f32 {
+        widened_roughness(roughness, self.variance)
+    }
+}
+
+/// The normal map's level of detail at `footprint`, as the sampler takes it: `log2` of the
+/// longer of the footprint's derivatives in level-0 texels.
+pub fn normal_map_lod(fragment: &impl Fragment, footprint: Footprint) -> Option<f32> {
+    let size = fragment.size(Map::Bump)?.as_vec2();
+    let (dx, dy) = footprint?;
+    Some((dx * size).length().max((dy * size).length()).log2()).filter(|lod| lod.is_finite())
+}
