@@ -1,8 +1,8 @@
 //! Normal maps at a distance: every mip filter's picture against a supersampled reference, on
 //! the GPU ([`super::mip_specimen`] for the specimens).
 //!
-//! - **Reference**: the base level only (a texture of one level, so the sampler reads level
-//!   0 bilinearly), drawn at `g` times the picture's size and box-filtered `g × g` in linear
+//! - **Reference**: [`MipFilter::BaseOnly`] (a normal map of one level, so the sampler reads
+//!   level 0 bilinearly), drawn at `g` times the picture's size and box-filtered `g × g` in linear
 //!   radiance (float target): `g × g` samples of the base level per pixel, `g` =
 //!   [`MipPlan::supersample`] (16). Its convergence is measured at frame 0 against `g = 24`
 //!   ([`Convergence`]).
@@ -21,10 +21,12 @@
 use std::num::NonZeroU32;
 use std::sync::Arc;
 
+use strum::VariantArray;
+
 use super::gpu_time::gpu_frame_ms;
 use super::mip_specimen::{MipSpecimen, Shape};
 use crate::error::RenderError;
-use crate::frame::{FrameParams, Msaa, SceneOptions, ShadingSettings};
+use crate::frame::{FrameParams, MipFilter, Msaa, SceneOptions, ShadingSettings};
 use crate::prepare::PreparedScene;
 use crate::render::capture::{FLOAT_FORMAT, draw_offscreen};
 use crate::render::{Background, DrawOptions, Renderer};
@@ -174,12 +176,9 @@ pub struct MethodSetup {
     pub shading: ShadingSettings,
 }
 
-/// The scene prepared as usual, but every texture with its base level alone: the sampler
-/// can read nothing else. The reference's texture (and base-level-only sampling).
-pub fn base_level_only(specimen: &MipSpecimen) -> PreparedScene {
-    let mut prepared = PreparedScene::new(&specimen.scene, &SceneOptions::default());
-    prepared.mip_chains = prepared.scene.textures.iter().map(|t| Some(vec![t.clone()])).collect();
-    prepared
+/// The scene prepared with `filter` for every material.
+fn prepared(specimen: &MipSpecimen, filter: MipFilter) -> PreparedScene {
+    PreparedScene::new(&specimen.scene, &SceneOptions { mip_filter: filter, ..Default::default() })
 }
 
 /// Bytes of every texture level `prepared` uploads (RGBA8).
@@ -190,21 +189,19 @@ pub fn texture_bytes(prepared: &PreparedScene) -> u64 {
         .sum()
 }
 
-/// The methods measured: base level only and the re-normalised box chain the renderer
-/// builds today.
+/// Every [`MipFilter`] the renderer draws as chosen on `specimen` (one that falls back to
+/// another, [`crate::prepare::mip_filter_of`], is left out), in declaration order.
 pub fn methods(specimen: &MipSpecimen) -> Vec<MethodSetup> {
-    vec![
-        MethodSetup {
-            name: "base level only",
-            prepared: Arc::new(base_level_only(specimen)),
+    MipFilter::VARIANTS
+        .iter()
+        .map(|&filter| (filter, prepared(specimen, filter)))
+        .filter(|(filter, prepared)| prepared.instances.iter().all(|i| i.mip_filter == *filter))
+        .map(|(filter, prepared)| MethodSetup {
+            name: filter.label(),
+            prepared: Arc::new(prepared),
             shading: ShadingSettings::default(),
-        },
-        MethodSetup {
-            name: "re-normalised box mips",
-            prepared: Arc::new(PreparedScene::new(&specimen.scene, &SceneOptions::default())),
-            shading: ShadingSettings::default(),
-        },
-    ]
+        })
+        .collect()
 }
 
 /// One method at one specimen and minification.
@@ -249,18 +246,17 @@ fn unlit(shading: ShadingSettings) -> ShadingSettings {
 }
 
 /// Measures `shape` at `minification`: the reference frames, its convergence, then each
-/// method. `step()` after each method.
+/// method.
 pub fn measure(
     renderer: &mut Renderer,
     plan: &MipPlan,
     shape: Shape,
     minification: u32,
-    step: &mut dyn FnMut(),
 ) -> Result<(Vec<MipRow>, Convergence), RenderError> {
     let specimen = MipSpecimen::new(shape, minification, plan.size);
     let pan = |t: u32| t as f32 * PAN_PX_PER_FRAME;
     let shading = ShadingSettings::default();
-    renderer.set_prepared(Arc::new(base_level_only(&specimen)));
+    renderer.set_prepared(Arc::new(prepared(&specimen, MipFilter::BaseOnly)));
     let mut references = vec![];
     for t in 0..plan.frames {
         references.push(radiance(renderer, plan.size, plan.supersample, &specimen.params(pan(t), shading))?);
@@ -313,24 +309,24 @@ pub fn measure(
             frame_ms,
             texture_bytes: texture_bytes(&method.prepared),
         });
-        step();
     }
     Ok((rows, convergence))
 }
 
-/// Cases (methods × specimens × minifications) [`study`] measures.
+/// Cases (specimens × minifications) [`study`] measures.
 pub fn case_count(plan: &MipPlan) -> usize {
-    plan.shapes.len() * plan.minifications.len() * 2
+    plan.shapes.len() * plan.minifications.len()
 }
 
-/// Every specimen of `plan` at every minification on `renderer`.
+/// Every specimen of `plan` at every minification on `renderer`; `step()` after each.
 pub fn study(renderer: &mut Renderer, plan: &MipPlan, step: &mut dyn FnMut()) -> Result<MipStudy, RenderError> {
     let mut out = MipStudy::default();
     for &shape in &plan.shapes {
         for &minification in &plan.minifications {
-            let (rows, convergence) = measure(renderer, plan, shape, minification, step)?;
+            let (rows, convergence) = measure(renderer, plan, shape, minification)?;
             out.rows.extend(rows);
             out.convergence.push(convergence);
+            step();
         }
     }
     Ok(out)
