@@ -36,7 +36,8 @@ pub struct LevelShortening {
     pub exponent_ratio: f32,
 }
 
-/// Every level of `map`'s chain (level 0 first, down to 1×1) for exponent `shininess`.
+/// Every level of `map`'s chain (level 0 first, down to 1×1) for exponent `shininess` (0 or
+/// less: no highlight to sharpen, every ratio 1).
 pub fn mip_shortening(map: &TextureImage, shininess: f32) -> Vec<LevelShortening> {
     map.normal_means()
         .into_iter()
@@ -46,13 +47,9 @@ pub fn mip_shortening(map: &TextureImage, shininess: f32) -> Vec<LevelShortening
             let mean_length = means.iter().map(|m| m.length().min(1.0)).sum::<f32>() / count;
             let (widened, _) =
                 widened_shininess(MipFilter::Toksvig, shininess, 2.0 * toksvig_variance(mean_length));
-            LevelShortening {
-                level: level as u32,
-                width,
-                height,
-                mean_length,
-                exponent_ratio: widened / shininess.max(f32::MIN_POSITIVE),
-            }
+            // An exponent of 0 (a lobe as wide as it gets) cannot be widened: ratio 1.
+            let exponent_ratio = if shininess > 0.0 { widened / shininess } else { 1.0 };
+            LevelShortening { level: level as u32, width, height, mean_length, exponent_ratio }
         })
         .collect()
 }
