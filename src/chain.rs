@@ -91,7 +91,7 @@ pub struct ChainValues {
     /// normal-mapped surfaces with a tangent frame, else world space.
     pub lighting_space: LightingSpace,
     /// The normal map's mip filtering at the point ([`MipValues`]): the method, the level of
-    /// detail, `|Na|`, and the exponent it widens to (the roughness: [`MipValues::roughness`]).
+    /// detail, `|Na|`, and the exponent or roughness it widens to.
     pub mip: MipValues,
     /// The lit colour in the frame's shading mode, linear RGB.
     pub color_linear: Vec3,
@@ -198,8 +198,11 @@ fn lit(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &Frame
         Some(BumpSample::NormalMap(raw)) => map.map_or(1.0, |m| packed_gloss(raw, m.convention.layout)),
         _ => 1.0,
     };
+    let shading_model = shading.shading_override.unwrap_or(material.shading_model);
     let shininess = shading.shininess.unwrap_or(material.shininess).max(1.0);
-    let mip = MipValues::new(mip, texel, strength, shading.bump_enabled, shininess);
+    let metal_rough = point.metallic_roughness.unwrap_or(Vec3::ONE);
+    let roughness = (shading_model == ShadingModel::MetallicRoughness).then(|| material.roughness * metal_rough.y);
+    let mip = MipValues::new(mip, texel, (strength, shading.bump_enabled), shininess, roughness);
     let eye = frame.camera.eye();
     let view_dir = normalize_or(eye - point.position, n);
     let albedo = point.base_color.unwrap_or(Vec3::ONE) * material.base_color_factor.truncate();
@@ -237,7 +240,6 @@ fn lit(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &Frame
             radiance: arriving.radiance,
         });
     }
-    let shading_model = shading.shading_override.unwrap_or(material.shading_model);
     let lighting_space = match (bump, tangent_frame, shading_model) {
         (BumpKind::TangentSpace, Some(_), ShadingModel::BlinnPhong) => shading.lighting_space,
         _ => LightingSpace::World,
@@ -286,12 +288,11 @@ fn lit(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &Frame
             blinn_phong(&inputs, &vectors)
         }
         (_, ShadingModel::MetallicRoughness) => {
-            let metal_rough = point.metallic_roughness.unwrap_or(Vec3::ONE);
             let occlusion_strength = material.occlusion.as_ref().map_or(0.0, |o| o.strength);
             metallic_roughness(&PbrInputs {
                 base_color: lit_albedo,
                 metallic: material.metallic * metal_rough.z,
-                roughness: mip.roughness(material.roughness * metal_rough.y),
+                roughness: mip.roughness.unwrap_or(material.roughness * metal_rough.y),
                 occlusion: 1.0 + occlusion_strength * (point.occlusion.unwrap_or(1.0) - 1.0),
                 geometric_normal: n,
                 shading_normal,

@@ -7,9 +7,9 @@
 mod lighting;
 mod looks;
 
+pub use crate::texture::MipFilter;
 pub use lighting::LightingSpace;
 pub use looks::{CUBE_MAP_SIZES, LegacyLook, LegacySettings, Mistake};
-pub use crate::texture::MipFilter;
 
 use crate::names::Named;
 use crate::scene::{
@@ -524,6 +524,12 @@ impl SceneOptions {
     /// What material `index` is drawn with: its own overrides over the viewer-wide ones.
     pub fn overrides_in_use(&self, index: usize) -> MaterialOverrides {
         self.materials.for_material(&self.per_material, index)
+    }
+
+    /// The mip filter material `index`'s normal map is made and drawn with: its overrides'
+    /// ([`MaterialOverrides::mip_filter`]) where set, else [`Self::mip_filter`].
+    pub fn mip_filter_of(&self, index: usize) -> MipFilter {
+        self.overrides_in_use(index).mip_filter.unwrap_or(self.mip_filter)
     }
 }
 

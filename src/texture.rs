@@ -1,9 +1,11 @@
 //! CPU images with their colour space, and their mip chains (a normal map's by its
 //! [`MipFilter`]).
 
+mod lean;
 mod mip_filter;
 mod normal_mips;
 
+pub use lean::{LeanLevel, MIN_LEAN_NZ, slopes};
 pub use mip_filter::MipFilter;
 pub use normal_mips::decode_unit_normal;
 

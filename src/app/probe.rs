@@ -185,6 +185,16 @@ fn lines(r: &ProbeReadout, mesh_name: &str) -> String {
         format!("frames   {}", r.tangent_method.map_or("none", |m| m.name())),
         format!("N'       {}  (world)", v3(r.chain.shading_normal)),
     ]);
+    let mip = &r.chain.mip;
+    let lod = mip.lod.map_or_else(|| "—".to_owned(), |lod| format!("{lod:.2}"));
+    let widened = match mip.roughness {
+        Some(roughness) => format!("roughness {roughness:.3}"),
+        None => format!("exponent {:.1} (k_s × {:.3})", mip.shininess, mip.energy),
+    };
+    text.extend([
+        format!("mips     {}, level {lod} (footprint)", mip.filter.label()),
+        format!("  |Na| {:.3}  α² + {:.4}  {widened}", mip.length, mip.variance),
+    ]);
     for (i, light) in r.chain.lights.iter().enumerate() {
         let Some(light) = light else { continue };
         text.extend([

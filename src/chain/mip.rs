@@ -42,22 +42,28 @@ pub struct MipValues {
     /// energy ([`widened_shininess`]).
     pub shininess: f32,
     pub energy: f32,
+    /// The perceptual roughness after widening ([`widened_roughness`]) where the point is
+    /// lit by metallic-roughness; `None` under the classic model.
+    pub roughness: Option<f32>,
 }
 
 impl MipValues {
     /// The values at a point read with `texel` (`None`: no normal map), the bump `strength`,
-    /// the bump on or off, and the unwidened `shininess`.
-    pub fn new(inputs: MipInputs, texel: Option<NormalTexel>, strength: f32, bump_on: bool, shininess: f32) -> Self {
+    /// the bump on or off, the unwidened `shininess` and, under metallic-roughness, the
+    /// unwidened perceptual `roughness`.
+    pub fn new(
+        inputs: MipInputs,
+        texel: Option<NormalTexel>,
+        (strength, bump_on): (f32, bool),
+        shininess: f32,
+        roughness: Option<f32>,
+    ) -> Self {
         let filter = inputs.filter;
         let length = texel.filter(|_| filter.keeps_length()).map_or(1.0, |t| t.rgba.w);
         let variance = alpha_variance(filter, length, strength, bump_on, inputs.normal_derivatives);
         let (shininess, energy) = widened_shininess(filter, shininess, variance);
-        MipValues { filter, lod: inputs.lod, length, variance, shininess, energy }
-    }
-
-    /// A perceptual roughness widened by [`Self::variance`] ([`widened_roughness`]).
-    pub fn roughness(&self, roughness: f32) -> f32 {
-        widened_roughness(roughness, self.variance)
+        let roughness = roughness.map(|r| widened_roughness(r, variance));
+        MipValues { filter, lod: inputs.lod, length, variance, shininess, energy, roughness }
     }
 }
 

@@ -79,6 +79,8 @@ impl MaterialArgs {
             height_range_m: self.height_range,
             kernel: self.height_kernel,
             border: self.height_border,
+            // --mip-filter sets the scene option (SceneOptions::mip_filter) instead.
+            mip_filter: None,
         }
     }
 }

@@ -201,7 +201,11 @@ impl PreparedScene {
                     bump,
                     variant,
                     textures,
-                    mip_filter: mip_filter_of(options.mip_filter, variant, textures.bump.map(|t| &scene.textures[t])),
+                    mip_filter: mip_filter_of(
+                        options.mip_filter_of(instance.material),
+                        variant,
+                        textures.bump.map(|t| &scene.textures[t]),
+                    ),
                 }
             })
             .collect();

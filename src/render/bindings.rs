@@ -138,7 +138,7 @@ mod tests {
 
     use super::*;
     use crate::frame::{LegacyLook, LegacySettings, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Mistake, Parallax};
-    use crate::frame::{LightingSpace, ShadingMode, ViewMode};
+    use crate::frame::{LightingSpace, MipFilter, ShadingMode, ViewMode};
     use crate::names::Named;
     use crate::render::shaders::{MARKER, MESH};
     use crate::render::uniforms::{
@@ -244,6 +244,10 @@ mod tests {
         }
         for mode in SpecularMode::all().iter().copied().filter(|&m| m != SpecularMode::default()) {
             expected.insert(constant_name("SPECULAR_", mode.name()), mode.shader_index());
+        }
+        // The mip filters the shader widens with (LEAN is not drawn yet).
+        for filter in [MipFilter::Toksvig, MipFilter::Vmf, MipFilter::GeometricSpecularAa] {
+            expected.insert(constant_name("MIP_", filter.name()), filter.shader_index());
         }
         assert_eq!(constants, expected, "u32 constants of the mesh pass against the Rust side");
     }

@@ -146,6 +146,7 @@ mod tests {
             "LEGACY",
             "LIGHTING_SPACE",
             "MATERIAL_FEATURES",
+            "MIP_FILTER",
             "MISTAKE",
             "PARALLAX",
             "SHADING_MODEL",

@@ -17,8 +17,9 @@ pub struct OrbitCamera {
 
 /// Pitch stays inside ±89° so the view never flips over the pole.
 const PITCH_LIMIT: f32 = 89.0 * std::f32::consts::PI / 180.0;
-const MIN_DISTANCE: f32 = 0.05;
-const MAX_DISTANCE: f32 = 500.0;
+/// The camera's distance range from its target, metres (zoom and typed distances are clamped).
+pub const MIN_DISTANCE: f32 = 0.05;
+pub const MAX_DISTANCE: f32 = 500.0;
 const NEAR_PLANE: f32 = 0.01;
 const FAR_PLANE: f32 = 1000.0;
 

@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 use super::material::TEXTURE_SPAN_M;
 use super::{GreenAxis, Material, NormalLayout, NormalMap, NormalSpace, Scene, TextureKind};
 use crate::height::{Border, Kernel};
+use crate::texture::MipFilter;
 
 /// Settings that replace a material's own where set (`None`: the material's own, or for a
 /// per-material record the viewer-wide setting).
@@ -26,6 +27,9 @@ pub struct MaterialOverrides {
     pub kernel: Option<Kernel>,
     /// Wrap or clamp at the height map's border when differentiating.
     pub border: Option<Border>,
+    /// How the normal map is mip-filtered (`None`: [`crate::frame::SceneOptions::mip_filter`]);
+    /// it changes the mip chain and the pipeline, not the material.
+    pub mip_filter: Option<MipFilter>,
 }
 
 /// Per-material overrides by index into [`Scene::materials`]; indices the scene does not
@@ -47,6 +51,7 @@ impl MaterialOverrides {
             height_range_m: self.height_range_m.or(base.height_range_m),
             kernel: self.kernel.or(base.kernel),
             border: self.border.or(base.border),
+            mip_filter: self.mip_filter.or(base.mip_filter),
         }
     }
 

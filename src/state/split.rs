@@ -40,8 +40,8 @@ pub enum SplitDifference {
     /// The left parallax technique (`parallax[0]`) │ displacement at `displacement_level`, the
     /// ground truth (same depth).
     Displacement,
-    /// Two normal-map mip filters ([`MipFilter`]; re-normalised box │ Toksvig by default):
-    /// different mip chains, so a second upload.
+    /// Two normal-map mip filters ([`MipFilter`]; re-normalised box │ Toksvig by default) for
+    /// every material, over per-material choices: different mip chains, so a second upload.
     MipFilter,
 }
 
@@ -145,7 +145,14 @@ impl SplitView {
                 }
                 SplitDifference::BumpSource => options.bump_source = self.bump_sources[i],
                 SplitDifference::Displacement => options.displacement.level = [0, self.displacement_level][i],
-                SplitDifference::MipFilter => options.mip_filter = self.mip_filters[i],
+                SplitDifference::MipFilter => {
+                    options.mip_filter = self.mip_filters[i];
+                    options.materials.mip_filter = None;
+                    for overrides in options.per_material.values_mut() {
+                        overrides.mip_filter = None;
+                    }
+                    options.per_material.retain(|_, o| !o.is_empty());
+                }
                 SplitDifference::Bump
                 | SplitDifference::View
                 | SplitDifference::Strength

@@ -63,7 +63,9 @@ impl TextureImage {
             let at = |x: usize, y: usize| last[y.min(h - 1) * w + x.min(w - 1)];
             let next = (0..nh)
                 .flat_map(|y| (0..nw).map(move |x| (x, y)))
-                .map(|(x, y)| (at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) + at(2 * x + 1, 2 * y + 1)) / 4.0)
+                .map(|(x, y)| {
+                    (at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) + at(2 * x + 1, 2 * y + 1)) / 4.0
+                })
                 .collect();
             levels.push((nw as u32, nh as u32, next));
         }

@@ -1,11 +1,12 @@
-//! The numerical methods (tangent frames, bump source, kernels) with their measurements, the
+//! The numerical methods (tangent frames, bump source, normal-map mips, kernels) with their measurements, the
 //! texture conventions and shading model per material, and what `bumpview check` finds.
 
 use bumpview::check::GreenConvention;
-use bumpview::frame::BumpSource;
 use bumpview::frame::ViewMode;
+use bumpview::frame::{BumpSource, MipFilter};
 use bumpview::height::{Border, Kernel};
 use bumpview::names::Named;
+use bumpview::scene::camera::{MAX_DISTANCE, MIN_DISTANCE};
 use bumpview::scene::{GreenAxis, Material, MaterialOverrides, NormalLayout, ShadingModel};
 use bumpview::state::{Command, ViewerState};
 use bumpview::tangent::{MethodMeasurement, TangentMethod};
@@ -40,6 +41,7 @@ pub(super) fn methods(
     if bump_source != state.scene_options.bump_source {
         actions.push(Command::SetBumpSource(bump_source).into());
     }
+    mip_filter(ui, state, actions);
     let mut kernel = state.kernel;
     egui::ComboBox::from_label("height-to-normal kernel").selected_text(kernel.name()).show_ui(ui, |ui| {
         for &choice in Kernel::all() {
@@ -59,6 +61,29 @@ pub(super) fn methods(
             ui.end_row();
         }
     });
+}
+
+/// The normal maps' mip filter (every material) and the camera's distance beside it, to
+/// minify the surface and watch the highlight sparkle or hold (issue 24).
+fn mip_filter(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
+    let mut filter = state.scene_options.mip_filter;
+    egui::ComboBox::from_label("normal-map mips").selected_text(filter.label()).show_ui(ui, |ui| {
+        for &choice in MipFilter::all() {
+            ui.selectable_value(&mut filter, choice, choice.label());
+        }
+    });
+    if filter != state.scene_options.mip_filter {
+        actions.push(Command::SetMipFilter(filter).into());
+    }
+    if filter == MipFilter::Lean {
+        ui.weak("LEAN is not drawn yet: its materials show the re-normalised box mips");
+    }
+    let camera = state.camera;
+    let mut distance = camera.distance;
+    let slider = egui::Slider::new(&mut distance, MIN_DISTANCE..=MAX_DISTANCE).logarithmic(true);
+    if ui.add(slider.text("camera distance (m)")).changed() {
+        actions.push(Command::PointCamera { yaw: camera.yaw, pitch: camera.pitch, distance }.into());
+    }
 }
 
 /// Normal-map and height-map conventions for every material or one of them, what each
@@ -116,6 +141,15 @@ pub(super) fn conventions(ui: &mut egui::Ui, state: &ViewerState, materials: &[M
             ui.selectable_value(&mut new.border, choice, border_name(choice));
         }
     });
+    // The all-materials method is the methods section's "normal-map mips".
+    if target.is_some() {
+        let mip_name = |m: Option<MipFilter>| m.map_or("as all materials", MipFilter::label);
+        egui::ComboBox::from_label("normal-map mips").selected_text(mip_name(new.mip_filter)).show_ui(ui, |ui| {
+            for choice in std::iter::once(None).chain(MipFilter::all().iter().copied().map(Some)) {
+                ui.selectable_value(&mut new.mip_filter, choice, mip_name(choice));
+            }
+        });
+    }
     let mut range_mm = new.height_range_m.or(inherited.height_range_m).map_or(10.0, |m| m * 1e3);
     let drag = egui::DragValue::new(&mut range_mm).range(0.0..=1000.0).speed(0.1).suffix(" mm");
     let changed = ui

@@ -2,7 +2,8 @@
 //! and the light.
 
 use bumpview::frame::{
-    BumpSource, LightingSpace, MAX_DISPLACEMENT_LEVEL, MipFilter, Mistake, Parallax, STRENGTH_RANGE, ShadingMode, ViewMode,
+    BumpSource, LightingSpace, MAX_DISPLACEMENT_LEVEL, MipFilter, Mistake, Parallax, STRENGTH_RANGE, ShadingMode,
+    ViewMode,
 };
 use bumpview::names::Named;
 use bumpview::scene::GreenAxis;

@@ -302,6 +302,9 @@ pub struct OverridesPreset {
     pub height_kernel: Option<String>,
     /// `wrap` or `clamp`.
     pub height_border: Option<String>,
+    /// A [`MipFilter`](crate::frame::MipFilter) name for the normal map (over `[scene]
+    /// mip_filter`).
+    pub mip_filter: Option<String>,
 }
 
 /// Screenshot settings: size, transparent background, supersampling.
@@ -395,6 +398,7 @@ impl From<&MaterialOverrides> for OverridesPreset {
             height_range_m: o.height_range_m,
             height_kernel: o.kernel.map(|k| k.name().to_owned()),
             height_border: o.border.map(|b| b.name().to_owned()),
+            mip_filter: o.mip_filter.map(|m| m.name().to_owned()),
         }
     }
 }
@@ -421,6 +425,7 @@ impl OverridesPreset {
             height_range_m,
             kernel: self.height_kernel.as_deref().map(|n| named(&key("height_kernel"), n)).transpose()?,
             border: self.height_border.as_deref().map(|n| named(&key("height_border"), n)).transpose()?,
+            mip_filter: self.mip_filter.as_deref().map(|n| named(&key("mip_filter"), n)).transpose()?,
         })
     }
 }
