@@ -246,6 +246,7 @@ fn mips_are_written_one_png_a_level_with_the_methods_alpha() {
     assert!(output.status.success() && out.join("checker_mip0.png").exists() && !out.join("checker_mip1.png").exists());
     let output = bumpview(&["bake", text(&map), "--mips", "lean", "--out", text(&dir.join("lean"))]);
     assert_eq!(output.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&output.stderr).contains("--mips lean: "), "{}", String::from_utf8_lossy(&output.stderr));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("--mips lean: "), "{stderr}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

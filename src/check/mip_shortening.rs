@@ -45,8 +45,7 @@ pub fn mip_shortening(map: &TextureImage, shininess: f32) -> Vec<LevelShortening
         .map(|(level, (width, height, means))| {
             let count = means.len().max(1) as f32;
             let mean_length = means.iter().map(|m| m.length().min(1.0)).sum::<f32>() / count;
-            let (widened, _) =
-                widened_shininess(MipFilter::Toksvig, shininess, 2.0 * toksvig_variance(mean_length));
+            let (widened, _) = widened_shininess(MipFilter::Toksvig, shininess, 2.0 * toksvig_variance(mean_length));
             // An exponent of 0 (a lobe as wide as it gets) cannot be widened: ratio 1.
             let exponent_ratio = if shininess > 0.0 { widened / shininess } else { 1.0 };
             LevelShortening { level: level as u32, width, height, mean_length, exponent_ratio }
@@ -57,10 +56,7 @@ pub fn mip_shortening(map: &TextureImage, shininess: f32) -> Vec<LevelShortening
 /// The first level of at least [`WARN_MIN_SIDE`] texels a side whose exponent ratio is below
 /// [`WARN_EXPONENT_RATIO`].
 pub fn first_over_sharp(levels: &[LevelShortening]) -> Option<LevelShortening> {
-    levels
-        .iter()
-        .find(|l| l.width.min(l.height) >= WARN_MIN_SIDE && l.exponent_ratio < WARN_EXPONENT_RATIO)
-        .copied()
+    levels.iter().find(|l| l.width.min(l.height) >= WARN_MIN_SIDE && l.exponent_ratio < WARN_EXPONENT_RATIO).copied()
 }
 
 #[cfg(test)]

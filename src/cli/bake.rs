@@ -10,12 +10,12 @@ use bumpview::error::escape_controls;
 use bumpview::bake::mips::{level_path, mip_levels, write_levels};
 use bumpview::bake::{BakeOptions, Direction, TexelSize, Units, bake_all, plan_outputs};
 use bumpview::frame::MipFilter;
-use bumpview::load::image::load_texture;
-use bumpview::scene::TextureKind;
-use bumpview::shading::mip_filter::{toksvig_variance, vmf_variance, widened_roughness, widened_shininess};
 use bumpview::height::rows::Channels;
 use bumpview::height::{Border, Kernel};
+use bumpview::load::image::load_texture;
 use bumpview::scene::GreenAxis;
+use bumpview::scene::TextureKind;
+use bumpview::shading::mip_filter::{toksvig_variance, vmf_variance, widened_roughness, widened_shininess};
 
 use super::{Failure, args, progress};
 use args::parse_positive;
@@ -194,10 +194,13 @@ fn alpha_of(args: &BakeArgs, filter: MipFilter) -> Result<Box<dyn Fn(f32) -> f32
             let r = args.roughness.unwrap_or(0.5).min(1.0);
             Ok(Box::new(move |length| widened_roughness(r, vmf_variance(length))))
         }
-        MipFilter::Lean => Err("lean keeps its slope moments in two textures of their own, not one image per level".into()),
-        MipFilter::GeometricSpecularAa => {
-            Err("geometric-specular-aa widens from screen-space derivatives while drawing: its mips are renormalized-box's".into())
+        MipFilter::Lean => {
+            Err("lean keeps its slope moments in two textures of their own, not one image per level".into())
         }
+        MipFilter::GeometricSpecularAa => Err(
+            "geometric-specular-aa widens from screen-space derivatives while drawing: its mips are renormalized-box's"
+                .into(),
+        ),
     }
 }
 

@@ -138,7 +138,8 @@ pub fn answer(rows: &[MipRow], shape: Shape) -> String {
 
 /// CSV rows (header first), one per method, specimen and minification.
 pub fn csv(rows: &[MipRow]) -> String {
-    let mut s = String::from("specimen,minification,method,rmse_linear_rgb,energy_ratio,shimmer,frame_ms,texture_bytes\n");
+    let mut s =
+        String::from("specimen,minification,method,rmse_linear_rgb,energy_ratio,shimmer,frame_ms,texture_bytes\n");
     for r in rows {
         let _ = writeln!(
             s,
@@ -185,10 +186,11 @@ pub fn chart(rows: &[MipRow]) -> Result<Vec<u8>, ChartError> {
             });
         }
     }
-    png("Mip filters: RMSE against the reference vs GPU frame time (a point per minification)", [
-        "median GPU frame time (ms)",
-        "RMSE against the 16×16 reference, linear RGB",
-    ], &series)
+    png(
+        "Mip filters: RMSE against the reference vs GPU frame time (a point per minification)",
+        ["median GPU frame time (ms)", "RMSE against the 16×16 reference, linear RGB"],
+        &series,
+    )
 }
 
 #[cfg(test)]

@@ -51,7 +51,13 @@ pub fn normal_map() -> TextureImage {
             rgba.push(255);
         }
     }
-    TextureImage { name: "fine bumps (normal map)".into(), width: MAP_SIDE, height: MAP_SIDE, kind: TextureKind::NormalMap, rgba }
+    TextureImage {
+        name: "fine bumps (normal map)".into(),
+        width: MAP_SIDE,
+        height: MAP_SIDE,
+        kind: TextureKind::NormalMap,
+        rgba,
+    }
 }
 
 /// Which surface.
@@ -157,8 +163,13 @@ impl MipSpecimen {
     /// target and the light move together along +x.
     pub fn params(&self, pan_px: f32, shading: ShadingSettings) -> FrameParams {
         let target = Vec3::X * pan_px * self.pixel_m();
-        let camera =
-            OrbitCamera { target, yaw: 0.0, pitch: 0.0, distance: self.shape.distance(), fov_y: FOV_Y_DEG.to_radians() };
+        let camera = OrbitCamera {
+            target,
+            yaw: 0.0,
+            pitch: 0.0,
+            distance: self.shape.distance(),
+            fov_y: FOV_Y_DEG.to_radians(),
+        };
         let light = Light::point(target + self.shape.light_offset(), Vec3::ONE);
         let shading = ShadingSettings { show_light_marker: false, ..shading };
         FrameParams { camera, lights: Lights::one(light, self.scene.ambient), shading }

@@ -261,8 +261,7 @@ pub fn measure(
     for t in 0..plan.frames {
         references.push(radiance(renderer, plan.size, plan.supersample, &specimen.params(pan(t), shading))?);
     }
-    let mask: Vec<bool> =
-        (0..references[0].covered.len()).map(|i| references.iter().all(|r| r.covered[i])).collect();
+    let mask: Vec<bool> = (0..references[0].covered.len()).map(|i| references.iter().all(|r| r.covered[i])).collect();
     let reference_unlit = radiance(renderer, plan.size, plan.supersample, &specimen.params(0.0, unlit(shading)))?;
     let reference_energy = specular_energy(&references[0], &reference_unlit, &mask);
     let largest = plan.convergence.iter().copied().max().unwrap_or(plan.supersample);
