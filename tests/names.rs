@@ -2,7 +2,7 @@
 //! them, so they must stay as they are. Each enum derives its names ([`bumpview::names`]);
 //! this pins every one, in order (the panel's, `--help`'s and the reports' order).
 
-use bumpview::frame::{BumpSource, LegacyLook, LightingSpace, Mistake, Parallax, ShadingMode, ViewMode};
+use bumpview::frame::{BumpSource, LegacyLook, LightingSpace, MipFilter, Mistake, Parallax, ShadingMode, ViewMode};
 use bumpview::height::{Border, Kernel};
 use bumpview::names::Named;
 use bumpview::scene::{GreenAxis, LightKind, NormalLayout, ShadingModel, SpecularMode};
@@ -38,6 +38,7 @@ fn every_enum_keeps_its_names_in_order() {
         "mistake",
         "lighting-space",
         "displacement",
+        "mip-filter",
     ];
     assert_eq!(SplitDifference::names(), differences);
     let methods = [
@@ -73,6 +74,8 @@ fn every_enum_keeps_its_names_in_order() {
     assert_eq!(LightKind::names(), ["point", "directional"]);
     assert_eq!(SpecularMode::names(), ["blinn", "phong", "off"]);
     assert_eq!(LightingSpace::names(), ["world", "tangent", "view"]);
+    let mip_filters = ["base-only", "renormalized-box", "toksvig", "lean", "vmf", "geometric-specular-aa"];
+    assert_eq!(MipFilter::names(), mip_filters);
 }
 
 #[test]
@@ -98,6 +101,7 @@ fn every_name_reads_back_as_its_value() {
     round_trip::<NormalLayout>();
     round_trip::<Mistake>();
     round_trip::<LegacyLook>();
+    round_trip::<MipFilter>();
     assert_eq!(ShadingMode::from_name("bump-colour"), Some(ShadingMode::BumpTimesColour));
     assert_eq!(TangentMethod::from_name("averaged-area"), Some(TangentMethod::AveragedArea));
 }

@@ -79,12 +79,9 @@ mod tests {
     use super::*;
     use crate::names::Named;
 
+    /// The shader's `MIP_` constants are these indices (names: tests/names.rs).
     #[test]
-    fn names_and_shader_indices_are_fixed() {
-        assert_eq!(
-            MipFilter::names(),
-            ["base-only", "renormalized-box", "toksvig", "lean", "vmf", "geometric-specular-aa"]
-        );
+    fn shader_indices_follow_the_declaration_order() {
         let indices: Vec<u32> = MipFilter::all().iter().map(|m| m.shader_index()).collect();
         assert_eq!(indices, [0, 1, 2, 3, 4, 5]);
         assert_eq!(MipFilter::default(), MipFilter::RenormalizedBox);
