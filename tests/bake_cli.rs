@@ -194,3 +194,59 @@ fn to_height_memory_limit_is_named_and_raisable() {
     assert!(!out.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A 16×16 normal map whose texels alternate, checkerwise, between normals tilted ±0.5 rad
+/// about y; and the length of the mean of the two as the viewer decodes them (`2·rgb/255 − 1`,
+/// normalised): every level past 0 has this |Na|.
+fn checker_normal_png(dir: &Path) -> (PathBuf, f32) {
+    let path = dir.join("checker.png");
+    let tilted = |sign: f32| {
+        let n = glam::Vec3::new(sign * 0.5f32.sin(), 0.0, 0.5f32.cos()) * 0.5 + 0.5;
+        n.to_array().map(|c| (c * 255.0).round() as u8)
+    };
+    image::RgbImage::from_fn(16, 16, |x, y| image::Rgb(tilted(if (x + y) % 2 == 0 { 1.0 } else { -1.0 })))
+        .save(&path)
+        .unwrap();
+    let decoded = |rgb: [u8; 3]| (glam::Vec3::from_array(rgb.map(|c| c as f32 / 255.0)) * 2.0 - 1.0).normalize();
+    let length = ((decoded(tilted(1.0)) + decoded(tilted(-1.0))) * 0.5).length();
+    (path, length)
+}
+
+/// `--mips toksvig` writes every level with Toksvig's gloss s′/s in alpha (the shading
+/// layer's formula at the decoded |Na|, to the 8-bit step), `--mips vmf` the widened
+/// roughness, `--mips base-only` level 0 alone; LEAN has nothing per level (status 2).
+#[test]
+fn mips_are_written_one_png_a_level_with_the_methods_alpha() {
+    use bumpview::frame::MipFilter;
+    use bumpview::shading::mip_filter::{toksvig_variance, vmf_variance, widened_roughness, widened_shininess};
+    let dir = temp_dir("mips");
+    let (map, length) = checker_normal_png(&dir);
+    let out = dir.join("toksvig");
+    let output = bumpview(&["bake", text(&map), "--mips", "toksvig", "--shininess", "32", "--out", text(&out)]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert_eq!(String::from_utf8_lossy(&output.stdout).lines().count(), 5, "16, 8, 4, 2 and 1 texels a side");
+    let gloss = widened_shininess(MipFilter::Toksvig, 32.0, 2.0 * toksvig_variance(length)).0 / 32.0;
+    for (level, side) in [(0, 16), (1, 8), (4, 1)] {
+        let image = image::open(out.join(format!("checker_mip{level}.png"))).unwrap().to_rgba8();
+        assert_eq!(image.dimensions(), (side, side));
+        let expected = if level == 0 { 255 } else { (gloss * 255.0).round() as u8 };
+        assert_eq!(image.get_pixel(0, 0).0[3], expected, "level {level}");
+        if level > 0 {
+            assert_eq!(&image.get_pixel(0, 0).0[..3], &[128, 128, 255], "the mean of ±x is +z");
+        }
+    }
+    let out = dir.join("vmf");
+    let output = bumpview(&["bake", text(&map), "--mips", "vmf", "--roughness", "0.25", "--out", text(&out)]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let roughness = widened_roughness(0.25, vmf_variance(length));
+    let alpha = image::open(out.join("checker_mip2.png")).unwrap().to_rgba8().get_pixel(0, 0).0[3];
+    assert_eq!(alpha, (roughness * 255.0).round() as u8);
+    let out = dir.join("base");
+    let output = bumpview(&["bake", text(&map), "--mips", "base-only", "--out", text(&out)]);
+    assert!(output.status.success() && out.join("checker_mip0.png").exists() && !out.join("checker_mip1.png").exists());
+    let output = bumpview(&["bake", text(&map), "--mips", "lean", "--out", text(&dir.join("lean"))]);
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("--mips lean: "), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

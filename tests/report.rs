@@ -218,7 +218,18 @@ fn quick_report_writes_a_row_for_every_method_and_kernel_and_valid_charts() {
         markdown.lines().find(|l| l.starts_with(&format!("| relief | 32 | {angle}° |"))).unwrap().to_owned()
     };
     assert!(!uv_line("70").ends_with("| — |") && uv_line("75").ends_with("| — |"), "{}", uv_line("70"));
-    for chart in ["tangents.png", "kernels.png", "parallax-wall.png"] {
+    // The mip filters at 16× on the plane and the torus: a row per method the renderer draws,
+    // the section with its answer, and the chart.
+    let mip = std::fs::read_to_string(dir.join("mip-filters.csv")).unwrap();
+    for specimen in ["plane", "torus"] {
+        for method in ["base level only", "re-normalised box mips", "Toksvig"] {
+            let row = format!("{specimen},16,{method},");
+            assert!(mip.lines().any(|l| l.starts_with(&row)), "{row} in {mip}");
+        }
+    }
+    assert!(markdown_mentions(&dir, "## Normal maps at a distance: mip filters against a supersampled reference"));
+    assert!(markdown_mentions(&dir, "At 16× on the plane, **"));
+    for chart in ["tangents.png", "kernels.png", "parallax-wall.png", "mip-filters.png"] {
         let image = image::open(dir.join(chart)).unwrap_or_else(|e| panic!("{chart}: {e}"));
         let rgb = image.to_rgb8();
         let first = *rgb.get_pixel(0, 0);

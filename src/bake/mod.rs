@@ -11,6 +11,7 @@
 //! except backward, where one solve already uses every core and memory is budgeted per file.
 
 pub mod image_io;
+pub mod mips;
 pub mod to_height;
 
 use std::path::{Path, PathBuf};

@@ -1,8 +1,10 @@
 //! `bumpview check`: what in a mesh file will make bump mapping go wrong, per mesh and
 //! material — degenerate and mirrored UV triangles, UV seams, supplied tangents that are not
 //! unit or orthogonal or disagree on `w` inside a triangle, and normal-map sanity with the
-//! map's likely green-channel convention ([`normal_map`]).
+//! map's likely green-channel convention ([`normal_map`]), and how much its averaged normals
+//! shorten per mip level ([`mip_shortening`]).
 
+pub mod mip_shortening;
 pub mod normal_map;
 
 use std::collections::HashMap;
@@ -12,8 +14,9 @@ use glam::{Vec2, Vec3};
 
 use crate::error::LoadWarning;
 use crate::names::Named;
-use crate::scene::{Mesh, NormalLayout, Scene};
+use crate::scene::{Material, Mesh, NormalLayout, Scene, ShadingModel};
 use crate::tangent::face_frame;
+use mip_shortening::{LevelShortening, first_over_sharp, mip_shortening};
 pub use normal_map::{GreenConvention, NormalMapFindings, check_normal_map, layout_evidence};
 
 /// How serious a finding is; decides the exit status (0 clean, 1 warnings, 2 errors).
@@ -65,6 +68,23 @@ pub struct MapFindings {
     /// The channel layout the map is drawn with (the material's, as loaded), and why.
     pub layout: NormalLayout,
     pub layout_reason: String,
+    /// The material's Blinn-Phong exponent (metallic-roughness: Beckmann's `2/α² − 2`).
+    pub shininess: f32,
+    /// Per mip level, how short the averaged normals get ([`mip_shortening`]); empty unless
+    /// the map is read as RGB.
+    pub mips: Vec<LevelShortening>,
+}
+
+/// The exponent the highlight of `material` has: its own, or for metallic-roughness
+/// Beckmann's `2/α² − 2` with `α = roughness²` (Walter et al. 2007), at most 10⁴.
+pub fn material_exponent(material: &Material) -> f32 {
+    match material.shading_model {
+        ShadingModel::BlinnPhong => material.shininess,
+        ShadingModel::MetallicRoughness => {
+            let alpha = material.roughness.clamp(0.0, 1.0).powi(2);
+            (2.0 / alpha.powi(2).max(1e-6) - 2.0).clamp(0.0, 1e4)
+        }
+    }
 }
 
 /// Everything `check` found in one scene.
@@ -166,12 +186,16 @@ pub fn check_scene(scene: &Scene) -> CheckReport {
                 (layout, _) if layout == findings.suggested_layout => format!("as loaded, and {evidence}"),
                 _ => format!("as loaded, although {evidence}"),
             };
+            let shininess = material_exponent(material);
+            let mips = if layout == NormalLayout::Rgb { mip_shortening(texture, shininess) } else { vec![] };
             Some(MapFindings {
                 material: material.name.clone(),
                 texture: texture.name.clone(),
                 findings,
                 layout,
                 layout_reason,
+                shininess,
+                mips,
             })
         })
         .collect();
@@ -232,6 +256,21 @@ impl CheckReport {
             {
                 warnings.push(format!("{name}: green looks DirectX (−Y), confidence {confidence:.2}"));
             }
+            if let Some(l) = first_over_sharp(&map.mips) {
+                warnings.push(format!(
+                    "{name}: from mip level {} ({}×{}) its averaged normals are {:.3} long: a re-normalised chain \
+                     draws the highlight with exponent {:.0} where the bumps it averages spread it to {:.1} \
+                     (Toksvig, {:.2}×, below {}×); --mip-filter toksvig or vmf widens it",
+                    l.level,
+                    l.width,
+                    l.height,
+                    l.mean_length,
+                    map.shininess,
+                    l.exponent_ratio * map.shininess,
+                    l.exponent_ratio,
+                    mip_shortening::WARN_EXPONENT_RATIO
+                ));
+            }
         }
         warnings
     }
@@ -281,6 +320,17 @@ impl CheckReport {
                 if f.looks_srgb { "looks sRGB-encoded" } else { "linear" },
             );
             let _ = writeln!(out, "    layout: {} ({})", map.layout.name(), map.layout_reason);
+            if !map.mips.is_empty() {
+                let lengths: Vec<String> = map.mips.iter().map(|l| format!("{:.3}", l.mean_length)).collect();
+                let ratios: Vec<String> = map.mips.iter().map(|l| format!("{:.2}", l.exponent_ratio)).collect();
+                let _ = writeln!(out, "    mips: mean |Na| per level {}", lengths.join(" "));
+                let _ = writeln!(
+                    out,
+                    "    Toksvig exponent over the material's {:.0} per level (1: a re-normalised chain is right) {}",
+                    map.shininess,
+                    ratios.join(" ")
+                );
+            }
         }
         for error in self.errors() {
             let _ = writeln!(out, "  error: {error}");
@@ -334,6 +384,29 @@ mod tests {
         assert_eq!(t.non_unit, 1);
         assert_eq!(t.non_orthogonal, 1);
         assert!(t.mixed_w_triangles >= 1);
+    }
+
+    /// The bricks' averaged normals shorten but stay under the warning; a map of texels
+    /// tilted ±0.5 rad checkerwise (|Na| = cos 0.5 = 0.878 from level 1 on; 0.875 as its
+    /// 8-bit texels decode) is warned about, with the level, the length and Toksvig's exponent.
+    #[test]
+    fn a_map_whose_mips_over_sharpen_the_highlight_is_warned_about() {
+        let report = check_scene(&teaching_scene());
+        let bricks = &report.normal_maps[0].mips;
+        assert!(bricks.len() > 4 && bricks[4].mean_length < 0.99, "{bricks:?}");
+        assert!(report.to_text().contains("    mips: mean |Na| per level 1.000 "), "{}", report.to_text());
+        let mut scene = teaching_scene();
+        let map = &mut scene.textures[scene.materials[0].normal_map.as_ref().unwrap().texture];
+        let width = map.width as usize;
+        for (i, texel) in map.rgba.chunks_exact_mut(4).enumerate() {
+            let sign = if (i % width + i / width) % 2 == 0 { 1.0f32 } else { -1.0 };
+            let x = (127.5 + 127.5 * sign * 0.5f32.sin()).round() as u8;
+            texel.copy_from_slice(&[x, 128, (127.5 + 127.5 * 0.5f32.cos()).round() as u8, 255]);
+        }
+        let warnings = check_scene(&scene).warnings();
+        let expected = "from mip level 1 (256×256) its averaged normals are 0.875 long: a re-normalised chain \
+                        draws the highlight with exponent 32 where the bumps it averages spread it to 5.8";
+        assert!(warnings.iter().any(|w| w.contains(expected)), "{warnings:?}");
     }
 
     /// A share of texels pointing into the surface too small to print (it would read 0.00%)

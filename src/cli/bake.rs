@@ -1,15 +1,21 @@
 //! `bumpview bake`: height maps to tangent-space normal map PNGs, or normal maps back to
-//! height maps (`--to-height`), many files in parallel ([`bumpview::bake`]).
+//! height maps (`--to-height`), many files in parallel ([`bumpview::bake`]); or a normal map's
+//! mip chain with a mip-filter method's gloss or roughness (`--mips`, [`bumpview::bake::mips`]).
 
 use std::path::{Path, PathBuf};
 
 use bumpview::atomic::check_outputs;
 use bumpview::error::escape_controls;
 
+use bumpview::bake::mips::{level_path, mip_levels, write_levels};
 use bumpview::bake::{BakeOptions, Direction, TexelSize, Units, bake_all, plan_outputs};
+use bumpview::frame::MipFilter;
 use bumpview::height::rows::Channels;
 use bumpview::height::{Border, Kernel};
+use bumpview::load::image::load_texture;
 use bumpview::scene::GreenAxis;
+use bumpview::scene::TextureKind;
+use bumpview::shading::mip_filter::{toksvig_variance, vmf_variance, widened_roughness, widened_shininess};
 
 use super::{Failure, args, progress};
 use args::parse_positive;
@@ -17,7 +23,7 @@ use args::parse_positive;
 #[derive(clap::Args)]
 pub struct BakeArgs {
     /// Height maps (PNG, JPEG, TGA or BMP; grey or colour by luminance; 8 or 16 bits), or
-    /// normal maps with --to-height.
+    /// normal maps with --to-height or --mips.
     #[arg(required = true, value_name = "FILE")]
     inputs: Vec<PathBuf>,
     /// The output PNG, or a directory (needed for several inputs) that receives
@@ -72,6 +78,21 @@ pub struct BakeArgs {
     /// (8 bytes a texel, 16 with --border clamp, plus the decoded image) [default: 4096].
     #[arg(long, value_name = "MIB", requires = "to_height", value_parser = clap::value_parser!(u64).range(1..=1 << 24))]
     max_memory: Option<u64>,
+    /// Normal maps (RGB) → their mip chains under METHOD, one RGBA PNG per level in the
+    /// directory --out (`<name>_mip<k>.png`): RGB the level's mean normal re-normalised, alpha
+    /// toksvig: the gloss s′/s for --shininess; vmf: the roughness for --roughness;
+    /// renormalized-box: 255; base-only: level 0 alone.
+    #[arg(long, value_name = "METHOD", value_parser = args::named::<MipFilter>(), conflicts_with_all = [
+        "to_height", "kernel", "spectral", "height_range", "texel_size", "texture_width", "strength", "depth_map",
+        "border", "normal_convention", "bits", "height_in_alpha", "two_channel",
+    ])]
+    mips: Option<MipFilter>,
+    /// With --mips toksvig: the Blinn-Phong exponent the gloss is for [default: 32].
+    #[arg(long, value_name = "S", requires = "mips", value_parser = parse_positive)]
+    shininess: Option<f32>,
+    /// With --mips vmf: the level-0 perceptual roughness widened per level [default: 0.5].
+    #[arg(long, value_name = "R", requires = "mips", value_parser = parse_positive)]
+    roughness: Option<f32>,
     /// Replace outputs that exist (without it, an existing output is kept and nothing is
     /// baked). An input is never written over, even with --force.
     #[arg(long)]
@@ -117,6 +138,9 @@ impl BakeArgs {
 /// Fails (exit 1) when any file failed; an output that is an input, or that exists without
 /// `--force`, is a bad `--out` (exit 2) found before any file is read.
 pub fn run(args: &BakeArgs) -> Result<(), Failure> {
+    if let Some(filter) = args.mips {
+        return run_mips(args, filter);
+    }
     let direction = if args.to_height { Direction::ToHeight } else { Direction::ToNormal };
     let outputs = plan_outputs(&args.inputs, &args.out, direction).map_err(|e| Failure::Failed(e.to_string()))?;
     let inputs: Vec<&Path> = args.inputs.iter().map(PathBuf::as_path).collect();
@@ -154,5 +178,70 @@ pub fn run(args: &BakeArgs) -> Result<(), Failure> {
     match failed {
         0 => Ok(()),
         n => Err(Failure::Failed(format!("{n} of {} files failed", results.len()))),
+    }
+}
+
+/// What alpha holds for `filter` as a function of `|Na|`; `None` where the method has nothing
+/// per level to bake (with the reason).
+fn alpha_of(args: &BakeArgs, filter: MipFilter) -> Result<Box<dyn Fn(f32) -> f32>, String> {
+    match filter {
+        MipFilter::BaseOnly | MipFilter::RenormalizedBox => Ok(Box::new(|_| 1.0)),
+        MipFilter::Toksvig => {
+            let s = args.shininess.unwrap_or(32.0);
+            Ok(Box::new(move |length| widened_shininess(filter, s, 2.0 * toksvig_variance(length)).0 / s))
+        }
+        MipFilter::Vmf => {
+            let r = args.roughness.unwrap_or(0.5).min(1.0);
+            Ok(Box::new(move |length| widened_roughness(r, vmf_variance(length))))
+        }
+        MipFilter::Lean => {
+            Err("lean keeps its slope moments in two textures of their own, not one image per level".into())
+        }
+        MipFilter::GeometricSpecularAa => Err(
+            "geometric-specular-aa widens from screen-space derivatives while drawing: its mips are renormalized-box's"
+                .into(),
+        ),
+    }
+}
+
+/// `bake --mips`: every input's chain into the directory `--out`, one line per file written.
+fn run_mips(args: &BakeArgs, filter: MipFilter) -> Result<(), Failure> {
+    let name: &str = filter.into();
+    let alpha = alpha_of(args, filter).map_err(|reason| Failure::BadArguments(format!("--mips {name}: {reason}")))?;
+    if args.out.is_file() {
+        return Err(Failure::BadArguments(format!("--out {}: --mips writes a directory", args.out.display())));
+    }
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| Failure::Failed(format!("{}: cannot create the directory: {e}", args.out.display())))?;
+    let mut failed = 0;
+    for input in &args.inputs {
+        let map = match load_texture(input, TextureKind::NormalMap) {
+            Ok(map) => map,
+            Err(e) => {
+                eprintln!("bumpview: {}", escape_controls(&e.to_string()));
+                failed += 1;
+                continue;
+            }
+        };
+        let levels = mip_levels(&map, filter.has_mips(), &alpha);
+        let paths: Vec<PathBuf> = (0..levels.len()).map(|k| level_path(&args.out, input, k)).collect();
+        let planned: Vec<&Path> = paths.iter().map(PathBuf::as_path).collect();
+        check_outputs(&[input.as_path()], &planned, args.force).map_err(|e| Failure::BadArguments(e.to_string()))?;
+        match write_levels(&levels, &paths) {
+            Ok(()) => {
+                for (level, path) in levels.iter().zip(&paths) {
+                    let path = path.display().to_string();
+                    println!("wrote {} ({}x{}, {name})", escape_controls(&path), level.width, level.height);
+                }
+            }
+            Err(e) => {
+                eprintln!("bumpview: {}", escape_controls(&e.to_string()));
+                failed += 1;
+            }
+        }
+    }
+    match failed {
+        0 => Ok(()),
+        n => Err(Failure::Failed(format!("{n} of {} files failed", args.inputs.len()))),
     }
 }

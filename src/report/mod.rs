@@ -14,6 +14,9 @@ pub mod exact_hit;
 pub mod gpu_time;
 mod markdown;
 pub mod measure;
+pub mod mip_page;
+pub mod mip_specimen;
+pub mod mip_study;
 pub mod parallax;
 pub mod parallax_page;
 pub mod roundtrip;
@@ -82,6 +85,8 @@ pub struct Plan {
     /// Points per side of the wall's grid the UV error is measured over (at the parallax
     /// study's layer counts, [`uv_error::report_angles`]).
     pub uv_grid: u32,
+    /// The mip filters against a supersampled reference on the GPU.
+    pub mip: mip_study::MipPlan,
 }
 
 impl Plan {
@@ -99,6 +104,7 @@ impl Plan {
             quick: false,
             parallax: parallax::ParallaxPlan::full(None),
             uv_grid: 64,
+            mip: mip_study::MipPlan::full(),
         }
     }
 
@@ -117,6 +123,7 @@ impl Plan {
             quick: true,
             parallax: parallax::ParallaxPlan::quick(),
             uv_grid: 32,
+            mip: mip_study::MipPlan::quick(),
         }
     }
 }
@@ -306,12 +313,17 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
     let uv_rows =
         uv_error::study(&uv_error::Relief::wall(), &uv_error::report_angles(), &plan.parallax.layers, plan.uv_grid);
     let uv_section = uv_page::markdown(&uv_rows, &study.rows, plan.uv_grid);
+    let (mip, mip_adapter, mip_notes) = mip_filter_study(&plan.mip, progress);
+    let mip_section = mip_page::markdown(&mip, &plan.mip, &mip_adapter, &mip_notes);
+    let sections = [markdown::render(&page), parallax_section, uv_section, mip_section];
     let files = [
-        (MARKDOWN.to_owned(), (markdown::render(&page) + "\n" + &parallax_section + "\n" + &uv_section).into_bytes()),
+        (MARKDOWN.to_owned(), sections.join("\n").into_bytes()),
         (CSV.to_owned(), csv::render(&rows, &orders).into_bytes()),
         (PARALLAX_CSV.to_owned(), parallax_page::csv(&study.rows).into_bytes()),
         (TANGENT_CHART.to_owned(), tangent_png),
         (KERNEL_CHART.to_owned(), kernel_png),
+        (mip_page::CSV.to_owned(), mip_page::csv(&mip.rows).into_bytes()),
+        (mip_page::CHART.to_owned(), mip_page::chart(&mip.rows)?),
     ]
     .into_iter()
     .chain(chart_files);
@@ -361,4 +373,38 @@ fn parallax_study(plan: &parallax::ParallaxPlan, progress: &mut dyn FnMut(usize,
     }
     let timestamps = gpu.device.features().contains(gpu_time::FEATURES);
     ParallaxStudy { rows, adapter: gpu.adapter_name(), timestamps, notes }
+}
+
+/// Runs the mip-filter study of `plan` on a headless GPU: what it measured, the adapter's
+/// name, and notes (a missing GPU or a failed picture becomes a note, not a failed report).
+fn mip_filter_study(
+    plan: &mip_study::MipPlan,
+    progress: &mut dyn FnMut(usize, usize),
+) -> (mip_study::MipStudy, String, Vec<String>) {
+    let gpu = match crate::render::Gpu::headless() {
+        Ok(gpu) => gpu,
+        Err(e) => return (Default::default(), "no adapter".into(), vec![format!("no GPU: {e}")]),
+    };
+    let mut renderer = crate::render::Renderer::from_gpu(&gpu);
+    let total = mip_study::case_count(plan);
+    let mut done = 0;
+    let mut step = || {
+        done += 1;
+        progress(done, total);
+    };
+    let mut notes = vec![];
+    let study = mip_study::study(&mut renderer, plan, &mut step).unwrap_or_else(|e| {
+        notes.push(format!("the mip-filter study stopped: {e}"));
+        Default::default()
+    });
+    let drawn: Vec<&str> = study.rows.iter().map(|r| r.method).collect();
+    for filter in <crate::frame::MipFilter as strum::VariantArray>::VARIANTS {
+        if !study.rows.is_empty() && !drawn.contains(&filter.label()) {
+            notes.push(format!(
+                "{} left out: the renderer does not draw it yet (it falls back to another method)",
+                filter.label()
+            ));
+        }
+    }
+    (study, gpu.adapter_name(), notes)
 }
