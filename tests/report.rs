@@ -222,7 +222,7 @@ fn quick_report_writes_a_row_for_every_method_and_kernel_and_valid_charts() {
     // the section with its answer, and the chart.
     let mip = std::fs::read_to_string(dir.join("mip-filters.csv")).unwrap();
     for specimen in ["plane", "torus"] {
-        for method in ["base level only", "re-normalised box mips", "Toksvig"] {
+        for method in ["base-only", "renormalized-box", "toksvig"] {
             let row = format!("{specimen},16,{method},");
             assert!(mip.lines().any(|l| l.starts_with(&row)), "{row} in {mip}");
         }

@@ -197,7 +197,7 @@ pub fn methods(specimen: &MipSpecimen) -> Vec<MethodSetup> {
         .map(|&filter| (filter, prepared(specimen, filter)))
         .filter(|(filter, prepared)| prepared.instances.iter().all(|i| i.mip_filter == *filter))
         .map(|(filter, prepared)| MethodSetup {
-            name: filter.label(),
+            name: filter.name(),
             prepared: Arc::new(prepared),
             shading: ShadingSettings::default(),
         })
