@@ -15,6 +15,14 @@ fn lean_variance(moments: vec4<f32>) -> f32 {
     return sxx + syy;
 }
 
+// mip_filter::lean_fade: clamp(lod, 0, 1), lod from the fine derivatives of `uv` in level-0
+// texels as chain::mip::normal_map_lod takes it (none under magnification).
+fn lean_fade(uv: vec2<f32>) -> f32 {
+    let size = vec2<f32>(textureDimensions(lean_moments));
+    let longer = max(length(dpdxFine(uv) * size), length(dpdyFine(uv) * size));
+    return clamp(log2(longer), 0.0, 1.0);
+}
+
 // mip_filter::lean_normal: the mean slope's normal, normalize(Bx, By, 1), tangent space.
 fn lean_normal(moments: vec4<f32>) -> vec3<f32> {
     return normalize_or(vec3<f32>(moments.xy, 1.0), vec3<f32>(0.0, 0.0, 1.0));
@@ -22,11 +30,12 @@ fn lean_normal(moments: vec4<f32>) -> vec3<f32> {
 
 // chain::mip::lean_texel: the normal map's texel with its RGB the mean-slope normal (n·½ + ½,
 // so the convention and the strength apply as to any texel), and LEAN's variance times
-// strength² added to α² (mip_variance) with the bump on.
+// strength² and the fade added to α² (mip_variance) with the bump on.
 fn lean_texel(sample: NormalSample, uv: vec2<f32>, strength: f32) -> NormalSample {
     let moments = textureSample(lean_moments, detail_sampler, uv);
+    let fade = lean_fade(uv);
     if frame.bump_enabled != 0u {
-        mip_variance = strength * strength * lean_variance(moments);
+        mip_variance = strength * strength * fade * lean_variance(moments);
     }
     var texel = sample;
     texel.texel = vec4<f32>(lean_normal(moments) * 0.5 + 0.5, sample.texel.a);

@@ -7,7 +7,7 @@ use glam::{Vec3, Vec4};
 use super::fragment::{Footprint, Fragment, Map};
 use crate::frame::MipFilter;
 use crate::shading::NormalTexel;
-use crate::shading::mip_filter::{alpha_variance, lean_normal, lean_variance, widened_roughness, widened_shininess};
+use crate::shading::mip_filter::{alpha_variance, lean_fade, lean_normal, lean_variance, widened_roughness, widened_shininess};
 
 /// What the mip filtering step takes besides the texel: the method, the screen-space
 /// derivatives of the shading normal (geometric specular AA only; `None` otherwise or without
@@ -40,7 +40,7 @@ pub struct MipValues {
     /// else 1.
     pub length: f32,
     /// What the method adds to `α²` ([`alpha_variance`]; LEAN: `strength² ×`
-    /// [`lean_variance`] of its moments); 0 without widening.
+    /// [`lean_fade`]`(lod) ×` [`lean_variance`] of its moments); 0 without widening.
     pub variance: f32,
     /// The classic exponent after widening and the factor on `k_s` that keeps the lobe's
     /// energy ([`widened_shininess`]).
@@ -65,7 +65,7 @@ impl MipValues {
         let filter = inputs.filter;
         let length = texel.filter(|_| filter.keeps_length()).map_or(1.0, |t| t.rgba.w);
         let variance = match inputs.moments.filter(|_| filter == MipFilter::Lean && bump_on && texel.is_some()) {
-            Some(moments) => strength * strength * lean_variance(moments),
+            Some(moments) => strength * strength * lean_fade(inputs.lod.unwrap_or(0.0)) * lean_variance(moments),
             None => alpha_variance(filter, length, strength, bump_on, inputs.normal_derivatives),
         };
         let (shininess, energy) = widened_shininess(filter, shininess, variance);

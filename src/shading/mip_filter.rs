@@ -46,6 +46,20 @@ pub fn lean_variance(moments: Vec4) -> f32 {
     if variance.is_finite() { variance } else { 0.0 }
 }
 
+/// How much of LEAN's variance applies at the normal map's level of detail `lod` (`log2` of
+/// the footprint's longer side in level-0 texels): `clamp(lod, 0, 1)` — none under
+/// magnification, all from level 1 on, faded in over the first level as the sampler fades
+/// level 1 in. Under magnification a pixel sees less than one texel, across which the map's
+/// normal is interpolated, not bumpy: the covariance the bilinear blend of level 0's moments
+/// has (that of the four texels it mixes, `f(1 − f)·ΔB²` along an axis, 0 at texel centres)
+/// is the sampler's interpolation, not a spread of slopes inside the pixel, and widened the
+/// close wall's highlight by up to 123 steps (metallic-roughness, roughness 0.3) where plain
+/// shading is the reference. This is a departure from Olano & Baker, who take the moments as
+/// filtered at every level. A non-finite `lod` (no footprint) reads as level 0.
+pub fn lean_fade(lod: f32) -> f32 {
+    if lod.is_finite() { lod.clamp(0.0, 1.0) } else { 0.0 }
+}
+
 /// LEAN's shading normal in the normal map's tangent space before the bump strength: from the
 /// mean slope, `normalize(Bx, By, 1)` (the slopes are `(nx/nz, ny/nz)`, [`crate::texture::slopes`]);
 /// `+z` where the moments are not finite.
@@ -193,6 +207,7 @@ mod tests {
         assert!((lean_normal(mixed) - Vec3::new(0.1, 0.0, 1.0).normalize()).length() < 1e-6);
         assert_eq!(lean_variance(glam::Vec4::splat(f32::NAN)), 0.0);
         assert_eq!(lean_normal(glam::Vec4::splat(f32::INFINITY)), Vec3::Z);
+        assert_eq!([-2.0, 0.0, 0.25, 1.0, 3.0, f32::NEG_INFINITY].map(lean_fade), [0.0, 0.0, 0.25, 1.0, 1.0, 0.0]);
     }
 
     /// Filament's clamp: a steep change of the normal adds at most κ = 0.2 to α².
