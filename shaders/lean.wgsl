@@ -28,9 +28,9 @@ fn lean_normal(moments: vec4<f32>) -> vec3<f32> {
     return normalize_or(vec3<f32>(moments.xy, 1.0), vec3<f32>(0.0, 0.0, 1.0));
 }
 
-// chain::mip::lean_texel: the normal map's texel with its RGB the mean-slope normal (n·½ + ½,
-// so the convention and the strength apply as to any texel), and LEAN's variance times
-// strength² and the fade added to α² (mip_variance) with the bump on.
+// chain::mip::lean_texel: the normal map's texel with its RGB faded (lean_fade) to the
+// mean-slope normal's (n·½ + ½, so the convention and the strength apply as to any texel), and
+// LEAN's variance times strength² and the fade added to α² (mip_variance) with the bump on.
 fn lean_texel(sample: NormalSample, uv: vec2<f32>, strength: f32) -> NormalSample {
     let moments = textureSample(lean_moments, detail_sampler, uv);
     let fade = lean_fade(uv);
@@ -38,6 +38,6 @@ fn lean_texel(sample: NormalSample, uv: vec2<f32>, strength: f32) -> NormalSampl
         mip_variance = strength * strength * fade * lean_variance(moments);
     }
     var texel = sample;
-    texel.texel = vec4<f32>(lean_normal(moments) * 0.5 + 0.5, sample.texel.a);
+    texel.texel = vec4<f32>(mix(sample.texel.rgb, lean_normal(moments) * 0.5 + 0.5, fade), sample.texel.a);
     return texel;
 }

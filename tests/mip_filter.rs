@@ -32,16 +32,12 @@ fn max_steps(a: &image::RgbaImage, b: &image::RgbaImage) -> u8 {
     a.pixels().zip(b.pixels()).flat_map(|(p, q)| (0..3).map(move |c| p[c].abs_diff(q[c]))).max().unwrap_or(0)
 }
 
-/// How far LEAN may be from plain shading at 1× (8-bit steps): the sampler's bilinear blend of
-/// level 0's moments under magnification is a real covariance, that of the (up to) four texels
-/// it mixes, so LEAN widens the highlight where neighbouring texels' slopes differ (31 steps
-/// measured in Blinn-Phong); its mean-slope normal alone (the variance set to 0 in the
-/// shader) was 4 steps from the box mips' re-normalised one.
-const LEAN_STEPS_AT_ONE_TO_ONE: u8 = 99;
-
 /// At 0.3 m from the wall a pixel covers about 0.56 brick texels: the normal map is read at
-/// level 0, where `|Na| = 1`, so Toksvig and vMF add nothing and base-only reads what the box
-/// mips read. Each method's picture equals the re-normalised box mips' exactly (0 steps), in
+/// level 0, where `|Na| = 1`, so Toksvig and vMF add nothing, base-only reads what the box
+/// mips read and LEAN, magnified (`shading::mip_filter::lean_fade` is 0 below level 0), draws
+/// the normal map's own texel with no variance (measured before that fade: 31 steps in
+/// Blinn-Phong and 123 in metallic-roughness from the bilinear blend's covariance, 4 and 17
+/// from the mean-slope normal alone). Each method's picture equals the re-normalised box mips' exactly (0 steps), in
 /// Blinn-Phong and in metallic-roughness (every material's roughness [`ROUGHNESS`]); geometric
 /// specular AA widens wherever the normal changes from pixel to pixel, at 1× too, so it is
 /// measured, not held equal.
@@ -60,7 +56,6 @@ fn every_method_but_geometric_aa_draws_plain_shading_at_one_to_one() {
             println!("{model:?}, {}: {steps} steps from the re-normalised box mips at 1×", filter.name());
             match filter {
                 MipFilter::GeometricSpecularAa => assert!(steps > 0, "geometric AA widens at 1× too"),
-                MipFilter::Lean => assert!(steps <= LEAN_STEPS_AT_ONE_TO_ONE, "{model:?}: LEAN {steps} steps"),
                 _ => assert_eq!(steps, 0, "{model:?}, {}", filter.name()),
             }
         }
@@ -71,7 +66,9 @@ fn every_method_but_geometric_aa_draws_plain_shading_at_one_to_one() {
 /// Farther away (3 m: a pixel covers about 5.6 texels, level ≈ 2.5) the CPU chain through the
 /// probe equals the GPU for every method at a grid of probe points: lit within 3 steps of 8
 /// bits (the tolerance of tests/probe.rs), shading normal within 2; and the widening methods
-/// do change the picture there. LEAN is drawn as the box mips (not implemented on the GPU yet).
+/// do change the picture there (LEAN at every point: its covariance is never exactly 0 there;
+/// measured: lit within 0.82 steps in Blinn-Phong and 0.91 in metallic-roughness, normal 1.36,
+/// the half floats rounded on the CPU as uploaded).
 #[test]
 fn the_cpu_twins_equal_the_gpu_at_probe_points_at_a_distance() {
     let scene = glossy_scene();

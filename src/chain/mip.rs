@@ -74,13 +74,19 @@ impl MipValues {
     }
 }
 
-/// The normal map's texel as LEAN reads it: its RGB the mean-slope normal of the moments
-/// ([`lean_normal`], encoded `n·½ + ½` as the map stores normals), so that the convention,
-/// the bump strength and the rest of the normal-map path apply to it as to any texel (the
-/// twin of mip_filter.wgsl's `lean_texel`); unchanged without moments.
+/// The normal map's texel as LEAN reads it: its RGB faded by [`lean_fade`] at the point's
+/// level of detail to the mean-slope normal of the moments ([`lean_normal`], encoded `n·½ + ½`
+/// as the map stores normals) — the map's own texel under magnification, the mean slope's
+/// from level 1 on — so that the convention, the bump strength and the rest of the normal-map
+/// path apply to it as to any texel (the twin of lean.wgsl's `lean_texel`); unchanged without
+/// moments.
 pub fn lean_texel(texel: NormalTexel, inputs: &MipInputs) -> NormalTexel {
     match inputs.moments.filter(|_| inputs.filter == MipFilter::Lean) {
-        Some(moments) => NormalTexel { rgba: (lean_normal(moments) * 0.5 + 0.5).extend(texel.rgba.w), ..texel },
+        Some(moments) => {
+            let fade = lean_fade(inputs.lod.unwrap_or(0.0));
+            let rgb = texel.rgba.truncate().lerp(lean_normal(moments) * 0.5 + 0.5, fade);
+            NormalTexel { rgba: rgb.extend(texel.rgba.w), ..texel }
+        }
         None => texel,
     }
 }

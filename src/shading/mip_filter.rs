@@ -46,7 +46,7 @@ pub fn lean_variance(moments: Vec4) -> f32 {
     if variance.is_finite() { variance } else { 0.0 }
 }
 
-/// How much of LEAN's variance applies at the normal map's level of detail `lod` (`log2` of
+/// How much of LEAN applies at the normal map's level of detail `lod` (`log2` of
 /// the footprint's longer side in level-0 texels): `clamp(lod, 0, 1)` — none under
 /// magnification, all from level 1 on, faded in over the first level as the sampler fades
 /// level 1 in. Under magnification a pixel sees less than one texel, across which the map's
@@ -54,8 +54,10 @@ pub fn lean_variance(moments: Vec4) -> f32 {
 /// has (that of the four texels it mixes, `f(1 − f)·ΔB²` along an axis, 0 at texel centres)
 /// is the sampler's interpolation, not a spread of slopes inside the pixel, and widened the
 /// close wall's highlight by up to 123 steps (metallic-roughness, roughness 0.3) where plain
-/// shading is the reference. This is a departure from Olano & Baker, who take the moments as
-/// filtered at every level. A non-finite `lod` (no footprint) reads as level 0.
+/// shading is the reference. The mean-slope normal fades in with it (the blend of the
+/// moments' mean slope is another interpolation than the re-normalised blend of the texels'
+/// normals: 17 steps apart there). This is a departure from Olano & Baker, who take the
+/// moments as filtered at every level. A non-finite `lod` (no footprint) reads as level 0.
 pub fn lean_fade(lod: f32) -> f32 {
     if lod.is_finite() { lod.clamp(0.0, 1.0) } else { 0.0 }
 }
