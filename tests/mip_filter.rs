@@ -222,6 +222,15 @@ fn only_lean_uploads_a_texture_of_its_own_and_only_widening_builds_pipelines() {
         let normal_map = scene.materials[0].normal_map.as_ref().map(|m| m.texture).unwrap_or(0);
         let levels = prepared.mip_chain(normal_map).len();
         assert_eq!(levels == 1, filter == MipFilter::BaseOnly, "{}: {levels} levels", filter.name());
+        // LEAN's texture: the full chain of its normal map, 8 bytes a texel (Rgba16Float).
+        let lean = prepared.lean_texture(normal_map);
+        assert_eq!(lean.is_some(), filter == MipFilter::Lean, "{}", filter.name());
+        if let Some(lean) = lean {
+            assert_eq!(lean.len(), levels);
+            let bytes: u64 = lean.iter().map(|l| 8 * u64::from(l.width) * u64::from(l.height)).sum();
+            let (w, h) = (lean[0].width, lean[0].height);
+            println!("LEAN's texture of the {w}×{h} normal map: {} levels, {bytes} bytes", lean.len());
+        }
         renderer.set_scene(&scene, SceneOptions::default());
     }
 }
