@@ -279,7 +279,7 @@ impl PreparedScene {
     /// an instance draws it as its normal map with [`MipFilter::Lean`]; `None` elsewhere: no
     /// other method makes or uploads it.
     pub fn lean_texture(&self, index: usize) -> Option<Vec<crate::texture::LeanTexels>> {
-        let lean = |i: &PreparedInstance| i.textures.bump == Some(index) && i.mip_filter == MipFilter::Lean;
+        let lean = |i: &PreparedInstance| i.textures.bump == Some(index) && i.mip_filter.reads_moments();
         self.instances.iter().any(lean).then(|| self.scene.textures[index].lean_texture())
     }
 

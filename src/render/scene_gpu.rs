@@ -355,7 +355,7 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, pre
                 layout: layouts.material(instance.variant),
                 entries: &entries,
             });
-            let lean = (instance.mip_filter == crate::frame::MipFilter::Lean)
+            let lean = instance.mip_filter.reads_moments()
                 .then(|| slots.bump.and_then(|t| textures.lean(&prepared, t, counters)))
                 .flatten();
             let lean_bind_group = lean.map(|lean| {

@@ -1,9 +1,11 @@
 //! LEAN mapping's moments of a normal map (Olano & Baker, "LEAN mapping", I3D 2010): per texel
 //! the slopes `B = (nx/nz, ny/nz)` and their second moments `M = (Bx², By², Bx·By)`, box-filtered
 //! down the mip chain. Both are linear in the texels, so a mip texel's moments are exactly the
-//! means over the base texels it covers and `M − B·Bᵀ` is their covariance. Stored in floats
-//! (the GPU would take `Rgba16Float`): in 8 bits the cancellation in `M − B·Bᵀ` loses the
-//! variance (Olano & Baker scale `B` by a per-map factor for that; floats need none).
+//! means over the base texels it covers and `M − B·Bᵀ` is their covariance. Made in floats and
+//! uploaded as `Rgba16Float` ([`LeanTexels`]: `(Bx, By, Bx², By²)`, 11 significant bits): in
+//! 8 bits the cancellation in `M − B·Bᵀ` loses the variance (Olano & Baker scale `B` by a
+//! per-map factor for that); in half floats a single slope's `Bx² − (Bx)²` is rounding noise
+//! of a few `2⁻¹¹·Bx²`, which `shading::mip_filter::LEAN_HALF_FLOOR` takes off.
 
 use glam::{Vec2, Vec3, Vec4};
 
