@@ -7,7 +7,9 @@ use glam::{Vec3, Vec4};
 use super::fragment::{Footprint, Fragment, Map};
 use crate::frame::MipFilter;
 use crate::shading::NormalTexel;
-use crate::shading::mip_filter::{alpha_variance, lean_fade, lean_normal, lean_variance, widened_roughness, widened_shininess};
+use crate::shading::mip_filter::{
+    alpha_variance, lean_fade, lean_normal, lean_variance, widened_roughness, widened_shininess,
+};
 
 /// What the mip filtering step takes besides the texel: the method, the screen-space
 /// derivatives of the shading normal (geometric specular AA only; `None` otherwise or without
@@ -24,7 +26,8 @@ pub struct MipInputs {
 
 impl MipInputs {
     /// No filtering (the plain chain: the neighbours geometric specular AA differentiates).
-    pub const NONE: MipInputs = MipInputs { filter: MipFilter::RenormalizedBox, normal_derivatives: None, lod: None, moments: None };
+    pub const NONE: MipInputs =
+        MipInputs { filter: MipFilter::RenormalizedBox, normal_derivatives: None, lod: None, moments: None };
 }
 
 /// The mip filtering step's values at one point (the probe's readout).

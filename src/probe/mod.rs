@@ -122,7 +122,8 @@ impl ProbeScene {
         let mips = (0..prepared.scene.textures.len())
             .map(|index| if used(&index) { prepared.mip_chain(index).into_owned() } else { vec![] })
             .collect();
-        let lean = (0..prepared.scene.textures.len()).map(|index| prepared.lean_texture(index).unwrap_or_default()).collect();
+        let lean =
+            (0..prepared.scene.textures.len()).map(|index| prepared.lean_texture(index).unwrap_or_default()).collect();
         ProbeScene { prepared, mips, lean }
     }
 

@@ -179,7 +179,12 @@ impl TextureCache<'_> {
     /// LEAN's texture of normal map `index` ([`PreparedScene::lean_texture`]: `Rgba16Float`,
     /// 8 bytes a texel, with the full mip chain; from the first level that fits the adapter,
     /// as [`Self::upload`] does); `None` where no instance draws it with LEAN.
-    fn lean(&mut self, prepared: &PreparedScene, index: usize, counters: &mut WorkCounters) -> Option<wgpu::TextureView> {
+    fn lean(
+        &mut self,
+        prepared: &PreparedScene,
+        index: usize,
+        counters: &mut WorkCounters,
+    ) -> Option<wgpu::TextureView> {
         if self.lean[index].is_none() {
             let levels = prepared.lean_texture(index)?;
             let limit = self.device.limits().max_texture_dimension_2d;
@@ -289,8 +294,7 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, pre
     let scene = &prepared.scene;
     let meshes = prepared.meshes.iter().map(|m| upload_mesh(device, m)).collect();
     let mut samplers = SamplerCache::default();
-    let mut textures =
-        TextureCache {
+    let mut textures = TextureCache {
         device,
         queue,
         views: vec![None; scene.textures.len()],
@@ -355,7 +359,9 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, pre
                 layout: layouts.material(instance.variant),
                 entries: &entries,
             });
-            let lean = instance.mip_filter.reads_moments()
+            let lean = instance
+                .mip_filter
+                .reads_moments()
                 .then(|| slots.bump.and_then(|t| textures.lean(&prepared, t, counters)))
                 .flatten();
             let lean_bind_group = lean.map(|lean| {

@@ -4,8 +4,8 @@
 use glam::{Vec2, Vec3, Vec4};
 
 use super::{SamplerWrap, TextureImage, TextureKind, Wrap};
-use crate::texture::LeanTexels;
 use crate::math::srgb_to_linear;
+use crate::texture::LeanTexels;
 
 /// Texture `chain` (mip levels, level 0 first) at `uv` as the GPU's sampler reads it (linear
 /// filtering, linear between mip levels, no anisotropy): level of detail `log2` of the longer
