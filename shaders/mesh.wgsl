@@ -19,7 +19,8 @@
 // and half vector, for the legacy looks and the per-vertex mistakes alone).
 //
 // Prepended at build time: frame.wgsl (the Frame uniform, group 0), object.wgsl (group 1),
-// common.wgsl, normal_map.wgsl, mip_filter.wgsl (the MIP_FILTER constant), surface_color.wgsl,
+// common.wgsl, normal_map.wgsl, mip_filter.wgsl (the MIP_FILTER constant), lean.wgsl (LEAN's
+// texture, group 2, in render::shaders::MESH_LEAN) or lean_unbound.wgsl, surface_color.wgsl,
 // pbr.wgsl, parallax.wgsl, mistakes.wgsl (the MISTAKE constant), legacy.wgsl (the LEGACY constant) and lights.wgsl (the lights and
 // the classic model's lighting spaces).
 
@@ -61,7 +62,7 @@ fn normal_mapped_surface(vertex: VertexOutput, front_facing: bool) -> vec4<f32> 
     var in = vertex;
     in.uv = parallax_uv(vertex.uv, n, vertex.world_position);
     let frame_tb = mistaken_frame(in.world_tangent, n);
-    let texel = mistaken_texel(sample_normal_map(in.uv));
+    let texel = mistaken_texel(lean_texel(sample_normal_map(in.uv), in.uv, frame.strength * object.normal_scale));
     set_mip_variance_from_texel(texel.texel, frame.strength * object.normal_scale);
     var n_shading = base_normal(vertex.world_normal, front_facing, n);
     if frame.bump_enabled != 0u {
@@ -89,7 +90,7 @@ fn normal_mapped_tangent_space_surface(vertex: VertexOutput, front_facing: bool)
     var in = vertex;
     in.uv = parallax_uv(vertex.uv, n, vertex.world_position);
     let frame_tb = mistaken_frame(in.world_tangent, n);
-    let texel = mistaken_texel(sample_normal_map(in.uv));
+    let texel = mistaken_texel(lean_texel(sample_normal_map(in.uv), in.uv, frame.strength * object.normal_scale));
     set_mip_variance_from_texel(texel.texel, frame.strength * object.normal_scale);
     var n_shading = base_normal(vertex.world_normal, front_facing, n);
     tangent_space.normal = vec3<f32>(0.0, 0.0, 1.0);

@@ -143,7 +143,9 @@ pub fn shade(bump: BumpKind, material: &Material, fragment: &impl Fragment, fram
         })
         .flatten();
     let lod = mip::normal_map_lod(fragment, step.footprint).filter(|_| surface.bump.is_some());
-    let values = lit(bump, material, &surface, &dimmed, MipInputs { filter, normal_derivatives, lod });
+    let moments = (filter == MipFilter::Lean).then(|| fragment.lean_moments(step.uv, step.footprint)).flatten();
+    let inputs = MipInputs { filter, normal_derivatives, lod, moments };
+    let values = lit(bump, material, &surface, &dimmed, inputs);
     ChainValues { march: relief::values(material, fragment, &step, visibility, &values), ..values }
 }
 
@@ -161,7 +163,7 @@ fn lit(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &Frame
     let map = material.normal_map.as_ref().filter(|_| matches!(bump, BumpKind::TangentSpace | BumpKind::ObjectSpace));
     let strength = shading.strength * map.map_or(1.0, |m| m.scale);
     let texel = match point.bump {
-        Some(BumpSample::NormalMap(texel)) => map.map(|_| mistakes::texel_read(mistake, texel)),
+        Some(BumpSample::NormalMap(texel)) => map.map(|_| mistakes::texel_read(mistake, mip::lean_texel(texel, &mip))),
         _ => None,
     };
     let convention = map.map(|m| mistakes::convention_read(mistake, m.convention));

@@ -5,7 +5,7 @@ mod lean;
 mod mip_filter;
 mod normal_mips;
 
-pub use lean::{LeanLevel, MIN_LEAN_NZ, slopes};
+pub use lean::{LeanLevel, LeanTexels, MIN_LEAN_NZ, half_bits, half_value, round_to_half, slopes};
 pub use mip_filter::MipFilter;
 pub use normal_mips::decode_unit_normal;
 

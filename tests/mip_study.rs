@@ -3,6 +3,7 @@
 //! on both static error and shimmer, and at 1× every method draws what plain shading draws.
 
 use bumpview::frame::MipFilter;
+use bumpview::names::Named;
 use bumpview::render::{Gpu, Renderer};
 use bumpview::report::mip_specimen::Shape;
 use bumpview::report::mip_study::{MipPlan, MipRow, measure};
@@ -19,7 +20,7 @@ fn plan() -> MipPlan {
 }
 
 fn row(rows: &[MipRow], filter: MipFilter) -> Option<&MipRow> {
-    rows.iter().find(|r| r.method == filter.label())
+    rows.iter().find(|r| r.method == filter.name())
 }
 
 /// Measured on lavapipe (32×32, 16 frames): on the plane re-normalised mips have RMSE 0.124
@@ -38,7 +39,7 @@ fn at_16x_toksvig_lean_and_vmf_beat_renormalised_mips_on_static_error_and_shimme
         let mut beaten = 0;
         for filter in [MipFilter::Toksvig, MipFilter::Lean, MipFilter::Vmf] {
             let Some(r) = row(&rows, filter) else {
-                assert_eq!(filter, MipFilter::Lean, "{} is drawn", filter.label());
+                assert_eq!(filter, MipFilter::Lean, "{} is drawn", filter.name());
                 continue;
             };
             assert!(r.rmse * 2.5 < plain.rmse, "{shape:?}: {r:?} against {plain:?}");
@@ -58,7 +59,7 @@ fn at_1x_every_method_draws_the_base_level() {
     let mut renderer = renderer();
     let (rows, _) = measure(&mut renderer, &plan(), Shape::Plane, 1).unwrap();
     let base = row(&rows, MipFilter::BaseOnly).unwrap();
-    for r in rows.iter().filter(|r| r.method != MipFilter::GeometricSpecularAa.label()) {
+    for r in rows.iter().filter(|r| r.method != MipFilter::GeometricSpecularAa.name()) {
         assert_eq!((r.rmse, r.energy_ratio, r.shimmer), (base.rmse, base.energy_ratio, base.shimmer), "{r:?}");
     }
 }

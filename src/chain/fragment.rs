@@ -82,4 +82,10 @@ pub trait Fragment {
     fn mip_filter(&self) -> MipFilter {
         MipFilter::RenormalizedBox
     }
+    /// LEAN's texture (`(Bx, By, Bx², By²)`, [`crate::texture::LeanTexels`]) filtered at `uv`
+    /// with `footprint` through the normal map's sampler, where the instance draws LEAN;
+    /// `None` elsewhere (readers without it draw the other methods).
+    fn lean_moments(&self, _uv: Vec2, _footprint: Footprint) -> Option<Vec4> {
+        None
+    }
 }

@@ -275,6 +275,14 @@ impl PreparedScene {
         self.instances.iter().find(reads).map(|i| i.mip_filter)
     }
 
+    /// LEAN's texture of texture `index` ([`TextureImage::lean_texture`], level 0 first) where
+    /// an instance draws it as its normal map with [`MipFilter::Lean`]; `None` elsewhere: no
+    /// other method makes or uploads it.
+    pub fn lean_texture(&self, index: usize) -> Option<Vec<crate::texture::LeanTexels>> {
+        let lean = |i: &PreparedInstance| i.textures.bump == Some(index) && i.mip_filter.reads_moments();
+        self.instances.iter().any(lean).then(|| self.scene.textures[index].lean_texture())
+    }
+
     /// Texture `index`'s mip chain, made now.
     fn made_mip_chain(&self, index: usize) -> Vec<TextureImage> {
         let texture = &self.scene.textures[index];
@@ -306,14 +314,14 @@ impl PreparedScene {
 /// `chosen` where it applies, else [`MipFilter::RenormalizedBox`] (today's mips, no widening).
 /// Only normal maps (tangent- or object-space) are filtered; the methods that read the
 /// averaged normal's length or LEAN's moments need an RGB map ([`TextureKind::NormalMap`]:
-/// packed layouts average channel by channel); LEAN is not drawn yet (see
-/// docs/mip-filtering.md).
+/// packed layouts average channel by channel); LEAN's slopes are tangent-space ones, so it
+/// applies to tangent-space normal maps only.
 pub fn mip_filter_of(chosen: MipFilter, variant: Variant, bump: Option<&TextureImage>) -> MipFilter {
     let normal_map = matches!(variant, Variant::NormalMapped | Variant::ObjectSpace);
     let rgb = bump.is_some_and(|t| t.kind == TextureKind::NormalMap);
     match chosen {
         _ if !normal_map || bump.is_none() => MipFilter::RenormalizedBox,
-        MipFilter::Lean => MipFilter::RenormalizedBox,
+        MipFilter::Lean if !rgb || variant != Variant::NormalMapped => MipFilter::RenormalizedBox,
         MipFilter::Toksvig | MipFilter::Vmf if !rgb => MipFilter::RenormalizedBox,
         _ => chosen,
     }

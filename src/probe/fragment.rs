@@ -15,7 +15,7 @@ use crate::chain::{Footprint, Fragment, Map, Varyings};
 use crate::frame::FrameParams;
 use crate::math::normal_matrix;
 use crate::prepare::{DrawnFrames, PreparedInstance};
-use crate::scene::sample::sample_trilinear;
+use crate::scene::sample::{sample_trilinear, sample_trilinear_texels};
 use crate::scene::{Material, Mesh, SamplerWrap};
 
 /// One pinned point of one instance seen in a view.
@@ -155,5 +155,14 @@ impl Fragment for Pixel<'_> {
 
     fn mip_filter(&self) -> crate::frame::MipFilter {
         self.instance.mip_filter
+    }
+
+    fn lean_moments(&self, uv: Vec2, footprint: Footprint) -> Option<Vec4> {
+        if self.instance.mip_filter != crate::frame::MipFilter::Lean {
+            return None;
+        }
+        let (texture, wrap) = self.texture(Map::Bump)?;
+        let chain = self.probe.lean.get(texture).filter(|chain| !chain.is_empty())?;
+        Some(sample_trilinear_texels(chain, uv, wrap, footprint))
     }
 }

@@ -105,6 +105,9 @@ pub struct ProbeScene {
     prepared: Arc<PreparedScene>,
     /// Per texture: its mip chain as uploaded, level 0 first; empty for textures no instance uses.
     mips: Vec<Vec<TextureImage>>,
+    /// Per texture: LEAN's texture as uploaded ([`PreparedScene::lean_texture`]); empty where
+    /// no instance draws it with LEAN.
+    lean: Vec<Vec<crate::texture::LeanTexels>>,
 }
 
 impl ProbeScene {
@@ -119,7 +122,9 @@ impl ProbeScene {
         let mips = (0..prepared.scene.textures.len())
             .map(|index| if used(&index) { prepared.mip_chain(index).into_owned() } else { vec![] })
             .collect();
-        ProbeScene { prepared, mips }
+        let lean =
+            (0..prepared.scene.textures.len()).map(|index| prepared.lean_texture(index).unwrap_or_default()).collect();
+        ProbeScene { prepared, mips, lean }
     }
 
     /// The prepared scene probed.

@@ -3,7 +3,8 @@
 //! its view, mode and flag constants) to the Rust side.
 //!
 //! Group 0 is the frame ([`FRAME`]); group 1 is the drawn object and its material
-//! ([`MATERIAL`]), or the light markers' centres and colours ([`MARKERS`]).
+//! ([`MATERIAL`]), or the light markers' centres and colours ([`MARKERS`]); group 2, in LEAN's
+//! mesh pipelines alone, is LEAN's texture ([`LEAN_GROUP`]).
 
 /// What a slot holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -90,6 +91,13 @@ pub const MATERIAL: [Slot; 14] = [
     BUMP_CORRECTION_TEXTURE,
 ];
 
+/// Group 2 of LEAN's mesh pipelines (shaders/lean.wgsl): LEAN's texture of the normal map's
+/// slope moments `(Bx, By, Bx², By²)`, `Rgba16Float` with the full mip chain, through the detail
+/// sampler ([`crate::texture::LeanTexels`]).
+pub const LEAN_MOMENTS: Slot = slot(0, "lean_moments", Resource::Texture);
+/// Group 2, in binding order.
+pub const LEAN_GROUP: [Slot; 1] = [LEAN_MOMENTS];
+
 /// Group 1 of the marker shader: each light's marker centre and colour.
 pub const MARKERS: Slot = slot(0, "markers", Resource::Uniform);
 
@@ -140,7 +148,7 @@ mod tests {
     use crate::frame::{LegacyLook, LegacySettings, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Mistake, Parallax};
     use crate::frame::{LightingSpace, MipFilter, ShadingMode, ViewMode};
     use crate::names::Named;
-    use crate::render::shaders::{MARKER, MESH};
+    use crate::render::shaders::{MARKER, MESH, MESH_LEAN};
     use crate::render::uniforms::{
         DEPTH_MAP, HAS_BUMP_CORRECTION, HAS_CLEARCOAT, HAS_CLEARCOAT_NORMAL, HAS_CLEARCOAT_ROUGHNESS_TEXTURE,
         HAS_CLEARCOAT_TEXTURE, HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS, HAS_OCCLUSION_TEXTURE,
@@ -183,6 +191,8 @@ mod tests {
             MATERIAL.iter().map(|s| (s.wgsl_name.to_owned(), (1, s.binding))).collect();
         expected.extend(FRAME_GROUP.iter().map(|s| (s.wgsl_name.to_owned(), (0, s.binding))));
         assert_eq!(mesh, expected, "the mesh pass against render::bindings");
+        expected.extend(LEAN_GROUP.iter().map(|s| (s.wgsl_name.to_owned(), (2, s.binding))));
+        assert_eq!(wgsl_bindings(&module(&MESH_LEAN)), expected, "LEAN's mesh pass against render::bindings");
         let marker = wgsl_bindings(&module(&MARKER));
         let expected = BTreeMap::from([
             (FRAME.wgsl_name.to_owned(), (0, FRAME.binding)),
@@ -245,7 +255,7 @@ mod tests {
         for mode in SpecularMode::all().iter().copied().filter(|&m| m != SpecularMode::default()) {
             expected.insert(constant_name("SPECULAR_", mode.name()), mode.shader_index());
         }
-        // The mip filters the shader widens with (LEAN is not drawn yet).
+        // The mip filters the shader switches on (LEAN has its own module, MESH_LEAN).
         for filter in [MipFilter::Toksvig, MipFilter::Vmf, MipFilter::GeometricSpecularAa] {
             expected.insert(constant_name("MIP_", filter.name()), filter.shader_index());
         }

@@ -50,7 +50,9 @@ pub enum Pass {
         features: u32,
         /// How the normal map's highlight is widened (the `MIP_FILTER` constant,
         /// shaders/mip_filter.wgsl); [`MipFilter::RenormalizedBox`] (no widening) outside the
-        /// lit views and for the methods that do not widen ([`MipFilter::widens`]).
+        /// lit views and for the methods that do not widen ([`MipFilter::widens`]). LEAN, in
+        /// every view (its normal is the mean slope's), has its own module
+        /// ([`shaders::MESH_LEAN`]) and its texture in group 2 ([`Layouts::lean`]).
         mip_filter: MipFilter,
     },
     /// The Difference view of a mesh with a tangent stream: it adds the reference stream
@@ -89,6 +91,8 @@ pub struct Layouts {
     pub plain_material: wgpu::BindGroupLayout,
     pub normal_mapped_material: wgpu::BindGroupLayout,
     pub marker: wgpu::BindGroupLayout,
+    /// Group 2 of LEAN's mesh pipelines: LEAN's texture ([`bindings::LEAN_GROUP`]).
+    pub lean: wgpu::BindGroupLayout,
 }
 
 impl Layouts {
@@ -104,6 +108,7 @@ impl Layouts {
             plain_material: layout("plain material", &plain),
             normal_mapped_material: layout("normal-mapped material", &bindings::MATERIAL),
             marker: layout("light marker", &[bindings::MARKERS]),
+            lean: layout("LEAN moments", &bindings::LEAN_GROUP),
         }
     }
 
@@ -171,6 +176,7 @@ fn mesh_module(legacy: LegacySettings, mistake: Mistake) -> Wgsl {
 /// The module a pass's pipelines are made from.
 fn module_of(pass: Pass) -> Wgsl {
     match pass {
+        Pass::Mesh { mip_filter: MipFilter::Lean, .. } => shaders::MESH_LEAN,
         Pass::Mesh { legacy, mistake, .. } => mesh_module(legacy, mistake),
         Pass::Difference { .. } => shaders::DIFFERENCE,
         Pass::Wireframe { .. } => shaders::WIREFRAME,
@@ -286,6 +292,7 @@ fn build(
         Pass::LightMarker => (&layouts.marker, "vs_marker", "fs_marker", &[POSITION], Some(wgpu::Face::Back), vec![]),
     };
     let wireframe = matches!(key.pass, Pass::Wireframe { .. });
+    let lean = matches!(key.pass, Pass::Mesh { mip_filter: MipFilter::Lean, .. });
     let overlay = wireframe || matches!(key.pass, Pass::Glyphs { .. });
     let polygon_mode = if wireframe { wgpu::PolygonMode::Line } else { wgpu::PolygonMode::Fill };
     let topology = match key.pass {
@@ -295,7 +302,7 @@ fn build(
     let buffers: Vec<_> = buffers.iter().cloned().map(Some).collect();
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some("bumpview"),
-        bind_group_layouts: &[Some(&layouts.frame), Some(group1)],
+        bind_group_layouts: &[Some(&layouts.frame), Some(group1), Some(&layouts.lean)][..if lean { 3 } else { 2 }],
         immediate_size: 0,
     });
     let options = wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };

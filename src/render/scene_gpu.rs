@@ -49,6 +49,9 @@ pub struct GpuInstance {
     /// the `MIP_FILTER` constant of its lit pipelines).
     pub mip_filter: crate::frame::MipFilter,
     pub bind_group: wgpu::BindGroup,
+    /// Group 2 of its LEAN pipelines, LEAN's texture of its normal map
+    /// ([`bindings::LEAN_GROUP`]); `None` unless it draws LEAN.
+    pub lean_bind_group: Option<wgpu::BindGroup>,
 }
 
 /// The light markers: an octahedron drawn once per light that is on, at its centre in its
@@ -100,6 +103,8 @@ struct TextureCache<'a> {
     device: &'a wgpu::Device,
     queue: &'a wgpu::Queue,
     views: Vec<Option<wgpu::TextureView>>,
+    /// LEAN's textures, by the normal map's index, uploaded on first use.
+    lean: Vec<Option<wgpu::TextureView>>,
     white: Option<wgpu::TextureView>,
     /// What could not be uploaded as given (textures larger than the adapter allows).
     notices: Vec<String>,
@@ -166,6 +171,54 @@ impl TextureCache<'_> {
             self.views[index] = Some(self.upload(image, &prepared.mip_chain(index), counters));
         }
         self.views[index].clone().expect("uploaded above")
+    }
+
+    /// LEAN's texture of normal map `index` ([`PreparedScene::lean_texture`]: `Rgba16Float`,
+    /// 8 bytes a texel, with the full mip chain; from the first level that fits the adapter,
+    /// as [`Self::upload`] does); `None` where no instance draws it with LEAN.
+    fn lean(
+        &mut self,
+        prepared: &PreparedScene,
+        index: usize,
+        counters: &mut WorkCounters,
+    ) -> Option<wgpu::TextureView> {
+        if self.lean[index].is_none() {
+            let levels = prepared.lean_texture(index)?;
+            let limit = self.device.limits().max_texture_dimension_2d;
+            let fits = levels.iter().position(|m| m.width <= limit && m.height <= limit).unwrap_or(levels.len() - 1);
+            let levels = &levels[fits..];
+            let base = &levels[0];
+            let texture = self.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(&format!("LEAN moments of {}", prepared.scene.textures[index].name)),
+                size: wgpu::Extent3d { width: base.width, height: base.height, depth_or_array_layers: 1 },
+                mip_level_count: levels.len() as u32,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Rgba16Float,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                view_formats: &[],
+            });
+            for (level, mip) in levels.iter().enumerate() {
+                self.queue.write_texture(
+                    wgpu::TexelCopyTextureInfo {
+                        texture: &texture,
+                        mip_level: level as u32,
+                        origin: wgpu::Origin3d::ZERO,
+                        aspect: wgpu::TextureAspect::All,
+                    },
+                    bytemuck::cast_slice(&mip.half_bits()),
+                    wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(8 * mip.width),
+                        rows_per_image: Some(mip.height),
+                    },
+                    wgpu::Extent3d { width: mip.width, height: mip.height, depth_or_array_layers: 1 },
+                );
+            }
+            counters.textures_uploaded += 1;
+            self.lean[index] = Some(texture.create_view(&Default::default()));
+        }
+        self.lean[index].clone()
     }
 
     /// A 1×1 white colour texture for materials without a base colour texture.
@@ -238,8 +291,14 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, pre
     let scene = &prepared.scene;
     let meshes = prepared.meshes.iter().map(|m| upload_mesh(device, m)).collect();
     let mut samplers = SamplerCache::default();
-    let mut textures =
-        TextureCache { device, queue, views: vec![None; scene.textures.len()], white: None, notices: vec![] };
+    let mut textures = TextureCache {
+        device,
+        queue,
+        views: vec![None; scene.textures.len()],
+        lean: vec![None; scene.textures.len()],
+        white: None,
+        notices: vec![],
+    };
     let instances = prepared
         .instances
         .iter()
@@ -297,6 +356,18 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, pre
                 layout: layouts.material(instance.variant),
                 entries: &entries,
             });
+            let lean = instance
+                .mip_filter
+                .reads_moments()
+                .then(|| slots.bump.and_then(|t| textures.lean(&prepared, t, counters)))
+                .flatten();
+            let lean_bind_group = lean.map(|lean| {
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("LEAN moments"),
+                    layout: &layouts.lean,
+                    entries: &[bindings::LEAN_MOMENTS.entry(wgpu::BindingResource::TextureView(&lean))],
+                })
+            });
             // A mirroring transform turns front faces clockwise on screen; the pipeline's front
             // face follows, so culling and `front_facing` (the double-sided flip) stay right.
             GpuInstance {
@@ -309,6 +380,7 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, pre
                 features: object.features(),
                 mip_filter: instance.mip_filter,
                 bind_group,
+                lean_bind_group,
             }
         })
         .collect();

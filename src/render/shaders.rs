@@ -3,7 +3,8 @@
 //! time. The mesh pass is assembled twice, once per stage interface: its entry points are
 //! written once over `Varyings`, which `mesh_varyings.wgsl` makes the plain `VertexOutput` and
 //! `mesh_varyings_per_vertex.wgsl` the same plus the per-vertex light direction and half
-//! vector ([`MESH_PER_VERTEX`]).
+//! vector ([`MESH_PER_VERTEX`]); and a third time for LEAN's pipelines, with LEAN's texture
+//! bound ([`MESH_LEAN`]).
 
 /// One shader module: its label and its files (name, text) in order.
 #[derive(Debug, Clone, Copy)]
@@ -35,12 +36,16 @@ const MESH_COMMON: [(&str, &str); 2] = [wgsl_file!("object.wgsl"), wgsl_file!("c
 /// The mesh pass's files followed by `$varyings`, its stage interface.
 macro_rules! mesh_files {
     ($varyings:literal) => {
+        mesh_files!($varyings, "lean_unbound.wgsl")
+    };
+    ($varyings:literal, $lean:literal) => {
         &[
             FRAME,
             MESH_COMMON[0],
             MESH_COMMON[1],
             wgsl_file!("normal_map.wgsl"),
             wgsl_file!("mip_filter.wgsl"),
+            wgsl_file!($lean),
             wgsl_file!("surface_color.wgsl"),
             wgsl_file!("pbr.wgsl"),
             wgsl_file!("parallax.wgsl"),
@@ -59,6 +64,10 @@ pub const MESH: Wgsl = Wgsl { label: "mesh", files: mesh_files!("mesh_varyings.w
 /// legacy looks and the per-vertex mistakes.
 pub const MESH_PER_VERTEX: Wgsl =
     Wgsl { label: "mesh (per-vertex vectors)", files: mesh_files!("mesh_varyings_per_vertex.wgsl") };
+/// The mesh pass of LEAN's pipelines: LEAN's texture bound in group 2 (lean.wgsl), with the
+/// per-vertex vectors (so one module serves every view, legacy look and mistake).
+pub const MESH_LEAN: Wgsl =
+    Wgsl { label: "mesh (LEAN)", files: mesh_files!("mesh_varyings_per_vertex.wgsl", "lean.wgsl") };
 /// The Difference view of a mesh with frames against its reference frames.
 pub const DIFFERENCE: Wgsl =
     Wgsl { label: "difference", files: &[FRAME, MESH_COMMON[0], MESH_COMMON[1], wgsl_file!("difference.wgsl")] };
@@ -74,9 +83,10 @@ pub const MARKER: Wgsl = Wgsl { label: "marker", files: &[FRAME, wgsl_file!("mar
 pub const FLOOR: Wgsl = Wgsl { label: "floor", files: &[wgsl_file!("floor.wgsl")] };
 
 /// Every module, with the entry points the pipelines name in it.
-pub const ALL: [(Wgsl, &[&str]); 7] = [
+pub const ALL: [(Wgsl, &[&str]); 8] = [
     (MESH, &MESH_ENTRY_POINTS),
     (MESH_PER_VERTEX, &MESH_ENTRY_POINTS),
+    (MESH_LEAN, &MESH_ENTRY_POINTS),
     (DIFFERENCE, &["vs_difference", "fs_difference"]),
     (WIREFRAME, &["vs_wireframe", "fs_wireframe"]),
     (GLYPHS, &["vs_glyph", "fs_glyph"]),
@@ -84,7 +94,7 @@ pub const ALL: [(Wgsl, &[&str]); 7] = [
     (FLOOR, &["vs_floor", "fs_floor"]),
 ];
 
-/// The mesh pass's entry points, the same in both of its modules.
+/// The mesh pass's entry points, the same in each of its modules.
 const MESH_ENTRY_POINTS: [&str; 8] = [
     "vs_plain",
     "vs_tangent",
@@ -136,7 +146,7 @@ mod tests {
     }
 
     /// The mesh pass's pipeline constants, each declared once (in the file of its step), so the
-    /// pipelines can set them; both interfaces of the mesh pass have the same.
+    /// pipelines can set them; every module of the mesh pass has the same.
     #[test]
     fn the_mesh_pass_has_the_pipeline_constants() {
         let overrides = |wgsl: &Wgsl| -> BTreeSet<String> {
@@ -155,6 +165,7 @@ mod tests {
         ];
         assert_eq!(overrides(&MESH), expected.iter().map(|s| s.to_string()).collect());
         assert_eq!(overrides(&MESH_PER_VERTEX), overrides(&MESH));
+        assert_eq!(overrides(&MESH_LEAN), overrides(&MESH));
         for wgsl in [DIFFERENCE, WIREFRAME, GLYPHS] {
             assert_eq!(overrides(&wgsl), BTreeSet::from(["TARGET_ENCODES_SRGB".to_string()]), "{}", wgsl.label);
         }

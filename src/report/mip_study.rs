@@ -181,11 +181,16 @@ fn prepared(specimen: &MipSpecimen, filter: MipFilter) -> PreparedScene {
     PreparedScene::new(&specimen.scene, &SceneOptions { mip_filter: filter, ..Default::default() })
 }
 
-/// Bytes of every texture level `prepared` uploads (RGBA8).
+/// Bytes of every texture level `prepared` uploads (RGBA8 chains, and LEAN's half-float moments).
 pub fn texture_bytes(prepared: &PreparedScene) -> u64 {
     (0..prepared.scene.textures.len())
         .filter(|&i| prepared.uses_texture(i))
-        .map(|i| prepared.mip_chain(i).iter().map(|level| level.rgba.len() as u64).sum::<u64>())
+        .map(|i| {
+            let chain: u64 = prepared.mip_chain(i).iter().map(|level| level.rgba.len() as u64).sum();
+            // LEAN's moments: `Rgba16Float`, 8 bytes a texel, made only where LEAN draws.
+            let moments: u64 = prepared.lean_texture(i).unwrap_or_default().iter().map(|l| 8 * l.texels.len() as u64).sum();
+            chain + moments
+        })
         .sum()
 }
 

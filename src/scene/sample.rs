@@ -5,21 +5,41 @@ use glam::{Vec2, Vec3, Vec4};
 
 use super::{SamplerWrap, TextureImage, TextureKind, Wrap};
 use crate::math::srgb_to_linear;
+use crate::texture::LeanTexels;
 
 /// Texture `chain` (mip levels, level 0 first) at `uv` as the GPU's sampler reads it (linear
 /// filtering, linear between mip levels, no anisotropy): level of detail `log2` of the longer
 /// of the footprint's derivatives in texels (`footprint`: d(uv)/dx and d(uv)/dy per pixel;
 /// `None`: level 0), bilinear at level 0 when magnified, else between the two levels around it.
 pub fn sample_trilinear(chain: &[TextureImage], uv: Vec2, wrap: SamplerWrap, footprint: Option<(Vec2, Vec2)>) -> Vec4 {
-    let texels = Vec2::new(chain[0].width as f32, chain[0].height as f32);
-    let lod = footprint.map_or(0.0, |(dx, dy)| (dx * texels).length().max((dy * texels).length()).log2());
-    let lod = if lod.is_finite() { lod.clamp(0.0, (chain.len() - 1) as f32) } else { 0.0 };
+    let size = Vec2::new(chain[0].width as f32, chain[0].height as f32);
+    trilinear(size, chain.len(), footprint, |level| sample_bilinear(&chain[level], uv, wrap))
+}
+
+/// LEAN's texture (float levels, level 0 first) at `uv` as the GPU's sampler reads it: as
+/// [`sample_trilinear`], with no decoding.
+pub fn sample_trilinear_texels(
+    chain: &[LeanTexels],
+    uv: Vec2,
+    wrap: SamplerWrap,
+    footprint: Option<(Vec2, Vec2)>,
+) -> Vec4 {
+    let size = Vec2::new(chain[0].width as f32, chain[0].height as f32);
+    trilinear(size, chain.len(), footprint, |level| {
+        let texels = &chain[level];
+        let width = texels.width;
+        bilinear([width, texels.height], uv, wrap, |x, y| texels.texels[(y * width + x) as usize])
+    })
+}
+
+/// The trilinear blend of `levels` mip levels read by `sample` (a level's bilinear read), at
+/// the level of detail of `footprint` on a level 0 of `size` texels.
+fn trilinear(size: Vec2, levels: usize, footprint: Option<(Vec2, Vec2)>, sample: impl Fn(usize) -> Vec4) -> Vec4 {
+    let lod = footprint.map_or(0.0, |(dx, dy)| (dx * size).length().max((dy * size).length()).log2());
+    let lod = if lod.is_finite() { lod.clamp(0.0, (levels - 1) as f32) } else { 0.0 };
     let level = lod.floor() as usize;
-    let fine = sample_bilinear(&chain[level], uv, wrap);
-    match chain.get(level + 1) {
-        Some(coarse) if lod > level as f32 => fine.lerp(sample_bilinear(coarse, uv, wrap), lod - level as f32),
-        _ => fine,
-    }
+    let fine = sample(level);
+    if level + 1 < levels && lod > level as f32 { fine.lerp(sample(level + 1), lod - level as f32) } else { fine }
 }
 
 /// Integer texel coordinate `i` of a `size`-texel axis under a wrap mode.
@@ -46,23 +66,31 @@ pub fn nearest_texel(texture: &TextureImage, uv: Vec2, wrap: SamplerWrap) -> [u3
 /// it with the given wrap modes; sRGB colour texels are decoded to linear before filtering, as
 /// through an sRGB texture view (alpha is linear).
 pub fn sample_bilinear(texture: &TextureImage, uv: Vec2, wrap: SamplerWrap) -> Vec4 {
-    let x = uv.x * texture.width as f32 - 0.5;
-    let y = uv.y * texture.height as f32 - 0.5;
-    let (x0, y0) = (x.floor(), y.floor());
-    let (fx, fy) = (x - x0, y - y0);
-    let texel = |dx: i64, dy: i64| {
-        let tx = wrap_texel(x0 as i64 + dx, texture.width, wrap.u);
-        let ty = wrap_texel(y0 as i64 + dy, texture.height, wrap.v);
-        let t = texture.texel(tx, ty);
+    bilinear([texture.width, texture.height], uv, wrap, |x, y| {
+        let t = texture.texel(i64::from(x), i64::from(y));
         let rgb = Vec3::new(t[0] as f32, t[1] as f32, t[2] as f32) / 255.0;
         let rgb = match texture.kind {
             TextureKind::Color => rgb.map(srgb_to_linear),
             TextureKind::NormalMap | TextureKind::Height | TextureKind::Data => rgb,
         };
         rgb.extend(t[3] as f32 / 255.0)
+    })
+}
+
+/// The bilinear blend at `uv` of the four texels `texel` gives (wrapped texel coordinates) on
+/// a `width × height` level.
+fn bilinear([width, height]: [u32; 2], uv: Vec2, wrap: SamplerWrap, texel: impl Fn(u32, u32) -> Vec4) -> Vec4 {
+    let x = uv.x * width as f32 - 0.5;
+    let y = uv.y * height as f32 - 0.5;
+    let (x0, y0) = (x.floor(), y.floor());
+    let (fx, fy) = (x - x0, y - y0);
+    let at = |dx: i64, dy: i64| {
+        let tx = wrap_texel(x0 as i64 + dx, width, wrap.u);
+        let ty = wrap_texel(y0 as i64 + dy, height, wrap.v);
+        texel(tx as u32, ty as u32)
     };
-    let top = texel(0, 0).lerp(texel(1, 0), fx);
-    let bottom = texel(0, 1).lerp(texel(1, 1), fx);
+    let top = at(0, 0).lerp(at(1, 0), fx);
+    let bottom = at(0, 1).lerp(at(1, 1), fx);
     top.lerp(bottom, fy)
 }
 

@@ -1,11 +1,13 @@
 //! LEAN mapping's moments of a normal map (Olano & Baker, "LEAN mapping", I3D 2010): per texel
 //! the slopes `B = (nx/nz, ny/nz)` and their second moments `M = (Bx², By², Bx·By)`, box-filtered
 //! down the mip chain. Both are linear in the texels, so a mip texel's moments are exactly the
-//! means over the base texels it covers and `M − B·Bᵀ` is their covariance. Stored in floats
-//! (the GPU would take `Rgba16Float`): in 8 bits the cancellation in `M − B·Bᵀ` loses the
-//! variance (Olano & Baker scale `B` by a per-map factor for that; floats need none).
+//! means over the base texels it covers and `M − B·Bᵀ` is their covariance. Made in floats and
+//! uploaded as `Rgba16Float` ([`LeanTexels`]: `(Bx, By, Bx², By²)`, 11 significant bits): in
+//! 8 bits the cancellation in `M − B·Bᵀ` loses the variance (Olano & Baker scale `B` by a
+//! per-map factor for that); in half floats a single slope's `Bx² − (Bx)²` is rounding noise
+//! of a few `2⁻¹¹·Bx²`, which `shading::mip_filter::LEAN_HALF_FLOOR` takes off.
 
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 
 use super::{TextureImage, decode_unit_normal};
 
@@ -63,5 +65,102 @@ impl TextureImage {
             levels.push(LeanLevel { width: nw as u32, height: nh as u32, first, second });
         }
         levels
+    }
+}
+
+/// One level of LEAN's texture as the GPU gets it (`Rgba16Float`, 8 bytes a texel): per texel
+/// `(Bx, By, Bx², By²)`, each rounded to the nearest half float ([`round_to_half`]), row by row.
+/// `Bx·By` is left out: the shader widens the highlight by the covariance's trace alone.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LeanTexels {
+    pub width: u32,
+    pub height: u32,
+    pub texels: Vec<Vec4>,
+}
+
+impl LeanLevel {
+    /// This level as uploaded: `(Bx, By, Bx², By²)` rounded to half floats.
+    pub fn texels(&self) -> LeanTexels {
+        let texels = self.first.iter().zip(&self.second).map(|(b, m)| Vec4::new(b.x, b.y, m.x, m.y).map(round_to_half));
+        LeanTexels { width: self.width, height: self.height, texels: texels.collect() }
+    }
+}
+
+impl LeanTexels {
+    /// The texels' half-float bit patterns, RGBA row by row (`Rgba16Float`'s bytes, native endian).
+    pub fn half_bits(&self) -> Vec<u16> {
+        self.texels.iter().flat_map(|t| t.to_array().map(half_bits)).collect()
+    }
+}
+
+impl TextureImage {
+    /// LEAN's texture of this RGB normal map as uploaded ([`LeanTexels`]), level 0 first down
+    /// to 1×1: the moments of [`TextureImage::lean_moments`] in half floats.
+    pub fn lean_texture(&self) -> Vec<LeanTexels> {
+        self.lean_moments().iter().map(LeanLevel::texels).collect()
+    }
+}
+
+/// The IEEE 754 half float nearest `x` (ties to even; beyond ±65504 infinite), bit for bit.
+pub fn half_bits(x: f32) -> u16 {
+    let bits = x.to_bits();
+    let sign = ((bits >> 16) & 0x8000) as u16;
+    let magnitude = bits & 0x7fff_ffff;
+    if magnitude >= 0x7f80_0000 {
+        return sign | if magnitude > 0x7f80_0000 { 0x7e00 } else { 0x7c00 };
+    }
+    let exponent = (magnitude >> 23) as i32 - 127;
+    if exponent > 15 {
+        return sign | 0x7c00;
+    }
+    if exponent >= -14 {
+        let mantissa = magnitude & 0x7f_ffff;
+        let truncated = (((exponent + 15) as u32) << 10) | (mantissa >> 13);
+        let rest = mantissa & 0x1fff;
+        let up = rest > 0x1000 || (rest == 0x1000 && truncated & 1 == 1);
+        // A carry out of the mantissa steps the exponent (or reaches infinity), as it should.
+        return sign | (truncated + u32::from(up)) as u16;
+    }
+    // Subnormal: a multiple of 2⁻²⁴ (1024 of them is the smallest normal, 0x0400).
+    let multiples = (f64::from(f32::from_bits(magnitude)) * 16_777_216.0).round_ties_even() as u16;
+    sign | multiples
+}
+
+/// The value of the half float with bits `bits`.
+pub fn half_value(bits: u16) -> f32 {
+    let sign = if bits & 0x8000 != 0 { -1.0 } else { 1.0 };
+    let (exponent, mantissa) = (i32::from((bits >> 10) & 0x1f), f32::from(bits & 0x3ff));
+    sign * match exponent {
+        0 => mantissa * 2f32.powi(-24),
+        31 if mantissa == 0.0 => f32::INFINITY,
+        31 => f32::NAN,
+        e => (1.0 + mantissa / 1024.0) * 2f32.powi(e - 15),
+    }
+}
+
+/// `x` rounded to the nearest half float, as a `Rgba16Float` texture stores it.
+pub fn round_to_half(x: f32) -> f32 {
+    half_value(half_bits(x))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Known half floats, ties to even, the subnormals and the overflow.
+    #[test]
+    fn half_floats_round_to_nearest_even() {
+        for (x, bits) in [(1.0f32, 0x3c00u16), (-2.0, 0xc000), (65504.0, 0x7bff), (0.1, 0x2e66), (1.0 / 3.0, 0x3555)] {
+            assert_eq!(half_bits(x), bits, "{x}");
+        }
+        assert_eq!(half_bits(2f32.powi(-24)), 1);
+        assert_eq!(half_bits(2f32.powi(-25)), 0, "a tie rounds to the even 0");
+        assert_eq!(half_bits(1.0 + 2f32.powi(-11)), 0x3c00, "a tie rounds to the even mantissa");
+        assert_eq!(half_bits(65520.0), 0x7c00);
+        assert_eq!(half_bits(0.0), 0);
+        for bits in [0x0001u16, 0x03ff, 0x0400, 0x3555, 0x7bff, 0xbc01] {
+            assert_eq!(half_bits(half_value(bits)), bits);
+        }
+        assert_eq!(round_to_half(0.1), 0.099975586);
     }
 }

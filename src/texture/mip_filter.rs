@@ -21,8 +21,9 @@ pub enum MipFilter {
     /// Toksvig (NVIDIA technical brief 2004; JGT 2005): the averaged normal's length `|Na|`
     /// is kept per mip and widens the lobe, `s′ = |Na|·s / (|Na| + s·(1 − |Na|))`.
     Toksvig,
-    /// LEAN mapping (Olano & Baker, I3D 2010): first and second slope moments in linearly
-    /// filterable textures; the lobe from the filtered covariance.
+    /// LEAN mapping (Olano & Baker, I3D 2010): first and second slope moments in a linearly
+    /// filterable half-float texture; the normal from the mean slope, the lobe widened by the
+    /// filtered covariance's trace.
     Lean,
     /// Roughness from normal variance by a von Mises–Fisher fit (Neubelt & Pettineo 2013 as
     /// corrected by Karis 2018): `κ = (3|Na| − |Na|³) / (1 − |Na|²)`, `α′ = √(α² + 2/κ)`.
@@ -56,7 +57,8 @@ impl MipFilter {
         !matches!(self, MipFilter::BaseOnly | MipFilter::RenormalizedBox)
     }
 
-    /// Whether the method reads LEAN's two moment textures (made and uploaded only then).
+    /// Whether the method reads LEAN's texture of slope moments (made and uploaded only then,
+    /// `PreparedScene::lean_texture`).
     pub fn reads_moments(self) -> bool {
         self == MipFilter::Lean
     }

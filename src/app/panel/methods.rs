@@ -75,9 +75,6 @@ fn mip_filter(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>)
     if filter != state.scene_options.mip_filter {
         actions.push(Command::SetMipFilter(filter).into());
     }
-    if filter == MipFilter::Lean {
-        ui.weak("LEAN is not drawn yet: its materials show the re-normalised box mips");
-    }
     let camera = state.camera;
     let mut distance = camera.distance;
     let slider = egui::Slider::new(&mut distance, MIN_DISTANCE..=MAX_DISTANCE).logarithmic(true);

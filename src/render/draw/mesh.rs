@@ -24,6 +24,9 @@ pub fn record(pass: &mut wgpu::RenderPass, pipelines: &FramePipelines, scene: &G
         let mesh = &scene.meshes[instance.mesh];
         pass.set_pipeline(pipelines.get(draw.pass));
         pass.set_bind_group(1, &instance.bind_group, &[]);
+        if let (Pass::Mesh { mip_filter: MipFilter::Lean, .. }, Some(lean)) = (draw.pass, &instance.lean_bind_group) {
+            pass.set_bind_group(2, lean, &[]);
+        }
         pass.set_vertex_buffer(0, mesh.positions.slice(..));
         pass.set_vertex_buffer(1, mesh.normals.slice(..));
         pass.set_vertex_buffer(2, mesh.uvs.slice(..));
@@ -57,9 +60,13 @@ fn drawn_pass(instance: &GpuInstance, scene: &GpuScene, shading: &ShadingSetting
         _ => LightingSpace::World,
     };
     // The highlight widening is the lit views' (the debug views show the normal as drawn);
-    // the methods that do not widen share the plain pipelines.
-    let widens = lighting.is_some() && mip_filter.widens();
-    let mip_filter = if widens { mip_filter } else { MipFilter::RenormalizedBox };
+    // the methods that do not widen share the plain pipelines. LEAN draws its own normal, the
+    // mean slope's, in every view, where its texture is bound.
+    let kept = match mip_filter {
+        MipFilter::Lean => instance.lean_bind_group.is_some(),
+        _ => lighting.is_some() && mip_filter.widens(),
+    };
+    let mip_filter = if kept { mip_filter } else { MipFilter::RenormalizedBox };
     Pass::Mesh {
         variant,
         cull_back_faces,
