@@ -8,6 +8,7 @@ use super::chart::{COLOURS, ChartError, Series, png};
 use super::mip_specimen::{SHININESS, SLOPE_SIGMA, Shape};
 use super::mip_study::{MipPlan, MipRow, MipStudy, PAN_PX_PER_FRAME};
 use crate::frame::MipFilter;
+use crate::names::Named;
 
 /// The chart's file name.
 pub const CHART: &str = "mip-filters.png";

@@ -27,6 +27,7 @@ use super::gpu_time::gpu_frame_ms;
 use super::mip_specimen::{MipSpecimen, Shape};
 use crate::error::RenderError;
 use crate::frame::{FrameParams, MipFilter, Msaa, SceneOptions, ShadingSettings};
+use crate::names::Named;
 use crate::prepare::PreparedScene;
 use crate::render::capture::{FLOAT_FORMAT, draw_offscreen};
 use crate::render::{Background, DrawOptions, Renderer};
