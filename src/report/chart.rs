@@ -129,7 +129,8 @@ fn draw(buffer: &mut [u8], title: &str, axes: [&str; 2], series: &[Series], x_ax
     match x_axis {
         XAxis::Log => {
             let (x0, x1) = decades(xs());
-            let chart = builder.build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale()).map_err(|e| failed(&e))?;
+            let chart =
+                builder.build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale()).map_err(|e| failed(&e))?;
             finish(chart, axes, series, &|v| format!("{v:.0e}"), &failed)?;
         }
         XAxis::Linear => {

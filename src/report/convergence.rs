@@ -31,7 +31,8 @@ impl ReferenceStep {
 /// The step of `specimen`'s reference at `angle_deg`: `None` where the study did not draw the
 /// level below it there.
 pub fn reference_step(rows: &[ParallaxRow], specimen: &str, angle_deg: f32) -> Option<ReferenceStep> {
-    let displaced = |r: &&ParallaxRow| r.specimen == specimen && r.angle_deg == angle_deg && r.technique == DISPLACEMENT;
+    let displaced =
+        |r: &&ParallaxRow| r.specimen == specimen && r.angle_deg == angle_deg && r.technique == DISPLACEMENT;
     let level = rows.iter().filter(displaced).filter_map(|r| r.level).max()?;
     let below_level = level.checked_sub(1)?;
     let below = rows.iter().filter(displaced).find(|r| r.level == Some(below_level))?;

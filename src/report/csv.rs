@@ -55,7 +55,9 @@ pub fn render(rows: &[Row], orders: &[Order]) -> String {
 /// 0..1; the image study's GPU ms of the same case). Empty cells: no layers, no bricks, no GPU
 /// time at that angle.
 pub fn uv_rows(rows: &[UvError], gpu: &[ParallaxRow]) -> String {
-    let mut text = String::from("specimen,technique,layers,angle_deg,mean_texels,p95_texels,max_texels,wrong_brick_share,gpu_ms\n");
+    let mut text = String::from(
+        "specimen,technique,layers,angle_deg,mean_texels,p95_texels,max_texels,wrong_brick_share,gpu_ms\n",
+    );
     for r in rows {
         let name: &str = r.technique.into();
         let layers = r.layers.map_or(String::new(), |n| n.to_string());

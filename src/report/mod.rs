@@ -310,15 +310,23 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
         blinn: &blinn,
         charts: &charts,
     });
-    let reliefs = std::iter::once(uv_error::Relief::wall())
-        .chain(study.specimens.iter().filter(|s| s.name == "Rock058").filter_map(|s| uv_error::Relief::of_specimen("Rock058", s)));
+    let reliefs = std::iter::once(uv_error::Relief::wall()).chain(
+        study
+            .specimens
+            .iter()
+            .filter(|s| s.name == "Rock058")
+            .filter_map(|s| uv_error::Relief::of_specimen("Rock058", s)),
+    );
     let mut uv_rows = vec![];
     let mut uv_charts = vec![];
     for relief in reliefs {
         uv_rows.extend(uv_error::study(&relief, &uv_error::report_angles(), &plan.parallax.layers, plan.uv_grid));
         if let Some(bytes) = uv_chart::ms_chart(&uv_rows, &study.rows, relief.name, angle) {
             let name = uv_chart::ms_chart_name(relief.name, angle);
-            uv_charts.push((format!("{}: mean UV error against GPU ms at {angle}°, the Pareto front marked", relief.name), name.clone()));
+            uv_charts.push((
+                format!("{}: mean UV error against GPU ms at {angle}°, the Pareto front marked", relief.name),
+                name.clone(),
+            ));
             chart_files.push((name, bytes?));
         }
         let name = uv_chart::angle_chart_name(relief.name);

@@ -168,7 +168,10 @@ pub fn markdown(page: &ParallaxPage) -> String {
                 );
             }
             None => {
-                let _ = writeln!(s, "Reference: **convergence not measured** (no level below it drawn). No chart is drawn against it.\n");
+                let _ = writeln!(
+                    s,
+                    "Reference: **convergence not measured** (no level below it drawn). No chart is drawn against it.\n"
+                );
             }
         }
         let floor = face_on_floor(page.rows, specimen);

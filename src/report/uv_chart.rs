@@ -72,9 +72,19 @@ pub fn ms_chart(
         return None;
     }
     let all: Vec<(f64, f64)> = series.iter().flat_map(|s| s.points.iter().copied()).collect();
-    series.push(Series { label: "Pareto front".into(), colour: BLACK, marker: Marker::Line, points: pareto_front(&all) });
+    series.push(Series {
+        label: "Pareto front".into(),
+        colour: BLACK,
+        marker: Marker::Line,
+        points: pareto_front(&all),
+    });
     let title = format!("{specimen} at {angle_deg}°: mean UV error vs GPU frame time (a point per layer count)");
-    Some(png(&title, ["median GPU frame time (ms)", "mean UV error against the exact hit (texels)"], &series, XAxis::Log))
+    Some(png(
+        &title,
+        ["median GPU frame time (ms)", "mean UV error against the exact hit (texels)"],
+        &series,
+        XAxis::Log,
+    ))
 }
 
 /// Mean UV error against the view angle on `specimen`: offset and offset-limited, and each
@@ -105,7 +115,12 @@ pub fn angle_chart(rows: &[UvError], specimen: &str, layers: &[u32]) -> Result<V
         }
     }
     let title = format!("{specimen}: mean UV error vs view angle (0 drawn at {TEXEL_FLOOR})");
-    png(&title, ["view angle from the normal (°)", "mean UV error against the exact hit (texels)"], &series, XAxis::Linear)
+    png(
+        &title,
+        ["view angle from the normal (°)", "mean UV error against the exact hit (texels)"],
+        &series,
+        XAxis::Linear,
+    )
 }
 
 #[cfg(test)]

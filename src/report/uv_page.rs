@@ -67,7 +67,9 @@ pub fn markdown(rows: &[UvError], gpu: &[ParallaxRow], grid: u32, charts: &[(Str
         }
         let _ = writeln!(s, "\n|---|---|{}", "---|".repeat(angles.len()));
         for specimen in &specimens {
-            for technique in [Parallax::Offset, Parallax::OffsetLimited, Parallax::Steep, Parallax::Occlusion, Parallax::Relief] {
+            for technique in
+                [Parallax::Offset, Parallax::OffsetLimited, Parallax::Steep, Parallax::Occlusion, Parallax::Relief]
+            {
                 let name: &str = technique.into();
                 let _ = write!(s, "| {specimen} | {name} |");
                 for &angle in &angles {
@@ -135,7 +137,10 @@ mod tests {
         };
         let page = markdown(&[uv(70.0), uv(75.0)], &[gpu], 8, &[]);
         let name: &str = Parallax::Relief.into();
-        assert!(page.contains(&format!("| wall | {name} | 32 | 70° | 0.013 | 0.500 | 2.000 | 25.0 % | 1.250 |")), "{page}");
+        assert!(
+            page.contains(&format!("| wall | {name} | 32 | 70° | 0.013 | 0.500 | 2.000 | 25.0 % | 1.250 |")),
+            "{page}"
+        );
         assert!(page.contains(&format!("| wall | {name} | 32 | 75° | 0.013 | 0.500 | 2.000 | 25.0 % | — |")), "{page}");
         // The layer table: relief gets under half a texel with 32 layers at 70°, at 1.25 ms.
         assert!(page.contains(&format!("| wall | {name} | 32 (0.013) · 1.2 ms |")), "{page}");
