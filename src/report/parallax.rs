@@ -1,6 +1,7 @@
 //! The parallax family's image error against frame time: every technique and layer count
 //! drawn on the GPU and compared, pixel by pixel, with displacement (the ground truth,
-//! [`crate::frame::Displacement`]) at a tessellation where its picture has stopped changing.
+//! [`crate::frame::Displacement`]) at a tessellation where its picture has stopped changing
+//! (tested on the page: [`super::convergence::reference_step`]).
 //!
 //! A specimen is a surface, its material and where to look from: `angle` degrees from the
 //! surface normal (about +Y, the camera on the +Z side at 0°). Error is the RMSE of the
@@ -44,7 +45,8 @@ pub struct Specimen {
     pub scene: Scene,
     pub target: Vec3,
     pub distance: f32,
-    /// The level where its picture has stopped changing (the convergence table shows it).
+    /// The level where its picture has stopped changing (the page's convergence test,
+    /// [`super::convergence::reference_step`], says whether it has).
     pub reference_level: u32,
     /// For a square in the z = 0 plane: errors count only pixels whose view ray meets the
     /// plane within this many metres of the centre along x and y (inside the border, where

@@ -103,11 +103,11 @@ pub fn markdown(page: &ParallaxPage) -> String {
         s,
         "Every technique drawn at {}×{} pixels (4× MSAA where the adapter has it) on **{}**, against \
          displacement (the mesh tessellated on the CPU and displaced, its exact normals) at the level \
-         where its picture stopped changing. Error: RMSE of the linear RGB channels, and the share of \
-         pixels with a channel off by more than {OFF_BY}/255, over the picture (on the squares over \
-         the pixels whose view ray meets the surface within {} m of the centre). Time: median of {} \
-         full-quality frame(s), {}. Relief takes 5 binary-search steps; depth is each material's \
-         height range.\n",
+         where its picture stopped changing (each surface's test below). Error: RMSE of the linear \
+         RGB channels, and the share of pixels with a channel off by more than {OFF_BY}/255, over the \
+         picture (on the squares over the pixels whose view ray meets the surface within {} m of the \
+         centre). Time: median of {} full-quality frame(s), {}. Relief takes 5 binary-search steps; \
+         depth is each material's height range.\n",
         plan.size[0],
         plan.size[1],
         page.adapter,
