@@ -76,7 +76,7 @@ pub fn markdown(rows: &[UvError], gpu: &[ParallaxRow], grid: u32, charts: &[(Str
                     let cell = match layers_for(rows, specimen, technique, angle) {
                         None => "never".to_owned(),
                         Some(r) => {
-                            let layers = r.layers.map_or("yes".to_owned(), |n| format!("{n}"));
+                            let layers = r.layers.map_or("no search".to_owned(), |n| format!("{n}"));
                             let ms = gpu_ms(r, gpu).map_or(String::new(), |ms| format!(" · {ms:.1} ms"));
                             format!("{layers} ({:.3}){ms}", r.mean)
                         }
