@@ -211,25 +211,42 @@ fn quick_report_writes_a_row_for_every_method_and_kernel_and_valid_charts() {
     // the angles the image study drew.
     assert!(markdown_mentions(&dir, "## Parallax: texture-space error against the exact intersection"));
     for angle in (0..=85).step_by(5) {
-        assert!(markdown_mentions(&dir, &format!("| relief | 32 | {angle}° |")), "relief 32 at {angle}°");
+        assert!(markdown_mentions(&dir, &format!("| wall | relief | 32 | {angle}° |")), "relief 32 at {angle}°");
     }
     let uv_line = |angle: &str| {
         let markdown = std::fs::read_to_string(dir.join("report.md")).unwrap();
-        markdown.lines().find(|l| l.starts_with(&format!("| relief | 32 | {angle}° |"))).unwrap().to_owned()
+        markdown.lines().find(|l| l.starts_with(&format!("| wall | relief | 32 | {angle}° |"))).unwrap().to_owned()
     };
     assert!(!uv_line("70").ends_with("| — |") && uv_line("75").ends_with("| — |"), "{}", uv_line("70"));
     // The mip filters at 16× on the plane and the torus: a row per method the renderer draws,
     // the section with its answer, and the chart.
     let mip = std::fs::read_to_string(dir.join("mip-filters.csv")).unwrap();
     for specimen in ["plane", "torus"] {
-        for method in ["base-only", "renormalized-box", "toksvig"] {
+        for method in ["base-only", "renormalized-box", "toksvig", "lean", "vmf"] {
             let row = format!("{specimen},16,{method},");
             assert!(mip.lines().any(|l| l.starts_with(&row)), "{row} in {mip}");
         }
     }
     assert!(markdown_mentions(&dir, "## Normal maps at a distance: mip filters against a supersampled reference"));
     assert!(markdown_mentions(&dir, "At 16× on the plane, **"));
-    for chart in ["tangents.png", "kernels.png", "parallax-wall.png", "mip-filters.png"] {
+    // The UV rows' CSV: a row per technique, layer count and angle (offset and
+    // offset-limited once), every line as long as the header.
+    let uv = std::fs::read_to_string(dir.join("uv-error.csv")).unwrap();
+    let uv_rows: Vec<Vec<&str>> = uv.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    assert_eq!(uv_rows.len(), 18 * (2 + 3 * 2), "{uv}");
+    assert!(uv_rows.iter().all(|r| r.len() == uv.lines().next().unwrap().split(',').count()));
+    let relief_70 = uv_rows.iter().find(|r| r[1] == "relief" && r[2] == "32" && r[3] == "70").unwrap();
+    assert!(uv_line("70").contains(&format!("| {:.3} |", relief_70[4].parse::<f64>().unwrap())), "{relief_70:?}");
+    // The face-on floor: the best technique at 0°, and each 70° cell's part above it.
+    let floor = parallax_rows
+        .iter()
+        .filter(|r| r[1] == "0" && !["off", "displacement"].contains(&r[2]))
+        .map(|r| r[5].parse::<f64>().unwrap())
+        .fold(f64::MAX, f64::min);
+    assert!(markdown_mentions(&dir, &format!("Face-on floor: **{floor:.4}** RMSE")), "floor {floor}");
+    let occlusion = rmse("occlusion", "32");
+    assert!(markdown_mentions(&dir, &format!(" {occlusion:.4} (+{:.4}) ·", occlusion - floor)), "{occlusion}");
+    for chart in ["tangents.png", "kernels.png", "parallax-wall.png", "uv-ms-wall-70.png", "uv-angle-wall.png", "mip-filters.png"] {
         let image = image::open(dir.join(chart)).unwrap_or_else(|e| panic!("{chart}: {e}"));
         let rgb = image.to_rgb8();
         let first = *rgb.get_pixel(0, 0);
@@ -241,7 +258,35 @@ fn quick_report_writes_a_row_for_every_method_and_kernel_and_valid_charts() {
         assert!(markdown.contains(&format!("| {size}×{size} |")), "the cube map row of {size}");
     }
     assert!(!std::fs::read_dir(&dir).unwrap().any(|e| e.unwrap().file_name().to_string_lossy().ends_with(".tmp")));
+    the_quick_runs_reference_passes_the_full_runs_convergence_test(&dir);
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The quick run's displacement reference passes the full run's convergence test: its picture
+/// at 70° one level coarser is within `REFERENCE_STEP_RMSE` of it, and the page says so.
+/// (Called from the quick report's test, which runs `report --quick` once for both.)
+fn the_quick_runs_reference_passes_the_full_runs_convergence_test(dir: &std::path::Path) {
+    use bumpview::report::convergence::{REFERENCE_STEP_RMSE, ReferenceStep, reference_step};
+    use bumpview::report::parallax::{DISPLACEMENT, ImageError, ParallaxRow};
+    let parallax = std::fs::read_to_string(dir.join("parallax.csv")).unwrap();
+    let rows: Vec<ParallaxRow> = parallax
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .filter(|r| r[2] == DISPLACEMENT)
+        .map(|r| ParallaxRow {
+            specimen: r[0].to_owned(),
+            angle_deg: r[1].parse().unwrap(),
+            technique: DISPLACEMENT,
+            layers: None,
+            level: r[4].parse().ok(),
+            error: ImageError { rmse: r[5].parse().unwrap(), off_share: r[6].parse().unwrap() },
+            frame_ms: r[7].parse().unwrap(),
+        })
+        .collect();
+    let step: ReferenceStep = reference_step(&rows, "wall", 70.0).expect("the level below the reference drawn");
+    assert!(step.converged() && step.below.rmse <= REFERENCE_STEP_RMSE, "{step:?}");
+    assert!(markdown_mentions(dir, &format!("Reference level {}: **converged**", step.level)), "{step:?}");
 }
 
 #[test]

@@ -30,7 +30,7 @@ fn each_search_gets_closer_as_its_layers_grow() {
 }
 
 /// Face-on, and at depth 0 from every angle, no technique moves the UV and the exact hit is
-/// straight below: the error is exactly 0, with no point on the wrong region.
+/// straight below: the error is exactly 0, with no point on the wrong brick.
 #[test]
 fn face_on_and_depth_zero_have_no_uv_error() {
     let wall = Relief::wall();
@@ -45,8 +45,8 @@ fn face_on_and_depth_zero_have_no_uv_error() {
                 for layers in [Some(4), Some(64)] {
                     let e = uv_error(relief, &points, &hits, angle, (technique, layers));
                     assert_eq!(
-                        (e.mean, e.max, e.wrong_region),
-                        (0.0, 0.0, 0.0),
+                        (e.mean, e.max, e.wrong_brick),
+                        (0.0, 0.0, Some(0.0)),
                         "{technique:?} {angle}° depth {}",
                         relief.depth_m
                     );
@@ -68,18 +68,20 @@ fn relief_at_64_layers_is_within_a_twentieth_of_a_texel_at_70_degrees() {
     assert!(e.mean < 0.05 && e.p95 < 0.05, "{e:?}");
 }
 
-/// A wrong region needs the UV path to read both a brick face and mortar: within one face
-/// (or one joint) it is a shift, from a face into a joint it is not.
+/// A wrong brick needs the UV path to read both a brick face and mortar: within one face
+/// (or one joint) it is a shift; from a face into a joint, or across a joint onto the next
+/// face, it is not.
 #[test]
-fn a_wrong_region_spans_a_face_and_a_joint() {
+fn a_wrong_brick_spans_a_face_and_a_joint() {
     use bumpview::height::HeightField;
     use glam::DVec2;
-    // Eight texels across: a face (1.0) over the first four, a joint (0.0) over the rest.
-    let samples = vec![1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0];
-    let field = HeightField { width: 8, height: 1, samples, range_m: 0.01, texel_size_m: 0.125 };
-    let relief = Relief { field, depth_m: 0.01, tile_m: 1.0 };
-    let at = |u: f64| DVec2::new(u, 0.5);
-    assert!(!relief.crosses_region(at(0.1), at(0.4)), "within the face");
-    assert!(!relief.crosses_region(at(0.6), at(0.9)), "within the joint");
-    assert!(relief.crosses_region(at(0.3), at(0.7)) && relief.crosses_region(at(0.7), at(0.3)));
+    // Twelve texels across: a face (1.0), a joint (0.0), another face, four texels each.
+    let samples = [1.0, 0.0, 1.0].iter().flat_map(|&h| [h; 4]).collect();
+    let field = HeightField { width: 12, height: 1, samples, range_m: 0.01, texel_size_m: 1.0 / 12.0 };
+    let relief = Relief { name: "strip", bricks: true, field, depth_m: 0.01, tile_m: 1.0 };
+    let at = |texel: f64| DVec2::new(texel / 12.0, 0.5);
+    assert!(!relief.crosses_region(at(0.6), at(2.9)), "within the first face");
+    assert!(!relief.crosses_region(at(5.6), at(6.9)), "within the joint");
+    assert!(relief.crosses_region(at(2.9), at(6.0)) && relief.crosses_region(at(6.0), at(2.9)), "face and joint");
+    assert!(relief.crosses_region(at(1.0), at(10.0)), "across the joint onto the other face");
 }

@@ -1,7 +1,43 @@
-//! Convergence orders: how fast the error falls as the resolution grows.
+//! Convergence: how fast the error falls as the resolution grows (fitted orders), and whether
+//! the parallax study's displacement reference has converged (one test for the full and the
+//! quick run).
 
 use super::measure::{Row, Study, Vector};
+use super::parallax::{DISPLACEMENT, ImageError, ParallaxRow};
 use super::surfaces::Region;
+
+/// The displacement reference's test: its picture at the convergence angle differs from the
+/// picture one level coarser by at most this RMSE (linear RGB, 1 % of the range). Each level
+/// halves the tessellation's edge and the step between levels falls about as fast as the
+/// error does (level 8, 9 → 10 on the wall at 70°: 0.0116, 0.0057), so a reference that passes
+/// is about one step, under 1 %, from the converged picture.
+pub const REFERENCE_STEP_RMSE: f64 = 0.01;
+
+/// A specimen's reference level and how far the picture one level below it is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReferenceStep {
+    pub level: u32,
+    /// The level below against the reference, at the convergence angle.
+    pub below: ImageError,
+}
+
+impl ReferenceStep {
+    /// Whether the reference passes the test ([`REFERENCE_STEP_RMSE`]).
+    pub fn converged(&self) -> bool {
+        self.below.rmse <= REFERENCE_STEP_RMSE
+    }
+}
+
+/// The step of `specimen`'s reference at `angle_deg`: `None` where the study did not draw the
+/// level below it there.
+pub fn reference_step(rows: &[ParallaxRow], specimen: &str, angle_deg: f32) -> Option<ReferenceStep> {
+    let displaced =
+        |r: &&ParallaxRow| r.specimen == specimen && r.angle_deg == angle_deg && r.technique == DISPLACEMENT;
+    let level = rows.iter().filter(displaced).filter_map(|r| r.level).max()?;
+    let below_level = level.checked_sub(1)?;
+    let below = rows.iter().filter(displaced).find(|r| r.level == Some(below_level))?;
+    Some(ReferenceStep { level, below: below.error })
+}
 
 /// Mean errors at or below this many degrees are rounding noise of f32 frames and samples,
 /// not truncation error, and are left out of the fits.
@@ -72,6 +108,31 @@ pub fn orders(rows: &[Row]) -> Vec<Order> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn displaced(level: u32, rmse: f64) -> ParallaxRow {
+        ParallaxRow {
+            specimen: "wall".into(),
+            angle_deg: 70.0,
+            technique: DISPLACEMENT,
+            layers: None,
+            level: Some(level),
+            error: ImageError { rmse, off_share: 0.5 },
+            frame_ms: 1.0,
+        }
+    }
+
+    #[test]
+    fn the_reference_step_is_the_level_below_against_the_reference() {
+        let rows = [displaced(10, 0.0), displaced(8, 0.0116), displaced(9, 0.0057)];
+        let step = reference_step(&rows, "wall", 70.0).expect("a step");
+        assert_eq!(step.level, 10);
+        assert_eq!(step.below.rmse, 0.0057);
+        assert!(step.converged());
+        let coarse = [displaced(7, 0.0), displaced(6, 0.0290)];
+        assert!(!reference_step(&coarse, "wall", 70.0).expect("a step").converged());
+        assert_eq!(reference_step(&rows, "wall", 0.0), None);
+        assert_eq!(reference_step(&rows[..1], "wall", 70.0), None);
+    }
 
     #[test]
     fn power_laws_give_their_exponent() {

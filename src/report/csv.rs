@@ -1,8 +1,13 @@
 //! `report.csv`: one row per (method, surface, resolution, region), angles in degrees,
-//! times in seconds.
+//! times in seconds; `uv-error.csv`: one row per UV-error case.
+
+use std::fmt::Write;
 
 use super::convergence::Order;
 use super::measure::{Row, Study, Vector};
+use super::parallax::ParallaxRow;
+use super::uv_error::UvError;
+use super::uv_page::gpu_ms;
 
 const HEADER: &str = "study,method,surface,resolution,resolution_label,region,count,\
 t_mean_deg,t_rms_deg,t_max_deg,t_order,b_mean_deg,b_rms_deg,b_max_deg,b_order,\
@@ -44,4 +49,50 @@ pub fn render(rows: &[Row], orders: &[Order]) -> String {
         text.push('\n');
     }
     text
+}
+
+/// The UV-error study's CSV text: a header line, then one line per row (texels; the share
+/// 0..1; the image study's GPU ms of the same case). Empty cells: no layers, no bricks, no GPU
+/// time at that angle.
+pub fn uv_rows(rows: &[UvError], gpu: &[ParallaxRow]) -> String {
+    let mut text = String::from(
+        "specimen,technique,layers,angle_deg,mean_texels,p95_texels,max_texels,wrong_brick_share,gpu_ms\n",
+    );
+    for r in rows {
+        let name: &str = r.technique.into();
+        let layers = r.layers.map_or(String::new(), |n| n.to_string());
+        let wrong = r.wrong_brick.map_or(String::new(), |w| format!("{w:.6}"));
+        let ms = gpu_ms(r, gpu).map_or(String::new(), |ms| format!("{ms:.3}"));
+        let _ = writeln!(
+            text,
+            "{},{name},{layers},{},{:.6},{:.6},{:.6},{wrong},{ms}",
+            r.specimen, r.angle_deg, r.mean, r.p95, r.max
+        );
+    }
+    text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frame::Parallax;
+
+    #[test]
+    fn a_uv_row_leaves_empty_what_it_lacks() {
+        let row = UvError {
+            specimen: "Rock058",
+            technique: Parallax::Offset,
+            layers: None,
+            angle_deg: 45.0,
+            mean: 0.25,
+            p95: 0.5,
+            max: 1.0,
+            wrong_brick: None,
+        };
+        let text = uv_rows(&[row], &[]);
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 2);
+        assert_eq!(lines[0].split(',').count(), lines[1].split(',').count());
+        assert_eq!(lines[1], "Rock058,offset,,45,0.250000,0.500000,1.000000,,");
+    }
 }

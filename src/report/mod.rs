@@ -7,7 +7,7 @@
 
 pub mod blinn;
 mod chart;
-mod convergence;
+pub mod convergence;
 mod csv;
 pub mod cube_map;
 pub mod exact_hit;
@@ -24,6 +24,7 @@ pub mod spaces;
 pub mod stiff;
 pub mod surfaces;
 pub mod timing;
+mod uv_chart;
 pub mod uv_error;
 mod uv_page;
 
@@ -43,6 +44,7 @@ pub const CSV: &str = "report.csv";
 pub const TANGENT_CHART: &str = "tangents.png";
 pub const KERNEL_CHART: &str = "kernels.png";
 pub const PARALLAX_CSV: &str = "parallax.csv";
+pub const UV_CSV: &str = "uv-error.csv";
 
 /// The sphere (segments, rings) of the MikkTSpace sanity value.
 pub const MIKKTSPACE_SANITY_SPHERE: (u32, u32) = (256, 128);
@@ -295,8 +297,13 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
     let blinn = blinn::blinn_rows(if plan.quick { 64 } else { 256 });
     let mut charts = vec![];
     let mut chart_files = vec![];
+    let angle = plan.parallax.convergence_angle_deg;
     for specimen in study.rows.iter().map(|r| r.specimen.clone()).collect::<std::collections::BTreeSet<_>>() {
-        let bytes = parallax_page::chart(&study.rows, &specimen, plan.parallax.convergence_angle_deg)?;
+        // No curve against a reference that has not converged (the page says so).
+        if !convergence::reference_step(&study.rows, &specimen, angle).is_some_and(|step| step.converged()) {
+            continue;
+        }
+        let bytes = parallax_page::chart(&study.rows, &specimen, angle)?;
         let name = parallax_page::chart_name(&specimen);
         charts.push((specimen, name.clone()));
         chart_files.push((name, bytes));
@@ -310,9 +317,30 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
         blinn: &blinn,
         charts: &charts,
     });
-    let uv_rows =
-        uv_error::study(&uv_error::Relief::wall(), &uv_error::report_angles(), &plan.parallax.layers, plan.uv_grid);
-    let uv_section = uv_page::markdown(&uv_rows, &study.rows, plan.uv_grid);
+    let reliefs = std::iter::once(uv_error::Relief::wall()).chain(
+        study
+            .specimens
+            .iter()
+            .filter(|s| s.name == "Rock058")
+            .filter_map(|s| uv_error::Relief::of_specimen("Rock058", s)),
+    );
+    let mut uv_rows = vec![];
+    let mut uv_charts = vec![];
+    for relief in reliefs {
+        uv_rows.extend(uv_error::study(&relief, &uv_error::report_angles(), &plan.parallax.layers, plan.uv_grid));
+        if let Some(bytes) = uv_chart::ms_chart(&uv_rows, &study.rows, relief.name, angle) {
+            let name = uv_chart::ms_chart_name(relief.name, angle);
+            uv_charts.push((
+                format!("{}: mean UV error against GPU ms at {angle}°, the Pareto front marked", relief.name),
+                name.clone(),
+            ));
+            chart_files.push((name, bytes?));
+        }
+        let name = uv_chart::angle_chart_name(relief.name);
+        uv_charts.push((format!("{}: mean UV error against the view angle", relief.name), name.clone()));
+        chart_files.push((name, uv_chart::angle_chart(&uv_rows, relief.name, &plan.parallax.layers)?));
+    }
+    let uv_section = uv_page::markdown(&uv_rows, &study.rows, plan.uv_grid, &uv_charts);
     let (mip, mip_adapter, mip_notes) = mip_filter_study(&plan.mip, progress);
     let mip_section = mip_page::markdown(&mip, &plan.mip, &mip_adapter, &mip_notes);
     let sections = [markdown::render(&page), parallax_section, uv_section, mip_section];
@@ -320,6 +348,7 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
         (MARKDOWN.to_owned(), sections.join("\n").into_bytes()),
         (CSV.to_owned(), csv::render(&rows, &orders).into_bytes()),
         (PARALLAX_CSV.to_owned(), parallax_page::csv(&study.rows).into_bytes()),
+        (UV_CSV.to_owned(), csv::uv_rows(&uv_rows, &study.rows).into_bytes()),
         (TANGENT_CHART.to_owned(), tangent_png),
         (KERNEL_CHART.to_owned(), kernel_png),
         (mip_page::CSV.to_owned(), mip_page::csv(&mip.rows).into_bytes()),
@@ -338,6 +367,8 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
 
 /// What the GPU study measured, on which adapter, and what it left out.
 struct ParallaxStudy {
+    /// The specimens drawn (or meant to be, with no GPU).
+    specimens: Vec<parallax::Specimen>,
     rows: Vec<parallax::ParallaxRow>,
     adapter: String,
     /// The device has timestamp queries inside encoders: frames are timed on the GPU.
@@ -354,7 +385,7 @@ fn parallax_study(plan: &parallax::ParallaxPlan, progress: &mut dyn FnMut(usize,
         Ok(gpu) => gpu,
         Err(e) => {
             notes.push(format!("no GPU: {e}"));
-            return ParallaxStudy { rows: vec![], adapter: "no adapter".into(), timestamps: false, notes };
+            return ParallaxStudy { specimens, rows: vec![], adapter: "no adapter".into(), timestamps: false, notes };
         }
     };
     let mut renderer = crate::render::Renderer::from_gpu(&gpu);
@@ -372,7 +403,7 @@ fn parallax_study(plan: &parallax::ParallaxPlan, progress: &mut dyn FnMut(usize,
         }
     }
     let timestamps = gpu.device.features().contains(gpu_time::FEATURES);
-    ParallaxStudy { rows, adapter: gpu.adapter_name(), timestamps, notes }
+    ParallaxStudy { specimens, rows, adapter: gpu.adapter_name(), timestamps, notes }
 }
 
 /// Runs the mip-filter study of `plan` on a headless GPU: what it measured, the adapter's

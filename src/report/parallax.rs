@@ -1,6 +1,7 @@
 //! The parallax family's image error against frame time: every technique and layer count
 //! drawn on the GPU and compared, pixel by pixel, with displacement (the ground truth,
-//! [`crate::frame::Displacement`]) at a tessellation where its picture has stopped changing.
+//! [`crate::frame::Displacement`]) at a tessellation where its picture has stopped changing
+//! (tested on the page: [`super::convergence::reference_step`]).
 //!
 //! A specimen is a surface, its material and where to look from: `angle` degrees from the
 //! surface normal (about +Y, the camera on the +Z side at 0°). Error is the RMSE of the
@@ -44,7 +45,8 @@ pub struct Specimen {
     pub scene: Scene,
     pub target: Vec3,
     pub distance: f32,
-    /// The level where its picture has stopped changing (the convergence table shows it).
+    /// The level where its picture has stopped changing (the page's convergence test,
+    /// [`super::convergence::reference_step`], says whether it has).
     pub reference_level: u32,
     /// For a square in the z = 0 plane: errors count only pixels whose view ray meets the
     /// plane within this many metres of the centre along x and y (inside the border, where
@@ -90,8 +92,14 @@ impl Specimen {
 /// A 1 m square in the z = 0 plane facing +Z, two triangles, texture coordinates as on the
 /// built-in wall (u along +x, v down, one repeat per [`BRICK_TILE_M`]).
 pub fn square_mesh(name: &str) -> Mesh {
+    square_mesh_of(name, 1.0)
+}
+
+/// [`square_mesh`] `side_m` metres wide, the texture at the same scale (a part of the tile).
+pub fn square_mesh_of(name: &str, side_m: f32) -> Mesh {
     let mut mesh = Mesh::empty(name);
-    for (x, y) in [(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)] {
+    let h = 0.5 * side_m;
+    for (x, y) in [(-h, -h), (h, -h), (h, h), (-h, h)] {
         mesh.positions.push(Vec3::new(x, y, 0.0));
         mesh.normals.push(Vec3::Z);
         mesh.uvs.push(Vec2::new((x + 0.5) / BRICK_TILE_M, (0.5 - y) / BRICK_TILE_M));
@@ -109,14 +117,23 @@ fn bricks_on(mesh: Mesh, material: usize) -> Scene {
 /// One square metre of the built-in wall: its bricks (normal map, and the height map
 /// spanning 1 cm), seen from 1.3 m.
 pub fn wall() -> Specimen {
-    let scene = bricks_on(square_mesh("wall (1 m²)"), 0);
+    wall_of(1.0)
+}
+
+/// A square `side_m` metres wide (at most 1) of the built-in wall, seen from 1.3 · `side_m`
+/// (the same picture at a larger scale), measured within 0.4 · `side_m` of the centre. Its
+/// reference level keeps level 10's triangles per brick on the square metre: one level fewer
+/// per halving of the side (each level halves the triangles' edges).
+pub fn wall_of(side_m: f32) -> Specimen {
+    let scene = bricks_on(square_mesh_of(&format!("wall ({side_m} m square)"), side_m), 0);
+    let halvings = (1.0 / side_m).log2().round().max(0.0) as u32;
     Specimen {
         name: "wall".into(),
         scene,
         target: Vec3::ZERO,
-        distance: 1.3,
-        reference_level: 10,
-        measured_half_size: Some(MEASURED_HALF_SIZE),
+        distance: 1.3 * side_m,
+        reference_level: 10u32.saturating_sub(halvings),
+        measured_half_size: Some(MEASURED_HALF_SIZE * side_m),
     }
 }
 
@@ -268,6 +285,9 @@ pub struct ParallaxPlan {
     pub assets: Option<std::path::PathBuf>,
     /// Reference levels lowered by this many (a quicker, coarser reference).
     pub coarser_by: u32,
+    /// The side of the wall's square, metres (1; the quick run's is smaller, so the same
+    /// triangles per brick take fewer triangles: [`wall_of`]).
+    pub wall_side_m: f32,
     /// Displacement levels below the reference drawn for its convergence (at [`Self::convergence_angle_deg`]).
     pub convergence_levels: u32,
     pub convergence_angle_deg: f32,
@@ -284,6 +304,7 @@ impl ParallaxPlan {
             torus: true,
             assets,
             coarser_by: 0,
+            wall_side_m: 1.0,
             convergence_levels: 4,
             convergence_angle_deg: 70.0,
         }
@@ -298,8 +319,9 @@ impl ParallaxPlan {
             frames: NonZeroU32::new(1).expect("1"),
             torus: false,
             assets: None,
-            coarser_by: 3,
-            convergence_levels: 2,
+            coarser_by: 1,
+            wall_side_m: 0.5,
+            convergence_levels: 1,
             convergence_angle_deg: 70.0,
         }
     }
@@ -333,7 +355,7 @@ pub fn cases(layers: &[u32]) -> Vec<(Parallax, Option<u32>)> {
 
 /// The specimens of `plan`; a failure to read the rock is returned as a line for the page.
 pub fn specimens(plan: &ParallaxPlan) -> (Vec<Specimen>, Option<String>) {
-    let mut list = vec![wall()];
+    let mut list = vec![wall_of(plan.wall_side_m)];
     if plan.torus {
         list.push(torus());
     }

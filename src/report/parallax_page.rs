@@ -6,7 +6,10 @@
 use std::fmt::Write;
 
 use super::blinn::BlinnRow;
-use super::chart::{COLOURS, ChartError, Series, png};
+use plotters::style::RGBColor;
+
+use super::chart::{COLOURS, ChartError, Marker, Series, XAxis, png};
+use super::convergence::{REFERENCE_STEP_RMSE, reference_step};
 use super::parallax::{DISPLACEMENT, OFF_BY, ParallaxPlan, ParallaxRow};
 use crate::frame::Parallax;
 use crate::names::Named;
@@ -72,6 +75,25 @@ pub fn layers_needed(rows: &[ParallaxRow], specimen: &str, angle: f32, technique
     }
 }
 
+/// The angle the face-on floor is measured at.
+pub const FACE_ON_DEG: f32 = 0.0;
+
+/// The face-on floor of `specimen`: the smallest RMSE any parallax technique (off excluded)
+/// reaches at [`FACE_ON_DEG`], with the same shading as at every other angle. Face-on a
+/// search's shift is nearly 0 and the best one removes what perspective leaves, so what
+/// remains is the shading difference between the displaced mesh and the normal-mapped plane
+/// (exact against kernel normals, brick sides, mip levels) that no UV shift removes. `off`
+/// is not the floor: the camera's rays reach 17° at the square's edge, a shift off does not
+/// make. `None` where the study did not draw face-on.
+pub fn face_on_floor(rows: &[ParallaxRow], specimen: &str) -> Option<f64> {
+    let off: &str = Parallax::Off.into();
+    rows.iter()
+        .filter(|r| r.specimen == specimen && r.angle_deg == FACE_ON_DEG)
+        .filter(|r| r.technique != DISPLACEMENT && r.technique != off)
+        .map(|r| r.error.rmse)
+        .min_by(f64::total_cmp)
+}
+
 /// The markdown section.
 pub fn markdown(page: &ParallaxPage) -> String {
     let mut s = String::new();
@@ -81,11 +103,11 @@ pub fn markdown(page: &ParallaxPage) -> String {
         s,
         "Every technique drawn at {}×{} pixels (4× MSAA where the adapter has it) on **{}**, against \
          displacement (the mesh tessellated on the CPU and displaced, its exact normals) at the level \
-         where its picture stopped changing. Error: RMSE of the linear RGB channels, and the share of \
-         pixels with a channel off by more than {OFF_BY}/255, over the picture (on the squares over \
-         the pixels whose view ray meets the surface within {} m of the centre). Time: median of {} \
-         full-quality frame(s), {}. Relief takes 5 binary-search steps; depth is each material's \
-         height range.\n",
+         where its picture stopped changing (each surface's test below). Error: RMSE of the linear \
+         RGB channels, and the share of pixels with a channel off by more than {OFF_BY}/255, over the \
+         picture (on the squares over the pixels whose view ray meets the surface within {} m of the \
+         centre). Time: median of {} full-quality frame(s), {}. Relief takes 5 binary-search steps; \
+         depth is each material's height range.\n",
         plan.size[0],
         plan.size[1],
         page.adapter,
@@ -129,6 +151,38 @@ pub fn markdown(page: &ParallaxPage) -> String {
             );
         }
         s.push('\n');
+        let step = reference_step(page.rows, specimen, plan.convergence_angle_deg);
+        let converged = step.is_some_and(|step| step.converged());
+        match step {
+            Some(step) => {
+                let _ = writeln!(
+                    s,
+                    "Reference level {}: **{}** (level {} is {:.4} RMSE from it, {:.1} % of pixels off; the test: at \
+                     most {REFERENCE_STEP_RMSE}).{}\n",
+                    step.level,
+                    if converged { "converged" } else { "not converged" },
+                    step.level - 1,
+                    step.below.rmse,
+                    100.0 * step.below.off_share,
+                    if converged { "" } else { " No chart is drawn against it." },
+                );
+            }
+            None => {
+                let _ = writeln!(
+                    s,
+                    "Reference: **convergence not measured** (no level below it drawn). No chart is drawn against it.\n"
+                );
+            }
+        }
+        let floor = face_on_floor(page.rows, specimen);
+        if let Some(floor) = floor {
+            let _ = writeln!(
+                s,
+                "Face-on floor: **{floor:.4}** RMSE (the best technique at {FACE_ON_DEG}°: the shading difference no UV \
+                 shift removes); each cell's (+…) is the part of its RMSE above it.\n"
+            );
+        }
+        let above = |rmse: f64| floor.map_or(String::new(), |f| format!(" (+{:.4})", rmse - f));
         let angles = &plan.angles_deg;
         let _ = write!(s, "| technique |");
         for angle in angles {
@@ -148,7 +202,14 @@ pub fn markdown(page: &ParallaxPage) -> String {
                 match rows.iter().find(|r| r.angle_deg == *angle && label(r) == *l) {
                     Some(r) => {
                         let e = r.error;
-                        let _ = write!(s, " {:.4} · {:.1} % · {:.1} |", e.rmse, 100.0 * e.off_share, r.frame_ms);
+                        let _ = write!(
+                            s,
+                            " {:.4}{} · {:.1} % · {:.1} |",
+                            e.rmse,
+                            above(e.rmse),
+                            100.0 * e.off_share,
+                            r.frame_ms
+                        );
                     }
                     None => s.push_str(" – |"),
                 }
@@ -165,7 +226,7 @@ pub fn markdown(page: &ParallaxPage) -> String {
             }
         }
         s.push_str("\n\n");
-        if let Some((_, chart)) = page.charts.iter().find(|(name, _)| name == specimen) {
+        if let Some((_, chart)) = page.charts.iter().find(|(name, _)| name == specimen).filter(|_| converged) {
             let _ = writeln!(s, "![{specimen}: RMSE against frame time at {}°]({chart})\n", plan.convergence_angle_deg);
         }
         let angle = plan.convergence_angle_deg;
@@ -231,7 +292,7 @@ const RMSE_FLOOR: f64 = 1e-5;
 
 /// The Pareto chart of `specimen` at `angle`: RMSE against frame time, a curve per technique
 /// through its layer counts (displacement through its levels), a point for each technique
-/// without layers.
+/// without layers, and the face-on floor ([`face_on_floor`]) as a line across.
 pub fn chart(rows: &[ParallaxRow], specimen: &str, angle: f32) -> Result<Vec<u8>, ChartError> {
     // The reference against itself (error 0) has no place on a log scale.
     let at: Vec<&ParallaxRow> =
@@ -251,13 +312,24 @@ pub fn chart(rows: &[ParallaxRow], specimen: &str, angle: f32) -> Result<Vec<u8>
             Series {
                 label: technique.to_string(),
                 colour: COLOURS[index % COLOURS.len()],
-                triangles: *technique == DISPLACEMENT,
+                marker: if *technique == DISPLACEMENT { Marker::Triangle } else { Marker::Circle },
                 points: points.into_iter().map(|(_, ms, e)| (ms, e)).collect(),
             }
         })
         .collect();
+    let mut series = series;
+    let times = || series.iter().flat_map(|s| s.points.iter().map(|p| p.0));
+    let (first, last) = times().fold((f64::MAX, f64::MIN), |(lo, hi), ms| (lo.min(ms), hi.max(ms)));
+    if let Some(floor) = face_on_floor(rows, specimen).filter(|_| first <= last) {
+        series.push(Series {
+            label: format!("face-on floor {floor:.4}"),
+            colour: RGBColor(128, 128, 128),
+            marker: Marker::Line,
+            points: vec![(first, floor.max(RMSE_FLOOR)), (last, floor.max(RMSE_FLOOR))],
+        });
+    }
     let title = format!("{specimen} at {angle}°: image RMSE vs frame time (a point per layer count / level)");
-    png(&title, ["median frame time (ms)", "RMSE against displacement, linear RGB"], &series)
+    png(&title, ["median frame time (ms)", "RMSE against displacement, linear RGB"], &series, XAxis::Log)
 }
 
 #[cfg(test)]

@@ -4,8 +4,9 @@
 //! field ([`super::exact_hit`]), in texels of the height map. This is the error the techniques
 //! are about, free of the shading differences the image comparison carries.
 //!
-//! The specimen is the built-in wall's brick height map (one 1 m tile, its 1 cm relief, u along
-//! +x and v down as on [`super::parallax::square_mesh`]), seen from `angle` degrees about +Y
+//! The specimens are the built-in wall's brick height map (one 1 m tile, its 1 cm relief, u along
+//! +x and v down as on [`super::parallax::square_mesh`]) and, where the shared assets are,
+//! Rock058's displacement (2 cm), each seen from `angle` degrees about +Y
 //! (the direction to the eye `(sin θ, 0, cos θ)`, the GPU study's cameras) by parallel rays:
 //! every point sees the same direction. Heights (16 bits, as the GPU's texture holds them) are
 //! read bilinearly from level 0 with repeat wrapping ([`bilinear`]) by both the technique and
@@ -15,16 +16,18 @@
 use glam::{DVec2, Vec2, Vec3};
 
 use super::exact_hit::{ExactHit, bilinear, exact_hit};
-use super::parallax::{cases, settings};
+use super::parallax::{Specimen, cases, settings};
 use crate::chain::parallax::{MarchInputs, march};
 use crate::frame::Parallax;
 use crate::height::HeightField;
 use crate::scene::bricks::brick_height_field;
 use crate::scene::builtin::BRICK_TILE_M;
+use crate::scene::material::TEXTURE_SPAN_M;
+use crate::texture::decode_height;
 
 /// A height at or above this (0..1) is a brick face, at or below [`MORTAR_BELOW`] mortar:
 /// the wall's faces lie at 0.8..1 and its mortar at about 0..0.06, joined by a 6-texel bevel
-/// that counts as neither (a small shift across the bevel is a shift, not a wrong region).
+/// that counts as neither (a small shift across the bevel is a shift, not a wrong brick).
 pub const BRICK_ABOVE: f64 = 0.7;
 pub const MORTAR_BELOW: f64 = 0.3;
 /// The path between two UVs is checked for a region change at this spacing, texels.
@@ -33,6 +36,10 @@ const REGION_STEP_TEXELS: f64 = 0.25;
 /// A height field and the relief's depth: what the rays are traced through.
 #[derive(Debug, Clone)]
 pub struct Relief {
+    /// The specimen's name (as in the image study).
+    pub name: &'static str,
+    /// The field is bricks and joints: the wrong-brick share applies ([`Self::crosses_region`]).
+    pub bricks: bool,
     pub field: HeightField,
     /// The relief's depth, metres (0: no parallax).
     pub depth_m: f32,
@@ -45,7 +52,24 @@ impl Relief {
     /// height texture is ([`crate::texture::encode_height`]).
     pub fn wall() -> Relief {
         let field = brick_height_field(BRICK_TILE_M).quantized(16);
-        Relief { depth_m: field.range_m, field, tile_m: BRICK_TILE_M }
+        Relief { name: "wall", bricks: true, depth_m: field.range_m, field, tile_m: BRICK_TILE_M }
+    }
+
+    /// The height map of `specimen`'s first material as the GPU reads it (16-bit samples
+    /// decoded, `1 − h` for a depth map), at its depth, one UV unit per [`TEXTURE_SPAN_M`];
+    /// `None` where the material has no height map.
+    pub fn of_specimen(name: &'static str, specimen: &Specimen) -> Option<Relief> {
+        let slot = specimen.scene.materials.first()?.height_map.clone()?;
+        let texture = specimen.scene.textures.get(slot.texture)?;
+        let samples = texture.rgba.chunks_exact(4).map(|t| decode_height(t[0], t[1]));
+        let field = HeightField {
+            width: texture.width,
+            height: texture.height,
+            samples: samples.map(|h| if slot.depth { 1.0 - h } else { h }).collect(),
+            range_m: slot.range_m,
+            texel_size_m: TEXTURE_SPAN_M / texture.width.max(1) as f32,
+        };
+        Some(Relief { name, bricks: false, depth_m: slot.range_m, field, tile_m: TEXTURE_SPAN_M })
     }
 
     /// Texels per UV unit on each axis.
@@ -107,6 +131,8 @@ pub fn grid(n: u32) -> Vec<Vec2> {
 /// One technique at one layer count and angle, over the points.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct UvError {
+    /// The relief's name ([`Relief::name`]).
+    pub specimen: &'static str,
     pub technique: Parallax,
     /// Layers of the search (`None` for the techniques without one).
     pub layers: Option<u32>,
@@ -115,8 +141,10 @@ pub struct UvError {
     pub mean: f64,
     pub p95: f64,
     pub max: f64,
-    /// Share of points (0..1) whose UV lies across a brick/mortar boundary from the exact hit.
-    pub wrong_region: f64,
+    /// Share of points (0..1) whose UV lies on another brick than the exact hit's, or in a
+    /// joint where the hit is on a brick (or the reverse): the UV path between them reads both
+    /// a face and mortar ([`Relief::crosses_region`]). `None` for a relief without bricks.
+    pub wrong_brick: Option<f64>,
 }
 
 /// `technique` at `layers` from `angle_deg` over `points`, against their exact hits `hits`.
@@ -134,24 +162,25 @@ pub fn uv_error(
     for (&uv, hit) in points.iter().zip(hits) {
         let read = march(&parallax, &relief.inputs(uv, angle_deg), height).uv.as_dvec2();
         errors.push(((read - hit.uv) * relief.texels()).length());
-        wrong += usize::from(relief.crosses_region(hit.uv, read));
+        wrong += usize::from(relief.bricks && relief.crosses_region(hit.uv, read));
     }
     errors.sort_by(f64::total_cmp);
     let n = errors.len().max(1);
     let p95 = errors.get(((n as f64 * 0.95).ceil() as usize).saturating_sub(1)).copied().unwrap_or(0.0);
     UvError {
+        specimen: relief.name,
         technique,
         layers,
         angle_deg,
         mean: errors.iter().sum::<f64>() / n as f64,
         p95,
         max: errors.last().copied().unwrap_or(0.0),
-        wrong_region: wrong as f64 / n as f64,
+        wrong_brick: relief.bricks.then_some(wrong as f64 / n as f64),
     }
 }
 
 /// Every technique but off (each search at each of `layers`) at each of `angles_deg`, over an
-/// `n × n` grid of the wall.
+/// `n × n` grid of `relief`.
 pub fn study(relief: &Relief, angles_deg: &[f32], layers: &[u32], n: u32) -> Vec<UvError> {
     let points = grid(n);
     let mut rows = Vec::new();
