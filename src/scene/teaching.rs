@@ -238,7 +238,8 @@ mod tests {
                 for tri in mesh.indices.chunks_exact(3) {
                     let [a, b, c] = [0, 1, 2].map(|k| mesh.positions[tri[k] as usize]);
                     let face = (b - a).cross(c - a);
-                    if face.length() > 1e-9 {
+                    // The sphere's pole triangles have (nearly) no area: no facing to check.
+                    if face.length() > 1e-6 {
                         let n = mesh.normals[tri[0] as usize];
                         assert!(face.dot(n) > 0.0, "{} {}", teaching.name(), mesh.name);
                     }
