@@ -88,3 +88,45 @@ fn the_course_is_complete_and_every_exception_explains_itself() {
         assert_eq!(lesson.min_changed < MIN_CHANGED_PERCENT, lesson.why_fewer.is_some(), "{}", lesson.name);
     }
 }
+
+/// `bumpview slides` writes a PNG per lesson, a PDF whose every page poppler's `pdftoppm`
+/// renders at the slide's size (the PNGs embedded losslessly: the page at 72 dpi per 960 pt is
+/// the slide itself), an index, and keeps existing files without `--force`.
+#[test]
+fn slides_make_pngs_a_pdf_that_renders_and_an_index() {
+    let dir = std::env::temp_dir().join(format!("bumpview-slides-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let slides = |force: bool| {
+        let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_bumpview"));
+        command.args(["slides", "--out"]).arg(&dir).args(["--size", "480x270", "--lessons", "emboss,cg-wall"]);
+        if force {
+            command.arg("--force");
+        }
+        command.output().unwrap()
+    };
+    let output = slides(false);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    for file in ["01-emboss.png", "02-cg-wall.png"] {
+        assert_eq!(image::image_dimensions(dir.join(file)).unwrap(), (480, 270), "{file}");
+    }
+    let index = std::fs::read_to_string(dir.join("index.md")).unwrap();
+    assert!(index.contains("(01-emboss.png)") && index.contains("(02-cg-wall.png)"), "{index}");
+    // 960 pt at 36 dpi is 480 pixels.
+    let rendered = std::process::Command::new("pdftoppm")
+        .args(["-png", "-r", "36"])
+        .arg(dir.join("slides.pdf"))
+        .arg(dir.join("page"))
+        .output()
+        .expect("pdftoppm (apt-get install poppler-utils)");
+    assert!(rendered.status.success(), "{}", String::from_utf8_lossy(&rendered.stderr));
+    for (page, slide) in [("page-1.png", "01-emboss.png"), ("page-2.png", "02-cg-wall.png")] {
+        let page = image::open(dir.join(page)).unwrap().to_rgb8();
+        let slide = image::open(dir.join(slide)).unwrap().to_rgb8();
+        assert_eq!(page.dimensions(), slide.dimensions());
+        assert!(page.as_raw() == slide.as_raw(), "{}: the page is the slide, pixel for pixel", slide.width());
+    }
+    let again = slides(false);
+    assert_eq!(again.status.code(), Some(2), "an existing output is kept without --force");
+    assert!(slides(true).status.success());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -5,6 +5,7 @@ use image::RgbaImage;
 
 use super::{CHANGED_STEP, Lesson, Side};
 use crate::error::RenderError;
+use crate::frame::SceneUploads;
 use crate::height::Kernel;
 use crate::load::SceneFiles;
 use crate::render::Renderer;
@@ -22,23 +23,34 @@ pub enum LessonRenderError {
     Render(String, RenderError),
 }
 
-/// The scenes lessons were drawn on, kept so that lessons on the same files share one.
+/// The scenes lessons were drawn on, kept so that lessons on the same files share one, and
+/// what was last uploaded to the one renderer they are drawn with, so that pictures of the same
+/// scene and uploads (a split's halves and the split itself) prepare it once.
 #[derive(Default)]
 pub struct SceneCache {
     scenes: Vec<((SceneFiles, Kernel), Scene)>,
+    uploaded: Option<(usize, SceneUploads)>,
 }
 
 impl SceneCache {
-    /// The scene of `preset`'s files and kernel, made once.
-    pub fn scene(&mut self, preset: &Preset) -> Result<&Scene, PresetSceneError> {
+    /// The index of the scene of `preset`'s files and kernel, made once.
+    fn index(&mut self, preset: &Preset) -> Result<usize, PresetSceneError> {
         let key = (preset.files.clone(), preset.kernel()?);
-        match self.scenes.iter().position(|(k, _)| *k == key) {
-            Some(i) => Ok(&self.scenes[i].1),
-            None => {
-                let scene = preset.build_scene()?;
-                self.scenes.push((key, scene));
-                Ok(&self.scenes.last().expect("just pushed").1)
-            }
+        if let Some(i) = self.scenes.iter().position(|(k, _)| *k == key) {
+            return Ok(i);
+        }
+        let scene = preset.build_scene()?;
+        self.scenes.push((key, scene));
+        Ok(self.scenes.len() - 1)
+    }
+
+    /// Gives `renderer` scene `index` with `uploads`, unless it has them already.
+    fn upload(&mut self, renderer: &mut Renderer, index: usize, uploads: SceneUploads) {
+        let wanted = Some((index, uploads));
+        if self.uploaded != wanted {
+            let (index, uploads) = wanted.as_ref().expect("just made");
+            renderer.set_scene_uploads(&self.scenes[*index].1, uploads);
+            self.uploaded = wanted;
         }
     }
 }
@@ -84,15 +96,15 @@ fn draw(
 ) -> Result<RgbaImage, LessonRenderError> {
     let scene_error = |e| LessonRenderError::Scene(lesson.name.to_owned(), e);
     let render_error = |e| LessonRenderError::Render(lesson.name.to_owned(), e);
-    let scene = scenes.scene(&side.preset).map_err(scene_error)?;
-    let mut state = side.preset.to_state(scene).map_err(|e| scene_error(e.into()))?;
+    let index = scenes.index(&side.preset).map_err(scene_error)?;
+    let mut state = side.preset.to_state(&scenes.scenes[index].1).map_err(|e| scene_error(e.into()))?;
     match (side.half, whole_split) {
         (_, true) => {}
         // The whole picture of one half: the divider at the far edge.
         (Some(half), false) => state.apply(Command::SetSplitDivider(if half == 0 { 1.0 } else { 0.0 })),
         (None, false) => state.apply(Command::SetSplit(false)),
     }
-    renderer.set_scene_uploads(scene, &state.scene_uploads());
+    scenes.upload(renderer, index, state.scene_uploads());
     let options = CaptureOptions::plain(size);
     let params = state.frame_params();
     match state.split_frame() {
