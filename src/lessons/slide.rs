@@ -61,17 +61,22 @@ impl SlideLayout {
         [self.margin, top, self.text_width(), (bottom - top).max(1.0)]
     }
 
-    /// Each picture's place: one 16:9 picture for a split, else one per side in rows of at most
-    /// [`MAX_COLUMNS`], centred.
+    /// Each picture's place: one 16:9 picture for a split, else one per side in the rows of at
+    /// most [`MAX_COLUMNS`] that make them largest, centred.
     fn places(&self, lesson: &Lesson) -> Vec<Placed> {
         let [x0, y0, width, height] = self.picture_area(lesson);
         let count = if lesson.split { 1 } else { lesson.sides.len() };
-        let columns = count.min(MAX_COLUMNS);
-        let rows = count.div_ceil(columns);
-        let label_row = if rows > 1 { self.label_px * LEADING * 1.4 } else { 0.0 };
-        let by_width = (width - self.gap * (columns - 1) as f32) / columns as f32;
-        let by_height = ((height - label_row * (rows - 1) as f32) / rows as f32) * 16.0 / 9.0;
-        let w = by_width.min(by_height).floor().max(16.0);
+        let label_row = self.label_px * LEADING * 1.4;
+        // The tile width with `columns` columns: limited by the width and by the height.
+        let tile_width = |columns: usize| {
+            let rows = count.div_ceil(columns);
+            let by_width = (width - self.gap * (columns - 1) as f32) / columns as f32;
+            let by_height = ((height - label_row * (rows - 1) as f32) / rows as f32) * 16.0 / 9.0;
+            by_width.min(by_height).floor().max(16.0)
+        };
+        let columns =
+            (1..=count.min(MAX_COLUMNS)).max_by(|&a, &b| tile_width(a).total_cmp(&tile_width(b))).unwrap_or(1);
+        let w = tile_width(columns);
         let h = (w * 9.0 / 16.0).round();
         let row_width = w * columns as f32 + self.gap * (columns - 1) as f32;
         let left = x0 + (width - row_width) / 2.0;
