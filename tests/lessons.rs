@@ -90,8 +90,8 @@ fn the_course_is_complete_and_every_exception_explains_itself() {
 }
 
 /// `bumpview slides` writes a PNG per lesson, a PDF whose every page poppler's `pdftoppm`
-/// renders at the slide's size (the PNGs embedded losslessly: the page at 72 dpi per 960 pt is
-/// the slide itself), an index, and keeps existing files without `--force`.
+/// renders and whose embedded images (`pdfimages`) are the slides exactly, an index, and keeps
+/// existing files without `--force`.
 #[test]
 fn slides_make_pngs_a_pdf_that_renders_and_an_index() {
     let dir = std::env::temp_dir().join(format!("bumpview-slides-{}", std::process::id()));
@@ -111,19 +111,26 @@ fn slides_make_pngs_a_pdf_that_renders_and_an_index() {
     }
     let index = std::fs::read_to_string(dir.join("index.md")).unwrap();
     assert!(index.contains("(01-emboss.png)") && index.contains("(02-cg-wall.png)"), "{index}");
-    // 960 pt at 36 dpi is 480 pixels.
-    let rendered = std::process::Command::new("pdftoppm")
-        .args(["-png", "-r", "36"])
-        .arg(dir.join("slides.pdf"))
-        .arg(dir.join("page"))
-        .output()
-        .expect("pdftoppm (apt-get install poppler-utils)");
-    assert!(rendered.status.success(), "{}", String::from_utf8_lossy(&rendered.stderr));
-    for (page, slide) in [("page-1.png", "01-emboss.png"), ("page-2.png", "02-cg-wall.png")] {
-        let page = image::open(dir.join(page)).unwrap().to_rgb8();
+    // Every page renders: 960 pt at 36 dpi is 480 pixels, the slide's size.
+    let poppler = |tool: &str, args: &[&str], prefix: &str| {
+        let output = std::process::Command::new(tool)
+            .args(args)
+            .arg(dir.join("slides.pdf"))
+            .arg(dir.join(prefix))
+            .output()
+            .unwrap_or_else(|e| panic!("{tool} (apt-get install poppler-utils): {e}"));
+        assert!(output.status.success(), "{tool}: {}", String::from_utf8_lossy(&output.stderr));
+    };
+    poppler("pdftoppm", &["-png", "-r", "36"], "page");
+    // The images the pages embed are the slides, pixel for pixel (poppler's rendering resamples).
+    poppler("pdfimages", &["-png"], "embedded");
+    for (page, embedded, slide) in
+        [("page-1.png", "embedded-000.png", "01-emboss.png"), ("page-2.png", "embedded-001.png", "02-cg-wall.png")]
+    {
         let slide = image::open(dir.join(slide)).unwrap().to_rgb8();
-        assert_eq!(page.dimensions(), slide.dimensions());
-        assert!(page.as_raw() == slide.as_raw(), "{}: the page is the slide, pixel for pixel", slide.width());
+        assert_eq!(image::image_dimensions(dir.join(page)).unwrap(), slide.dimensions(), "{page}");
+        let embedded = image::open(dir.join(embedded)).unwrap().to_rgb8();
+        assert!(embedded == slide, "{page}: the embedded image is the slide, pixel for pixel");
     }
     let again = slides(false);
     assert_eq!(again.status.code(), Some(2), "an existing output is kept without --force");
