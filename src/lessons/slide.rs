@@ -74,12 +74,19 @@ impl SlideLayout {
             let by_height = ((height - label_row * (rows - 1) as f32) / rows as f32) * 16.0 / 9.0;
             by_width.min(by_height).floor().max(16.0)
         };
-        let columns =
-            (1..=count.min(MAX_COLUMNS)).max_by(|&a, &b| tile_width(a).total_cmp(&tile_width(b))).unwrap_or(1);
+        // The largest tiles; of equally large ones, the grid with the fewest empty cells.
+        let empty = |columns: usize| columns * count.div_ceil(columns) - count;
+        let columns = (1..=count.min(MAX_COLUMNS))
+            .max_by(|&a, &b| tile_width(a).total_cmp(&tile_width(b)).then(empty(b).cmp(&empty(a))))
+            .unwrap_or(1);
+        let rows = count.div_ceil(columns);
         let w = tile_width(columns);
         let h = (w * 9.0 / 16.0).round();
         let row_width = w * columns as f32 + self.gap * (columns - 1) as f32;
         let left = x0 + (width - row_width) / 2.0;
+        // The pictures (and the text under them) centred in the height they leave free.
+        let used = h * rows as f32 + label_row * (rows - 1) as f32;
+        let y0 = y0 + ((height - used) / 2.0).max(0.0);
         (0..count)
             .map(|i| {
                 let (column, row) = ((i % columns) as f32, (i / columns) as f32);
