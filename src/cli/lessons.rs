@@ -73,7 +73,8 @@ pub fn slides(args: &SlidesArgs) -> Result<(), Failure> {
     let (mut entries, mut pages) = (vec![], vec![]);
     for (i, lesson) in chosen.iter().enumerate() {
         let size = layout.picture_size(lesson);
-        let measured = measure(&mut renderer, &mut scenes, lesson, size, true).map_err(|e| Failure::Failed(e.to_string()))?;
+        let measured =
+            measure(&mut renderer, &mut scenes, lesson, size, true).map_err(|e| Failure::Failed(e.to_string()))?;
         let slide = layout.compose(lesson, &measured, i + 1, chosen.len());
         let file = slide_file(i + 1, lesson);
         write_png_atomically(&slide, &args.out.join(&file))?;
@@ -83,7 +84,8 @@ pub fn slides(args: &SlidesArgs) -> Result<(), Failure> {
     }
     let write = |name: &str, bytes: &[u8]| {
         let path = args.out.join(name);
-        write_bytes_atomically(&path, bytes).map_err(|e| Failure::Failed(format!("could not write {}: {e}", path.display())))
+        write_bytes_atomically(&path, bytes)
+            .map_err(|e| Failure::Failed(format!("could not write {}: {e}", path.display())))
     };
     write("slides.pdf", &slides_pdf(&pages))?;
     write("index.md", index_markdown(&entries, args.size).as_bytes())?;

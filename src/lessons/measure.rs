@@ -75,8 +75,11 @@ pub fn measure(
     size: [u32; 2],
     split_picture: bool,
 ) -> Result<Measured, LessonRenderError> {
-    let sides =
-        lesson.sides.iter().map(|side| draw(renderer, scenes, lesson, side, size, false)).collect::<Result<Vec<_>, _>>()?;
+    let sides = lesson
+        .sides
+        .iter()
+        .map(|side| draw(renderer, scenes, lesson, side, size, false))
+        .collect::<Result<Vec<_>, _>>()?;
     let split = match lesson.sides.first() {
         Some(side) if lesson.split && split_picture => Some(draw(renderer, scenes, lesson, side, size, true)?),
         _ => None,

@@ -141,7 +141,9 @@ impl Lesson {
                 let [left, right] = labels;
                 vec![(left, preset.clone(), Some(0)), (right, preset.clone(), Some(1))]
             }
-            (true, true, None) => return Err(fail("a split comparison names its sides: labels = [LEFT, RIGHT]".into())),
+            (true, true, None) => {
+                return Err(fail("a split comparison names its sides: labels = [LEFT, RIGHT]".into()));
+            }
             (false, false, None) => file
                 .tiles
                 .iter()
@@ -278,7 +280,8 @@ mod tests {
         assert!(Lesson::parse("x", &split).unwrap_err().message.contains("labels"));
         let fewer = format!("min_changed = 1.0\nlabels = [\"a\", \"b\"]\n{split}");
         assert!(Lesson::parse("x", &fewer).is_err(), "min_changed without why_fewer");
-        let unknown = format!("{base}[preset.shading]\nstrenght = 1.0\n[[tiles]]\nlabel = \"a\"\n[[tiles]]\nlabel = \"b\"\n");
+        let unknown =
+            format!("{base}[preset.shading]\nstrenght = 1.0\n[[tiles]]\nlabel = \"a\"\n[[tiles]]\nlabel = \"b\"\n");
         assert!(Lesson::parse("x", &unknown).unwrap_err().message.contains("strenght"));
         assert!(select(&["no-such".into()]).unwrap_err().message.contains("cg-wall"));
     }

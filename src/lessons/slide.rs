@@ -38,7 +38,14 @@ struct Placed {
 impl SlideLayout {
     pub fn new(size: [u32; 2]) -> SlideLayout {
         let h = size[1] as f32;
-        SlideLayout { size, margin: h * 0.04, title_px: h * 0.05, body_px: h * 0.028, label_px: h * 0.024, gap: h * 0.015 }
+        SlideLayout {
+            size,
+            margin: h * 0.04,
+            title_px: h * 0.05,
+            body_px: h * 0.028,
+            label_px: h * 0.024,
+            gap: h * 0.015,
+        }
     }
 
     /// The width text may take: the slide less its margins.

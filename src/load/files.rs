@@ -11,8 +11,8 @@ use super::image::load_texture;
 use super::load_scene;
 use crate::error::LoadError;
 use crate::height::Kernel;
-use crate::scene::teaching::TeachingScene;
 use crate::scene::material::TEXTURE_SPAN_M;
+use crate::scene::teaching::TeachingScene;
 use crate::scene::{HeightMap, NormalMap, Scene, TextureImage, TextureKind};
 
 /// Metres the full range of a height map from a file spans (times an MTL `-bm`).

@@ -9,7 +9,9 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 use serde::{Deserialize, Serialize};
 
 use super::bricks::brick_height_field;
-use super::builtin::{BRICK_TILE_M, WALL_X, WALL_Y, WALL_Z, floor_mesh, teaching_scene_with_kernel, wall_mesh, wall_uv};
+use super::builtin::{
+    BRICK_TILE_M, WALL_X, WALL_Y, WALL_Z, floor_mesh, teaching_scene_with_kernel, wall_mesh, wall_uv,
+};
 use super::material::Clearcoat;
 use super::{Instance, Mesh, NormalMap, Scene, TextureImage, TextureKind};
 use crate::height::Kernel;
@@ -205,7 +207,13 @@ fn gloss_texture() -> TextureImage {
             [g, g, g, 255]
         })
         .collect();
-    TextureImage { name: "bricks (gloss)".into(), width: field.width, height: field.height, kind: TextureKind::Data, rgba }
+    TextureImage {
+        name: "bricks (gloss)".into(),
+        width: field.width,
+        height: field.height,
+        kind: TextureKind::Data,
+        rgba,
+    }
 }
 
 /// `normal_map` (RGB, OpenGL) packed as X-Ray's bump texture: A, B, G = R, G, B of the map, R
