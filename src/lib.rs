@@ -44,6 +44,7 @@ pub mod counters;
 pub mod error;
 pub mod frame;
 pub mod height;
+pub mod lessons;
 pub mod load;
 pub mod math;
 pub mod names;

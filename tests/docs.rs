@@ -6,7 +6,8 @@
 //! is a synopsis and is not run. Each runs in a fresh folder holding the files the pages name
 //! (`model.glb`, `model.gltf`, `other.obj`, `height.png`, made here or copied from
 //! `tests/fixtures`), as written,
-//! except that pictures are drawn small (`--size 96x54` where no size is given), the viewer
+//! except that pictures are drawn small (`--size 96x54` where no size is given; slides
+//! `--size 480x270`, two lessons where none are named), the viewer
 //! closes after a few frames under Xvfb (`--exit-after 3`) and the report runs `--quick`. A
 //! `$ ` command followed by output lines must print lines of the same shape on stdout (numbers
 //! may differ). `cargo bench --bench NAME` and `cargo test --test NAME` name existing targets.
@@ -218,10 +219,16 @@ fn run(documented: &Documented, dir: &Path) -> Result<(), String> {
         _ => unreachable!(),
     };
     let sub = args.first().cloned().unwrap_or_default();
-    let viewer = !["render", "report", "bake", "check", "help"].contains(&sub.as_str());
+    let viewer = !["render", "report", "bake", "check", "help", "lessons", "slides"].contains(&sub.as_str());
     let has = |args: &[String], flag: &str| args.iter().any(|a| a == flag || a.starts_with(&format!("{flag}=")));
     if sub == "render" && !has(&args, "--size") {
         args.extend(["--size".into(), "96x54".into()]);
+    }
+    if sub == "slides" && !has(&args, "--size") {
+        args.extend(["--size".into(), "480x270".into()]);
+    }
+    if sub == "slides" && !has(&args, "--lessons") {
+        args.extend(["--lessons".into(), "cg-wall,strength".into()]);
     }
     if sub == "report" && !has(&args, "--quick") {
         args.push("--quick".into());

@@ -27,6 +27,8 @@ const LAYERS: &[(&str, &[&str])] = &[
     // The report draws the parallax family on the GPU (render) beside its CPU studies.
     ("report", &["report"]),
     ("viewer state", &["state"]),
+    // The lessons: presets with a caption, drawn by the renderer and measured.
+    ("lessons", &["lessons"]),
 ];
 
 /// What `app` may read from the shading layer: the colour scale its legend draws and a limit

@@ -43,6 +43,13 @@ pub enum Action {
     /// Draw cheaper frames while the user drags or the light orbits (one sample per pixel,
     /// fewer pixels when still slow), or always full quality.
     SetInteractiveFrames(bool),
+    /// Show lesson `index` of the catalogue: its whole state and its caption card.
+    OpenLesson(usize),
+    /// Show the lesson this many after the current one (before it when negative; Page Down
+    /// and Page Up, what presenter remotes send), the first when none is shown.
+    StepLesson(i32),
+    /// Show or hide the current lesson's caption card.
+    ShowLessonCard(bool),
 }
 
 impl From<Command> for Action {

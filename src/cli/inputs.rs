@@ -31,6 +31,6 @@ impl InputArgs {
     /// The files given.
     pub fn files(&self) -> SceneFiles {
         let InputArgs { mesh, color, normal, height, gloss } = self.clone();
-        SceneFiles { mesh, color, normal, height, gloss }
+        SceneFiles { mesh, color, normal, height, gloss, builtin: None }
     }
 }

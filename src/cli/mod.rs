@@ -1,12 +1,13 @@
-//! The command line: `bumpview [MESH] [flags]` opens the viewer; `render`, `report`, `bake`
-//! and `check` work without a window. Flags are read once into the library's values: files into a
-//! [`bumpview::load::SceneFiles`], picture and method flags into viewer
+//! The command line: `bumpview [MESH] [flags]` opens the viewer; `render`, `report`, `bake`,
+//! `check`, `lessons` and `slides` work without a window. Flags are read once into the
+//! library's values: files into a [`bumpview::load::SceneFiles`], picture and method flags into viewer
 //! [`bumpview::state::Command`]s, enum values by their derived names ([`args::named`]).
 
 pub mod args;
 mod bake;
 mod check;
 mod inputs;
+mod lessons;
 mod lights;
 mod methods;
 mod picture;
@@ -64,6 +65,11 @@ enum Command {
     /// Check mesh files for what breaks bump mapping (degenerate or mirrored UVs, seams, bad
     /// tangents, normal-map sanity and green convention). Exit 0 clean, 1 warnings, 2 errors.
     Check(check::CheckArgs),
+    /// List the built-in lessons: name, title and the caption's first sentence.
+    Lessons,
+    /// Draw lessons as 16:9 slide PNGs with their measured numbers, one PDF of them all and an
+    /// index.md.
+    Slides(lessons::SlidesArgs),
 }
 
 /// Why a command failed: its arguments (exit status 2, as for flags clap rejects) or the
@@ -100,6 +106,8 @@ pub fn run(mut cli: Cli) -> ExitCode {
         Some(Command::Report(args)) => report::run(&args),
         Some(Command::Bake(args)) => bake::run(&args),
         Some(Command::Check(args)) => return check::run(&args),
+        Some(Command::Lessons) => lessons::list(),
+        Some(Command::Slides(args)) => lessons::slides(&args),
         None => viewer(&cli),
     };
     match result {

@@ -11,8 +11,8 @@ use super::image::load_texture;
 use super::load_scene;
 use crate::error::LoadError;
 use crate::height::Kernel;
-use crate::scene::builtin::teaching_scene_with_kernel;
 use crate::scene::material::TEXTURE_SPAN_M;
+use crate::scene::teaching::TeachingScene;
 use crate::scene::{HeightMap, NormalMap, Scene, TextureImage, TextureKind};
 
 /// Metres the full range of a height map from a file spans (times an MTL `-bm`).
@@ -35,6 +35,8 @@ pub struct SceneFiles {
     pub height: Option<PathBuf>,
     /// Gloss (Blinn-Phong specular) map: linear RGB multiplying the material's `k_s`.
     pub gloss: Option<PathBuf>,
+    /// Without a mesh: the built-in scene to make (`None`: [`TeachingScene::Bricks`]).
+    pub builtin: Option<TeachingScene>,
 }
 
 /// A texture slot of [`SceneFiles`].
@@ -112,6 +114,7 @@ impl SceneFiles {
             normal: map(&self.normal),
             height: map(&self.height),
             gloss: map(&self.gloss),
+            builtin: self.builtin,
         }
     }
 
@@ -148,6 +151,7 @@ impl SceneFiles {
             normal: self.normal.or(base.normal),
             height: self.height.or(base.height),
             gloss: self.gloss.or(base.gloss),
+            builtin: self.builtin.or(base.builtin),
         }
     }
 
@@ -158,7 +162,7 @@ impl SceneFiles {
     pub fn build(&self, kernel: Kernel) -> Result<Scene, LoadError> {
         let mut scene = match &self.mesh {
             Some(path) => load_scene(path)?,
-            None => teaching_scene_with_kernel(kernel),
+            None => self.builtin.unwrap_or_default().build(kernel),
         };
         replace_textures(&mut scene, self)?;
         Ok(scene)

@@ -8,6 +8,7 @@ pub mod light;
 pub mod material;
 pub mod overrides;
 pub mod sample;
+pub mod teaching;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 

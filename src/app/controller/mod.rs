@@ -6,6 +6,7 @@
 
 mod exports;
 mod facts;
+mod lessons;
 mod presets;
 mod scene_change;
 mod scene_job;
@@ -13,6 +14,8 @@ mod scene_job;
 mod tests;
 #[cfg(test)]
 mod tests_jobs;
+#[cfg(test)]
+mod tests_lessons;
 #[cfg(test)]
 mod ui_frames;
 
@@ -32,6 +35,7 @@ use bumpview::state::preset::CapturePreset;
 use bumpview::state::{Command, ViewerState};
 pub use exports::ScreenshotForm;
 pub use facts::SceneFacts;
+pub use lessons::{LessonsForm, Measurement};
 pub use presets::{PresetForm, last_state_file};
 use scene_job::SceneJobs;
 pub use scene_job::{JobTimes, SceneReady};
@@ -94,6 +98,8 @@ pub struct Controller {
     pub screenshot: ScreenshotForm,
     /// The preset path field the panel edits, and the last save's or load's outcome.
     pub preset: PresetForm,
+    /// The lessons, the one shown and its caption card.
+    pub lessons: LessonsForm,
     probe: Probe,
     /// Makes scenes ready off the UI thread, one job per scene change.
     jobs: SceneJobs,
@@ -125,7 +131,9 @@ impl Controller {
     /// when the first scene job has made them ready; `wake` is called from worker threads when
     /// they deliver something.
     pub fn new(start: Start, renderer: Renderer, wake: Waker) -> Controller {
-        Self::with_build(start, renderer, wake, Arc::new(SceneFiles::build))
+        let mut controller = Self::with_build(start, renderer, wake, Arc::new(SceneFiles::build));
+        controller.lessons.measure_numbers = true;
+        controller
     }
 
     /// [`Self::new`] with files loaded by `build` (a fake in tests).
@@ -152,6 +160,7 @@ impl Controller {
             wake,
             screenshot: ScreenshotForm::new(&capture),
             preset: PresetForm::default(),
+            lessons: LessonsForm::new(false),
             probe: Probe::default(),
             jobs: SceneJobs::new(build, uploader),
             last_job: None,
@@ -294,6 +303,13 @@ impl Controller {
             Action::ClearProbe => self.probe.clear(),
             Action::SetInteractiveFrames(on) => self.interactive.enabled = on,
             Action::SceneReady(ready) => self.scene_ready(*ready),
+            Action::OpenLesson(index) => self.open_lesson(index),
+            Action::StepLesson(step) => {
+                if let Some(index) = self.lessons.stepped(step) {
+                    self.open_lesson(index);
+                }
+            }
+            Action::ShowLessonCard(on) => self.lessons.card = on && self.lessons.current.is_some(),
         }
     }
 
@@ -312,6 +328,7 @@ impl Controller {
             self.files.debouncer.changed(now);
         }
         actions.extend(self.jobs.poll());
+        self.lessons.poll();
         // A reload waits for a scene job in flight (which wakes the UI when done), so that it
         // does not replace a mesh the user is opening.
         let mut wait = None;

@@ -37,11 +37,18 @@ impl Controller {
         Ok(format!("saved {}", path.display()))
     }
 
-    /// Shows a preset's state at once and loads its files in the background when they differ
-    /// from the scene's (a reload: the preset's camera and light stay). A preset that does not
-    /// load leaves the state as it was.
+    /// Loads a preset file and shows it ([`Self::show_preset`]). A preset that does not load
+    /// leaves the state as it was.
     pub(super) fn load_preset(&mut self, path: &Path) -> Result<String, String> {
         let preset = Preset::load(path).map_err(|e| e.to_string())?;
+        self.show_preset(&preset, format!("opened the files of {}", path.display()))?;
+        Ok(format!("loaded {}", path.display()))
+    }
+
+    /// Shows a preset's state at once and loads its files in the background when they differ
+    /// from the scene's (a reload: the preset's camera and light stay; `done` is the files'
+    /// status then). A preset whose state does not fit the scene leaves the state as it was.
+    pub(super) fn show_preset(&mut self, preset: &Preset, done: String) -> Result<(), String> {
         let mut state = preset.to_state(&self.scene).map_err(|e| e.to_string())?;
         state.default_camera = self.state.default_camera;
         let wanted = preset.files.absolute();
@@ -50,10 +57,9 @@ impl Controller {
         self.screenshot = ScreenshotForm::new(&preset.capture);
         self.revision += 1;
         if (&wanted, kernel) != (&self.files.scene_files, self.files.kernel) {
-            let done = format!("opened the files of {}", path.display());
             self.load(Some(Job::reload(wanted, kernel, done)));
         }
-        Ok(format!("loaded {}", path.display()))
+        Ok(())
     }
 
     /// Saves the state for the next start ([`last_state_file`]), if it is kept; a failure is

@@ -5,6 +5,7 @@
 //! [`Action`]s; only the forms' text fields are edited in place.
 
 mod files;
+mod lessons;
 mod lights;
 mod methods;
 mod mistakes;
@@ -35,6 +36,7 @@ pub fn show(
     ui.separator();
     let mut slot_targets = Vec::new();
     egui::ScrollArea::vertical().show(ui, |ui| {
+        section(ui, "Lessons", false, |ui| lessons::show(ui, &controller.lessons, &mut actions));
         section(ui, "Files and texture slots", false, |ui| {
             slot_targets = files::show(ui, controller, &mut actions);
         });

@@ -16,7 +16,8 @@ const ZOOM_PER_POINT: f32 = 0.002;
 const STRENGTH_STEP: f32 = 0.1;
 
 /// The shortcuts pressed this frame: B bump, `[`/`]` strength, 1/2/3 bump × colour, bump
-/// only, colour only, W wireframe, G T/B/N glyphs, S split view, L light orbit, V view, R camera reset, F12 screenshot. None while a text field has keyboard focus.
+/// only, colour only, W wireframe, G T/B/N glyphs, S split view, L light orbit, V view, R camera reset, F12 screenshot,
+/// Page Down / Page Up the next / previous lesson. None while a text field has keyboard focus.
 pub fn keyboard(ctx: &egui::Context) -> Vec<Action> {
     if ctx.text_edit_focused() {
         return Vec::new();
@@ -54,6 +55,8 @@ fn key_action(key: Key, repeat: bool) -> Option<Action> {
         Key::G => Command::ToggleGlyphs,
         Key::S => Command::ToggleSplit,
         Key::F12 => return Some(Action::Screenshot),
+        Key::PageDown => return Some(Action::StepLesson(1)),
+        Key::PageUp => return Some(Action::StepLesson(-1)),
         _ => return None,
     };
     Some(command.into())
@@ -110,4 +113,18 @@ pub(super) fn probe_click(ctx: &egui::Context, rect: egui::Rect, size: [u32; 2])
     let local = (position - rect.min) * scale;
     let pixel = [(local.x.max(0.0) as u32).min(size[0] - 1), (local.y.max(0.0) as u32).min(size[1] - 1)];
     Some(Action::PinProbe { pixel, size })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// What presenter remotes send: Page Down the next lesson, Page Up the previous one; a held
+    /// key does not skip through the course.
+    #[test]
+    fn page_keys_step_through_the_lessons() {
+        assert_eq!(key_action(Key::PageDown, false), Some(Action::StepLesson(1)));
+        assert_eq!(key_action(Key::PageUp, false), Some(Action::StepLesson(-1)));
+        assert_eq!(key_action(Key::PageDown, true), None);
+    }
 }

@@ -2,10 +2,11 @@
 //! picture would change; smaller than the view while interactive frames are drawn at a lower
 //! render scale) and egui shows as an image stretched over the view, with what goes over it — the split
 //! view's divider and labels (dragged with the mouse), the Difference view's legend, the
-//! probe's marker and readout ([`probe_overlay`]) — and the mouse gestures on it ([`input`]).
+//! lesson's caption card ([`lesson_card`]), the probe's marker and readout ([`probe_overlay`]) — and the mouse gestures on it ([`input`]).
 
 pub mod input;
 mod legend;
+mod lesson_card;
 pub mod probe_overlay;
 
 use bumpview::frame::{Msaa, SplitFrame, ViewMode};
@@ -104,10 +105,11 @@ impl View {
         if state.shading.view == ViewMode::Difference {
             legend::difference(ui.painter(), rect, state.shading.difference_range_deg);
         }
-        let mut actions = Vec::new();
+        let mut actions: Vec<Action> = lesson_card::show(ui, &controller.lessons, rect).into_iter().collect();
         if state.split.enabled {
             if let Some(divider) = self.split_divider(ui, &response, rect, controller) {
-                return vec![divider];
+                actions.push(divider);
+                return actions;
             }
         } else {
             self.dragging_divider = false;

@@ -1,0 +1,40 @@
+//! The current lesson's caption card over the 3D view: its title, caption and claim with the
+//! number measured for it, and a button that hides the card.
+
+use crate::app::action::Action;
+use crate::app::controller::{LessonsForm, Measurement};
+
+/// The card's width, points (narrower on a narrow view).
+const CARD_WIDTH: f32 = 420.0;
+
+/// Draws the card in the bottom-left corner of `view` while it is on; the hide button's action.
+pub(super) fn show(ui: &mut egui::Ui, lessons: &LessonsForm, view: egui::Rect) -> Option<Action> {
+    let lesson = lessons.lesson().filter(|_| lessons.card)?;
+    let number = match &lessons.measurement {
+        Some(Measurement::Done(percent)) => lesson.claim_with(*percent),
+        Some(Measurement::Running) => "measuring…".to_owned(),
+        Some(Measurement::Failed(why)) => format!("not measured: {why}"),
+        None => String::new(),
+    };
+    let width = CARD_WIDTH.min(view.width() - 24.0).max(120.0);
+    let mut hide = false;
+    egui::Area::new(egui::Id::unique("lesson card"))
+        .fixed_pos(view.left_bottom() + egui::vec2(12.0, -12.0))
+        .pivot(egui::Align2::LEFT_BOTTOM)
+        .show(ui.ctx(), |ui| {
+            egui::Frame::popup(ui.style()).show(ui, |ui| {
+                ui.set_max_width(width);
+                ui.horizontal(|ui| {
+                    ui.strong(&lesson.title);
+                    hide = ui.small_button("×").on_hover_text("Hide the caption card").clicked();
+                });
+                ui.label(&lesson.caption);
+                if !number.is_empty() {
+                    ui.colored_label(ui.visuals().warn_fg_color, number);
+                }
+                let position = lessons.current.map_or(0, |i| i + 1);
+                ui.weak(format!("lesson {position} of {} · Page Down / Page Up", lessons.catalogue.len()));
+            });
+        });
+    hide.then_some(Action::ShowLessonCard(false))
+}

@@ -1,0 +1,106 @@
+//! `bumpview lessons` lists the course; `bumpview slides` draws it as slide PNGs, one PDF and
+//! an index ([`bumpview::lessons`]).
+
+use std::path::{Path, PathBuf};
+
+use bumpview::atomic::{check_outputs, write_bytes_atomically};
+use bumpview::lessons::deck::{DeckEntry, index_markdown, slide_file};
+use bumpview::lessons::measure::{SceneCache, measure};
+use bumpview::lessons::pdf::{PdfPage, slides_pdf};
+use bumpview::lessons::slide::SlideLayout;
+use bumpview::lessons::{self, Lesson};
+use bumpview::render::capture::write_png_atomically;
+use bumpview::render::{Gpu, Renderer};
+
+use super::Failure;
+use super::args;
+
+/// The smallest and largest slides: below 480x270 the caption's text gets too small to read;
+/// above 7680x4320 (8K) a deck of 31 slides takes minutes on a software adapter.
+const MIN_SIZE: [u32; 2] = [480, 270];
+const MAX_SIZE: [u32; 2] = [7680, 4320];
+
+#[derive(clap::Args)]
+pub struct SlidesArgs {
+    /// The folder to write into (made if missing): NN-NAME.png per slide, slides.pdf, index.md.
+    #[arg(long)]
+    out: PathBuf,
+    /// Slide size in pixels (16:9 suits the layout), 480x270 to 7680x4320.
+    #[arg(long, value_parser = args::parse_size, default_value = "1920x1080")]
+    size: [u32; 2],
+    /// Only these lessons, in this order (names as `bumpview lessons` lists them).
+    #[arg(long, value_name = "NAME,…", value_delimiter = ',')]
+    lessons: Vec<String>,
+    /// Replace files that exist; without it an existing output is kept and nothing is drawn.
+    #[arg(long)]
+    force: bool,
+}
+
+/// `bumpview lessons`: one line per lesson, its name, title and caption's first sentence.
+pub fn list() -> Result<(), Failure> {
+    let all = lessons::catalogue().map_err(|e| Failure::Failed(e.to_string()))?;
+    let width = all.iter().map(|l| l.name.len()).max().unwrap_or(0);
+    for lesson in &all {
+        println!("{:<width$}  {} — {}", lesson.name, lesson.title, first_sentence(&lesson.caption));
+    }
+    Ok(())
+}
+
+/// The caption's first sentence (up to the first `. ` or the end).
+fn first_sentence(caption: &str) -> &str {
+    caption.find(". ").map_or(caption, |end| &caption[..=end])
+}
+
+/// `bumpview slides`: each lesson drawn and measured at its slide's picture size, composed,
+/// written as a PNG, then the PDF and the index; every output checked before any work.
+pub fn slides(args: &SlidesArgs) -> Result<(), Failure> {
+    let [w, h] = args.size;
+    if w < MIN_SIZE[0] || h < MIN_SIZE[1] || w > MAX_SIZE[0] || h > MAX_SIZE[1] {
+        let range = format!("{}x{} to {}x{}", MIN_SIZE[0], MIN_SIZE[1], MAX_SIZE[0], MAX_SIZE[1]);
+        return Err(Failure::BadArguments(format!("--size {w}x{h}: slides are {range} pixels")));
+    }
+    let chosen = lessons::select(&args.lessons).map_err(|e| Failure::BadArguments(e.to_string()))?;
+    let outputs = outputs(&args.out, &chosen);
+    let paths: Vec<&Path> = outputs.iter().map(PathBuf::as_path).collect();
+    check_outputs(&[], &paths, args.force).map_err(|e| Failure::BadArguments(e.to_string()))?;
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| Failure::Failed(format!("could not make {}: {e}", args.out.display())))?;
+    let started = std::time::Instant::now();
+    let gpu = Gpu::headless()?;
+    let mut renderer = Renderer::from_gpu(&gpu);
+    let mut scenes = SceneCache::default();
+    let layout = SlideLayout::new(args.size);
+    let (mut entries, mut pages) = (vec![], vec![]);
+    for (i, lesson) in chosen.iter().enumerate() {
+        let size = layout.picture_size(lesson);
+        let measured =
+            measure(&mut renderer, &mut scenes, lesson, size, true).map_err(|e| Failure::Failed(e.to_string()))?;
+        let slide = layout.compose(lesson, &measured, i + 1, chosen.len());
+        let file = slide_file(i + 1, lesson);
+        write_png_atomically(&slide, &args.out.join(&file))?;
+        println!("{file}: {}", lesson.claim_with(measured.changed_percent));
+        pages.push(PdfPage::new(&slide));
+        entries.push(DeckEntry { file, lesson: lesson.clone(), changed_percent: measured.changed_percent });
+    }
+    let write = |name: &str, bytes: &[u8]| {
+        let path = args.out.join(name);
+        write_bytes_atomically(&path, bytes)
+            .map_err(|e| Failure::Failed(format!("could not write {}: {e}", path.display())))
+    };
+    write("slides.pdf", &slides_pdf(&pages))?;
+    write("index.md", index_markdown(&entries, args.size).as_bytes())?;
+    println!(
+        "wrote {} slides, slides.pdf and index.md to {} in {:.1} s ({})",
+        entries.len(),
+        args.out.display(),
+        started.elapsed().as_secs_f32(),
+        gpu.adapter_name()
+    );
+    Ok(())
+}
+
+/// Every file `slides` writes into `out` for `chosen`.
+fn outputs(out: &Path, chosen: &[Lesson]) -> Vec<PathBuf> {
+    let slides = chosen.iter().enumerate().map(|(i, l)| out.join(slide_file(i + 1, l)));
+    slides.chain(["slides.pdf", "index.md"].map(|name| out.join(name))).collect()
+}

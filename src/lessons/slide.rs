@@ -1,0 +1,198 @@
+//! A lesson as a slide: the title, the picture(s) with their labels, the caption wrapped to the
+//! slide's width and the claim with the number measured in this run, on a dark background.
+
+use image::{Rgba, RgbaImage};
+
+use super::Lesson;
+use super::measure::Measured;
+use super::text::{draw_text, text_width, wrap};
+
+const BACKGROUND: [u8; 3] = [24, 26, 30];
+const TEXT: [u8; 3] = [232, 232, 228];
+const MUTED: [u8; 3] = [150, 154, 160];
+const ACCENT: [u8; 3] = [255, 196, 84];
+/// The most tiles side by side in one row; more go into further rows.
+const MAX_COLUMNS: usize = 4;
+/// Line height as a multiple of the font size.
+const LEADING: f32 = 1.3;
+
+/// Where things go on a slide of a given size; every length in pixels, scaled with the height.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlideLayout {
+    pub size: [u32; 2],
+    margin: f32,
+    title_px: f32,
+    body_px: f32,
+    label_px: f32,
+    gap: f32,
+}
+
+/// The rectangle of one picture on the slide and its label.
+#[derive(Debug, Clone, PartialEq)]
+struct Placed {
+    x: u32,
+    y: u32,
+    size: [u32; 2],
+}
+
+impl SlideLayout {
+    pub fn new(size: [u32; 2]) -> SlideLayout {
+        let h = size[1] as f32;
+        SlideLayout {
+            size,
+            margin: h * 0.04,
+            title_px: h * 0.05,
+            body_px: h * 0.028,
+            label_px: h * 0.024,
+            gap: h * 0.015,
+        }
+    }
+
+    /// The width text may take: the slide less its margins.
+    pub fn text_width(&self) -> f32 {
+        self.size[0] as f32 - 2.0 * self.margin
+    }
+
+    /// The caption's lines, each at most [`Self::text_width`] wide.
+    pub fn caption_lines(&self, lesson: &Lesson) -> Vec<String> {
+        wrap(&lesson.caption, self.body_px, self.text_width())
+    }
+
+    /// The pictures' area: below the title, above the labels, caption and claim.
+    fn picture_area(&self, lesson: &Lesson) -> [f32; 4] {
+        let top = self.margin + self.title_px * 1.6;
+        let lines = self.caption_lines(lesson).len() + 1;
+        let bottom_block = self.body_px * LEADING * lines as f32 + self.body_px * 0.8 + self.margin;
+        let labels = self.label_px * LEADING * 1.4;
+        let bottom = self.size[1] as f32 - bottom_block - labels;
+        [self.margin, top, self.text_width(), (bottom - top).max(1.0)]
+    }
+
+    /// Each picture's place: one 16:9 picture for a split, else one per side in the rows of at
+    /// most [`MAX_COLUMNS`] that make them largest, centred.
+    fn places(&self, lesson: &Lesson) -> Vec<Placed> {
+        let [x0, y0, width, height] = self.picture_area(lesson);
+        let count = if lesson.split { 1 } else { lesson.sides.len() };
+        let label_row = self.label_px * LEADING * 1.4;
+        // The tile width with `columns` columns: limited by the width and by the height.
+        let tile_width = |columns: usize| {
+            let rows = count.div_ceil(columns);
+            let by_width = (width - self.gap * (columns - 1) as f32) / columns as f32;
+            let by_height = ((height - label_row * (rows - 1) as f32) / rows as f32) * 16.0 / 9.0;
+            by_width.min(by_height).floor().max(16.0)
+        };
+        // The largest tiles; of equally large ones, the grid with the fewest empty cells.
+        let empty = |columns: usize| columns * count.div_ceil(columns) - count;
+        let columns = (1..=count.min(MAX_COLUMNS))
+            .max_by(|&a, &b| tile_width(a).total_cmp(&tile_width(b)).then(empty(b).cmp(&empty(a))))
+            .unwrap_or(1);
+        let rows = count.div_ceil(columns);
+        let w = tile_width(columns);
+        let h = (w * 9.0 / 16.0).round();
+        let row_width = w * columns as f32 + self.gap * (columns - 1) as f32;
+        let left = x0 + (width - row_width) / 2.0;
+        // The pictures (and the text under them) centred in the height they leave free.
+        let used = h * rows as f32 + label_row * (rows - 1) as f32;
+        let y0 = y0 + ((height - used) / 2.0).max(0.0);
+        (0..count)
+            .map(|i| {
+                let (column, row) = ((i % columns) as f32, (i / columns) as f32);
+                let x = left + column * (w + self.gap);
+                let y = y0 + row * (h + label_row);
+                Placed { x: x.round() as u32, y: y.round() as u32, size: [w as u32, h as u32] }
+            })
+            .collect()
+    }
+
+    /// The size every side of `lesson` is drawn at on this slide.
+    pub fn picture_size(&self, lesson: &Lesson) -> [u32; 2] {
+        self.places(lesson)[0].size
+    }
+
+    /// The slide of `lesson` (number `index` of `total`, from 1) with the pictures `measured`
+    /// drew at [`Self::picture_size`].
+    pub fn compose(&self, lesson: &Lesson, measured: &Measured, index: usize, total: usize) -> RgbaImage {
+        let [width, height] = self.size;
+        let [r, g, b] = BACKGROUND;
+        let mut slide = RgbaImage::from_pixel(width, height, Rgba([r, g, b, 255]));
+        let m = self.margin;
+        let title_baseline = m + self.title_px;
+        draw_text(&mut slide, &lesson.title, m, title_baseline, self.title_px, TEXT);
+        let page = format!("{index} / {total}");
+        let page_x = width as f32 - m - text_width(&page, self.label_px);
+        draw_text(&mut slide, &page, page_x, m + self.label_px, self.label_px, MUTED);
+        let places = self.places(lesson);
+        let pictures: Vec<&RgbaImage> = match &measured.split {
+            Some(split) if lesson.split => vec![split],
+            _ => measured.sides.iter().collect(),
+        };
+        let mut labels_bottom = 0.0f32;
+        for (place, picture) in places.iter().zip(pictures) {
+            image::imageops::replace(&mut slide, picture, place.x.into(), place.y.into());
+            labels_bottom = labels_bottom.max((place.y + place.size[1]) as f32);
+        }
+        let label_baseline = |place: &Placed| (place.y + place.size[1]) as f32 + self.label_px * 1.2;
+        if lesson.split {
+            // The split's halves: each label centred under its half.
+            let place = &places[0];
+            let divider = lesson.preset.split.divider.clamp(0.0, 1.0);
+            let halves = [(0.0, divider), (divider, 1.0)];
+            for (side, (from, to)) in lesson.sides.iter().zip(halves) {
+                let centre = place.x as f32 + place.size[0] as f32 * (from + to) / 2.0;
+                let x = centre - text_width(&side.label, self.label_px) / 2.0;
+                draw_text(&mut slide, &side.label, x, label_baseline(place), self.label_px, MUTED);
+            }
+        } else {
+            for (place, side) in places.iter().zip(&lesson.sides) {
+                let label = fit(&side.label, self.label_px, place.size[0] as f32);
+                let x = place.x as f32 + (place.size[0] as f32 - text_width(&label, self.label_px)) / 2.0;
+                draw_text(&mut slide, &label, x, label_baseline(place), self.label_px, MUTED);
+            }
+        }
+        let mut baseline = labels_bottom + self.label_px * LEADING * 1.4 + self.body_px * 1.2;
+        for line in self.caption_lines(lesson) {
+            draw_text(&mut slide, &line, m, baseline, self.body_px, TEXT);
+            baseline += self.body_px * LEADING;
+        }
+        let claim = fit(&lesson.claim_with(measured.changed_percent), self.body_px, self.text_width());
+        draw_text(&mut slide, &claim, m, baseline + self.body_px * 0.4, self.body_px, ACCENT);
+        slide
+    }
+}
+
+/// `text`, cut with an ellipsis when it is wider than `width` at `px` (labels and the claim
+/// are one line).
+fn fit(text: &str, px: f32, width: f32) -> String {
+    if text_width(text, px) <= width {
+        return text.to_owned();
+    }
+    let mut cut: String = text.to_owned();
+    while !cut.is_empty() && text_width(&format!("{cut}…"), px) > width {
+        cut.pop();
+    }
+    format!("{cut}…")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lessons::catalogue;
+
+    /// Every caption fits the slide at the sizes slides are made at, and the pictures fit
+    /// between the title and the caption.
+    #[test]
+    fn captions_and_pictures_fit_every_slide() {
+        for size in [[1920, 1080], [960, 540], [1280, 720]] {
+            let layout = SlideLayout::new(size);
+            for lesson in catalogue().unwrap() {
+                let lines = layout.caption_lines(&lesson);
+                assert!(lines.iter().all(|l| text_width(l, layout.body_px) <= layout.text_width()), "{}", lesson.name);
+                assert_eq!(lines.join(" "), lesson.caption.split_whitespace().collect::<Vec<_>>().join(" "));
+                for place in layout.places(&lesson) {
+                    assert!(place.x + place.size[0] <= size[0] && place.y + place.size[1] < size[1], "{}", lesson.name);
+                    assert!(place.size[1] as f32 > size[1] as f32 * 0.2, "{}: {:?}", lesson.name, place.size);
+                }
+            }
+        }
+    }
+}
