@@ -19,7 +19,9 @@ mod ui_frames;
 use std::num::NonZeroU32;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use web_time::Instant;
 
 use bumpview::error::RenderError;
 use bumpview::frame::{FrameQuality, Msaa, SceneUploads};
@@ -32,7 +34,9 @@ use bumpview::state::preset::CapturePreset;
 use bumpview::state::{Command, ViewerState};
 pub use exports::ScreenshotForm;
 pub use facts::SceneFacts;
-pub use presets::{PresetForm, last_state_file};
+pub use presets::PresetForm;
+#[cfg(not(target_arch = "wasm32"))]
+pub use presets::last_state_file;
 use scene_job::SceneJobs;
 pub use scene_job::{JobTimes, SceneReady};
 
@@ -259,8 +263,14 @@ impl Controller {
                     self.rebuild_builtin(kernel);
                 }
             }
+            #[cfg(not(target_arch = "wasm32"))]
             Action::Screenshot => self.screenshot.message = Some(self.save_screenshot()),
+            #[cfg(not(target_arch = "wasm32"))]
             Action::ExportTiles => self.screenshot.message = Some(self.export_tiles()),
+            #[cfg(target_arch = "wasm32")]
+            Action::Screenshot | Action::ExportTiles => {
+                self.screenshot.message = Some(Err(crate::app::web::NO_CAPTURE.into()));
+            }
             Action::SavePreset(path) => self.preset.message = Some(self.save_preset(&path)),
             Action::LoadPreset(path) => self.preset.message = Some(self.load_preset(&path)),
             Action::Open { paths, slot } => {

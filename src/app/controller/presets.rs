@@ -20,6 +20,7 @@ pub struct PresetForm {
 
 /// Where the viewer keeps its state between runs: `last.toml`, a preset, next to the recent
 /// list ([`files::recent_file`]).
+#[cfg(not(target_arch = "wasm32"))]
 pub fn last_state_file() -> Option<PathBuf> {
     files::recent_file().map(|recent| recent.with_file_name("last.toml"))
 }
@@ -32,9 +33,19 @@ impl Controller {
     }
 
     /// Writes [`Self::current_preset`] to `path` atomically; says where, or why not.
+    #[cfg(not(target_arch = "wasm32"))]
     pub(super) fn save_preset(&self, path: &Path) -> Result<String, String> {
         self.current_preset().save(path).map_err(|e| e.to_string())?;
         Ok(format!("saved {}", path.display()))
+    }
+
+    /// Offers [`Self::current_preset`] as a download named as `path`'s file; says which, or why
+    /// not. (It can be loaded again by dropping it on the page.)
+    #[cfg(target_arch = "wasm32")]
+    pub(super) fn save_preset(&self, path: &Path) -> Result<String, String> {
+        let name = path.file_name().map_or("bumpview.toml".into(), |n| n.to_string_lossy().into_owned());
+        crate::app::web::download(&name, "application/toml", self.current_preset().to_toml().as_bytes())?;
+        Ok(format!("downloaded {name}"))
     }
 
     /// Shows a preset's state at once and loads its files in the background when they differ
