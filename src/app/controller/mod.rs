@@ -113,6 +113,7 @@ pub struct Controller {
     /// Where the state is saved on exit; `None`: not saved.
     last_state: Option<PathBuf>,
     /// The folder screenshots and tile exports go to; empty: the current directory.
+    #[cfg(not(target_arch = "wasm32"))]
     screenshot_dir: PathBuf,
     /// Frames while the user drags or the light orbits: the panel setting and the render
     /// scale learnt from their times.
@@ -163,6 +164,7 @@ impl Controller {
             view_size: None,
             revision: 0,
             last_state,
+            #[cfg(not(target_arch = "wasm32"))]
             screenshot_dir: PathBuf::new(),
             interactive: InteractiveQuality::default(),
             floor: None,

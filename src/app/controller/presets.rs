@@ -2,12 +2,12 @@
 //! as TOML, loaded back (state at once, files in the background), and kept between runs as
 //! `last.toml`.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use bumpview::state::preset::Preset;
 
 use super::{Controller, ScreenshotForm};
-use crate::app::files::{self, Job};
+use crate::app::files::Job;
 
 /// The preset path field and the outcome of the last save or load.
 #[derive(Default)]
@@ -19,10 +19,10 @@ pub struct PresetForm {
 }
 
 /// Where the viewer keeps its state between runs: `last.toml`, a preset, next to the recent
-/// list ([`files::recent_file`]).
+/// list ([`crate::app::files::recent_file`]).
 #[cfg(not(target_arch = "wasm32"))]
-pub fn last_state_file() -> Option<PathBuf> {
-    files::recent_file().map(|recent| recent.with_file_name("last.toml"))
+pub fn last_state_file() -> Option<std::path::PathBuf> {
+    crate::app::files::recent_file().map(|recent| recent.with_file_name("last.toml"))
 }
 
 impl Controller {
