@@ -13,8 +13,10 @@ use std::path::PathBuf;
 use std::rc::Rc;
 use std::sync::Arc;
 
-use bumpview::load::{SceneFiles, TextureSlot};
+use bumpview::load::TextureSlot;
 use bumpview::read::{MEMORY_FOLDER, hold_in_memory};
+use bumpview::scene::Scene;
+use bumpview::state::ViewerState;
 use bumpview::state::preset::Preset;
 use wasm_bindgen::JsCast;
 
@@ -45,28 +47,35 @@ fn fragment() -> Vec<(String, String)> {
         .collect()
 }
 
-/// The viewer's start from the fragment's preset (the defaults without one). The notice says
-/// why a preset given was not used.
+/// The viewer's start from the fragment's preset (the defaults without one, or when it does not
+/// load: then the notice says why).
 fn options(fragment: &[(String, String)]) -> Result<Options, String> {
-    let given = fragment.iter().find(|(key, _)| key == "preset").map(|(_, text)| Preset::from_toml(text));
-    let (preset, notice) = match given {
-        Some(Ok(preset)) => (preset, Some("preset from the page's address".to_owned())),
-        Some(Err(e)) => (Preset::default(), Some(format!("the address's preset was not used: {e}"))),
-        None => (Preset::default(), None),
+    let given = fragment.iter().find(|(key, _)| key == "preset").map(|(_, text)| started(text));
+    let ((preset, scene, state), notice) = match given {
+        Some(Ok(started)) => (started, Some("preset from the page's address".to_owned())),
+        Some(Err(e)) => (started("")?, Some(format!("the address's preset was not used: {e}"))),
+        None => (started("")?, None),
     };
-    let scene = preset.build_scene().map_err(|e| format!("the scene: {e}"))?;
-    let state = preset.to_state(&scene).map_err(|e| format!("the preset: {e}"))?;
     Ok(Options {
         exit_after: None,
         capture_window: None,
         probe: None,
         scene,
-        files: SceneFiles::default(),
+        files: preset.files,
         state,
         capture: preset.capture,
         last_state: None,
         notice,
     })
+}
+
+/// The preset in `text` (TOML; empty: the defaults), its scene and its state; the error says
+/// what did not load.
+fn started(text: &str) -> Result<(Preset, Scene, ViewerState), String> {
+    let preset = Preset::from_toml(text).map_err(|e| e.to_string())?;
+    let scene = preset.build_scene().map_err(|e| e.to_string())?;
+    let state = preset.to_state(&scene).map_err(|e| e.to_string())?;
+    Ok((preset, scene, state))
 }
 
 /// The graphics backends the fragment asks for (`backend=webgl` or `webgpu`); both otherwise,

@@ -359,12 +359,13 @@ impl Controller {
 
     /// Draws the current picture (the split view when it is on) into `target` with `msaa`
     /// and submits it. An interactive frame (one sample) is waited for and timed, and its
-    /// time against the floor at the view's size sets the next one's render scale.
+    /// time against the floor at the view's size sets the next one's render scale. Not in the
+    /// web build: a page cannot wait for the GPU, so its interactive frames keep their scale.
     pub fn draw(&mut self, target: &RenderTarget, msaa: Msaa) -> Result<(), RenderError> {
         let params = self.state.frame_params();
         let split = self.state.split_frame();
         let options = DrawOptions { msaa, ..Default::default() };
-        if msaa == Msaa::X4 {
+        if msaa == Msaa::X4 || cfg!(target_arch = "wasm32") {
             let mut encoder = self.renderer.device().create_command_encoder(&Default::default());
             self.renderer.draw(&mut encoder, target, &params, split.as_ref(), options)?;
             self.renderer.queue().submit([encoder.finish()]);
