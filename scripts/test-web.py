@@ -242,7 +242,7 @@ def launch(chromium, backend, profile):
 def wait_ready(page):
     deadline = time.time() + READY_TIMEOUT_S
     while time.time() < deadline:
-        data = page.evaluate("JSON.stringify(document.body.dataset)")
+        data = page.evaluate("document.body ? JSON.stringify(document.body.dataset) : null")
         data = json.loads(data) if data else {}
         if "failed" in data:
             raise RuntimeError(f"the page failed: {data['failed']}")
