@@ -14,8 +14,9 @@ Prints the wasm's size (raw and gzip) and each backend's time to first frame, an
 "web: N passed, N failed". Fails when Chromium is missing and CI=true; elsewhere says so and
 stops with exit code 0.
 
-Usage: scripts/test-web.py [--keep DIR]  (DIR: where to leave the screenshots; default a
-temporary folder, removed). Env: BUMPVIEW_BIN (default target/debug/bumpview), CHROMIUM
+Usage: scripts/test-web.py [--keep DIR] [--known-failure BACKEND]  (DIR: where to leave the
+screenshots; default a temporary folder, removed. BACKEND: its checks still run and print, but
+their failures are counted as skipped, and one that passes says so: docs/web.md#known-failures). Env: BUMPVIEW_BIN (default target/debug/bumpview), CHROMIUM
 (default chromium).
 """
 
@@ -41,10 +42,11 @@ GLB = os.path.join(ROOT, "tests", "fixtures", "gltf", "BoxTextured", "glTF-Binar
 
 # Tolerance of the 3D view against `bumpview render` on lavapipe, in 8-bit steps of the sRGB
 # values: mean over all channels of all pixels, and the largest single step. SwiftShader and
-# lavapipe are different rasterisers: edge coverage of the 4x MSAA samples and the last bit of
-# filtering differ, so edges may differ by a large step while the mean stays small.
-MEAN_TOLERANCE = 2.0
-MAX_TOLERANCE = 255
+# lavapipe are different rasterisers: the 4x MSAA samples' coverage of an edge pixel differs, so
+# a pixel on an edge can differ by a large step (102 measured on WebGL2 at 990x657) while the
+# mean stays small (0.17 measured).
+MEAN_TOLERANCE = 1.0
+MAX_TOLERANCE = 128
 # A change (B, a drag, a dropped model) must move the mean by at least this many steps.
 CHANGED_MEAN = 1.0
 # Budgets (docs/web.md): first frame in headless Chromium on this machine, wasm size gzipped.
@@ -272,15 +274,28 @@ def settle(page, seconds=1.5):
 
 
 class Results:
-    def __init__(self):
-        self.passed, self.failed = 0, 0
+    def __init__(self, known_failure):
+        self.passed, self.failed, self.known = 0, 0, 0
+        self.known_failure = known_failure
 
     def check(self, name, ok, detail):
-        print(f"{'ok  ' if ok else 'FAIL'} {name}: {detail}", flush=True)
+        known = self.known_failure is not None and name.startswith(self.known_failure + ":")
+        mark = "ok  " if ok else "KNOWN FAILURE" if known else "FAIL"
+        print(f"{mark} {name}: {detail}", flush=True)
         if ok:
             self.passed += 1
+        elif known:
+            self.known += 1
         else:
             self.failed += 1
+
+
+def changed(results, page, name, mean):
+    """A picture changed by an input: by CHANGED_MEAN at least, and not by a failure (a panic
+    blanks the page, which changes it too)."""
+    errors = page.errors()
+    results.check(name, mean >= CHANGED_MEAN and not errors,
+                  f"mean change {mean:.3f} steps" + (f", after {len(errors)} console errors" if errors else ""))
 
 
 def run_backend(chromium, backend, port, out, results):
@@ -327,7 +342,7 @@ def run_backend(chromium, backend, port, out, results):
         settle(page)
         bump_off = view_shot(page, view, os.path.join(out, f"{backend}-bump-off.png"))
         mean, _ = difference(built_in, bump_off)
-        results.check(f"{backend}: B turns bump mapping off", mean >= CHANGED_MEAN, f"mean change {mean:.3f} steps")
+        changed(results, page, f"{backend}: B turns bump mapping off", mean)
 
         steps = 10
         for i in range(steps + 1):
@@ -339,7 +354,7 @@ def run_backend(chromium, backend, port, out, results):
         settle(page)
         dragged = view_shot(page, view, os.path.join(out, f"{backend}-dragged.png"))
         mean, _ = difference(bump_off, dragged)
-        results.check(f"{backend}: a drag turns the camera", mean >= CHANGED_MEAN, f"mean change {mean:.3f} steps")
+        changed(results, page, f"{backend}: a drag turns the camera", mean)
 
         page.evaluate(f"""(async () => {{
             const bytes = await (await fetch('/test-model.glb')).arrayBuffer();
@@ -354,7 +369,7 @@ def run_backend(chromium, backend, port, out, results):
         settle(page, 3.0)
         dropped = view_shot(page, view, os.path.join(out, f"{backend}-dropped-glb.png"))
         mean, _ = difference(dragged, dropped)
-        results.check(f"{backend}: a dropped .glb is opened", mean >= CHANGED_MEAN, f"mean change {mean:.3f} steps")
+        changed(results, page, f"{backend}: a dropped .glb is opened", mean)
 
         errors = page.errors()
         results.check(f"{backend}: no console error", not errors, f"{len(errors)} errors {errors[:3]}")
@@ -369,6 +384,7 @@ def run_backend(chromium, backend, port, out, results):
 
 def main():
     keep = sys.argv[sys.argv.index("--keep") + 1] if "--keep" in sys.argv else None
+    known_failure = sys.argv[sys.argv.index("--known-failure") + 1] if "--known-failure" in sys.argv else None
     chromium = shutil.which(os.environ.get("CHROMIUM", "chromium"))
     if chromium is None:
         if os.environ.get("CI") == "true":
@@ -383,7 +399,7 @@ def main():
     raw = os.path.getsize(wasm)
     with open(wasm, "rb") as f:
         packed = len(gzip.compress(f.read(), 9))
-    results = Results()
+    results = Results(known_failure)
     results.check("wasm size", packed <= WASM_GZIP_BUDGET,
                   f"{raw} bytes raw ({raw / 2**20:.1f} MiB), {packed} gzip -9 ({packed / 2**20:.1f} MiB; "
                   f"budget {WASM_GZIP_BUDGET / 2**20:.0f} MiB)")
@@ -399,7 +415,9 @@ def main():
     finally:
         if keep is None:
             shutil.rmtree(out, ignore_errors=True)
-    print(f"web: {results.passed} passed, {results.failed} failed")
+    if results.known:
+        print(f"web: {results.known} known failures on {known_failure} (docs/web.md#known-failures), counted as skipped")
+    print(f"web: {results.passed} passed, {results.failed} failed, {results.known} skipped")
     return 0 if results.failed == 0 else 1
 
 
