@@ -14,9 +14,8 @@ Prints the wasm's size (raw and gzip) and each backend's time to first frame, an
 "web: N passed, N failed". Fails when Chromium is missing and CI=true; elsewhere says so and
 stops with exit code 0.
 
-Usage: scripts/test-web.py [--keep DIR] [--known-failure BACKEND]  (DIR: where to leave the
-screenshots; default a temporary folder, removed. BACKEND: its checks still run and print, but
-their failures are counted as skipped, and one that passes says so: docs/web.md#known-failures). Env: BUMPVIEW_BIN (default target/debug/bumpview), CHROMIUM
+Usage: scripts/test-web.py [--keep DIR]  (DIR: where to leave the screenshots; default a
+temporary folder, removed). Env: BUMPVIEW_BIN (default target/debug/bumpview), CHROMIUM
 (default chromium).
 """
 
@@ -59,8 +58,9 @@ BACKENDS = {
     "webgpu": [
         "--enable-unsafe-webgpu",
         "--use-webgpu-adapter=swiftshader",
+        "--enable-features=Vulkan",
         "--use-vulkan=swiftshader",
-        "--use-angle=swiftshader",
+        "--use-angle=vulkan",
         "--enable-unsafe-swiftshader",
     ],
 }
@@ -274,18 +274,13 @@ def settle(page, seconds=1.5):
 
 
 class Results:
-    def __init__(self, known_failure):
-        self.passed, self.failed, self.known = 0, 0, 0
-        self.known_failure = known_failure
+    def __init__(self):
+        self.passed, self.failed = 0, 0
 
     def check(self, name, ok, detail):
-        known = self.known_failure is not None and name.startswith(self.known_failure + ":")
-        mark = "ok  " if ok else "KNOWN FAILURE" if known else "FAIL"
-        print(f"{mark} {name}: {detail}", flush=True)
+        print(f"{'ok  ' if ok else 'FAIL'} {name}: {detail}", flush=True)
         if ok:
             self.passed += 1
-        elif known:
-            self.known += 1
         else:
             self.failed += 1
 
@@ -384,7 +379,6 @@ def run_backend(chromium, backend, port, out, results):
 
 def main():
     keep = sys.argv[sys.argv.index("--keep") + 1] if "--keep" in sys.argv else None
-    known_failure = sys.argv[sys.argv.index("--known-failure") + 1] if "--known-failure" in sys.argv else None
     chromium = shutil.which(os.environ.get("CHROMIUM", "chromium"))
     if chromium is None:
         if os.environ.get("CI") == "true":
@@ -399,7 +393,7 @@ def main():
     raw = os.path.getsize(wasm)
     with open(wasm, "rb") as f:
         packed = len(gzip.compress(f.read(), 9))
-    results = Results(known_failure)
+    results = Results()
     results.check("wasm size", packed <= WASM_GZIP_BUDGET,
                   f"{raw} bytes raw ({raw / 2**20:.1f} MiB), {packed} gzip -9 ({packed / 2**20:.1f} MiB; "
                   f"budget {WASM_GZIP_BUDGET / 2**20:.0f} MiB)")
@@ -415,9 +409,7 @@ def main():
     finally:
         if keep is None:
             shutil.rmtree(out, ignore_errors=True)
-    if results.known:
-        print(f"web: {results.known} known failures on {known_failure} (docs/web.md#known-failures), counted as skipped")
-    print(f"web: {results.passed} passed, {results.failed} failed, {results.known} skipped")
+    print(f"web: {results.passed} passed, {results.failed} failed")
     return 0 if results.failed == 0 else 1
 
 

@@ -33,7 +33,7 @@ struct ViewTexture {
     /// Width and height in pixels: the view's, or fewer at a lower render scale.
     size: [u32; 2],
     /// Where the adapter cannot view one texture in both formats (WebGL2 lacks
-    /// `DownlevelFlags::VIEW_FORMATS`): the copy and the plain `Rgba8Unorm` view egui shows,
+    /// `DownlevelFlags::VIEW_FORMATS`), and in every browser: the copy and the plain `Rgba8Unorm` view egui shows,
     /// which gets the same bytes after each draw into `render_view` (a texture of its own).
     copy: Option<(std::sync::Arc<SrgbCopy>, wgpu::TextureView)>,
 }
@@ -177,8 +177,10 @@ impl View {
             return texture.id;
         }
         let device = &self.render_state.device;
-        let views_both =
-            self.render_state.adapter.get_downlevel_capabilities().flags.contains(wgpu::DownlevelFlags::VIEW_FORMATS);
+        // In the browser always through the copy: WebGL2 lacks view formats, and Chromium's WebGPU
+        // on SwiftShader wrote the picture through the sRGB view without encoding it (too dark).
+        let views_both = !cfg!(target_arch = "wasm32")
+            && self.render_state.adapter.get_downlevel_capabilities().flags.contains(wgpu::DownlevelFlags::VIEW_FORMATS);
         let create = |format, usage, view_formats: &[wgpu::TextureFormat]| {
             device.create_texture(&wgpu::TextureDescriptor {
                 label: Some("3d view"),
