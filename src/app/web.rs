@@ -230,8 +230,8 @@ pub fn download(name: &str, mime: &str, bytes: &[u8]) -> Result<(), String> {
     let array = js_sys_array(bytes);
     let properties = web_sys::BlobPropertyBag::new();
     properties.set_type(mime);
-    let blob = web_sys::Blob::new_with_u8_array_sequence_and_options(&array, &properties)
-        .map_err(|_| failed("no blob"))?;
+    let blob =
+        web_sys::Blob::new_with_u8_array_sequence_and_options(&array, &properties).map_err(|_| failed("no blob"))?;
     let url = web_sys::Url::create_object_url_with_blob(&blob).map_err(|_| failed("no object URL"))?;
     let document = web_sys::window().and_then(|w| w.document()).ok_or_else(|| failed("no document"))?;
     let anchor = document

@@ -8,9 +8,9 @@ use std::path::{Path, PathBuf};
 
 #[cfg(not(target_arch = "wasm32"))]
 use bumpview::render::capture::{render_capture, render_capture_split, write_png_atomically};
+use bumpview::render::export::parse_size;
 #[cfg(not(target_arch = "wasm32"))]
 use bumpview::render::export::{self, TileGrid};
-use bumpview::render::export::parse_size;
 use bumpview::state::preset::CapturePreset;
 
 #[cfg(not(target_arch = "wasm32"))]

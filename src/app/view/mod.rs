@@ -179,8 +179,8 @@ impl View {
         let device = &self.render_state.device;
         // In the browser always through the copy: WebGL2 lacks view formats, and Chromium's WebGPU
         // on SwiftShader wrote the picture through the sRGB view without encoding it (too dark).
-        let views_both = !cfg!(target_arch = "wasm32")
-            && self.render_state.adapter.get_downlevel_capabilities().flags.contains(wgpu::DownlevelFlags::VIEW_FORMATS);
+        let flags = self.render_state.adapter.get_downlevel_capabilities().flags;
+        let views_both = !cfg!(target_arch = "wasm32") && flags.contains(wgpu::DownlevelFlags::VIEW_FORMATS);
         let create = |format, usage, view_formats: &[wgpu::TextureFormat]| {
             device.create_texture(&wgpu::TextureDescriptor {
                 label: Some("3d view"),
