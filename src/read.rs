@@ -3,9 +3,15 @@
 //! (a device, FIFO or socket is refused by its type before it is opened, so `/dev/zero` or a
 //! FIFO never hangs or fills memory), each kind of file up to its own size cap, and the read
 //! itself stops one byte past the cap, so a file that grows after the check stays bounded.
+//!
+//! Files can also be held in memory under a path ([`hold_in_memory`]): the web build's dropped
+//! and picked files arrive as bytes without a file on disk, and a glTF among them names its
+//! `.bin` and textures by relative URIs, which resolve beside it to other held files.
 
+use std::collections::BTreeMap;
 use std::io::Read;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
 
 /// Bytes in a mebibyte.
 const MIB: u64 = 1 << 20;
@@ -64,10 +70,33 @@ pub enum ReadError {
     Io(#[from] std::io::Error),
 }
 
+/// Files held in memory, by path ([`hold_in_memory`]).
+static MEMORY: Mutex<BTreeMap<PathBuf, Arc<[u8]>>> = Mutex::new(BTreeMap::new());
+
+/// The folder the web build holds dropped and picked files in (see [`hold_in_memory`]).
+pub const MEMORY_FOLDER: &str = "/memory";
+
+/// Holds `bytes` as the file at `path` for this process: [`read_file`] of `path` gives them
+/// (within the kind's cap) and never looks on disk for it. A file held again under the same path
+/// replaces the old bytes. Held files stay until the process ends (a browser tab: until it
+/// closes or reloads).
+pub fn hold_in_memory(path: PathBuf, bytes: Arc<[u8]>) {
+    MEMORY.lock().unwrap_or_else(|poisoned| poisoned.into_inner()).insert(path, bytes);
+}
+
+/// The bytes held for `path`, if any.
+fn held(path: &Path) -> Option<Arc<[u8]>> {
+    MEMORY.lock().unwrap_or_else(|poisoned| poisoned.into_inner()).get(path).cloned()
+}
+
 /// The bytes of the file at `path` (symbolic links followed), read as `kind`: refused when
-/// the resolved file is not a regular file or is larger than [`FileKind::cap`].
+/// the resolved file is not a regular file or is larger than [`FileKind::cap`]. A file held in
+/// memory ([`hold_in_memory`]) is given from there.
 pub fn read_file(path: &Path, kind: FileKind) -> Result<Vec<u8>, ReadError> {
     let too_large = || ReadError::TooLarge { kind: kind.name(), cap_mib: kind.cap() / MIB };
+    if let Some(bytes) = held(path) {
+        return if bytes.len() as u64 > kind.cap() { Err(too_large()) } else { Ok(bytes.to_vec()) };
+    }
     // The type of the file the path resolves to, before opening it: opening a FIFO blocks.
     let metadata = std::fs::metadata(path)?;
     regular(&metadata)?;
@@ -144,6 +173,19 @@ mod tests {
         std::fs::write(&path, vec![b'#'; FileKind::Preset.cap() as usize]).unwrap();
         assert_eq!(read_file(&path, FileKind::Preset).unwrap().len() as u64, FileKind::Preset.cap());
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn reads_held_files_from_memory_within_their_cap() {
+        let path = Path::new(MEMORY_FOLDER).join("read-test").join("held.toml");
+        assert!(read_file(&path, FileKind::Preset).is_err(), "not held yet, and not on disk");
+        hold_in_memory(path.clone(), Arc::from(&b"first"[..]));
+        assert_eq!(read_file(&path, FileKind::Preset).unwrap(), b"first");
+        hold_in_memory(path.clone(), Arc::from(&b"second"[..]));
+        assert_eq!(read_file(&path, FileKind::Preset).unwrap(), b"second");
+        hold_in_memory(path.clone(), Arc::from(vec![b'#'; FileKind::Preset.cap() as usize + 1]));
+        let error = read_file(&path, FileKind::Preset).unwrap_err();
+        assert_eq!(error.to_string(), "is larger than 1 MiB, the cap on preset files");
     }
 
     #[cfg(unix)]

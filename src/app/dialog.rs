@@ -1,5 +1,6 @@
 //! The native file dialog (the `rfd` crate), run on its own thread so the window keeps
-//! drawing while it is open.
+//! drawing while it is open. In the web build it is the browser's file picker (rfd's async
+//! dialog), whose file is read as bytes and held in memory ([`crate::app::web::hold`]).
 
 use std::path::PathBuf;
 use std::sync::mpsc;
@@ -36,28 +37,8 @@ impl Dialog {
         if self.is_open() {
             return Err("a file dialog is already open".into());
         }
-        available()?;
-        let mut dialog = match slot {
-            None => rfd::FileDialog::new()
-                .set_title("Open a mesh or a texture")
-                .add_filter("Meshes and textures", &[MESH_FILTER.as_slice(), &IMAGE_FILTER].concat())
-                .add_filter("Meshes (glTF, OBJ)", &MESH_FILTER)
-                .add_filter("Textures", &IMAGE_FILTER),
-            Some(slot) => rfd::FileDialog::new()
-                .set_title(format!("Open a texture for the {} slot", slot.label()))
-                .add_filter("Textures", &IMAGE_FILTER),
-        };
-        if let Some(folder) = folder {
-            dialog = dialog.set_directory(folder);
-        }
         let (sender, answer) = mpsc::channel();
-        std::thread::Builder::new()
-            .name("bumpview-dialog".into())
-            .spawn(move || {
-                let _ = sender.send(dialog.pick_file());
-                wake();
-            })
-            .map_err(|e| format!("could not start the file dialog: {e}"))?;
+        pick(slot, folder, sender, wake)?;
         self.open = Some((slot, answer));
         Ok(())
     }
@@ -77,9 +58,69 @@ impl Dialog {
     }
 }
 
+/// The builder of the dialog for a mesh or texture (`slot = None`) or for `slot`'s texture.
+macro_rules! dialog {
+    ($kind:ty, $slot:expr) => {
+        match $slot {
+            None => <$kind>::new()
+                .set_title("Open a mesh or a texture")
+                .add_filter("Meshes and textures", &[MESH_FILTER.as_slice(), &IMAGE_FILTER].concat())
+                .add_filter("Meshes (glTF, OBJ)", &MESH_FILTER)
+                .add_filter("Textures", &IMAGE_FILTER),
+            Some(slot) => <$kind>::new()
+                .set_title(format!("Open a texture for the {} slot", slot.label()))
+                .add_filter("Textures", &IMAGE_FILTER),
+        }
+    };
+}
+
+/// Shows the native dialog on a thread of its own, which sends the chosen file.
+#[cfg(not(target_arch = "wasm32"))]
+fn pick(
+    slot: Option<TextureSlot>,
+    folder: Option<PathBuf>,
+    sender: mpsc::Sender<Option<PathBuf>>,
+    wake: impl Fn() + Send + 'static,
+) -> Result<(), String> {
+    available()?;
+    let mut dialog = dialog!(rfd::FileDialog, slot);
+    if let Some(folder) = folder {
+        dialog = dialog.set_directory(folder);
+    }
+    std::thread::Builder::new()
+        .name("bumpview-dialog".into())
+        .spawn(move || {
+            let _ = sender.send(dialog.pick_file());
+            wake();
+        })
+        .map(drop)
+        .map_err(|e| format!("could not start the file dialog: {e}"))
+}
+
+/// Shows the browser's file picker; the chosen file is read and held in memory, and its path
+/// there sent. A browser has no folder to start in.
+#[cfg(target_arch = "wasm32")]
+fn pick(
+    slot: Option<TextureSlot>,
+    _folder: Option<PathBuf>,
+    sender: mpsc::Sender<Option<PathBuf>>,
+    wake: impl Fn() + Send + 'static,
+) -> Result<(), String> {
+    let dialog = dialog!(rfd::AsyncFileDialog, slot);
+    wasm_bindgen_futures::spawn_local(async move {
+        let chosen = match dialog.pick_file().await {
+            Some(file) => Some(crate::app::web::hold(&file.file_name(), file.read().await)),
+            None => None,
+        };
+        let _ = sender.send(chosen);
+        wake();
+    });
+    Ok(())
+}
+
 /// On Linux and the BSDs rfd asks the XDG desktop portal over the D-Bus session bus, then
 /// falls back to `zenity`; with neither there is no dialog, and rfd would only log it.
-#[cfg(all(unix, not(target_os = "macos")))]
+#[cfg(all(unix, not(target_os = "macos"), not(target_arch = "wasm32")))]
 fn available() -> Result<(), String> {
     let zenity = std::env::var_os("PATH")
         .is_some_and(|path| std::env::split_paths(&path).any(|dir| dir.join("zenity").is_file()));
@@ -93,7 +134,7 @@ fn available() -> Result<(), String> {
 }
 
 /// Windows and macOS always have their native dialogs.
-#[cfg(not(all(unix, not(target_os = "macos"))))]
+#[cfg(not(any(all(unix, not(target_os = "macos")), target_arch = "wasm32")))]
 fn available() -> Result<(), String> {
     Ok(())
 }

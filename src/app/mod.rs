@@ -14,18 +14,23 @@ mod panel;
 mod probe;
 mod view;
 mod watch;
+#[cfg(target_arch = "wasm32")]
+pub mod web;
 
 use std::cell::RefCell;
 use std::path::PathBuf;
 use std::rc::Rc;
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use web_time::Instant;
 
 use bumpview::load::{SceneFiles, TextureSlot};
 use bumpview::render::Renderer;
 use bumpview::scene::Scene;
 use bumpview::state::ViewerState;
 use bumpview::state::preset::CapturePreset;
+#[cfg(not(target_arch = "wasm32"))]
 pub use controller::last_state_file;
 
 use action::Action;
@@ -62,6 +67,7 @@ const MAX_TICK_SECONDS: f32 = 0.1;
 const INTERACTIVE_RECHECK: Duration = Duration::from_millis(100);
 
 /// Opens the viewer window and runs until it is closed.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn run(options: Options) -> Result<(), String> {
     let mut native = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
@@ -104,6 +110,9 @@ struct ViewerApp {
     automation: Automation,
     /// Where the panel's slot buttons were last drawn, for files dropped on them.
     slot_targets: Vec<(TextureSlot, egui::Rect)>,
+    /// The web page's ready marker.
+    #[cfg(target_arch = "wasm32")]
+    page: web::Page,
 }
 
 impl ViewerApp {
@@ -119,6 +128,11 @@ impl ViewerApp {
         let renderer =
             Renderer::new(render_state.device.clone(), render_state.queue.clone(), render_state.adapter.clone());
         let ctx = cc.egui_ctx.clone();
+        #[cfg(target_arch = "wasm32")]
+        let wake_page = {
+            let ctx = ctx.clone();
+            move || ctx.request_repaint()
+        };
         let wake = Arc::new(move || ctx.request_repaint());
         let start = Start {
             scene: options.scene,
@@ -131,14 +145,17 @@ impl ViewerApp {
         };
         Ok(ViewerApp {
             controller: Controller::new(start, renderer, wake),
-            view: View::new(render_state),
+            view: View::new(render_state.clone()),
             automation: Automation::new(options.probe, options.exit_after, options.capture_window, failure),
             slot_targets: Vec::new(),
+            #[cfg(target_arch = "wasm32")]
+            page: web::Page::new(render_state.adapter.get_info().backend, wake_page),
         })
     }
 
     /// Files dropped on the window this frame: into the slot button they were dropped on, if
     /// any.
+    #[cfg(not(target_arch = "wasm32"))]
     fn dropped_files(&self, ctx: &egui::Context) -> Option<Action> {
         let (paths, pointer) = ctx.input(|i| {
             (i.raw.dropped_files.iter().map(|f| f.path().to_owned()).collect::<Vec<_>>(), i.pointer.latest_pos())
@@ -146,8 +163,23 @@ impl ViewerApp {
         if paths.is_empty() {
             return None;
         }
-        let slot = pointer.and_then(|p| self.slot_targets.iter().find(|(_, rect)| rect.contains(p))).map(|(s, _)| *s);
-        Some(Action::Open { paths, slot })
+        Some(Action::Open { paths, slot: self.slot_at(pointer) })
+    }
+
+    /// Files dropped on the page this frame: the browser gives bytes to read, no paths, so they
+    /// are opened once read ([`web::Page::arrived`]).
+    #[cfg(target_arch = "wasm32")]
+    fn dropped_files(&mut self, ctx: &egui::Context) -> Option<Action> {
+        let (files, pointer) = ctx.input(|i| (i.raw.dropped_files.clone(), i.pointer.latest_pos()));
+        if !files.is_empty() {
+            self.page.read_dropped(files, self.slot_at(pointer));
+        }
+        None
+    }
+
+    /// The slot button at `pointer`, if any.
+    fn slot_at(&self, pointer: Option<egui::Pos2>) -> Option<TextureSlot> {
+        pointer.and_then(|p| self.slot_targets.iter().find(|(_, rect)| rect.contains(p))).map(|(s, _)| *s)
     }
 }
 
@@ -156,7 +188,10 @@ impl eframe::App for ViewerApp {
         let ctx = ui.ctx().clone();
         // Keys and arrivals first, so the panel below already shows their effect.
         self.controller.apply(view::input::keyboard(&ctx));
-        self.controller.apply(self.dropped_files(&ctx));
+        let dropped = self.dropped_files(&ctx);
+        self.controller.apply(dropped);
+        #[cfg(target_arch = "wasm32")]
+        self.controller.apply(self.page.arrived());
         self.controller.apply(self.automation.pending_probe(self.view.size()));
         if let Some(wait) = self.controller.poll_background(Instant::now()) {
             ctx.request_repaint_after(wait);
@@ -167,7 +202,10 @@ impl eframe::App for ViewerApp {
             .show(ui, |ui| panel::show(ui, &mut self.controller, self.view.render_error()))
             .inner;
         self.slot_targets = slot_targets;
-        actions.extend(egui::CentralPanel::no_frame().show(ui, |ui| self.view.show(ui, &self.controller)).inner);
+        let central = egui::CentralPanel::no_frame().show(ui, |ui| self.view.show(ui, &self.controller));
+        #[cfg(target_arch = "wasm32")]
+        self.page.set_view(central.response.rect);
+        actions.extend(central.inner);
         self.controller.set_view_size(self.view.size());
         panel::drop_hint(&ctx);
         self.controller.apply(actions);
@@ -184,6 +222,8 @@ impl eframe::App for ViewerApp {
         }
         let settled = self.controller.busy().is_none();
         self.automation.on_frame(&ctx, self.controller.renderer().device(), settled);
+        #[cfg(target_arch = "wasm32")]
+        self.page.on_frame(settled);
     }
 
     /// Saves the state for the next start (see [`last_state_file`]).

@@ -26,6 +26,7 @@ mod legacy;
 pub mod pipelines;
 mod scene_gpu;
 pub mod shaders;
+pub mod srgb_copy;
 mod targets;
 pub mod text;
 pub mod timing;

@@ -13,10 +13,16 @@ pub struct Wgsl {
     pub files: &'static [(&'static str, &'static str)],
 }
 
+/// Put before every module: texture samples under non-uniform control flow (the mesh pass's
+/// `textureSample` calls inside view and material branches) are accepted, as naga accepts them.
+/// Browsers' WebGPU compilers (Chromium's Tint) refuse such a module without it; the shaders'
+/// own fix is to sample before branching or with explicit gradients.
+pub const DIRECTIVES: &str = "diagnostic(off, derivative_uniformity);\n";
+
 impl Wgsl {
-    /// The module's source: its files one after the other.
+    /// The module's source: [`DIRECTIVES`], then its files one after the other.
     pub fn source(&self) -> String {
-        self.files.iter().map(|(_, text)| *text).collect()
+        std::iter::once(DIRECTIVES).chain(self.files.iter().map(|(_, text)| *text)).collect()
     }
 }
 

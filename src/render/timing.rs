@@ -4,7 +4,8 @@
 
 use std::fmt;
 use std::num::NonZeroU32;
-use std::time::Instant;
+
+use web_time::Instant;
 
 use super::capture::IMAGE_FORMAT;
 use super::{DrawOptions, RenderTarget, Renderer};

@@ -3,13 +3,12 @@
 //! Text is drawn with the Hack font that `epaint_default_fonts` bundles (through plotters'
 //! `ab_glyph` backend), so no system font is needed.
 
-use std::sync::OnceLock;
-
 use image::ImageEncoder;
 use image::codecs::png::PngEncoder;
 use plotters::coord::combinators::IntoLogRange;
 use plotters::coord::ranged1d::ValueFormatter;
 use plotters::prelude::*;
+#[cfg(not(target_arch = "wasm32"))]
 use plotters::style::{FontStyle, register_font};
 
 use super::measure::{Row, Study, Vector};
@@ -68,7 +67,9 @@ pub enum ChartError {
     Encode { title: String, reason: String },
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 fn register_hack_font() -> Result<(), ChartError> {
+    use std::sync::OnceLock;
     static REGISTERED: OnceLock<Result<(), ChartError>> = OnceLock::new();
     REGISTERED
         .get_or_init(|| {
@@ -76,6 +77,13 @@ fn register_hack_font() -> Result<(), ChartError> {
                 .map_err(|_| ChartError::Font)
         })
         .clone()
+}
+
+/// The web build cannot register fonts with plotters (it has no `register_font` on wasm32):
+/// no charts there.
+#[cfg(target_arch = "wasm32")]
+fn register_hack_font() -> Result<(), ChartError> {
+    Err(ChartError::Font)
 }
 
 /// Series of `study`'s rows over `surfaces` and region `All`: one per (method, surface),

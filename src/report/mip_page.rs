@@ -4,7 +4,7 @@
 
 use std::fmt::Write;
 
-use super::chart::{COLOURS, ChartError, Series, png};
+use super::chart::{COLOURS, ChartError, Marker, Series, XAxis, png};
 use super::mip_specimen::{SHININESS, SLOPE_SIGMA, Shape};
 use super::mip_study::{MipPlan, MipRow, MipStudy, PAN_PX_PER_FRAME};
 use crate::frame::MipFilter;
@@ -182,7 +182,7 @@ pub fn chart(rows: &[MipRow]) -> Result<Vec<u8>, ChartError> {
             series.push(Series {
                 label: format!("{method} · {}", shape.name()),
                 colour: COLOURS[index % COLOURS.len()],
-                triangles: shape == Shape::Torus,
+                marker: if shape == Shape::Torus { Marker::Triangle } else { Marker::Circle },
                 points: points.into_iter().map(|(_, ms, e)| (ms, e)).collect(),
             });
         }
@@ -191,6 +191,7 @@ pub fn chart(rows: &[MipRow]) -> Result<Vec<u8>, ChartError> {
         "Mip filters: RMSE against the reference vs GPU frame time (a point per minification)",
         ["median GPU frame time (ms)", "RMSE against the 16×16 reference, linear RGB"],
         &series,
+        XAxis::Log,
     )
 }
 

@@ -106,7 +106,7 @@ pub fn measure(mesh: &crate::scene::Mesh, choice: Option<super::TangentMethod>) 
     let mut best = f64::INFINITY;
     let mut result = None;
     for _ in 0..3 {
-        let start = std::time::Instant::now();
+        let start = web_time::Instant::now();
         let frames = super::resolve(&geometry, choice);
         best = best.min(start.elapsed().as_secs_f64());
         result = Some(frames);

@@ -5,6 +5,7 @@
 //! conventions). None returns NaN: degenerate input falls back to a valid orthonormal frame.
 
 mod compare;
+#[cfg(not(target_arch = "wasm32"))]
 mod meshopt;
 mod mikktspace;
 mod uv_delta;
@@ -14,6 +15,7 @@ use glam::{Vec3, Vec4};
 use crate::math::orthonormalize_tangent;
 use crate::scene::Mesh;
 pub use compare::{AngleStats, FrameAngles, MethodMeasurement, angle_degrees, frame_angles, measure};
+#[cfg(not(target_arch = "wasm32"))]
 pub use meshopt::generate_meshopt;
 pub use mikktspace::generate_mikktspace;
 pub use uv_delta::{
@@ -69,15 +71,44 @@ impl TangentMethod {
 
 /// The frames to draw `mesh` with. `choice = None` is the default rule ("auto"): the mesh's
 /// supplied tangents if it has them, else MikkTSpace frames made by meshoptimizer
-/// ([`TangentMethod::Meshopt`]). A chosen method with nothing to offer for this mesh (no
+/// ([`TangentMethod::Meshopt`]; by bevy_mikktspace in the web build, [`MESHOPT_BUILT`]). A chosen method with nothing to offer for this mesh (no
 /// supplied or analytic frames) falls back the same way. Returns the frames and the method
 /// actually used.
 pub fn resolve(mesh: &Mesh, choice: Option<TangentMethod>) -> (Vec<Vec4>, TangentMethod) {
     let wanted = choice.unwrap_or(TangentMethod::Supplied);
     match tangents(mesh, wanted) {
         Some(frames) => (frames, wanted),
-        None => (generate_meshopt(mesh), TangentMethod::Meshopt),
+        None => generated(mesh),
     }
+}
+
+/// Whether this build has meshoptimizer (C++): not the web build (wasm32), where "auto" makes
+/// missing tangents with MikkTSpace (bevy_mikktspace) and [`TangentMethod::Meshopt`] gives none.
+pub const MESHOPT_BUILT: bool = cfg!(not(target_arch = "wasm32"));
+
+/// The frames "auto" makes for a mesh without usable ones, and by which method.
+#[cfg(not(target_arch = "wasm32"))]
+fn generated(mesh: &Mesh) -> (Vec<Vec4>, TangentMethod) {
+    (generate_meshopt(mesh), TangentMethod::Meshopt)
+}
+
+/// The frames "auto" makes for a mesh without usable ones, and by which method: MikkTSpace,
+/// as the web build has no meshoptimizer.
+#[cfg(target_arch = "wasm32")]
+fn generated(mesh: &Mesh) -> (Vec<Vec4>, TangentMethod) {
+    (generate_mikktspace(mesh), TangentMethod::MikkTSpace)
+}
+
+/// meshoptimizer's frames ([`MESHOPT_BUILT`]).
+#[cfg(not(target_arch = "wasm32"))]
+fn meshopt_frames(mesh: &Mesh) -> Option<Vec<Vec4>> {
+    Some(generate_meshopt(mesh))
+}
+
+/// None: the web build has no meshoptimizer ([`MESHOPT_BUILT`]).
+#[cfg(target_arch = "wasm32")]
+fn meshopt_frames(_mesh: &Mesh) -> Option<Vec<Vec4>> {
+    None
 }
 
 /// The frames of `method` without their Gram-Schmidt against the vertex normal, where it has
@@ -125,7 +156,7 @@ pub fn tangents(mesh: &Mesh, method: TangentMethod) -> Option<Vec<Vec4>> {
     };
     match method {
         TangentMethod::MikkTSpace => Some(generate_mikktspace(mesh)),
-        TangentMethod::Meshopt => Some(generate_meshopt(mesh)),
+        TangentMethod::Meshopt => meshopt_frames(mesh),
         TangentMethod::PerFace => {
             let mut frames = vec![Vec4::ZERO; mesh.positions.len()];
             for (triangle, frame) in mesh.indices.chunks_exact(3).zip(per_face_frames(mesh)) {

@@ -1,12 +1,19 @@
 //! Screenshots of the 3D view and tile exports: rendered offscreen at any size the adapter
-//! allows, written atomically as fresh PNGs (`bumpview-<unix seconds>.png`).
+//! allows, written atomically as fresh PNGs (`bumpview-<unix seconds>.png`). Not in the web build,
+//! whose page cannot wait for the GPU read-back ([`crate::app::web::NO_CAPTURE`]): there only the
+//! form is kept (presets carry its settings).
 
+#[cfg(not(target_arch = "wasm32"))]
 use std::path::{Path, PathBuf};
 
+#[cfg(not(target_arch = "wasm32"))]
 use bumpview::render::capture::write_png_atomically;
-use bumpview::render::export::{self, TileGrid, parse_size};
+use bumpview::render::export::parse_size;
+#[cfg(not(target_arch = "wasm32"))]
+use bumpview::render::export::{self, TileGrid};
 use bumpview::state::preset::CapturePreset;
 
+#[cfg(not(target_arch = "wasm32"))]
 use super::Controller;
 
 /// The screenshot size field, its options, the tile export's spec and the outcome of the last
@@ -45,6 +52,7 @@ impl ScreenshotForm {
     }
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 impl Controller {
     /// The form's size, else the view's.
     fn capture_size(&self) -> Result<[u32; 2], String> {
@@ -112,6 +120,7 @@ impl Controller {
 
 /// `bumpview-<unix seconds>.png` in `dir` (empty: the current directory), with `-1`, `-2`…
 /// added while such a file exists.
+#[cfg(not(target_arch = "wasm32"))]
 fn unused_screenshot_path(dir: &Path) -> PathBuf {
     let seconds = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs());
     let stem = format!("bumpview-{seconds}");

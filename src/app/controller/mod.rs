@@ -22,7 +22,9 @@ mod ui_frames;
 use std::num::NonZeroU32;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use web_time::Instant;
 
 use bumpview::error::RenderError;
 use bumpview::frame::{FrameQuality, Msaa, SceneUploads};
@@ -36,7 +38,9 @@ use bumpview::state::{Command, ViewerState};
 pub use exports::ScreenshotForm;
 pub use facts::SceneFacts;
 pub use lessons::{LessonsForm, Measurement};
-pub use presets::{PresetForm, last_state_file};
+pub use presets::PresetForm;
+#[cfg(not(target_arch = "wasm32"))]
+pub use presets::last_state_file;
 use scene_job::SceneJobs;
 pub use scene_job::{JobTimes, SceneReady};
 
@@ -115,6 +119,7 @@ pub struct Controller {
     /// Where the state is saved on exit; `None`: not saved.
     last_state: Option<PathBuf>,
     /// The folder screenshots and tile exports go to; empty: the current directory.
+    #[cfg(not(target_arch = "wasm32"))]
     screenshot_dir: PathBuf,
     /// Frames while the user drags or the light orbits: the panel setting and the render
     /// scale learnt from their times.
@@ -168,6 +173,7 @@ impl Controller {
             view_size: None,
             revision: 0,
             last_state,
+            #[cfg(not(target_arch = "wasm32"))]
             screenshot_dir: PathBuf::new(),
             interactive: InteractiveQuality::default(),
             floor: None,
@@ -268,8 +274,14 @@ impl Controller {
                     self.rebuild_builtin(kernel);
                 }
             }
+            #[cfg(not(target_arch = "wasm32"))]
             Action::Screenshot => self.screenshot.message = Some(self.save_screenshot()),
+            #[cfg(not(target_arch = "wasm32"))]
             Action::ExportTiles => self.screenshot.message = Some(self.export_tiles()),
+            #[cfg(target_arch = "wasm32")]
+            Action::Screenshot | Action::ExportTiles => {
+                self.screenshot.message = Some(Err(crate::app::web::NO_CAPTURE.into()));
+            }
             Action::SavePreset(path) => self.preset.message = Some(self.save_preset(&path)),
             Action::LoadPreset(path) => self.preset.message = Some(self.load_preset(&path)),
             Action::Open { paths, slot } => {
@@ -364,12 +376,13 @@ impl Controller {
 
     /// Draws the current picture (the split view when it is on) into `target` with `msaa`
     /// and submits it. An interactive frame (one sample) is waited for and timed, and its
-    /// time against the floor at the view's size sets the next one's render scale.
+    /// time against the floor at the view's size sets the next one's render scale. Not in the
+    /// web build: a page cannot wait for the GPU, so its interactive frames keep their scale.
     pub fn draw(&mut self, target: &RenderTarget, msaa: Msaa) -> Result<(), RenderError> {
         let params = self.state.frame_params();
         let split = self.state.split_frame();
         let options = DrawOptions { msaa, ..Default::default() };
-        if msaa == Msaa::X4 {
+        if msaa == Msaa::X4 || cfg!(target_arch = "wasm32") {
             let mut encoder = self.renderer.device().create_command_encoder(&Default::default());
             self.renderer.draw(&mut encoder, target, &params, split.as_ref(), options)?;
             self.renderer.queue().submit([encoder.finish()]);

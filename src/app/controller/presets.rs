@@ -2,12 +2,12 @@
 //! as TOML, loaded back (state at once, files in the background), and kept between runs as
 //! `last.toml`.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use bumpview::state::preset::Preset;
 
 use super::{Controller, ScreenshotForm};
-use crate::app::files::{self, Job};
+use crate::app::files::Job;
 
 /// The preset path field and the outcome of the last save or load.
 #[derive(Default)]
@@ -19,9 +19,10 @@ pub struct PresetForm {
 }
 
 /// Where the viewer keeps its state between runs: `last.toml`, a preset, next to the recent
-/// list ([`files::recent_file`]).
-pub fn last_state_file() -> Option<PathBuf> {
-    files::recent_file().map(|recent| recent.with_file_name("last.toml"))
+/// list ([`crate::app::files::recent_file`]).
+#[cfg(not(target_arch = "wasm32"))]
+pub fn last_state_file() -> Option<std::path::PathBuf> {
+    crate::app::files::recent_file().map(|recent| recent.with_file_name("last.toml"))
 }
 
 impl Controller {
@@ -32,9 +33,19 @@ impl Controller {
     }
 
     /// Writes [`Self::current_preset`] to `path` atomically; says where, or why not.
+    #[cfg(not(target_arch = "wasm32"))]
     pub(super) fn save_preset(&self, path: &Path) -> Result<String, String> {
         self.current_preset().save(path).map_err(|e| e.to_string())?;
         Ok(format!("saved {}", path.display()))
+    }
+
+    /// Offers [`Self::current_preset`] as a download named as `path`'s file; says which, or why
+    /// not. (It can be loaded again by dropping it on the page.)
+    #[cfg(target_arch = "wasm32")]
+    pub(super) fn save_preset(&self, path: &Path) -> Result<String, String> {
+        let name = path.file_name().map_or("bumpview.toml".into(), |n| n.to_string_lossy().into_owned());
+        crate::app::web::download(&name, "application/toml", self.current_preset().to_toml().as_bytes())?;
+        Ok(format!("downloaded {name}"))
     }
 
     /// Loads a preset file and shows it ([`Self::show_preset`]). A preset that does not load

@@ -5,7 +5,7 @@
 //! thread only swaps in the uploads the job made.
 
 use std::sync::Arc;
-use std::time::Instant;
+use web_time::Instant;
 
 use bumpview::frame::SceneUploads;
 use bumpview::frame::ViewMode;

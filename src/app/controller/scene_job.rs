@@ -13,7 +13,8 @@
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, OnceLock, mpsc};
-use std::time::Instant;
+
+use web_time::Instant;
 
 use bumpview::frame::SceneUploads;
 use bumpview::height::Kernel;
@@ -177,9 +178,9 @@ impl SceneJobs {
                 wake();
             }
         };
-        let spawned = std::thread::Builder::new().name("bumpview-scene".into()).spawn(run);
+        let spawned = spawn(run);
         self.busy = spawned.is_ok().then(|| Busy { label, source, uploads, reference, stage, started: Instant::now() });
-        spawned.map(drop).map_err(|e| format!("could not start a thread to make the scene ready: {e}"))
+        spawned
     }
 
     /// What the panel shows while a job runs: the scene's name, the stage and the seconds so
@@ -311,6 +312,21 @@ impl Worker {
     fn set(&self, stage: &'static str) {
         *self.stage.lock().unwrap_or_else(|poisoned| poisoned.into_inner()) = stage;
     }
+}
+
+/// Runs a job on a thread of its own; the error says why none could be started.
+#[cfg(not(target_arch = "wasm32"))]
+fn spawn(run: impl FnOnce() + Send + 'static) -> Result<(), String> {
+    let spawned = std::thread::Builder::new().name("bumpview-scene".into()).spawn(run);
+    spawned.map(drop).map_err(|e| format!("could not start a thread to make the scene ready: {e}"))
+}
+
+/// The web build has one thread: the job runs as a task of the page's event loop, after the
+/// frame that started it (the page shows the spinner first, then is busy for the job's length).
+#[cfg(target_arch = "wasm32")]
+fn spawn(run: impl FnOnce() + 'static) -> Result<(), String> {
+    wasm_bindgen_futures::spawn_local(async move { run() });
+    Ok(())
 }
 
 /// Milliseconds since `started`.

@@ -29,6 +29,8 @@ pub fn show(
 ) -> (Vec<Action>, Vec<(TextureSlot, egui::Rect)>) {
     let mut actions = Vec::new();
     files::heading(ui, controller, &mut actions);
+    #[cfg(target_arch = "wasm32")]
+    crate::app::web::panel_note(ui, &controller.renderer().adapter_name());
     if let Some(error) = render_error {
         ui.colored_label(ui.visuals().error_fg_color, error);
     }

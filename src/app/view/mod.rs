@@ -11,6 +11,7 @@ pub mod probe_overlay;
 
 use bumpview::frame::{Msaa, SplitFrame, ViewMode};
 use bumpview::render::RenderTarget;
+use bumpview::render::srgb_copy::SrgbCopy;
 use bumpview::state::{Command, RedrawTracker};
 use eframe::egui_wgpu::RenderState;
 
@@ -32,6 +33,10 @@ struct ViewTexture {
     id: egui::TextureId,
     /// Width and height in pixels: the view's, or fewer at a lower render scale.
     size: [u32; 2],
+    /// Where the adapter cannot view one texture in both formats (WebGL2 lacks
+    /// `DownlevelFlags::VIEW_FORMATS`), and in every browser: the copy and the plain `Rgba8Unorm` view egui shows,
+    /// which gets the same bytes after each draw into `render_view` (a texture of its own).
+    copy: Option<(std::sync::Arc<SrgbCopy>, wgpu::TextureView)>,
 }
 
 pub struct View {
@@ -47,6 +52,8 @@ pub struct View {
     dragging_divider: bool,
     /// Why the last draw failed.
     render_error: Option<String>,
+    /// The sRGB copy, made on first use (only where the adapter needs it).
+    srgb_copy: Option<std::sync::Arc<SrgbCopy>>,
 }
 
 impl View {
@@ -59,6 +66,7 @@ impl View {
             drawn: None,
             dragging_divider: false,
             render_error: None,
+            srgb_copy: None,
         }
     }
 
@@ -171,19 +179,34 @@ impl View {
             return texture.id;
         }
         let device = &self.render_state.device;
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("3d view"),
-            size: wgpu::Extent3d { width: size[0], height: size[1], depth_or_array_layers: 1 },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: VIEW_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[VIEW_RENDER_FORMAT],
-        });
+        // In the browser always through the copy: WebGL2 lacks view formats, and Chromium's WebGPU
+        // on SwiftShader wrote the picture through the sRGB view without encoding it (too dark).
+        let flags = self.render_state.adapter.get_downlevel_capabilities().flags;
+        let views_both = !cfg!(target_arch = "wasm32") && flags.contains(wgpu::DownlevelFlags::VIEW_FORMATS);
+        let create = |format, usage, view_formats: &[wgpu::TextureFormat]| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("3d view"),
+                size: wgpu::Extent3d { width: size[0], height: size[1], depth_or_array_layers: 1 },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats,
+            })
+        };
+        let shown_views: &[wgpu::TextureFormat] = if views_both { &[VIEW_RENDER_FORMAT] } else { &[] };
+        let both = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT;
+        let texture = create(VIEW_FORMAT, both, shown_views);
         let egui_view = texture.create_view(&Default::default());
-        let render_view = texture
-            .create_view(&wgpu::TextureViewDescriptor { format: Some(VIEW_RENDER_FORMAT), ..Default::default() });
+        let (render_view, copy) = if views_both {
+            let srgb = wgpu::TextureViewDescriptor { format: Some(VIEW_RENDER_FORMAT), ..Default::default() };
+            (texture.create_view(&srgb), None)
+        } else {
+            let drawn = create(VIEW_RENDER_FORMAT, both, &[]);
+            let copy = std::sync::Arc::clone(self.srgb_copy.get_or_insert_with(|| SrgbCopy::new(device).into()));
+            (drawn.create_view(&Default::default()), Some((copy, egui_view.clone())))
+        };
         let mut egui_renderer = self.render_state.renderer.write();
         let id = match &self.texture {
             Some(old) => {
@@ -197,7 +220,7 @@ impl View {
             }
             None => egui_renderer.register_native_texture(device, &egui_view, wgpu::FilterMode::Linear),
         };
-        self.texture = Some(ViewTexture { render_view, id, size });
+        self.texture = Some(ViewTexture { render_view, id, size, copy });
         id
     }
 
@@ -222,6 +245,12 @@ impl View {
         }
         let target = RenderTarget { view: &texture.render_view, format: VIEW_RENDER_FORMAT, size: render_size };
         self.render_error = controller.draw(&target, quality.msaa).err().map(|e| e.to_string());
+        if let Some((copy, shown)) = &texture.copy {
+            let (device, queue) = (&self.render_state.device, &self.render_state.queue);
+            let mut encoder = device.create_command_encoder(&Default::default());
+            copy.record(device, &mut encoder, &texture.render_view, shown);
+            queue.submit([encoder.finish()]);
+        }
         quality.msaa == Msaa::Off
     }
 }

@@ -1,0 +1,254 @@
+//! The web build's side of the viewer (wasm32, docs/web.md): the start in the page's canvas by
+//! eframe's web runner, the page's fragment (`#preset=…`, `#backend=webgl|webgpu`), dropped
+//! files held in memory ([`bumpview::read::hold_in_memory`]), downloads, and the marker the page
+//! tests wait for.
+//!
+//! The page (web/index.html) has a `<canvas id="bumpview">`. Once the first frame of the scene
+//! is drawn, the page's `<body>` gets `data-ready` (milliseconds since the page started),
+//! `data-backend` (`webgpu` or `webgl`) and `data-view` (the 3D view's rectangle in CSS pixels,
+//! `x,y,width,height`), and the title becomes "bumpview ready".
+
+use std::cell::RefCell;
+use std::path::PathBuf;
+use std::rc::Rc;
+use std::sync::Arc;
+
+use bumpview::load::TextureSlot;
+use bumpview::read::{MEMORY_FOLDER, hold_in_memory};
+use bumpview::scene::Scene;
+use bumpview::state::ViewerState;
+use bumpview::state::preset::Preset;
+use wasm_bindgen::JsCast;
+
+use super::action::Action;
+use super::files::{FileKind, file_kind};
+use super::{Options, ViewerApp};
+
+/// The id of the page's canvas.
+const CANVAS_ID: &str = "bumpview";
+
+/// Starts the viewer in the page's canvas; what fails is written into the page.
+pub fn start() {
+    wasm_bindgen_futures::spawn_local(async {
+        if let Err(message) = run().await {
+            show_failure(&message);
+        }
+    });
+}
+
+/// The page's fragment: `key=value` pairs joined by `&`, the value percent-encoded.
+fn fragment() -> Vec<(String, String)> {
+    let hash = web_sys::window().and_then(|w| w.location().hash().ok()).unwrap_or_default();
+    let decode = |v: &str| percent_encoding::percent_decode_str(v).decode_utf8_lossy().into_owned();
+    hash.trim_start_matches('#')
+        .split('&')
+        .filter_map(|pair| pair.split_once('='))
+        .map(|(key, value)| (key.to_owned(), decode(value)))
+        .collect()
+}
+
+/// The viewer's start from the fragment's preset (the defaults without one, or when it does not
+/// load: then the notice says why).
+fn options(fragment: &[(String, String)]) -> Result<Options, String> {
+    let given = fragment.iter().find(|(key, _)| key == "preset").map(|(_, text)| started(text));
+    let ((preset, scene, state), notice) = match given {
+        Some(Ok(started)) => (started, Some("preset from the page's address".to_owned())),
+        Some(Err(e)) => (started("")?, Some(format!("the address's preset was not used: {e}"))),
+        None => (started("")?, None),
+    };
+    Ok(Options {
+        exit_after: None,
+        capture_window: None,
+        probe: None,
+        scene,
+        files: preset.files,
+        state,
+        capture: preset.capture,
+        last_state: None,
+        notice,
+    })
+}
+
+/// The preset in `text` (TOML; empty: the defaults), its scene and its state; the error says
+/// what did not load.
+fn started(text: &str) -> Result<(Preset, Scene, ViewerState), String> {
+    let preset = Preset::from_toml(text).map_err(|e| e.to_string())?;
+    let scene = preset.build_scene().map_err(|e| e.to_string())?;
+    let state = preset.to_state(&scene).map_err(|e| e.to_string())?;
+    Ok((preset, scene, state))
+}
+
+/// The graphics backends the fragment asks for (`backend=webgl` or `webgpu`); both otherwise,
+/// WebGPU first where the browser has it.
+fn backends(fragment: &[(String, String)]) -> wgpu::Backends {
+    match fragment.iter().find(|(key, _)| key == "backend").map(|(_, value)| value.as_str()) {
+        Some("webgl") => wgpu::Backends::GL,
+        Some("webgpu") => wgpu::Backends::BROWSER_WEBGPU,
+        _ => wgpu::Backends::BROWSER_WEBGPU | wgpu::Backends::GL,
+    }
+}
+
+async fn run() -> Result<(), String> {
+    let document = web_sys::window().and_then(|w| w.document()).ok_or("no document")?;
+    let canvas = document
+        .get_element_by_id(CANVAS_ID)
+        .and_then(|e| e.dyn_into::<web_sys::HtmlCanvasElement>().ok())
+        .ok_or(format!("the page has no <canvas id=\"{CANVAS_ID}\">"))?;
+    let fragment = fragment();
+    let options = options(&fragment)?;
+    let mut web_options = eframe::WebOptions::default();
+    if let eframe::egui_wgpu::WgpuSetup::CreateNew(create) = &mut web_options.wgpu_options.wgpu_setup {
+        create.instance_descriptor.backends = backends(&fragment);
+    }
+    super::request_device_extras(&mut web_options.wgpu_options.wgpu_setup);
+    let failure = Rc::new(RefCell::new(None));
+    eframe::WebRunner::new()
+        .start(canvas, web_options, Box::new(move |cc| Ok(Box::new(ViewerApp::new(cc, options, failure)?))))
+        .await
+        .map_err(|e| format!("the viewer did not start: {e:?}"))
+}
+
+/// Writes `message` into the page (its `#status` element, else the body's text).
+fn show_failure(message: &str) {
+    let Some(document) = web_sys::window().and_then(|w| w.document()) else { return };
+    if let Some(status) = document.get_element_by_id("status") {
+        status.set_text_content(Some(message));
+    }
+    if let Some(body) = document.body() {
+        let _ = body.set_attribute("data-failed", message);
+    }
+}
+
+/// Holds the bytes of a file the browser gave (dropped or picked) in memory under
+/// [`MEMORY_FOLDER`], and returns its path there.
+pub fn hold(name: &str, bytes: Vec<u8>) -> PathBuf {
+    let name = std::path::Path::new(name).file_name().map(PathBuf::from).unwrap_or_default();
+    let path = PathBuf::from(MEMORY_FOLDER).join(name);
+    hold_in_memory(path.clone(), Arc::from(bytes));
+    path
+}
+
+/// What to do with the files held at `paths`, dropped into `slot`: a preset (`.toml`) is loaded;
+/// a glTF dropped with its `.bin` and textures is opened alone (its relative URIs find the
+/// others beside it); without a mesh, the images are opened into the slots.
+fn to_open(paths: Vec<PathBuf>, slot: Option<TextureSlot>) -> Action {
+    if let Some(preset) = paths.iter().find(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"))) {
+        return Action::LoadPreset(preset.clone());
+    }
+    let meshes: Vec<PathBuf> = paths.iter().filter(|p| file_kind(p) == Some(FileKind::Mesh)).cloned().collect();
+    Action::Open { paths: if meshes.is_empty() { paths } else { meshes }, slot }
+}
+
+/// Where the page stands: the backend the browser gave, the view's place, files being read, the
+/// ready marker.
+pub struct Page {
+    backend: wgpu::Backend,
+    /// The 3D view's rectangle last laid out (points, which are CSS pixels).
+    view: Option<egui::Rect>,
+    ready: bool,
+    /// Asks for a frame (when dropped files have been read).
+    wake: Rc<dyn Fn()>,
+    /// Dropped files read, to open.
+    arrived: Rc<RefCell<Vec<Action>>>,
+}
+
+impl Page {
+    /// The page drawing through `backend`; `wake` asks for a frame.
+    pub fn new(backend: wgpu::Backend, wake: impl Fn() + 'static) -> Page {
+        Page { backend, view: None, ready: false, wake: Rc::new(wake), arrived: Rc::default() }
+    }
+
+    /// Reads dropped `files` (asynchronously, as browsers do), holds them in memory and then
+    /// has them opened ([`Page::arrived`]), into `slot` if they were dropped on its button. A
+    /// file that cannot be read is named in the panel's status by the loader's "could not
+    /// read" (it is opened without bytes held).
+    pub fn read_dropped(&self, files: Vec<egui::DroppedFileHandle>, slot: Option<TextureSlot>) {
+        let (arrived, wake) = (Rc::clone(&self.arrived), Rc::clone(&self.wake));
+        wasm_bindgen_futures::spawn_local(async move {
+            let mut paths = Vec::new();
+            for file in files {
+                let name = file.path().to_string_lossy().into_owned();
+                match file.bytes_async().await {
+                    Ok(bytes) => paths.push(hold(&name, bytes)),
+                    Err(_) => paths.push(PathBuf::from(MEMORY_FOLDER).join(name)),
+                }
+            }
+            arrived.borrow_mut().push(to_open(paths, slot));
+            wake();
+        });
+    }
+
+    /// The dropped files read since the last call, to open.
+    pub fn arrived(&self) -> Vec<Action> {
+        std::mem::take(&mut *self.arrived.borrow_mut())
+    }
+
+    /// Where the 3D view was laid out this frame.
+    pub fn set_view(&mut self, rect: egui::Rect) {
+        self.view = Some(rect);
+    }
+
+    /// The backend's name in the page's marker and the panel.
+    pub fn backend(&self) -> &'static str {
+        if self.backend == wgpu::Backend::BrowserWebGpu { "webgpu" } else { "webgl" }
+    }
+
+    /// After a frame: once the scene asked for is drawn (`settled`), marks the page ready (see
+    /// the module doc).
+    pub fn on_frame(&mut self, settled: bool) {
+        let (false, true, Some(view)) = (self.ready, settled, self.view) else { return };
+        let Some(window) = web_sys::window() else { return };
+        let Some(document) = window.document() else { return };
+        let Some(body) = document.body() else { return };
+        let since_start = window.performance().map_or(0.0, |p| p.now());
+        let rect = format!("{},{},{},{}", view.min.x, view.min.y, view.width(), view.height());
+        let _ = body.set_attribute("data-view", &rect);
+        let _ = body.set_attribute("data-backend", self.backend());
+        let _ = body.set_attribute("data-ready", &format!("{since_start:.0}"));
+        document.set_title("bumpview ready");
+        self.ready = true;
+    }
+}
+
+/// What the panel says in the web build: the adapter (and so the backend, WebGPU or WebGL2) the
+/// browser gave and what the web build does not have.
+pub fn panel_note(ui: &mut egui::Ui, adapter: &str) {
+    ui.small(format!(
+        "In the browser on {adapter}: missing tangents by MikkTSpace (bevy_mikktspace; no meshoptimizer \
+         here); one thread; files by drop or Open…; no hot reload; presets download; no screenshots \
+         (their GPU read-back blocks)."
+    ));
+}
+
+/// Why the web build makes no screenshots or tile exports.
+pub const NO_CAPTURE: &str = "no screenshots or tile exports in the browser: their GPU read-back waits, \
+                              which a page cannot (use the native build's `bumpview render`)";
+
+/// Offers `bytes` to the user as a download named `name` (a screenshot, a preset).
+pub fn download(name: &str, mime: &str, bytes: &[u8]) -> Result<(), String> {
+    let failed = |what: &str| format!("download of {name}: {what}");
+    let array = js_sys_array(bytes);
+    let properties = web_sys::BlobPropertyBag::new();
+    properties.set_type(mime);
+    let blob =
+        web_sys::Blob::new_with_u8_array_sequence_and_options(&array, &properties).map_err(|_| failed("no blob"))?;
+    let url = web_sys::Url::create_object_url_with_blob(&blob).map_err(|_| failed("no object URL"))?;
+    let document = web_sys::window().and_then(|w| w.document()).ok_or_else(|| failed("no document"))?;
+    let anchor = document
+        .create_element("a")
+        .ok()
+        .and_then(|e| e.dyn_into::<web_sys::HtmlAnchorElement>().ok())
+        .ok_or_else(|| failed("no link"))?;
+    anchor.set_href(&url);
+    anchor.set_download(name);
+    anchor.click();
+    let _ = web_sys::Url::revoke_object_url(&url);
+    Ok(())
+}
+
+/// `bytes` as the one-element sequence of `Uint8Array`s a `Blob` is made from.
+fn js_sys_array(bytes: &[u8]) -> wasm_bindgen::JsValue {
+    let array = js_sys::Array::new();
+    array.push(&js_sys::Uint8Array::from(bytes));
+    array.into()
+}
