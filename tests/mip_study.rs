@@ -54,12 +54,21 @@ fn at_16x_toksvig_lean_and_vmf_beat_renormalised_mips_on_static_error_and_shimme
 /// At 1× on the plane (a texel a pixel: level 0 is what the sampler reads) every method but
 /// geometric specular AA (it widens from the normal's screen derivatives at any distance)
 /// draws exactly what base-level-only sampling draws, to the last bit of the float target.
+/// LEAN within 1e-5 relative: it fades its variance in over `clamp(lod, 0, 1)`, and at a texel
+/// a pixel the lod is 0 only up to rounding (measured: 1.1e-6 relative on the RMSE).
 #[test]
 fn at_1x_every_method_draws_the_base_level() {
     let mut renderer = renderer();
     let (rows, _) = measure(&mut renderer, &plan(), Shape::Plane, 1).unwrap();
     let base = row(&rows, MipFilter::BaseOnly).unwrap();
     for r in rows.iter().filter(|r| r.method != MipFilter::GeometricSpecularAa.name()) {
-        assert_eq!((r.rmse, r.energy_ratio, r.shimmer), (base.rmse, base.energy_ratio, base.shimmer), "{r:?}");
+        let measured = [r.rmse, r.energy_ratio, r.shimmer];
+        let expected = [base.rmse, base.energy_ratio, base.shimmer];
+        if r.method == MipFilter::Lean.name() {
+            let close = measured.iter().zip(expected).all(|(m, e)| (m - e).abs() <= 1e-5 * e.abs());
+            assert!(close, "{r:?} against {base:?}");
+        } else {
+            assert_eq!(measured, expected, "{r:?}");
+        }
     }
 }

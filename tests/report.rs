@@ -246,7 +246,14 @@ fn quick_report_writes_a_row_for_every_method_and_kernel_and_valid_charts() {
     assert!(markdown_mentions(&dir, &format!("Face-on floor: **{floor:.4}** RMSE")), "floor {floor}");
     let occlusion = rmse("occlusion", "32");
     assert!(markdown_mentions(&dir, &format!(" {occlusion:.4} (+{:.4}) ·", occlusion - floor)), "{occlusion}");
-    for chart in ["tangents.png", "kernels.png", "parallax-wall.png", "uv-ms-wall-70.png", "uv-angle-wall.png", "mip-filters.png"] {
+    for chart in [
+        "tangents.png",
+        "kernels.png",
+        "parallax-wall.png",
+        "uv-ms-wall-70.png",
+        "uv-angle-wall.png",
+        "mip-filters.png",
+    ] {
         let image = image::open(dir.join(chart)).unwrap_or_else(|e| panic!("{chart}: {e}"));
         let rgb = image.to_rgb8();
         let first = *rgb.get_pixel(0, 0);

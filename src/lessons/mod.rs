@@ -20,7 +20,6 @@ pub mod deck;
 pub mod measure;
 pub mod pdf;
 pub mod slide;
-pub mod text;
 
 use serde::Deserialize;
 

@@ -5,7 +5,8 @@ use image::{Rgba, RgbaImage};
 
 use super::Lesson;
 use super::measure::Measured;
-use super::text::{draw_text, text_width, wrap};
+use crate::render::annotate;
+use crate::render::text::{self, text_width, wrap_paragraph};
 
 const BACKGROUND: [u8; 3] = [24, 26, 30];
 const TEXT: [u8; 3] = [232, 232, 228];
@@ -55,7 +56,7 @@ impl SlideLayout {
 
     /// The caption's lines, each at most [`Self::text_width`] wide.
     pub fn caption_lines(&self, lesson: &Lesson) -> Vec<String> {
-        wrap(&lesson.caption, self.body_px, self.text_width())
+        wrap_paragraph(&lesson.caption, self.body_px, self.text_width())
     }
 
     /// The pictures' area: below the title, above the labels, caption and claim.
@@ -136,6 +137,11 @@ impl SlideLayout {
             // The split's halves: each label centred under its half.
             let place = &places[0];
             let divider = lesson.preset.split.divider.clamp(0.0, 1.0);
+            // The divider line as the viewer and `render --split` draw it, across the picture.
+            let column = place.x + (place.size[0] as f32 * divider).round() as u32;
+            let [d0, d1] = annotate::divider_columns(column, place.size[1]);
+            let rows = [place.y as i64, (place.y + place.size[1]) as i64];
+            text::fill(&mut slide, [d0 as i64, rows[0], d1 as i64, rows[1]], [255, 255, 255], 1.0);
             let halves = [(0.0, divider), (divider, 1.0)];
             for (side, (from, to)) in lesson.sides.iter().zip(halves) {
                 let centre = place.x as f32 + place.size[0] as f32 * (from + to) / 2.0;
@@ -171,6 +177,12 @@ fn fit(text: &str, px: f32, width: f32) -> String {
         cut.pop();
     }
     format!("{cut}…")
+}
+
+/// Draws `text` anywhere on the slide ([`text::draw`] across the whole width).
+fn draw_text(slide: &mut image::RgbaImage, line: &str, x: f32, baseline: f32, px: f32, color: [u8; 3]) {
+    let columns = [0, slide.width()];
+    text::draw(slide, line, columns, x, baseline, px, color);
 }
 
 #[cfg(test)]

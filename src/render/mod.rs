@@ -12,7 +12,7 @@
 //! A prepared scene can be uploaded without the renderer, on any thread ([`Uploader`], e.g. a
 //! scene job's worker), and shown by [`Renderer::install`], a swap that uploads nothing.
 
-mod annotate;
+pub mod annotate;
 mod bindings;
 pub mod capture;
 mod draw;

@@ -36,16 +36,26 @@ pub fn text_width(text: &str, px: f32) -> f32 {
 
 /// `text` broken into lines no wider than `width` pixels at `px` ([`text_width`]): at spaces
 /// where it can, inside a word only where the word alone is wider; continuation lines are
-/// indented by two spaces. A line keeps at least one character, so a width below one
-/// character's is the only case a line exceeds it.
+/// indented by two spaces (a caption's lines; [`wrap_paragraph`] for prose). A line keeps at
+/// least one character, so a width below one character's is the only case a line exceeds it.
 pub fn wrap(text: &str, px: f32, width: f32) -> Vec<String> {
+    wrap_indented(text, px, width, "  ")
+}
+
+/// [`wrap`] without the indent: a paragraph's lines all start at the left edge.
+pub fn wrap_paragraph(text: &str, px: f32, width: f32) -> Vec<String> {
+    wrap_indented(text, px, width, "")
+}
+
+/// [`wrap`] with `indent` before every line but the first.
+fn wrap_indented(text: &str, px: f32, width: f32, indent: &str) -> Vec<String> {
     let fits = |line: &str| text_width(line, px) <= width;
     let mut lines: Vec<String> = Vec::new();
     let mut line = String::new();
     for word in text.split(' ') {
-        let indent = if lines.is_empty() { "" } else { "  " };
+        let lead = if lines.is_empty() { "" } else { indent };
         let candidate = match line.is_empty() {
-            true => format!("{indent}{word}"),
+            true => format!("{lead}{word}"),
             false => format!("{line} {word}"),
         };
         if fits(&candidate) {
@@ -56,14 +66,14 @@ pub fn wrap(text: &str, px: f32, width: f32) -> Vec<String> {
             lines.push(std::mem::take(&mut line));
         }
         // The word starts a line; a word wider than a line is cut into pieces that fit.
-        let mut piece = if lines.is_empty() { String::new() } else { "  ".to_owned() };
+        let mut piece = if lines.is_empty() { String::new() } else { indent.to_owned() };
         let mut start = piece.len();
         for c in word.chars() {
             piece.push(c);
             if !fits(&piece) && piece.len() - start > c.len_utf8() {
                 piece.pop();
-                lines.push(std::mem::replace(&mut piece, format!("  {c}")));
-                start = 2;
+                lines.push(std::mem::replace(&mut piece, format!("{indent}{c}")));
+                start = indent.len();
             }
         }
         line = piece;
