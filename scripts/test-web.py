@@ -8,6 +8,7 @@ Serves web/dist/ (scripts/build-web.sh) on 127.0.0.1 and, once on WebGL2 and onc
 - the 3D view equals `bumpview render` of the same state (the default preset at the view's size)
   within the tolerance below, and so does a page whose address carries a preset
   (`#preset=[shading] view = "tangent"`) against `bumpview render --view tangent`;
+  a page whose address carries a lesson (`#lesson=over-tilt`) opens with its state;
 - pressing B (bump off) changes the picture, a drag in the view changes it, and a .glb dropped on
   the page is opened and changes it;
 - no error reached the console.
@@ -386,6 +387,16 @@ def run_backend(chromium, backend, port, out, results):
         tangent = view_shot(page, [round(float(v)) for v in data["view"].split(",")],
                             os.path.join(out, f"{backend}-preset-tangent.png"))
         equals_native(results, f"{backend}: a preset in the address", tangent, out, ["--view", "tangent"])
+
+        # A lesson in the address opens with its whole state: over-tilt's close, strong wall.
+        page.send("Page.navigate", url="about:blank")
+        page.evaluate("new Promise(r => setTimeout(r, 200))")
+        page.send("Page.navigate", url=f"http://127.0.0.1:{port}/#backend={backend}&lesson=over-tilt")
+        data = wait_ready(page)
+        lesson_view = [round(float(v)) for v in data["view"].split(",")]
+        lesson = view_shot(page, lesson_view, os.path.join(out, f"{backend}-lesson.png"))
+        mean = difference(built_in, lesson)[0] if lesson[:2] == built_in[:2] else float("inf")
+        changed(results, page, f"{backend}: a lesson in the address", mean)
     finally:
         process.terminate()
         try:

@@ -1,5 +1,5 @@
 //! The web build's side of the viewer (wasm32, docs/web.md): the start in the page's canvas by
-//! eframe's web runner, the page's fragment (`#preset=…`, `#backend=webgl|webgpu`), dropped
+//! eframe's web runner, the page's fragment (`#lesson=NAME`, `#preset=…`, `#backend=webgl|webgpu`), dropped
 //! files held in memory ([`bumpview::read::hold_in_memory`]), downloads, and the marker the page
 //! tests wait for.
 //!
@@ -47,14 +47,24 @@ fn fragment() -> Vec<(String, String)> {
         .collect()
 }
 
-/// The viewer's start from the fragment's preset (the defaults without one, or when it does not
-/// load: then the notice says why).
+/// The viewer's start from the fragment's lesson (`lesson=NAME`, its whole state) or preset (the
+/// defaults without either, or when it does not load: then the notice says why).
 fn options(fragment: &[(String, String)]) -> Result<Options, String> {
-    let given = fragment.iter().find(|(key, _)| key == "preset").map(|(_, text)| started(text));
+    let value = |wanted: &str| fragment.iter().find(|(key, _)| key == wanted).map(|(_, value)| value);
+    let given = match (value("lesson"), value("preset")) {
+        (Some(name), _) => Some(lesson_preset(name).and_then(started).map(|s| (s, format!("lesson {name}")))),
+        (None, Some(text)) => Some(
+            Preset::from_toml(text)
+                .map_err(|e| e.to_string())
+                .and_then(started)
+                .map(|s| (s, "preset from the page's address".to_owned())),
+        ),
+        (None, None) => None,
+    };
     let ((preset, scene, state), notice) = match given {
-        Some(Ok(started)) => (started, Some("preset from the page's address".to_owned())),
-        Some(Err(e)) => (started("")?, Some(format!("the address's preset was not used: {e}"))),
-        None => (started("")?, None),
+        Some(Ok((started, notice))) => (started, Some(notice)),
+        Some(Err(e)) => (started(Preset::default())?, Some(format!("the address's state was not used: {e}"))),
+        None => (started(Preset::default())?, None),
     };
     Ok(Options {
         exit_after: None,
@@ -69,10 +79,15 @@ fn options(fragment: &[(String, String)]) -> Result<Options, String> {
     })
 }
 
-/// The preset in `text` (TOML; empty: the defaults), its scene and its state; the error says
-/// what did not load.
-fn started(text: &str) -> Result<(Preset, Scene, ViewerState), String> {
-    let preset = Preset::from_toml(text).map_err(|e| e.to_string())?;
+/// The whole state of the built-in lesson `name` (`bumpview lessons` lists them).
+fn lesson_preset(name: &str) -> Result<Preset, String> {
+    let catalogue = bumpview::lessons::catalogue().map_err(|e| e.to_string())?;
+    let lesson = catalogue.iter().find(|l| l.name == name).ok_or(format!("no lesson named {name}"))?;
+    Ok(lesson.viewer_preset().clone())
+}
+
+/// `preset`, its scene and its state; the error says what did not load.
+fn started(preset: Preset) -> Result<(Preset, Scene, ViewerState), String> {
     let scene = preset.build_scene().map_err(|e| e.to_string())?;
     let state = preset.to_state(&scene).map_err(|e| e.to_string())?;
     Ok((preset, scene, state))
