@@ -107,8 +107,8 @@ fn every_name_reads_back_as_its_value() {
 }
 
 /// One name per technique: captions, split labels (and so the panel's and the exports'), the
-/// command line and the reports call every parallax technique, classic mistake, legacy look
-/// and lighting space by its [`Named`] name, which each caption line and label contains.
+/// command line and the reports call every parallax technique, classic mistake, legacy look,
+/// lighting space and mip filter by its [`Named`] name, which each caption line and label contains.
 #[test]
 fn captions_and_split_labels_name_each_technique_by_its_one_name() {
     use bumpview::frame::{LegacySettings, ShadingSettings};
@@ -148,5 +148,10 @@ fn captions_and_split_labels_name_each_technique_by_its_one_name() {
             ..SplitView::default()
         };
         assert_eq!(split.labels()[0], format!("lighting space: {}", space.name()));
+    }
+    for &filter in MipFilter::all() {
+        let split =
+            SplitView { difference: SplitDifference::MipFilter, mip_filters: [filter; 2], ..SplitView::default() };
+        assert_eq!(split.labels()[0], format!("mips: {}", filter.name()));
     }
 }
