@@ -110,6 +110,9 @@ struct TextureCache<'a> {
     notices: Vec<String>,
 }
 
+/// One mip level to upload: its size in texels and its bytes, row by row.
+type Level<'a> = ([u32; 2], &'a [u8]);
+
 impl TextureCache<'_> {
     /// Uploads `image` with its mip chain. A texture larger than the adapter allows starts at
     /// the first mip level that fits (a notice says so) instead of failing.
@@ -132,19 +135,26 @@ impl TextureCache<'_> {
                 image.name, image.width, image.height
             ));
         }
-        let mips = &mips[fits..];
-        let base = &mips[0];
+        let levels: Vec<Level> = mips[fits..].iter().map(|m| ([m.width, m.height], m.rgba.as_slice())).collect();
+        let texture = self.create(&image.name, format, 4, &levels);
+        counters.textures_uploaded += 1;
+        texture.create_view(&Default::default())
+    }
+
+    /// A sampled 2D texture of `format` (`texel_bytes` a texel) holding `levels`, level 0 first.
+    fn create(&self, label: &str, format: wgpu::TextureFormat, texel_bytes: u32, levels: &[Level]) -> wgpu::Texture {
+        let size = |[width, height]: [u32; 2]| wgpu::Extent3d { width, height, depth_or_array_layers: 1 };
         let texture = self.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(&image.name),
-            size: wgpu::Extent3d { width: base.width, height: base.height, depth_or_array_layers: 1 },
-            mip_level_count: mips.len() as u32,
+            label: Some(label),
+            size: size(levels[0].0),
+            mip_level_count: levels.len() as u32,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format,
             usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
             view_formats: &[],
         });
-        for (level, mip) in mips.iter().enumerate() {
+        for (level, &(extent, bytes)) in levels.iter().enumerate() {
             self.queue.write_texture(
                 wgpu::TexelCopyTextureInfo {
                     texture: &texture,
@@ -152,17 +162,16 @@ impl TextureCache<'_> {
                     origin: wgpu::Origin3d::ZERO,
                     aspect: wgpu::TextureAspect::All,
                 },
-                &mip.rgba,
+                bytes,
                 wgpu::TexelCopyBufferLayout {
                     offset: 0,
-                    bytes_per_row: Some(4 * mip.width),
-                    rows_per_image: Some(mip.height),
+                    bytes_per_row: Some(texel_bytes * extent[0]),
+                    rows_per_image: Some(extent[1]),
                 },
-                wgpu::Extent3d { width: mip.width, height: mip.height, depth_or_array_layers: 1 },
+                size(extent),
             );
         }
-        counters.textures_uploaded += 1;
-        texture.create_view(&Default::default())
+        texture
     }
 
     fn get(&mut self, prepared: &PreparedScene, index: usize, counters: &mut WorkCounters) -> wgpu::TextureView {
@@ -186,35 +195,14 @@ impl TextureCache<'_> {
             let levels = prepared.lean_texture(index)?;
             let limit = self.device.limits().max_texture_dimension_2d;
             let fits = levels.iter().position(|m| m.width <= limit && m.height <= limit).unwrap_or(levels.len() - 1);
-            let levels = &levels[fits..];
-            let base = &levels[0];
-            let texture = self.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(&format!("LEAN moments of {}", prepared.scene.textures[index].name)),
-                size: wgpu::Extent3d { width: base.width, height: base.height, depth_or_array_layers: 1 },
-                mip_level_count: levels.len() as u32,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba16Float,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                view_formats: &[],
-            });
-            for (level, mip) in levels.iter().enumerate() {
-                self.queue.write_texture(
-                    wgpu::TexelCopyTextureInfo {
-                        texture: &texture,
-                        mip_level: level as u32,
-                        origin: wgpu::Origin3d::ZERO,
-                        aspect: wgpu::TextureAspect::All,
-                    },
-                    bytemuck::cast_slice(&mip.half_bits()),
-                    wgpu::TexelCopyBufferLayout {
-                        offset: 0,
-                        bytes_per_row: Some(8 * mip.width),
-                        rows_per_image: Some(mip.height),
-                    },
-                    wgpu::Extent3d { width: mip.width, height: mip.height, depth_or_array_layers: 1 },
-                );
-            }
+            let bytes: Vec<Vec<u16>> = levels[fits..].iter().map(|m| m.half_bits()).collect();
+            let levels: Vec<Level> = levels[fits..]
+                .iter()
+                .zip(&bytes)
+                .map(|(m, bits)| ([m.width, m.height], bytemuck::cast_slice(bits)))
+                .collect();
+            let label = format!("LEAN moments of {}", prepared.scene.textures[index].name);
+            let texture = self.create(&label, wgpu::TextureFormat::Rgba16Float, 8, &levels);
             counters.textures_uploaded += 1;
             self.lean[index] = Some(texture.create_view(&Default::default()));
         }
