@@ -23,7 +23,6 @@ use crate::height::HeightField;
 use crate::scene::bricks::brick_height_field;
 use crate::scene::builtin::BRICK_TILE_M;
 use crate::scene::material::TEXTURE_SPAN_M;
-use crate::texture::decode_height;
 
 /// A height at or above this (0..1) is a brick face, at or below [`MORTAR_BELOW`] mortar:
 /// the wall's faces lie at 0.8..1 and its mortar at about 0..0.06, joined by a 6-texel bevel
@@ -61,14 +60,7 @@ impl Relief {
     pub fn of_specimen(name: &'static str, specimen: &Specimen) -> Option<Relief> {
         let slot = specimen.scene.materials.first()?.height_map.clone()?;
         let texture = specimen.scene.textures.get(slot.texture)?;
-        let samples = texture.rgba.chunks_exact(4).map(|t| decode_height(t[0], t[1]));
-        let field = HeightField {
-            width: texture.width,
-            height: texture.height,
-            samples: samples.map(|h| if slot.depth { 1.0 - h } else { h }).collect(),
-            range_m: slot.range_m,
-            texel_size_m: TEXTURE_SPAN_M / texture.width.max(1) as f32,
-        };
+        let field = slot.height_field(texture, TEXTURE_SPAN_M);
         Some(Relief { name, bricks: false, depth_m: slot.range_m, field, tile_m: TEXTURE_SPAN_M })
     }
 

@@ -178,18 +178,27 @@ impl HeightMap {
         HeightMap { texture, range_m, kernel: Kernel::CentralDifference, border: Border::Wrap, depth: false }
     }
 
-    /// The tangent-space normal map (OpenGL convention) of `heights` (this slot's texture)
-    /// with these settings; one UV unit spans `uv_span_m` metres on the surface.
-    pub fn to_normal_map(&self, heights: &TextureImage, uv_span_m: f32) -> TextureImage {
+    /// The height field of `heights` (this slot's texture) as these settings read it: heights
+    /// 0 → 1 (depth maps inverted) over `range_m`; one UV unit spans `uv_span_m` metres.
+    pub fn height_field(&self, heights: &TextureImage, uv_span_m: f32) -> HeightField {
         let samples = heights.rgba.chunks_exact(4).map(|t| decode_height(t[0], t[1]));
-        let field = HeightField {
+        HeightField {
             width: heights.width,
             height: heights.height,
             samples: samples.map(|h| if self.depth { 1.0 - h } else { h }).collect(),
             range_m: self.range_m,
             texel_size_m: uv_span_m / heights.width.max(1) as f32,
-        };
-        field.to_normal_map(self.kernel, self.border, &format!("{} (normals)", heights.name))
+        }
+    }
+
+    /// The tangent-space normal map (OpenGL convention) of `heights` (this slot's texture)
+    /// with these settings; one UV unit spans `uv_span_m` metres on the surface.
+    pub fn to_normal_map(&self, heights: &TextureImage, uv_span_m: f32) -> TextureImage {
+        self.height_field(heights, uv_span_m).to_normal_map(
+            self.kernel,
+            self.border,
+            &format!("{} (normals)", heights.name),
+        )
     }
 }
 
