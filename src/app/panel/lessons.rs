@@ -20,11 +20,11 @@ pub fn show(ui: &mut egui::Ui, lessons: &LessonsForm, actions: &mut Vec<Action>)
     });
     ui.horizontal(|ui| {
         let first = lessons.current.is_none_or(|i| i == 0);
-        if ui.add_enabled(!first, egui::Button::new("◀ Previous")).on_hover_text("Page Up").clicked() {
+        if ui.add_enabled(!first, egui::Button::new("Previous")).on_hover_text("Page Up").clicked() {
             actions.push(Action::StepLesson(-1));
         }
         let last = lessons.current.is_some_and(|i| i + 1 >= lessons.catalogue.len());
-        if ui.add_enabled(!last, egui::Button::new("Next ▶")).on_hover_text("Page Down").clicked() {
+        if ui.add_enabled(!last, egui::Button::new("Next")).on_hover_text("Page Down").clicked() {
             actions.push(Action::StepLesson(1));
         }
         let mut card = lessons.card;
