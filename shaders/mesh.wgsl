@@ -67,7 +67,8 @@ fn normal_mapped_surface(vertex: VertexOutput, front_facing: bool) -> vec4<f32> 
     var n_shading = base_normal(vertex.world_normal, front_facing, n);
     if frame.bump_enabled != 0u {
         let strength = frame.strength * object.normal_scale;
-        n_shading = perturbed_normal(n_shading, frame_tb, texel, strength, mistaken_flags(object.flags));
+        let nt = detailed_normal(tangent_space_normal(texel, strength, mistaken_flags(object.flags)), in.uv);
+        n_shading = tangent_to_world(frame_tb, n_shading, nt);
     }
     set_mip_variance_from_normal(n_shading);
     return surface_color(in, n, frame_tb, n_shading, clearcoat_normal(in, n, frame_tb));
@@ -97,8 +98,9 @@ fn normal_mapped_tangent_space_surface(vertex: VertexOutput, front_facing: bool)
     if frame.bump_enabled != 0u {
         let strength = frame.strength * object.normal_scale;
         let flags = mistaken_flags(object.flags);
-        n_shading = perturbed_normal(n_shading, frame_tb, texel, strength, flags);
-        tangent_space.normal = tangent_space_normal(texel, strength, flags);
+        let nt = detailed_normal(tangent_space_normal(texel, strength, flags), in.uv);
+        n_shading = tangent_to_world(frame_tb, n_shading, nt);
+        tangent_space.normal = nt;
     }
     set_mip_variance_from_normal(n_shading);
     return surface_color(in, n, frame_tb, n_shading, clearcoat_normal(in, n, frame_tb));

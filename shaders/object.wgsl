@@ -17,6 +17,7 @@ struct Object {
     emissive: vec4<f32>,        // rgb: linear emitted light (times the texture at 8 if HAS_EMISSIVE_TEXTURE)
     clearcoat: vec4<f32>,       // factor, perceptual roughness, normal-map scale (HAS_CLEARCOAT)
     clearcoat_uv: array<vec4<f32>, 2>, // rows of the 2x3 affine: mesh UV -> the coat's textures
+    detail: vec4<f32>,          // the detail map's tiling and strength (HAS_DETAIL), unused, unused
 };
 
 @group(1) @binding(0) var<uniform> object: Object;
@@ -32,6 +33,7 @@ struct Object {
 @group(1) @binding(10) var clearcoat_roughness_texture: texture_2d<f32>; // linear: G coat roughness
 @group(1) @binding(11) var clearcoat_normal_texture: texture_2d<f32>;    // linear: the coat's normal map
 @group(1) @binding(13) var bump_correction_texture: texture_2d<f32>; // linear: X-Ray's bump# (RGB correction)
+@group(1) @binding(14) var detail_normal_texture: texture_2d<f32>; // linear: the detail normal map (HAS_DETAIL)
 
 const FLIP_GREEN: u32 = 1u;
 const LAYOUT_RG: u32 = 2u;
@@ -47,3 +49,4 @@ const HAS_CLEARCOAT_NORMAL: u32 = 1024u;
 const LAYOUT_AG: u32 = 32768u;
 const LAYOUT_XRAY: u32 = 65536u;
 const HAS_BUMP_CORRECTION: u32 = 131072u;
+const HAS_DETAIL: u32 = 262144u;

@@ -15,6 +15,7 @@
 //! stored (what the target holds: sRGB-encoded for the lit picture, `0.5·v + 0.5` for
 //! vector views).
 
+pub mod detail;
 pub mod fragment;
 pub mod legacy;
 mod mip;
@@ -23,6 +24,7 @@ pub mod parallax;
 mod read;
 mod relief;
 
+pub use detail::DetailValues;
 pub use fragment::{Footprint, Fragment, Map, Varyings};
 pub use mip::{MipInputs, MipValues};
 use read::{BumpSample, SurfaceSample};
@@ -60,6 +62,9 @@ pub struct ChainValues {
     /// Tangent-space normal after strength, `normalize(x·s, y·s, max(z, 0))` (tangent-space
     /// maps only).
     pub after_strength: Option<Vec3>,
+    /// The detail step ([`DetailValues`]: base, detail and blended tangent-space normals);
+    /// `None` without a detail map. Its blended normal is what goes to world space.
+    pub detail: Option<DetailValues>,
     /// World-space tangent after Gram-Schmidt against `normal`, bitangent `w · cross(N, T)`,
     /// handedness `w = ±1`; `None` without a tangent stream.
     pub tangent: Option<Vec3>,
@@ -169,20 +174,25 @@ fn lit(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &Frame
     let convention = map.map(|m| mistakes::convention_read(mistake, m.convention));
     let decoded = texel.zip(convention).map(|(texel, c)| decode_normal(texel, c));
     let after_strength = decoded.filter(|_| bump == BumpKind::TangentSpace).map(|d| tangent_space_normal(d, strength));
+    let detail = detail::values(material, point.detail, after_strength, shading);
+    let drawn_tangent_normal = detail.map_or(after_strength, |d| Some(d.blended));
     let slopes = point.bump;
-    let shading_normal = match (shading.bump_enabled, bump, tangent_frame, after_strength, texel, convention, slopes) {
-        (true, BumpKind::TangentSpace, Some((t, b, _)), Some(nt), ..) => mistakes::to_world(mistake, t, b, base, nt),
-        (true, BumpKind::ObjectSpace, _, _, Some(texel), Some(c), _) => {
-            object_space_normal(n, point.normal_matrix, point.front_facing, texel, strength, c)
-        }
-        (true, BumpKind::HeightInShader, .., Some(BumpSample::HeightSlopes { dp_dx, dp_dy, dh_dx, dh_dy })) => {
-            let height = material.height_map.as_ref();
-            let depth_sign = if height.is_some_and(|h| h.depth) { -1.0 } else { 1.0 };
-            let metres = depth_sign * height.map_or(0.0, |h| h.range_m) * shading.strength;
-            surface_gradient_normal(n, dp_dx, dp_dy, dh_dx * metres, dh_dy * metres)
-        }
-        _ => base,
-    };
+    let shading_normal =
+        match (shading.bump_enabled, bump, tangent_frame, drawn_tangent_normal, texel, convention, slopes) {
+            (true, BumpKind::TangentSpace, Some((t, b, _)), Some(nt), ..) => {
+                mistakes::to_world(mistake, t, b, base, nt)
+            }
+            (true, BumpKind::ObjectSpace, _, _, Some(texel), Some(c), _) => {
+                object_space_normal(n, point.normal_matrix, point.front_facing, texel, strength, c)
+            }
+            (true, BumpKind::HeightInShader, .., Some(BumpSample::HeightSlopes { dp_dx, dp_dy, dh_dx, dh_dy })) => {
+                let height = material.height_map.as_ref();
+                let depth_sign = if height.is_some_and(|h| h.depth) { -1.0 } else { 1.0 };
+                let metres = depth_sign * height.map_or(0.0, |h| h.range_m) * shading.strength;
+                surface_gradient_normal(n, dp_dx, dp_dy, dh_dx * metres, dh_dy * metres)
+            }
+            _ => base,
+        };
 
     let coat = material.visible_clearcoat();
     let coat_map = coat.and_then(|c| c.normal_map.as_ref());
@@ -281,7 +291,7 @@ fn lit(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &Frame
                 LightingSpace::World => seen,
                 LightingSpace::Tangent => {
                     let own = tangent_frame.map_or(Mat3::IDENTITY, |(t, b, _)| inverse_tbn(t, b, n));
-                    let tangent_normal = if shading.bump_enabled { after_strength } else { None };
+                    let tangent_normal = if shading.bump_enabled { drawn_tangent_normal } else { None };
                     let to_tangent = point.triangle_frame.unwrap_or(own);
                     tangent_lighting_vectors(&seen, to_tangent, tangent_normal.unwrap_or(Vec3::Z))
                 }
@@ -334,6 +344,7 @@ fn lit(bump: BumpKind, material: &Material, point: &SurfaceSample, frame: &Frame
         decoded,
         strength,
         after_strength,
+        detail,
         tangent: tangent_frame.map(|f| f.0),
         bitangent: tangent_frame.map(|f| f.1),
         w: tangent_frame.map(|f| f.2),

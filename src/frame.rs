@@ -8,6 +8,7 @@ mod lighting;
 mod looks;
 mod parallax;
 
+pub use crate::scene::DetailBlend;
 pub use crate::texture::MipFilter;
 pub use lighting::LightingSpace;
 pub use looks::{CUBE_MAP_SIZES, LegacyLook, LegacySettings, Mistake};
@@ -168,6 +169,9 @@ pub struct ShadingSettings {
     pub shininess: Option<f32>,
     /// Where the lit views light tangent-space normal-mapped surfaces (a pipeline variant).
     pub lighting_space: LightingSpace,
+    /// Blend every material's detail normal map with this method (`None`: each material's
+    /// own); a pipeline variant of materials with a detail map.
+    pub detail_blend: Option<DetailBlend>,
 }
 
 impl Default for ShadingSettings {
@@ -188,6 +192,7 @@ impl Default for ShadingSettings {
             specular: SpecularMode::Blinn,
             shininess: None,
             lighting_space: LightingSpace::World,
+            detail_blend: None,
         }
     }
 }

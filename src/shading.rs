@@ -7,6 +7,7 @@
 //! GPU and compare against them. All vectors are world space and unit length unless stated;
 //! colours are linear RGB.
 
+pub mod detail_blend;
 pub mod lights;
 pub mod mip_filter;
 pub mod pbr;

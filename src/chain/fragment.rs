@@ -50,6 +50,9 @@ pub enum Map {
     ClearcoatNormal,
     /// The height map the parallax family marches and the emboss look reads (16 bits in R, G).
     Height,
+    /// The material's detail normal map (linear RGB, the detail sampler), read at the UV times
+    /// its tiling ([`crate::scene::DetailMap::uv`]).
+    Detail,
 }
 
 /// A texture read's footprint: the derivatives of its UV per pixel along x and y (the level

@@ -57,6 +57,9 @@ pub struct SurfaceSample {
     /// interpolated UV, as the tangent-space pipeline takes it); `None`: the inverse of the
     /// point's own T, B, N (lit in another space, or no derivatives).
     pub triangle_frame: Option<Mat3>,
+    /// The detail normal map's filtered RGB at the UV times its tiling
+    /// ([`super::detail::read`]); `None` where none is bound.
+    pub detail: Option<Vec3>,
 }
 
 /// What the bump texture gives at a point.
@@ -147,5 +150,6 @@ pub fn read(
         vertex_half: at.vertex_half,
         emboss,
         triangle_frame,
+        detail: super::detail::read(material, fragment, uv, footprint),
     }
 }

@@ -147,6 +147,7 @@ pub fn parse_split_sides(difference: SplitDifference, text: &str) -> Result<Comm
         SplitDifference::Mistake => Command::SetSplitMistakes(pair(sides, parse_named)?),
         SplitDifference::LightingSpace => Command::SetSplitLightingSpaces(pair(sides, parse_named)?),
         SplitDifference::MipFilter => Command::SetSplitMipFilters(pair(sides, parse_named)?),
+        SplitDifference::DetailBlend => Command::SetSplitDetailBlends(pair(sides, parse_named)?),
         SplitDifference::Displacement => {
             let level = right.parse::<u32>().ok().filter(|l| (1..=MAX_DISPLACEMENT_LEVEL).contains(l));
             let level = level

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use bumpview::load::SceneFiles;
 
-/// The command line's face of [`SceneFiles`]: the same five files, with their help.
+/// The command line's face of [`SceneFiles`]: the same six files, with their help.
 #[derive(clap::Args, Clone, Debug, Default)]
 pub struct InputArgs {
     /// A glTF 2.0 (.gltf, .glb) or OBJ (.obj) file; without one, the built-in scene.
@@ -25,12 +25,16 @@ pub struct InputArgs {
     /// highlight, black matte, white full.
     #[arg(long, value_name = "FILE")]
     pub gloss: Option<PathBuf>,
+    /// Detail normal map (tangent space, OpenGL convention) tiled over every material's normal
+    /// map; its tiling, strength and blend: --detail-tiling, --detail-strength, --detail-blend.
+    #[arg(long, value_name = "FILE")]
+    pub detail: Option<PathBuf>,
 }
 
 impl InputArgs {
     /// The files given.
     pub fn files(&self) -> SceneFiles {
-        let InputArgs { mesh, color, normal, height, gloss } = self.clone();
-        SceneFiles { mesh, color, normal, height, gloss, builtin: None }
+        let InputArgs { mesh, color, normal, height, gloss, detail } = self.clone();
+        SceneFiles { mesh, color, normal, height, gloss, detail, builtin: None }
     }
 }

@@ -1,7 +1,7 @@
 //! The flags for the numerical methods and texture conventions behind a picture, shared by the
 //! viewer and `render`, and the viewer [`Command`]s they stand for.
 
-use bumpview::frame::{BumpSource, MipFilter};
+use bumpview::frame::{BumpSource, DetailBlend, MipFilter};
 use bumpview::height::{Border, Kernel};
 use bumpview::scene::{GreenAxis, MaterialOverrides, NormalLayout, ShadingModel};
 use bumpview::state::{Command, ViewerState};
@@ -66,6 +66,17 @@ pub struct MaterialArgs {
     /// built-in scene), blinn-phong, or pbr (glTF metallic-roughness) [default: auto].
     #[arg(long, value_parser = args::named_or_auto::<ShadingModel>())]
     pub shading: Option<AutoOr<ShadingModel>>,
+    /// Detail normal maps' repeats per base UV unit [default: 8].
+    #[arg(long, value_name = "TIMES", value_parser = args::parse_positive)]
+    pub detail_tiling: Option<f32>,
+    /// Detail normal maps' strength, as a normal map's scale (0 flat) [default: 1].
+    #[arg(long, value_name = "S")]
+    pub detail_strength: Option<f32>,
+    /// How detail normal maps blend with the base normal map: auto (each material's own, rnm),
+    /// linear, partial-derivative (slopes add), whiteout, udn, rnm (reoriented, Barré-Brisebois
+    /// & Hill 2012) or surface-gradient (Mikkelsen 2020) [default: auto].
+    #[arg(long, value_name = "NAME", value_parser = args::named_or_auto::<DetailBlend>())]
+    pub detail_blend: Option<AutoOr<DetailBlend>>,
 }
 
 impl MaterialArgs {
@@ -81,6 +92,8 @@ impl MaterialArgs {
             border: self.height_border,
             // --mip-filter sets the scene option (SceneOptions::mip_filter) instead.
             mip_filter: None,
+            detail_tiling: self.detail_tiling,
+            detail_strength: self.detail_strength,
         }
     }
 }
@@ -96,6 +109,7 @@ impl MethodArgs {
             && self.mip_filter.is_none()
             && m.overrides().is_empty()
             && m.shading.is_none()
+            && m.detail_blend.is_none()
     }
 
     /// The flags as commands on `state` (a preset's, say): only what was given changes, and
@@ -121,6 +135,9 @@ impl MethodArgs {
         }
         if let Some(AutoOr(model)) = self.materials.shading {
             commands.push(Command::SetShadingOverride(model));
+        }
+        if let Some(AutoOr(method)) = self.materials.detail_blend {
+            commands.push(Command::SetDetailBlend(method));
         }
         commands
     }

@@ -82,7 +82,7 @@ pub struct PictureArgs {
     /// strength (1 │ 3), mode (colour-only │ bump-colour), tangents (per-face │ mikktspace),
     /// convention (opengl │ directx), bump-source (normal-map │ height-in-shader), parallax
     /// (steep │ occlusion), lighting-space (world │ tangent), mistake (none │ tbn-typo),
-    /// mip-filter (renormalized-box │ toksvig) or displacement (a parallax technique │
+    /// mip-filter (renormalized-box │ toksvig), detail-blend (udn │ rnm) or displacement (a parallax technique │
     /// displacement at a level, `--split-sides occlusion,6`)
     /// [default: the preset's].
     #[arg(long, value_name = "KIND", value_parser = args::named::<SplitDifference>())]

@@ -13,7 +13,7 @@ use crate::error::LoadError;
 use crate::height::Kernel;
 use crate::scene::material::TEXTURE_SPAN_M;
 use crate::scene::teaching::TeachingScene;
-use crate::scene::{HeightMap, NormalMap, Scene, TextureImage, TextureKind};
+use crate::scene::{DetailBlend, DetailMap, HeightMap, NormalMap, Scene, TextureImage, TextureKind};
 
 /// Metres the full range of a height map from a file spans (times an MTL `-bm`).
 pub const HEIGHT_RANGE_M: f32 = 0.01;
@@ -35,6 +35,10 @@ pub struct SceneFiles {
     pub height: Option<PathBuf>,
     /// Gloss (Blinn-Phong specular) map: linear RGB multiplying the material's `k_s`.
     pub gloss: Option<PathBuf>,
+    /// Detail normal map: tangent space, OpenGL convention, tiled over every material's
+    /// normal map ([`crate::scene::DetailMap`]). glTF has no detail slot: a preset beside the
+    /// model names one here (its `[files] detail`).
+    pub detail: Option<PathBuf>,
     /// Without a mesh: the built-in scene to make (`None`: [`TeachingScene::Bricks`]).
     pub builtin: Option<TeachingScene>,
 }
@@ -51,6 +55,8 @@ pub enum TextureSlot {
     Height,
     /// Gloss (specular) map.
     Gloss,
+    /// Detail normal map, tiled over the normal map.
+    Detail,
 }
 
 impl TextureSlot {
@@ -61,6 +67,7 @@ impl TextureSlot {
             TextureSlot::Normal => "normal map",
             TextureSlot::Height => "height map",
             TextureSlot::Gloss => "gloss",
+            TextureSlot::Detail => "detail normal map",
         }
     }
 }
@@ -87,6 +94,7 @@ impl SceneFiles {
             TextureSlot::Normal => &self.normal,
             TextureSlot::Height => &self.height,
             TextureSlot::Gloss => &self.gloss,
+            TextureSlot::Detail => &self.detail,
         }
     }
 
@@ -96,12 +104,13 @@ impl SceneFiles {
             TextureSlot::Normal => &mut self.normal,
             TextureSlot::Height => &mut self.height,
             TextureSlot::Gloss => &mut self.gloss,
+            TextureSlot::Detail => &mut self.detail,
         }
     }
 
     /// Every file named: the mesh first, then the textures in slot order.
     pub fn paths(&self) -> Vec<&Path> {
-        let textures = [&self.color, &self.normal, &self.height, &self.gloss];
+        let textures = [&self.color, &self.normal, &self.height, &self.gloss, &self.detail];
         self.mesh.iter().chain(textures.into_iter().flatten()).map(PathBuf::as_path).collect()
     }
 
@@ -114,6 +123,7 @@ impl SceneFiles {
             normal: map(&self.normal),
             height: map(&self.height),
             gloss: map(&self.gloss),
+            detail: map(&self.detail),
             builtin: self.builtin,
         }
     }
@@ -151,6 +161,7 @@ impl SceneFiles {
             normal: self.normal.or(base.normal),
             height: self.height.or(base.height),
             gloss: self.gloss.or(base.gloss),
+            detail: self.detail.or(base.detail),
             builtin: self.builtin.or(base.builtin),
         }
     }
@@ -203,6 +214,7 @@ pub fn replace_textures(scene: &mut Scene, files: &SceneFiles) -> Result<(), Loa
     each(&files.color, TextureKind::Color, |m, t| m.base_color_texture = Some(t))?;
     each(&files.normal, TextureKind::NormalMap, |m, t| m.normal_map = Some(NormalMap::new(t, 1.0)))?;
     each(&files.gloss, TextureKind::Data, |m, t| m.gloss_texture = Some(t))?;
+    each(&files.detail, TextureKind::NormalMap, |m, t| m.detail_map = Some(DetailMap::new(t, DetailBlend::default())))?;
     Ok(())
 }
 

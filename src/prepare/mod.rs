@@ -70,6 +70,8 @@ pub struct InstanceTextures {
     /// X-Ray's `bump#` correction texture: for normal-mapped variants whose map has the X-Ray
     /// layout and a `bump#`.
     pub bump_correction: Option<usize>,
+    /// The detail normal map: for tangent-space normal-mapped variants whose material has one.
+    pub detail: Option<usize>,
 }
 
 impl InstanceTextures {
@@ -103,12 +105,14 @@ impl InstanceTextures {
                 .as_ref()
                 .and_then(|m| m.correction_in_use())
                 .filter(|_| matches!(variant, Variant::NormalMapped | Variant::ObjectSpace)),
+            detail: material.detail_map.map(|d| d.texture).filter(|_| variant == Variant::NormalMapped),
         }
     }
 
     fn all(&self) -> impl Iterator<Item = usize> {
         let slots = [self.base_color, self.bump, self.metallic_roughness, self.occlusion, self.gloss, self.emissive];
         let more = [self.clearcoat, self.clearcoat_roughness, self.clearcoat_normal, self.height, self.bump_correction];
+        let more = more.into_iter().chain([self.detail]);
         slots.into_iter().chain(more).flatten()
     }
 }

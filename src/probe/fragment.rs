@@ -116,6 +116,7 @@ impl<'a> Pixel<'a> {
             Map::ClearcoatRoughness => slots.clearcoat_roughness.map(|t| (t, detail)),
             Map::ClearcoatNormal => slots.clearcoat_normal.map(|t| (t, detail)),
             Map::Height => slots.height.map(|t| (t, detail)),
+            Map::Detail => slots.detail.map(|t| (t, detail)),
         }
     }
 

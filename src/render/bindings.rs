@@ -73,8 +73,12 @@ pub const HEIGHT_TEXTURE: Slot = slot(12, "height_texture", Resource::Texture);
 /// the instance has none.
 pub const BUMP_CORRECTION_TEXTURE: Slot = slot(13, "bump_correction_texture", Resource::Texture);
 
+/// The detail normal map (shaders/detail.wgsl), linear, through the detail sampler at the UV
+/// times its tiling; a placeholder where the instance has none.
+pub const DETAIL_NORMAL_TEXTURE: Slot = slot(14, "detail_normal_texture", Resource::Texture);
+
 /// Group 1 of the mesh shader, in binding order.
-pub const MATERIAL: [Slot; 14] = [
+pub const MATERIAL: [Slot; 15] = [
     OBJECT,
     BASE_COLOR_TEXTURE,
     BASE_COLOR_SAMPLER,
@@ -89,6 +93,7 @@ pub const MATERIAL: [Slot; 14] = [
     CLEARCOAT_NORMAL_TEXTURE,
     HEIGHT_TEXTURE,
     BUMP_CORRECTION_TEXTURE,
+    DETAIL_NORMAL_TEXTURE,
 ];
 
 /// Group 2 of LEAN's mesh pipelines (shaders/lean.wgsl): LEAN's texture of the normal map's
@@ -151,8 +156,8 @@ mod tests {
     use crate::render::shaders::{MARKER, MESH, MESH_LEAN};
     use crate::render::uniforms::{
         DEPTH_MAP, HAS_BUMP_CORRECTION, HAS_CLEARCOAT, HAS_CLEARCOAT_NORMAL, HAS_CLEARCOAT_ROUGHNESS_TEXTURE,
-        HAS_CLEARCOAT_TEXTURE, HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS, HAS_OCCLUSION_TEXTURE,
-        HAS_PARALLAX_HEIGHT, PARALLAX_CLAMP_U, PARALLAX_CLAMP_V,
+        HAS_CLEARCOAT_TEXTURE, HAS_DETAIL, HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS,
+        HAS_OCCLUSION_TEXTURE, HAS_PARALLAX_HEIGHT, PARALLAX_CLAMP_U, PARALLAX_CLAMP_V,
     };
     use crate::scene::{NormalConvention, ShadingModel, SpecularMode};
 
@@ -259,6 +264,10 @@ mod tests {
         for filter in [MipFilter::Toksvig, MipFilter::Vmf, MipFilter::GeometricSpecularAa] {
             expected.insert(constant_name("MIP_", filter.name()), filter.shader_index());
         }
+        expected.insert("HAS_DETAIL".into(), HAS_DETAIL);
+        for method in crate::frame::DetailBlend::all() {
+            expected.insert(constant_name("DETAIL_", method.name()), method.shader_index());
+        }
         assert_eq!(constants, expected, "u32 constants of the mesh pass against the Rust side");
     }
 
@@ -291,6 +300,7 @@ mod tests {
             ("MAX_LIGHT_DISTANCE_M", crate::shading::lights::MAX_LIGHT_DISTANCE_M),
             ("MIN_TBN_DETERMINANT", crate::shading::spaces::MIN_TBN_DETERMINANT),
             ("MIN_UV_AREA_PER_M2", crate::shading::spaces::MIN_UV_AREA_PER_M2),
+            ("MIN_GRADIENT_Z", crate::shading::detail_blend::MIN_GRADIENT_Z),
         ] {
             let constant = module.constants.iter().map(|(_, c)| c).find(|c| c.name.as_deref() == Some(name));
             let value = constant.map(|c| &module.global_expressions[c.init]);

@@ -8,7 +8,7 @@ use std::collections::HashMap;
 use super::bindings;
 use super::shaders::{self, Wgsl};
 use crate::counters::WorkCounters;
-use crate::frame::{LegacyLook, LegacySettings, LightingSpace, MipFilter, Mistake, Parallax, ViewMode};
+use crate::frame::{DetailBlend, LegacyLook, LegacySettings, LightingSpace, MipFilter, Mistake, Parallax, ViewMode};
 use crate::prepare::Variant;
 use crate::scene::ShadingModel;
 
@@ -54,6 +54,9 @@ pub enum Pass {
         /// every view (its normal is the mean slope's), has its own module
         /// ([`shaders::MESH_LEAN`]) and its texture in group 2 ([`Layouts::lean`]).
         mip_filter: MipFilter,
+        /// How the detail normal map is blended (the `DETAIL_BLEND` constant,
+        /// shaders/detail.wgsl); the default where the material has no detail map.
+        detail_blend: DetailBlend,
     },
     /// The Difference view of a mesh with a tangent stream: it adds the reference stream
     /// and binds the same group-1 layout as `variant`.
@@ -241,6 +244,7 @@ fn build(
             lighting_space,
             features,
             mip_filter,
+            detail_blend,
             ..
         } => {
             let (vs, fs, buffers): (_, _, &[_]) = match variant {
@@ -274,6 +278,9 @@ fn build(
             }
             if mip_filter.widens() {
                 constants.push(("MIP_FILTER", f64::from(mip_filter.shader_index())));
+            }
+            if detail_blend != DetailBlend::default() {
+                constants.push(("DETAIL_BLEND", f64::from(detail_blend.shader_index())));
             }
             (layouts.material(variant), vs, fs, buffers, cull, constants)
         }

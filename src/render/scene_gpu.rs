@@ -48,6 +48,9 @@ pub struct GpuInstance {
     /// How its normal map is mip-filtered ([`crate::prepare::PreparedInstance::mip_filter`];
     /// the `MIP_FILTER` constant of its lit pipelines).
     pub mip_filter: crate::frame::MipFilter,
+    /// How its material blends its detail normal map (a frame may override it); the
+    /// `DETAIL_BLEND` constant of its pipelines where it has one.
+    pub detail_blend: crate::frame::DetailBlend,
     pub bind_group: wgpu::BindGroup,
     /// Group 2 of its LEAN pipelines, LEAN's texture of its normal map
     /// ([`bindings::LEAN_GROUP`]); `None` unless it draws LEAN.
@@ -315,6 +318,7 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, pre
             let clearcoat_normal = optional(slots.clearcoat_normal);
             let height = optional(slots.height);
             let correction = optional(slots.bump_correction);
+            let detail = optional(slots.detail);
             let base_sampler = samplers.get(device, material.base_color_wrap);
             let detail_sampler = samplers.get(device, material.detail_wrap);
             let view = wgpu::BindingResource::TextureView;
@@ -332,6 +336,7 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, pre
                 bindings::CLEARCOAT_ROUGHNESS_TEXTURE.entry(view(&clearcoat_roughness)),
                 bindings::CLEARCOAT_NORMAL_TEXTURE.entry(view(&clearcoat_normal)),
                 bindings::HEIGHT_TEXTURE.entry(view(&height)),
+                bindings::DETAIL_NORMAL_TEXTURE.entry(view(&detail)),
             ];
             // The normal map or the height map, as the variant needs.
             let bump = slots.bump.map(|t| textures.get(&prepared, t, counters));
@@ -367,6 +372,7 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, pre
                 parallax_height: instance.textures.height.is_some(),
                 features: object.features(),
                 mip_filter: instance.mip_filter,
+                detail_blend: material.detail_map.map(|d| d.blend).unwrap_or_default(),
                 bind_group,
                 lean_bind_group,
             }

@@ -50,6 +50,7 @@ macro_rules! mesh_files {
             MESH_COMMON[0],
             MESH_COMMON[1],
             wgsl_file!("normal_map.wgsl"),
+            wgsl_file!("detail.wgsl"),
             wgsl_file!("mip_filter.wgsl"),
             wgsl_file!($lean),
             wgsl_file!("surface_color.wgsl"),
@@ -159,6 +160,7 @@ mod tests {
             parse(wgsl).overrides.iter().filter_map(|(_, o)| o.name.clone()).collect()
         };
         let expected = [
+            "DETAIL_BLEND",
             "LEGACY",
             "LIGHTING_SPACE",
             "MATERIAL_FEATURES",

@@ -125,6 +125,8 @@ pub struct ObjectUniform {
     clearcoat: [f32; 4],
     /// Rows of the 2×3 affine from the mesh's texture coordinates to the coat's (xyz each).
     clearcoat_uv: [[f32; 4]; 2],
+    /// The detail normal map's tiling and strength, unused, unused.
+    detail: [f32; 4],
 }
 
 /// Bit of `flags` beside [`crate::scene::NormalConvention::flags`]: the height map stores
@@ -153,6 +155,8 @@ pub(crate) const HAS_OCCLUSION_TEXTURE: u32 = 16384;
 /// Bit of `flags`: binding 13 holds X-Ray's `bump#` correction texture (bits 15 and 16 are
 /// [`crate::scene::NormalConvention`]'s layouts).
 pub(crate) const HAS_BUMP_CORRECTION: u32 = 1 << 17;
+/// Bit of `flags`: binding 14 holds the material's detail normal map (shaders/detail.wgsl).
+pub(crate) const HAS_DETAIL: u32 = 1 << 18;
 
 /// The bits of `flags` that say which optional textures and lobes a material has: the mesh
 /// pipelines are specialised to them ([`super::pipelines::Pass::Mesh`]'s `features`, the
@@ -166,7 +170,8 @@ pub(crate) const MATERIAL_FEATURES: u32 = HAS_METALLIC_ROUGHNESS
     | HAS_CLEARCOAT_TEXTURE
     | HAS_CLEARCOAT_ROUGHNESS_TEXTURE
     | HAS_CLEARCOAT_NORMAL
-    | HAS_BUMP_CORRECTION;
+    | HAS_BUMP_CORRECTION
+    | HAS_DETAIL;
 
 impl ObjectUniform {
     /// Normals go through the inverse-transpose of the model matrix; tangent `w` is
@@ -198,6 +203,7 @@ impl ObjectUniform {
                 | bit(slots.clearcoat_normal.is_some(), HAS_CLEARCOAT_NORMAL)
                 | bit(slots.height.is_some(), HAS_PARALLAX_HEIGHT)
                 | bit(slots.bump_correction.is_some(), HAS_BUMP_CORRECTION)
+                | bit(slots.detail.is_some(), HAS_DETAIL)
                 | bit(material.detail_wrap.u == Wrap::ClampToEdge, PARALLAX_CLAMP_U)
                 | bit(material.detail_wrap.v == Wrap::ClampToEdge, PARALLAX_CLAMP_V),
             metallic: material.metallic,
@@ -208,6 +214,7 @@ impl ObjectUniform {
             clearcoat: coat
                 .map_or([0.0; 4], |c| [c.factor, c.roughness, c.normal_map.as_ref().map_or(1.0, |m| m.scale), 0.0]),
             clearcoat_uv: coat_uv,
+            detail: material.detail_map.map_or([0.0; 4], |d| [d.tiling, d.strength, 0.0, 0.0]),
         }
     }
 
@@ -215,4 +222,15 @@ impl ObjectUniform {
     pub fn features(&self) -> u32 {
         self.flags & MATERIAL_FEATURES
     }
+}
+
+/// The detail blend an instance with material features `features` is drawn with: the frame's
+/// override, else its material's `own`, where it has a detail map; else the default (no
+/// detail code is compiled, so the pipelines are shared).
+pub(crate) fn detail_blend_drawn(
+    features: u32,
+    own: crate::frame::DetailBlend,
+    shading: &crate::frame::ShadingSettings,
+) -> crate::frame::DetailBlend {
+    if features & HAS_DETAIL == 0 { Default::default() } else { shading.detail_blend.unwrap_or(own) }
 }

@@ -10,6 +10,7 @@ mod chart;
 pub mod convergence;
 mod csv;
 pub mod cube_map;
+pub mod detail_study;
 pub mod exact_hit;
 pub mod gpu_time;
 mod markdown;

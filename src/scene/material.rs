@@ -254,6 +254,9 @@ pub struct Material {
     /// sRGB colour texture.
     pub base_color_texture: Option<usize>,
     pub normal_map: Option<NormalMap>,
+    /// A second, tiled tangent-space normal map blended over the normal map
+    /// ([`super::DetailMap`]); drawn only where the material has a normal map.
+    pub detail_map: Option<super::DetailMap>,
     /// Heights for bump mapping in the shader and for making the normal map.
     pub height_map: Option<HeightMap>,
     /// Linear gloss (specular) map (OBJ `map_Ks`/`map_Ns`, `--gloss`): Blinn-Phong's k_s is
@@ -327,6 +330,7 @@ impl Default for Material {
             base_color_factor: Vec4::ONE,
             base_color_texture: None,
             normal_map: None,
+            detail_map: None,
             height_map: None,
             gloss_texture: None,
             specular: Vec3::splat(0.04),

@@ -4,6 +4,7 @@
 pub mod bricks;
 pub mod builtin;
 pub mod camera;
+pub mod detail;
 pub mod light;
 pub mod material;
 pub mod overrides;
@@ -15,6 +16,7 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 use crate::error::LoadWarning;
 
 pub use camera::OrbitCamera;
+pub use detail::{DEFAULT_DETAIL_TILING, DetailBlend, DetailMap};
 pub use light::{Attenuation, Light, LightKind, Lights, LightsError, MAX_LIGHTS, SpecularMode};
 pub use material::{
     Clearcoat, GreenAxis, HeightMap, Material, NormalConvention, NormalLayout, NormalMap, NormalSpace, Occlusion,

@@ -30,6 +30,10 @@ pub struct MaterialOverrides {
     /// How the normal map is mip-filtered (`None`: [`crate::frame::SceneOptions::mip_filter`]);
     /// it changes the mip chain and the pipeline, not the material.
     pub mip_filter: Option<MipFilter>,
+    /// The detail normal map's repeats per base UV unit ([`super::DetailMap::tiling`]).
+    pub detail_tiling: Option<f32>,
+    /// The detail normal map's strength ([`super::DetailMap::strength`]).
+    pub detail_strength: Option<f32>,
 }
 
 /// Per-material overrides by index into [`Scene::materials`]; indices the scene does not
@@ -52,6 +56,8 @@ impl MaterialOverrides {
             kernel: self.kernel.or(base.kernel),
             border: self.border.or(base.border),
             mip_filter: self.mip_filter.or(base.mip_filter),
+            detail_tiling: self.detail_tiling.or(base.detail_tiling),
+            detail_strength: self.detail_strength.or(base.detail_strength),
         }
     }
 
@@ -72,6 +78,10 @@ impl MaterialOverrides {
             if let Some(object) = self.object_space {
                 convention.space = if object { NormalSpace::Object } else { NormalSpace::Tangent };
             }
+        }
+        if let Some(detail) = &mut material.detail_map {
+            detail.tiling = self.detail_tiling.filter(|t| t.is_finite() && *t > 0.0).unwrap_or(detail.tiling);
+            detail.strength = self.detail_strength.filter(|s| s.is_finite()).unwrap_or(detail.strength);
         }
         let Some(height) = &mut material.height_map else { return (material, false) };
         let before = height.clone();

@@ -71,6 +71,11 @@ pub enum Command {
     },
     /// Shade every material with this model (`None`: each material's own); a uniform.
     SetShadingOverride(Option<ShadingModel>),
+    /// Blend every detail normal map with this method (`None`: each material's own); a
+    /// pipeline variant.
+    SetDetailBlend(Option<crate::frame::DetailBlend>),
+    /// The two methods of [`SplitDifference::DetailBlend`].
+    SetSplitDetailBlends([crate::frame::DetailBlend; 2]),
     /// Bump × colour, bump only or colour only (keys 1/2/3); a uniform.
     SetShadingMode(ShadingMode),
     /// The wireframe overlay (a second pass).

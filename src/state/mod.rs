@@ -194,6 +194,8 @@ impl ViewerState {
                 self.scene_options.set_overrides(material, overrides)
             }
             Command::SetShadingOverride(model) => self.shading.shading_override = model,
+            Command::SetDetailBlend(method) => self.shading.detail_blend = method,
+            Command::SetSplitDetailBlends(methods) => self.split.detail_blends = methods,
             Command::SetShadingMode(mode) => self.shading.mode = mode,
             Command::SetWireframe(on) => self.shading.wireframe = on,
             Command::SetParallax(technique) => self.shading.parallax.technique = technique,

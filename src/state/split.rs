@@ -2,7 +2,8 @@
 //! upload) or in GPU data (a second upload for the right half).
 
 use crate::frame::{
-    BumpSource, LightingSpace, MipFilter, Mistake, Parallax, SceneOptions, ShadingMode, ShadingSettings, ViewMode,
+    BumpSource, DetailBlend, LightingSpace, MipFilter, Mistake, Parallax, SceneOptions, ShadingMode, ShadingSettings,
+    ViewMode,
 };
 use crate::names::Named;
 use crate::scene::GreenAxis;
@@ -12,7 +13,8 @@ use crate::tangent::TangentMethod;
 /// lighting space are uniforms or pipeline variants, so both halves share one scene upload; the others change GPU data
 /// ([`SplitDifference::changes_gpu_data`]), so the right half is drawn from a second upload of
 /// the scene. Named `bump`, `view`, `strength`, `mode`, `tangents`, `convention`,
-/// `bump-source`, `parallax`, `mistake`, `lighting-space`, `displacement`, `mip-filter`.
+/// `bump-source`, `parallax`, `mistake`, `lighting-space`, `displacement`, `mip-filter`,
+/// `detail-blend`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
 #[strum(serialize_all = "kebab-case")]
 pub enum SplitDifference {
@@ -43,6 +45,9 @@ pub enum SplitDifference {
     /// Two normal-map mip filters ([`MipFilter`]; re-normalised box │ Toksvig by default) for
     /// every material, over per-material choices: different mip chains, so a second upload.
     MipFilter,
+    /// Two detail-blend methods ([`DetailBlend`]; UDN │ RNM by default) for every material's
+    /// detail normal map: pipeline variants, one upload.
+    DetailBlend,
 }
 
 impl SplitDifference {
@@ -80,6 +85,8 @@ pub struct SplitView {
     pub displacement_level: u32,
     /// The two methods of [`SplitDifference::MipFilter`].
     pub mip_filters: [MipFilter; 2],
+    /// The two methods of [`SplitDifference::DetailBlend`].
+    pub detail_blends: [DetailBlend; 2],
 }
 
 impl Default for SplitView {
@@ -99,6 +106,7 @@ impl Default for SplitView {
             lighting_spaces: [LightingSpace::World, LightingSpace::Tangent],
             displacement_level: 6,
             mip_filters: [MipFilter::RenormalizedBox, MipFilter::Toksvig],
+            detail_blends: [DetailBlend::Udn, DetailBlend::Rnm],
         }
     }
 }
@@ -116,6 +124,7 @@ impl SplitView {
                 SplitDifference::Parallax => s.parallax.technique = self.parallax[i],
                 SplitDifference::Mistake => s.mistake = self.mistakes[i],
                 SplitDifference::LightingSpace => s.lighting_space = self.lighting_spaces[i],
+                SplitDifference::DetailBlend => s.detail_blend = Some(self.detail_blends[i]),
                 SplitDifference::Displacement if i == 0 => s.parallax.technique = self.parallax[0],
                 SplitDifference::Displacement => {}
                 SplitDifference::Tangents
@@ -159,7 +168,8 @@ impl SplitView {
                 | SplitDifference::Mode
                 | SplitDifference::Parallax
                 | SplitDifference::Mistake
-                | SplitDifference::LightingSpace => {}
+                | SplitDifference::LightingSpace
+                | SplitDifference::DetailBlend => {}
             }
             options
         })
@@ -184,6 +194,7 @@ impl SplitView {
             SplitDifference::Displacement if i == 0 => format!("parallax: {}", self.parallax[0].name()),
             SplitDifference::Displacement => format!("displacement, level {}", self.displacement_level),
             SplitDifference::MipFilter => format!("mips: {}", self.mip_filters[i].name()),
+            SplitDifference::DetailBlend => format!("detail blend: {}", self.detail_blends[i].name()),
         })
     }
 }

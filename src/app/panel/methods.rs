@@ -190,6 +190,7 @@ pub(super) fn conventions(ui: &mut egui::Ui, state: &ViewerState, materials: &[M
     if shading != state.shading.shading_override {
         actions.push(Command::SetShadingOverride(shading).into());
     }
+    super::detail::detail(ui, state, materials.iter().any(|m| m.detail_map.is_some()), actions);
 }
 
 /// "index: name" of material `index`.

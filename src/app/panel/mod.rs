@@ -4,6 +4,7 @@
 //! (each header has a fixed id). Widgets edit copies of the state and report changes as
 //! [`Action`]s; only the forms' text fields are edited in place.
 
+mod detail;
 mod files;
 mod lessons;
 mod lights;

@@ -2,8 +2,8 @@
 //! and the light.
 
 use bumpview::frame::{
-    BumpSource, LightingSpace, MAX_DISPLACEMENT_LEVEL, MipFilter, Mistake, Parallax, STRENGTH_RANGE, ShadingMode,
-    ViewMode,
+    BumpSource, DetailBlend, LightingSpace, MAX_DISPLACEMENT_LEVEL, MipFilter, Mistake, Parallax, STRENGTH_RANGE,
+    ShadingMode, ViewMode,
 };
 use bumpview::names::Named;
 use bumpview::scene::GreenAxis;
@@ -110,6 +110,9 @@ fn split(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
             .map(Command::SetSplitLightingSpaces),
         SplitDifference::MipFilter => {
             pair_combos(ui, "mip filter", split.mip_filters, MipFilter::name).map(Command::SetSplitMipFilters)
+        }
+        SplitDifference::DetailBlend => {
+            pair_combos(ui, "detail blend", split.detail_blends, DetailBlend::name).map(Command::SetSplitDetailBlends)
         }
         SplitDifference::Parallax => {
             pair_combos(ui, "parallax", split.parallax, Parallax::name).map(Command::SetSplitParallax)

@@ -67,6 +67,7 @@ fn drawn_pass(instance: &GpuInstance, scene: &GpuScene, shading: &ShadingSetting
         _ => lighting.is_some() && mip_filter.widens(),
     };
     let mip_filter = if kept { mip_filter } else { MipFilter::RenormalizedBox };
+    let detail_blend = crate::render::uniforms::detail_blend_drawn(features, instance.detail_blend, shading);
     Pass::Mesh {
         variant,
         cull_back_faces,
@@ -79,5 +80,6 @@ fn drawn_pass(instance: &GpuInstance, scene: &GpuScene, shading: &ShadingSetting
         lighting_space,
         features,
         mip_filter,
+        detail_blend,
     }
 }

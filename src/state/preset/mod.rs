@@ -294,6 +294,7 @@ impl Preset {
                 specular: named("shading.specular", &s.specular)?,
                 shininess: s.shininess,
                 lighting_space: named("shading.lighting_space", &s.lighting_space)?,
+                detail_blend: named_or_auto("shading.detail_blend", &s.detail_blend)?,
             },
             ambient_strength: self.ambient.strength,
             light_orbit: self.light.orbit,

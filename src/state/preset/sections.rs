@@ -20,7 +20,8 @@ use super::*;
 pub struct SplitPreset {
     pub enabled: bool,
     /// A [`SplitDifference`] name: `bump`, `view`, `strength`, `mode`, `tangents`,
-    /// `convention`, `bump-source`, `parallax`, `lighting-space`, `displacement` or `mip-filter`.
+    /// `convention`, `bump-source`, `parallax`, `lighting-space`, `displacement`, `mip-filter` or
+    /// `detail-blend`.
     pub difference: String,
     /// The divider, a fraction of the width (0..1).
     pub divider: f32,
@@ -45,6 +46,8 @@ pub struct SplitPreset {
     pub displacement_level: u32,
     /// [`MipFilter`](crate::frame::MipFilter) names, left and right.
     pub mip_filters: [String; 2],
+    /// [`DetailBlend`](crate::frame::DetailBlend) names, left and right.
+    pub detail_blends: [String; 2],
 }
 
 impl Default for SplitPreset {
@@ -70,6 +73,7 @@ impl From<&SplitView> for SplitPreset {
             lighting_spaces: names(s.lighting_spaces),
             displacement_level: s.displacement_level,
             mip_filters: names(s.mip_filters),
+            detail_blends: names(s.detail_blends),
         }
     }
 }
@@ -103,6 +107,7 @@ impl SplitPreset {
             lighting_spaces: named_pair("split.lighting_spaces", &self.lighting_spaces)?,
             displacement_level: self.displacement_level,
             mip_filters: named_pair("split.mip_filters", &self.mip_filters)?,
+            detail_blends: named_pair("split.detail_blends", &self.detail_blends)?,
         })
     }
 }
@@ -259,6 +264,10 @@ pub struct ShadingPreset {
     pub shininess: Option<f32>,
     /// A [`LightingSpace`](crate::frame::LightingSpace) name: `world`, `tangent` or `view`.
     pub lighting_space: String,
+    /// `auto` (each material's own) or a [`DetailBlend`](crate::frame::DetailBlend) name for
+    /// every detail normal map: `linear`, `partial-derivative`, `whiteout`, `udn`, `rnm`,
+    /// `surface-gradient`.
+    pub detail_blend: String,
     /// The searches' soft self-shadows: their strength, 0 (off) to 4.
     pub parallax_shadows: f32,
 }
@@ -305,6 +314,10 @@ pub struct OverridesPreset {
     /// A [`MipFilter`](crate::frame::MipFilter) name for the normal map (over `[scene]
     /// mip_filter`).
     pub mip_filter: Option<String>,
+    /// The detail normal map's repeats per base UV unit (above 0).
+    pub detail_tiling: Option<f32>,
+    /// The detail normal map's strength (0 flat).
+    pub detail_strength: Option<f32>,
 }
 
 /// Screenshot settings: size, transparent background, supersampling.
@@ -348,6 +361,7 @@ impl From<&ShadingSettings> for ShadingPreset {
             specular: s.specular.name().to_owned(),
             shininess: s.shininess,
             lighting_space: s.lighting_space.name().to_owned(),
+            detail_blend: name_or_auto(s.detail_blend).to_owned(),
             parallax_shadows: s.parallax.shadow_strength,
         }
     }
@@ -399,6 +413,8 @@ impl From<&MaterialOverrides> for OverridesPreset {
             height_kernel: o.kernel.map(|k| k.name().to_owned()),
             height_border: o.border.map(|b| b.name().to_owned()),
             mip_filter: o.mip_filter.map(|m| m.name().to_owned()),
+            detail_tiling: o.detail_tiling,
+            detail_strength: o.detail_strength,
         }
     }
 }
@@ -426,6 +442,18 @@ impl OverridesPreset {
             kernel: self.height_kernel.as_deref().map(|n| named(&key("height_kernel"), n)).transpose()?,
             border: self.height_border.as_deref().map(|n| named(&key("height_border"), n)).transpose()?,
             mip_filter: self.mip_filter.as_deref().map(|n| named(&key("mip_filter"), n)).transpose()?,
+            detail_tiling: match self.detail_tiling {
+                Some(t) if !(t.is_finite() && t > 0.0) => {
+                    return Err(bad(&key("detail_tiling"), &t.to_string(), "a finite number above 0"));
+                }
+                t => t,
+            },
+            detail_strength: match self.detail_strength {
+                Some(s) if !s.is_finite() => {
+                    return Err(bad(&key("detail_strength"), &s.to_string(), "a finite number"));
+                }
+                s => s,
+            },
         })
     }
 }
