@@ -66,3 +66,17 @@ fn blend_detail(b: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
         default: { return detail_rnm(b, d); }
     }
 }
+
+// chain::detail::values: the base tangent-space normal `nt` (after its strength) with the
+// detail map blended in where the material has one, read at `uv` times its tiling, decoded
+// (OpenGL convention, RGB) and scaled by its strength as shading::tangent_space_normal does.
+fn detailed_normal(nt: vec3<f32>, uv: vec2<f32>) -> vec3<f32> {
+    if !has(HAS_DETAIL) {
+        return nt;
+    }
+    let texel = textureSample(detail_normal_texture, detail_sampler, uv * object.detail.x);
+    let up = vec3<f32>(0.0, 0.0, 1.0);
+    let decoded = normalize_or(texel.rgb * 2.0 - 1.0, up);
+    let d = normalize_or(vec3<f32>(decoded.xy * object.detail.y, max(decoded.z, 0.0)), up);
+    return blend_detail(nt, d);
+}

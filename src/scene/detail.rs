@@ -69,6 +69,25 @@ impl DetailMap {
     }
 }
 
+/// A detail normal map of `size`² texels (RGB, OpenGL convention) holding the sine pair
+/// `h = (s/k)·(sin(k·x) + sin(k·y))` with `periods` periods across, `x`, `y` in texels
+/// (`y` up the image): slopes `s·cos(k·x)`, `s·cos(k·y)`, at most `slope`.
+pub fn sine_pair_normal_map(size: u32, periods: u32, slope: f32) -> super::TextureImage {
+    let k = std::f32::consts::TAU * periods as f32 / size as f32;
+    let mut rgba = Vec::with_capacity((size * size * 4) as usize);
+    for row in 0..size {
+        let y = (size - 1 - row) as f32 + 0.5;
+        for column in 0..size {
+            let x = column as f32 + 0.5;
+            let n = glam::Vec3::new(-slope * (k * x).cos(), -slope * (k * y).cos(), 1.0).normalize();
+            let rgb = (n * 0.5 + 0.5) * 255.0;
+            rgba.extend([rgb.x.round() as u8, rgb.y.round() as u8, rgb.z.round() as u8, 255]);
+        }
+    }
+    let name = format!("sine-pair detail ({periods} periods, slope {slope})");
+    super::TextureImage { name, width: size, height: size, kind: super::TextureKind::NormalMap, rgba }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -16,7 +16,7 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 use crate::error::LoadWarning;
 
 pub use camera::OrbitCamera;
-pub use detail::{DEFAULT_DETAIL_TILING, DetailBlend, DetailMap};
+pub use detail::{DEFAULT_DETAIL_TILING, DetailBlend, DetailMap, sine_pair_normal_map};
 pub use light::{Attenuation, Light, LightKind, Lights, LightsError, MAX_LIGHTS, SpecularMode};
 pub use material::{
     Clearcoat, GreenAxis, HeightMap, Material, NormalConvention, NormalLayout, NormalMap, NormalSpace, Occlusion,
