@@ -65,6 +65,7 @@ const FILES: &[(&str, &str)] = &[
     ("silhouettes", include_str!("../../assets/lessons/silhouettes.toml")),
     ("over-tilt", include_str!("../../assets/lessons/over-tilt.toml")),
     ("clearcoat", include_str!("../../assets/lessons/clearcoat.toml")),
+    ("detail-blend", include_str!("../../assets/lessons/detail-blend.toml")),
 ];
 
 /// One side of a comparison: its label and the whole preset it is drawn from.

@@ -54,6 +54,9 @@ pub enum TeachingScene {
     /// The bricks under a smooth clear coat (`KHR_materials_clearcoat`, no coat normal map):
     /// the base bumped, the coat's normal the surface's.
     ClearcoatBricks,
+    /// Every material's normal map large waves (a sine pair tilting up to 59°), a fine ripple
+    /// detail map tiled four times over it ([`super::DetailMap`]): where the detail blends differ.
+    DetailWaves,
 }
 
 impl TeachingScene {
@@ -93,6 +96,17 @@ impl TeachingScene {
                         normal_map: None,
                         uv_transform: Clearcoat::SAME_UV,
                     });
+                }
+            }
+            TeachingScene::DetailWaves => {
+                scene.textures.push(super::sine_pair_normal_map(256, 1, 1.2));
+                scene.textures.push(super::sine_pair_normal_map(64, 2, 0.8));
+                let (base, detail) = (scene.textures.len() - 2, scene.textures.len() - 1);
+                for material in &mut scene.materials {
+                    material.normal_map = Some(NormalMap::new(base, 1.0));
+                    material.height_map = None;
+                    let map = super::DetailMap::new(detail, super::DetailBlend::default());
+                    material.detail_map = Some(super::DetailMap { tiling: 4.0, ..map });
                 }
             }
         }
