@@ -94,3 +94,71 @@ fn each_methods_cpu_blend_equals_its_wgsl_twin_at_probe_points() {
         }
     }
 }
+
+/// The report's section on the full plan: partial derivatives and surface gradients are the
+/// exact answer to (a) at every tilt and strength, RNM to (b), and the page says so; the
+/// section is printed with each method's GPU frame time (for docs/detail-normals.md).
+#[test]
+fn the_report_names_the_exact_method_for_each_question() {
+    use bumpview::report::detail_page::{chart, csv, gpu_ms, markdown};
+    use bumpview::report::detail_study::{DetailPlan, study};
+    let plan = DetailPlan::full();
+    let rows = study(&plan);
+    assert_eq!(rows.len(), plan.tilts_deg.len() * plan.strengths.len() * DetailBlend::all().len());
+    for row in &rows {
+        match row.method {
+            "partial-derivative" | "surface-gradient" => assert!(row.added[2] < 1e-3, "{row:?}"),
+            "rnm" => assert!(row.rotated[2] < 1e-3, "{row:?}"),
+            _ => {}
+        }
+    }
+    let mut renderer = renderer_for(&scene());
+    let timing = gpu_ms(&mut renderer, [512, 512]).unwrap();
+    let page = markdown(&rows, &plan, &timing, &[]);
+    println!("{page}");
+    assert!(page.contains("Exact (under 0.001°) for (a): **partial-derivative, surface-gradient**; for (b): **rnm**"));
+    assert_eq!(csv(&rows).lines().count(), rows.len() + 1);
+    let png = chart(&rows).unwrap();
+    std::fs::write(std::env::temp_dir().join("detail-blends.png"), &png).unwrap();
+}
+
+/// `bake BASE --detail FLAT --blend M` writes a 16-bit map equal to the base for every method
+/// but the linear mix (a flat detail changes nothing), within the base's 8-bit decoding.
+#[test]
+fn bake_blends_two_maps_into_a_16_bit_png() {
+    let dir = std::env::temp_dir().join(format!("bumpview-detail-bake-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let base = sine_pair_normal_map(32, 1, 0.8);
+    let to_png = |t: &bumpview::scene::TextureImage, name: &str| {
+        let path = dir.join(name);
+        image::RgbaImage::from_raw(t.width, t.height, t.rgba.clone()).unwrap().save(&path).unwrap();
+        path
+    };
+    let base_path = to_png(&base, "base.png");
+    let flat =
+        bumpview::scene::TextureImage { rgba: [128, 128, 255, 255].repeat(4), width: 2, height: 2, ..base.clone() };
+    let flat_path = to_png(&flat, "flat.png");
+    for &method in DetailBlend::all().iter().filter(|&&m| m != DetailBlend::Linear) {
+        let out = dir.join(format!("{}.png", method.name()));
+        let status = std::process::Command::new(env!("CARGO_BIN_EXE_bumpview"))
+            .args(["bake"])
+            .arg(&base_path)
+            .arg("--detail")
+            .arg(&flat_path)
+            .args(["--blend", method.name(), "--out"])
+            .arg(&out)
+            .status()
+            .unwrap();
+        assert!(status.success());
+        let written = image::open(&out).unwrap();
+        assert_eq!(written.color(), image::ColorType::Rgb16, "{}", method.name());
+        let written = written.to_rgb16();
+        for (x, y, p) in written.enumerate_pixels() {
+            let n = glam::Vec3::from(p.0.map(|c| f32::from(c) / 65535.0)) * 2.0 - 1.0;
+            let t = base.texel(i64::from(x), i64::from(y));
+            let b = glam::Vec3::new(f32::from(t[0]), f32::from(t[1]), f32::from(t[2])) / 127.5 - 1.0;
+            assert!(n.angle_between(b.normalize()) < 0.01, "{} at ({x}, {y})", method.name());
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

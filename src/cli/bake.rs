@@ -9,10 +9,11 @@ use bumpview::error::escape_controls;
 
 use bumpview::bake::mips::{level_path, mip_levels, write_levels};
 use bumpview::bake::{BakeOptions, Direction, TexelSize, Units, bake_all, plan_outputs};
-use bumpview::frame::MipFilter;
+use bumpview::frame::{DetailBlend, MipFilter};
 use bumpview::height::rows::Channels;
 use bumpview::height::{Border, Kernel};
 use bumpview::load::image::load_texture;
+use bumpview::scene::DEFAULT_DETAIL_TILING;
 use bumpview::scene::GreenAxis;
 use bumpview::scene::TextureKind;
 use bumpview::shading::mip_filter::{toksvig_variance, vmf_variance, widened_roughness, widened_shininess};
@@ -93,6 +94,24 @@ pub struct BakeArgs {
     /// With --mips vmf: the level-0 perceptual roughness widened per level [default: 0.5].
     #[arg(long, value_name = "R", requires = "mips", value_parser = parse_positive)]
     roughness: Option<f32>,
+    /// A detail normal map (RGB, OpenGL convention) to blend over the one input normal map:
+    /// writes the blended map, 16-bit RGB, to --out (see --blend, --detail-tiling,
+    /// --detail-strength).
+    #[arg(long, value_name = "FILE", conflicts_with_all = [
+        "to_height", "kernel", "spectral", "height_range", "texel_size", "texture_width", "strength", "depth_map",
+        "border", "normal_convention", "bits", "height_in_alpha", "two_channel", "mips",
+    ])]
+    detail: Option<PathBuf>,
+    /// With --detail: how the two blend: linear, partial-derivative, whiteout, udn, rnm or
+    /// surface-gradient [default: rnm].
+    #[arg(long, value_name = "METHOD", requires = "detail", value_parser = args::named::<DetailBlend>())]
+    blend: Option<DetailBlend>,
+    /// With --detail: the detail map's repeats across the base map [default: 8].
+    #[arg(long, value_name = "TIMES", requires = "detail", value_parser = parse_positive)]
+    detail_tiling: Option<f32>,
+    /// With --detail: the detail map's strength, as a normal map's scale [default: 1].
+    #[arg(long, value_name = "S", requires = "detail")]
+    detail_strength: Option<f32>,
     /// Replace outputs that exist (without it, an existing output is kept and nothing is
     /// baked). An input is never written over, even with --force.
     #[arg(long)]
@@ -140,6 +159,13 @@ impl BakeArgs {
 pub fn run(args: &BakeArgs) -> Result<(), Failure> {
     if let Some(filter) = args.mips {
         return run_mips(args, filter);
+    }
+    if let Some(detail) = &args.detail {
+        let method = args.blend.unwrap_or_default();
+        let (tiling, strength) =
+            (args.detail_tiling.unwrap_or(DEFAULT_DETAIL_TILING), args.detail_strength.unwrap_or(1.0));
+        let blend = super::bake_detail::DetailBake { detail, method, tiling, strength, force: args.force };
+        return super::bake_detail::run(&args.inputs, &args.out, &blend);
     }
     let direction = if args.to_height { Direction::ToHeight } else { Direction::ToNormal };
     let outputs = plan_outputs(&args.inputs, &args.out, direction).map_err(|e| Failure::Failed(e.to_string()))?;

@@ -5,6 +5,7 @@
 
 pub mod args;
 mod bake;
+mod bake_detail;
 mod check;
 mod inputs;
 mod lessons;

@@ -10,6 +10,7 @@ mod chart;
 pub mod convergence;
 mod csv;
 pub mod cube_map;
+pub mod detail_page;
 pub mod detail_study;
 pub mod exact_hit;
 pub mod gpu_time;
@@ -90,6 +91,8 @@ pub struct Plan {
     pub uv_grid: u32,
     /// The mip filters against a supersampled reference on the GPU.
     pub mip: mip_study::MipPlan,
+    /// The detail blends against the two exact answers (CPU), timed on the GPU.
+    pub detail: detail_study::DetailPlan,
 }
 
 impl Plan {
@@ -108,6 +111,7 @@ impl Plan {
             parallax: parallax::ParallaxPlan::full(None),
             uv_grid: 64,
             mip: mip_study::MipPlan::full(),
+            detail: detail_study::DetailPlan::full(),
         }
     }
 
@@ -127,6 +131,7 @@ impl Plan {
             parallax: parallax::ParallaxPlan::quick(),
             uv_grid: 32,
             mip: mip_study::MipPlan::quick(),
+            detail: detail_study::DetailPlan { phases: 8, azimuths: 4, ..detail_study::DetailPlan::full() },
         }
     }
 }
@@ -344,7 +349,9 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
     let uv_section = uv_page::markdown(&uv_rows, &study.rows, plan.uv_grid, &uv_charts);
     let (mip, mip_adapter, mip_notes) = mip_filter_study(&plan.mip, progress);
     let mip_section = mip_page::markdown(&mip, &plan.mip, &mip_adapter, &mip_notes);
-    let sections = [markdown::render(&page), parallax_section, uv_section, mip_section];
+    let (detail_rows, detail_timing, detail_notes) = detail_blend_study(&plan.detail);
+    let detail_section = detail_page::markdown(&detail_rows, &plan.detail, &detail_timing, &detail_notes);
+    let sections = [markdown::render(&page), parallax_section, uv_section, mip_section, detail_section];
     let files = [
         (MARKDOWN.to_owned(), sections.join("\n").into_bytes()),
         (CSV.to_owned(), csv::render(&rows, &orders).into_bytes()),
@@ -354,6 +361,8 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
         (KERNEL_CHART.to_owned(), kernel_png),
         (mip_page::CSV.to_owned(), mip_page::csv(&mip.rows).into_bytes()),
         (mip_page::CHART.to_owned(), mip_page::chart(&mip.rows)?),
+        (detail_page::CSV.to_owned(), detail_page::csv(&detail_rows).into_bytes()),
+        (detail_page::CHART.to_owned(), detail_page::chart(&detail_rows)?),
     ]
     .into_iter()
     .chain(chart_files);
@@ -439,4 +448,24 @@ fn mip_filter_study(
         }
     }
     (study, gpu.adapter_name(), notes)
+}
+
+/// The detail-blend study of `plan` (CPU) and each method's GPU frame time on a headless GPU
+/// (512×512); a missing GPU or a failed frame becomes a note, not a failed report.
+fn detail_blend_study(
+    plan: &detail_study::DetailPlan,
+) -> (Vec<detail_study::DetailRow>, Vec<(&'static str, Option<f64>)>, Vec<String>) {
+    let rows = detail_study::study(plan);
+    let timing = crate::render::Gpu::headless().map_err(|e| format!("no GPU: {e}")).and_then(|gpu| {
+        let mut renderer = crate::render::Renderer::from_gpu(&gpu);
+        let timing = detail_page::gpu_ms(&mut renderer, [512, 512]).map_err(|e| format!("GPU timing stopped: {e}"))?;
+        Ok((timing, gpu.adapter_name()))
+    });
+    match timing {
+        Ok((timing, adapter)) => {
+            let note = format!("GPU ms: the built-in detail-waves wall at 512×512, 4× MSAA, on {adapter}");
+            (rows, timing, vec![note])
+        }
+        Err(note) => (rows, vec![], vec![note]),
+    }
 }
