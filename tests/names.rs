@@ -2,7 +2,9 @@
 //! them, so they must stay as they are. Each enum derives its names ([`bumpview::names`]);
 //! this pins every one, in order (the panel's, `--help`'s and the reports' order).
 
-use bumpview::frame::{BumpSource, LegacyLook, LightingSpace, MipFilter, Mistake, Parallax, ShadingMode, ViewMode};
+use bumpview::frame::{
+    BumpSource, DetailBlend, LegacyLook, LightingSpace, MipFilter, Mistake, Parallax, ShadingMode, ViewMode,
+};
 use bumpview::height::{Border, Kernel};
 use bumpview::names::Named;
 use bumpview::scene::{GreenAxis, LightKind, NormalLayout, ShadingModel, SpecularMode};
@@ -39,6 +41,7 @@ fn every_enum_keeps_its_names_in_order() {
         "lighting-space",
         "displacement",
         "mip-filter",
+        "detail-blend",
     ];
     assert_eq!(SplitDifference::names(), differences);
     let methods = [
@@ -76,6 +79,8 @@ fn every_enum_keeps_its_names_in_order() {
     assert_eq!(LightingSpace::names(), ["world", "tangent", "view"]);
     let mip_filters = ["base-only", "renormalized-box", "toksvig", "lean", "vmf", "geometric-specular-aa"];
     assert_eq!(MipFilter::names(), mip_filters);
+    let blends = ["linear", "partial-derivative", "whiteout", "udn", "rnm", "surface-gradient"];
+    assert_eq!(DetailBlend::names(), blends);
 }
 
 #[test]

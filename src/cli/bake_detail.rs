@@ -4,12 +4,13 @@
 use std::path::{Path, PathBuf};
 
 use bumpview::atomic::check_outputs;
-use bumpview::bake::detail::{blended_normals, write_normals_16};
+use bumpview::bake::detail::write_normals_16;
 use bumpview::error::escape_controls;
 use bumpview::frame::DetailBlend;
 use bumpview::load::image::load_texture;
 use bumpview::names::Named;
 use bumpview::scene::TextureKind;
+use bumpview::shading::detail_blend::blend_maps;
 
 use super::Failure;
 
@@ -35,7 +36,7 @@ pub fn run(inputs: &[PathBuf], out: &Path, bake: &DetailBake) -> Result<(), Fail
     let failed = |e: &dyn std::fmt::Display| Failure::Failed(escape_controls(&e.to_string()).into_owned());
     let base = load_texture(input, TextureKind::NormalMap).map_err(|e| failed(&e))?;
     let detail = load_texture(bake.detail, TextureKind::NormalMap).map_err(|e| failed(&e))?;
-    let normals = blended_normals(&base, &detail, bake.tiling, bake.strength, bake.method);
+    let normals = blend_maps(&base, &detail, bake.tiling, bake.strength, bake.method);
     write_normals_16(out, base.width, &normals).map_err(|e| failed(&e))?;
     let path = out.display().to_string();
     println!(

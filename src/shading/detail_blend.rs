@@ -4,10 +4,12 @@
 //! tests/detail_blend.rs; `crate::chain` runs [`blend`] between the normal map's strength and
 //! the step to world space. docs/detail-normals.md gives the sources and the measured errors.
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 use crate::math::normalize_or;
-use crate::scene::DetailBlend;
+use crate::scene::sample::sample_bilinear;
+use crate::scene::{DetailBlend, NormalConvention, SamplerWrap, TextureImage};
+use crate::shading::{NormalTexel, decode_normal, tangent_space_normal};
 
 /// The smallest `z` the surface-gradient method divides by (a normal at the horizon has no
 /// finite slope): `z` below it counts as this.
@@ -77,6 +79,32 @@ pub fn surface_gradient(b: Vec3, d: Vec3) -> Vec3 {
     resolve_gradient(Vec3::Z, gradient_of_normal(Vec3::Z, b) + gradient_of_normal(Vec3::Z, d))
 }
 
+/// The blended normal at every texel of `base`: the detail map read bilinearly (wrapping) at
+/// the texel centre's UV times `tiling`, scaled by `strength`, blended by `method`; unit
+/// tangent-space vectors, row by row from the top.
+pub fn blend_maps(
+    base: &TextureImage,
+    detail: &TextureImage,
+    tiling: f32,
+    strength: f32,
+    method: DetailBlend,
+) -> Vec<Vec3> {
+    let convention = NormalConvention::default();
+    let size = Vec2::new(base.width as f32, base.height as f32);
+    let mut out = Vec::with_capacity((base.width * base.height) as usize);
+    for y in 0..base.height {
+        for x in 0..base.width {
+            let texel = base.texel(i64::from(x), i64::from(y)).map(|c| f32::from(c) / 255.0);
+            let b = decode_normal(NormalTexel::rgb(Vec3::new(texel[0], texel[1], texel[2])), convention);
+            let uv = (Vec2::new(x as f32, y as f32) + 0.5) / size * tiling;
+            let d_texel = sample_bilinear(detail, uv, SamplerWrap::default()).truncate();
+            let d = tangent_space_normal(decode_normal(NormalTexel::rgb(d_texel), convention), strength);
+            out.push(blend(method, tangent_space_normal(b, 1.0), d));
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -111,6 +139,22 @@ mod tests {
                     let r = blend(method, b, d);
                     assert!((r.length() - 1.0).abs() < 1e-5, "{} of {b} and {d}: {r}", method.name());
                 }
+            }
+        }
+    }
+
+    /// A flat detail map leaves the base's normals as they are (every method but the linear
+    /// mix, which halves the tilt), to the 8-bit base's decoding.
+    #[test]
+    fn a_flat_detail_map_gives_the_base_back() {
+        let base = crate::scene::sine_pair_normal_map(16, 1, 0.8);
+        let flat = TextureImage { rgba: [128, 128, 255, 255].repeat(4), width: 2, height: 2, ..base.clone() };
+        for &method in DetailBlend::all().iter().filter(|&&m| m != DetailBlend::Linear) {
+            let normals = blend_maps(&base, &flat, 3.0, 1.0, method);
+            for (i, n) in normals.iter().enumerate() {
+                let t = base.texel((i % 16) as i64, (i / 16) as i64).map(|c| f32::from(c) / 255.0);
+                let b = Vec3::new(t[0], t[1], t[2]) * 2.0 - 1.0;
+                assert!(n.angle_between(b.normalize()) < 0.01, "{}: texel {i}", method.name());
             }
         }
     }
