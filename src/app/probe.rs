@@ -178,6 +178,12 @@ fn lines(r: &ProbeReadout, mesh_name: &str) -> String {
         format!("bump#    {}  (X-Ray correction)", opt3(r.texel.and_then(|t| t.correction))),
         format!("decoded  {}", opt3(r.chain.decoded)),
         format!("s={:<6.3} {}", r.chain.strength, opt3(r.chain.after_strength)),
+        format!("detail   {}", opt3(r.chain.detail.map(|d| d.detail))),
+        format!(
+            "blended  {}  ({})",
+            opt3(r.chain.detail.map(|d| d.blended)),
+            r.chain.detail.map_or("no detail map", |d| d.method.name())
+        ),
         format!("T        {}", opt3(r.chain.tangent)),
         format!("B        {}", opt3(r.chain.bitangent)),
         format!("N        {}", v3(r.chain.normal)),
