@@ -168,6 +168,13 @@ fn supersampled_split_captures_have_the_divider_on_a_block_boundary() {
     let mut renderer = common::renderer_for(&scene);
     let options = CaptureOptions { supersample: 2, ..CaptureOptions::plain(SIZE) };
     for &difference in SplitDifference::all() {
+        // Only materials with a detail map show the detail blend.
+        let scene = match difference {
+            SplitDifference::DetailBlend => {
+                bumpview::scene::teaching::TeachingScene::DetailWaves.build(bumpview::height::Kernel::default())
+            }
+            _ => scene.clone(),
+        };
         let mut state = ViewerState::new(&scene);
         state.shading.view = match difference {
             SplitDifference::Tangents => ViewMode::Tangent,
