@@ -349,7 +349,7 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
     let uv_section = uv_page::markdown(&uv_rows, &study.rows, plan.uv_grid, &uv_charts);
     let (mip, mip_adapter, mip_notes) = mip_filter_study(&plan.mip, progress);
     let mip_section = mip_page::markdown(&mip, &plan.mip, &mip_adapter, &mip_notes);
-    let (detail_rows, detail_timing, detail_notes) = detail_blend_study(&plan.detail);
+    let (detail_rows, detail_timing, detail_notes) = detail_page::study(&plan.detail);
     let detail_section = detail_page::markdown(&detail_rows, &plan.detail, &detail_timing, &detail_notes);
     let sections = [markdown::render(&page), parallax_section, uv_section, mip_section, detail_section];
     let files = [
@@ -448,24 +448,4 @@ fn mip_filter_study(
         }
     }
     (study, gpu.adapter_name(), notes)
-}
-
-/// The detail-blend study of `plan` (CPU) and each method's GPU frame time on a headless GPU
-/// (512×512); a missing GPU or a failed frame becomes a note, not a failed report.
-fn detail_blend_study(
-    plan: &detail_study::DetailPlan,
-) -> (Vec<detail_study::DetailRow>, Vec<(&'static str, Option<f64>)>, Vec<String>) {
-    let rows = detail_study::study(plan);
-    let timing = crate::render::Gpu::headless().map_err(|e| format!("no GPU: {e}")).and_then(|gpu| {
-        let mut renderer = crate::render::Renderer::from_gpu(&gpu);
-        let timing = detail_page::gpu_ms(&mut renderer, [512, 512]).map_err(|e| format!("GPU timing stopped: {e}"))?;
-        Ok((timing, gpu.adapter_name()))
-    });
-    match timing {
-        Ok((timing, adapter)) => {
-            let note = format!("GPU ms: the built-in detail-waves wall at 512×512, 4× MSAA, on {adapter}");
-            (rows, timing, vec![note])
-        }
-        Err(note) => (rows, vec![], vec![note]),
-    }
 }
