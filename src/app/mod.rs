@@ -25,6 +25,7 @@ use std::time::Duration;
 
 use web_time::Instant;
 
+use bumpview::lessons::Lesson;
 use bumpview::load::{SceneFiles, TextureSlot};
 use bumpview::render::Renderer;
 use bumpview::scene::Scene;
@@ -58,6 +59,8 @@ pub struct Options {
     pub last_state: Option<PathBuf>,
     /// Shown in the panel at start (e.g. why the last state was not restored).
     pub notice: Option<String>,
+    /// A lesson file to show with its card (`state` is its state).
+    pub lesson: Option<Lesson>,
 }
 
 /// Longest frame step fed to animations, so a stall does not make the light jump.
@@ -142,6 +145,7 @@ impl ViewerApp {
             last_state: options.last_state,
             recent_file: files::recent_file(),
             notice: options.notice,
+            lesson: options.lesson,
         };
         Ok(ViewerApp {
             controller: Controller::new(start, renderer, wake),

@@ -76,6 +76,7 @@ fn options(fragment: &[(String, String)]) -> Result<Options, String> {
         capture: preset.capture,
         last_state: None,
         notice,
+        lesson: None,
     })
 }
 

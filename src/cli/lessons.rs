@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use bumpview::atomic::{check_outputs, write_bytes_atomically};
 use bumpview::lessons::deck::{DeckEntry, index_markdown, slide_file};
+use bumpview::lessons::files::load_dir;
 use bumpview::lessons::measure::{SceneCache, measure};
 use bumpview::lessons::pdf::{PdfPage, slides_pdf};
 use bumpview::lessons::slide::SlideLayout;
@@ -28,9 +29,17 @@ pub struct SlidesArgs {
     /// Slide size in pixels (16:9 suits the layout), 480x270 to 7680x4320.
     #[arg(long, value_parser = args::parse_size, default_value = "1920x1080")]
     size: [u32; 2],
-    /// Only these lessons, in this order (names as `bumpview lessons` lists them).
+    /// Only these built-in lessons, in this order (names as `bumpview lessons` lists them).
+    /// Without it, every built-in lesson unless --lesson or --lessons-dir names others.
     #[arg(long, value_name = "NAME,…", value_delimiter = ',')]
     lessons: Vec<String>,
+    /// A lesson file of your own (repeatable), drawn after the built-in lessons chosen; its
+    /// model and texture paths are relative to the file.
+    #[arg(long = "lesson", value_name = "FILE")]
+    lesson_files: Vec<PathBuf>,
+    /// Every lesson file (*.toml) in this folder, in the order of their names.
+    #[arg(long, value_name = "DIR")]
+    lessons_dir: Option<PathBuf>,
     /// Replace files that exist; without it an existing output is kept and nothing is drawn.
     #[arg(long)]
     force: bool,
@@ -59,10 +68,12 @@ pub fn slides(args: &SlidesArgs) -> Result<(), Failure> {
         let range = format!("{}x{} to {}x{}", MIN_SIZE[0], MIN_SIZE[1], MAX_SIZE[0], MAX_SIZE[1]);
         return Err(Failure::BadArguments(format!("--size {w}x{h}: slides are {range} pixels")));
     }
-    let chosen = lessons::select(&args.lessons).map_err(|e| Failure::BadArguments(e.to_string()))?;
+    let chosen = chosen(args)?;
     let outputs = outputs(&args.out, &chosen);
     let paths: Vec<&Path> = outputs.iter().map(PathBuf::as_path).collect();
-    check_outputs(&[], &paths, args.force).map_err(|e| Failure::BadArguments(e.to_string()))?;
+    let inputs = lesson_inputs(&chosen, &args.lesson_files);
+    let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+    check_outputs(&inputs, &paths, args.force).map_err(|e| Failure::BadArguments(e.to_string()))?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| Failure::Failed(format!("could not make {}: {e}", args.out.display())))?;
     let started = std::time::Instant::now();
@@ -97,6 +108,31 @@ pub fn slides(args: &SlidesArgs) -> Result<(), Failure> {
         gpu.adapter_name()
     );
     Ok(())
+}
+
+/// The lessons to draw: the built-in ones named (all of them when neither names nor files are
+/// given), then the lesson files given one by one, then those of the folder.
+fn chosen(args: &SlidesArgs) -> Result<Vec<Lesson>, Failure> {
+    let own_files = !args.lesson_files.is_empty() || args.lessons_dir.is_some();
+    let mut chosen = if own_files && args.lessons.is_empty() {
+        vec![]
+    } else {
+        lessons::select(&args.lessons).map_err(|e| Failure::BadArguments(e.to_string()))?
+    };
+    for path in &args.lesson_files {
+        chosen.push(Lesson::load(path).map_err(|e| Failure::Failed(e.to_string()))?);
+    }
+    if let Some(folder) = &args.lessons_dir {
+        chosen.extend(load_dir(folder).map_err(|e| Failure::Failed(e.to_string()))?);
+    }
+    Ok(chosen)
+}
+
+/// Every file the chosen lessons read (lesson files and the models and textures they name),
+/// which no output may replace.
+fn lesson_inputs(chosen: &[Lesson], lesson_files: &[PathBuf]) -> Vec<PathBuf> {
+    let named = chosen.iter().flat_map(|l| l.sides.iter()).flat_map(|side| side.preset.files.paths());
+    lesson_files.iter().cloned().chain(named.map(Path::to_path_buf)).collect()
 }
 
 /// Every file `slides` writes into `out` for `chosen`.

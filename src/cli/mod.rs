@@ -45,6 +45,10 @@ pub struct Cli {
     /// it, files or flags, the viewer restores the state it had when it last closed.
     #[arg(long, value_name = "FILE")]
     preset: Option<PathBuf>,
+    /// Viewer: open this lesson file (yours or one of assets/lessons/) with its caption card,
+    /// as the Lessons section opens a built-in one; its paths are relative to it.
+    #[arg(long, value_name = "FILE", conflicts_with = "preset")]
+    lesson: Option<PathBuf>,
     #[command(flatten)]
     methods: methods::MethodArgs,
     #[command(flatten)]

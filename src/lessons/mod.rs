@@ -17,6 +17,7 @@
 //! ([`measure`]).
 
 pub mod deck;
+pub mod files;
 pub mod measure;
 pub mod pdf;
 pub mod slide;
@@ -25,7 +26,7 @@ use serde::Deserialize;
 
 use crate::scene::Scene;
 use crate::state::ViewerState;
-use crate::state::preset::{Preset, PresetError};
+use crate::state::preset::{Preset, PresetError, one_line};
 
 /// The share of the picture's pixels the two sides of a comparison must differ in, percent.
 pub const MIN_CHANGED_PERCENT: f32 = 5.0;
@@ -80,8 +81,8 @@ pub struct Side {
 /// A lesson, read and checked.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Lesson {
-    /// The file's name without `.toml`, what `--lessons` takes.
-    pub name: &'static str,
+    /// The file's name without `.toml`: what `--lessons` takes for a built-in lesson.
+    pub name: String,
     pub title: String,
     pub caption: String,
     /// The claim with `{changed}` where the measured percentage goes.
@@ -121,6 +122,22 @@ struct TileFile {
     preset: toml::Table,
 }
 
+/// Each tile's preset table read as a preset where it stands in the file (a tile sets only
+/// what differs, so every key may be missing).
+#[derive(Deserialize)]
+#[expect(dead_code, reason = "read only to check each tile's keys where they stand in the file")]
+struct TilePresets {
+    #[serde(default)]
+    tiles: Vec<TilePreset>,
+}
+
+#[derive(Deserialize)]
+#[expect(dead_code, reason = "read only to check the keys")]
+struct TilePreset {
+    #[serde(default)]
+    preset: Preset,
+}
+
 /// Why a lesson file is not a lesson.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("lesson {name}: {message}")]
@@ -130,11 +147,15 @@ pub struct LessonError {
 }
 
 impl Lesson {
-    /// Reads and checks the lesson file `text` named `name`.
-    pub fn parse(name: &'static str, text: &str) -> Result<Lesson, LessonError> {
+    /// Reads and checks the lesson file `text` named `name`. A mistake TOML or the preset's
+    /// reading sees is reported with its line in `text` and the key.
+    pub fn parse(name: &str, text: &str) -> Result<Lesson, LessonError> {
         let fail = |message: String| LessonError { name: name.to_owned(), message };
-        let file: LessonFile = toml::from_str(text).map_err(|e| fail(e.to_string()))?;
-        let preset = to_preset(&file.preset).map_err(|e| fail(e.0))?;
+        let file: LessonFile = toml::from_str(text).map_err(|e| fail(one_line(&e.to_string())))?;
+        // The preset part and each tile's, read in place first so that their mistakes carry
+        // their lines; the tiles are then laid over the lesson's table.
+        let preset = Preset::from_toml(text).map_err(|e| fail(e.0))?;
+        toml::from_str::<TilePresets>(text).map_err(|e| fail(one_line(&e.to_string())))?;
         let split = preset.split.enabled;
         let sides = match (split, file.tiles.is_empty(), file.labels) {
             (true, true, Some(labels)) => {
@@ -169,7 +190,7 @@ impl Lesson {
         }
         let sides = sides.into_iter().map(|(label, preset, half)| Side { label, preset, half }).collect();
         Ok(Lesson {
-            name,
+            name: name.to_owned(),
             title: file.title,
             caption: file.caption,
             claim: file.claim,
@@ -220,7 +241,7 @@ pub fn select(wanted: &[String]) -> Result<Vec<Lesson>, LessonError> {
     wanted
         .iter()
         .map(|wanted| {
-            all.iter().find(|l| l.name == wanted).cloned().ok_or_else(|| LessonError {
+            all.iter().find(|l| l.name == *wanted).cloned().ok_or_else(|| LessonError {
                 name: wanted.clone(),
                 message: format!("no such lesson; the lessons are {}", names().join(", ")),
             })

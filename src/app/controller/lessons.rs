@@ -101,12 +101,23 @@ impl LessonsForm {
 }
 
 impl Controller {
+    /// Adds a lesson file's lesson to the course and shows its card and number; the viewer
+    /// already shows its state (it started from [`Lesson::viewer_preset`]).
+    pub(super) fn show_lesson_file(&mut self, lesson: Lesson) {
+        self.lessons.catalogue.push(lesson);
+        let index = self.lessons.catalogue.len() - 1;
+        self.lessons.current = Some(index);
+        self.lessons.card = true;
+        let wake = self.waker();
+        self.lessons.start_measuring(index, wake);
+    }
+
     /// Shows lesson `index`: its whole state (and its scene, loaded in the background when it
     /// differs), its caption card, and its number measured.
     pub(super) fn open_lesson(&mut self, index: usize) {
         let Some(lesson) = self.lessons.catalogue.get(index) else { return };
         let preset = lesson.viewer_preset().clone();
-        let name = lesson.name;
+        let name = lesson.name.clone();
         match self.show_preset(&preset, format!("opened the scene of lesson {name}")) {
             Ok(()) => {
                 self.lessons.current = Some(index);

@@ -28,6 +28,7 @@ use web_time::Instant;
 
 use bumpview::error::RenderError;
 use bumpview::frame::{FrameQuality, Msaa, SceneUploads};
+use bumpview::lessons::Lesson;
 use bumpview::load::SceneFiles;
 use bumpview::render::timing::{time_floor, timed};
 use bumpview::render::{DrawOptions, RenderTarget, Renderer};
@@ -68,6 +69,9 @@ pub struct Start {
     pub recent_file: Option<PathBuf>,
     /// Shown as the files' status at start (e.g. why the last state was not restored).
     pub notice: Option<String>,
+    /// A lesson file opened from the command line: added to the course and shown with its
+    /// card (`state` is already its state).
+    pub lesson: Option<Lesson>,
 }
 
 /// What the last interactive frame cost, for the panel.
@@ -136,16 +140,20 @@ impl Controller {
     /// when the first scene job has made them ready; `wake` is called from worker threads when
     /// they deliver something.
     pub fn new(start: Start, renderer: Renderer, wake: Waker) -> Controller {
+        let lesson = start.lesson.clone();
         let mut controller = Self::with_build(start, renderer, wake, Arc::new(SceneFiles::build));
         // A lesson's number is measured on a worker thread with its own adapter; a page has
         // neither threads nor a blocking read-back, so the web build's card shows the claim alone.
         controller.lessons.measure_numbers = cfg!(not(target_arch = "wasm32"));
+        if let Some(lesson) = lesson {
+            controller.show_lesson_file(lesson);
+        }
         controller
     }
 
     /// [`Self::new`] with files loaded by `build` (a fake in tests).
     fn with_build(start: Start, renderer: Renderer, wake: Waker, build: scene_job::BuildFn) -> Controller {
-        let Start { scene, state, files: scene_files, capture, last_state, recent_file, notice } = start;
+        let Start { scene, state, files: scene_files, capture, last_state, recent_file, notice, lesson: _ } = start;
         let mut files = Files::new(scene_files.absolute(), state.kernel, recent_file);
         files.remember_scene_files();
         if let Some(notice) = notice {

@@ -28,6 +28,7 @@ pub(super) fn start(scene: Scene) -> (Start, Renderer) {
         last_state: None,
         recent_file: None,
         notice: None,
+        lesson: None,
     };
     (start, Renderer::from_gpu(&gpu))
 }

@@ -59,6 +59,13 @@ pub struct Preset {
     pub split: SplitPreset,
 }
 
+/// A lesson file seen as a preset: its `[preset]` tables (no key of a preset is called
+/// `preset`, so a file with that table is a lesson's). Its other keys are not read here.
+#[derive(Deserialize)]
+struct LessonPresetPart {
+    preset: Preset,
+}
+
 /// What a preset sets besides files, camera and light, checked and typed.
 struct Settings {
     shading: ShadingSettings,
@@ -148,8 +155,18 @@ impl Preset {
     }
 
     /// Parses and checks a preset (every name and range; see the module doc for missing keys).
+    /// A lesson file (`crate::lessons`: its preset under a `[preset]` table, beside its title,
+    /// caption, claim and comparison) reads as the preset it holds; the lesson's own keys are
+    /// left to the lessons module to check. Errors name the key and, for what TOML rejects, the
+    /// line of `text`.
     pub fn from_toml(text: &str) -> Result<Preset, PresetError> {
-        let preset: Preset = toml::from_str(text).map_err(|e| PresetError(one_line(&e.to_string())))?;
+        let error = |e: toml::de::Error| PresetError(one_line(&e.to_string()));
+        let table: toml::Table = toml::from_str(text).map_err(error)?;
+        let preset = if table.get("preset").is_some_and(toml::Value::is_table) {
+            toml::from_str::<LessonPresetPart>(text).map_err(error)?.preset
+        } else {
+            toml::from_str::<Preset>(text).map_err(error)?
+        };
         preset.settings()?;
         Ok(preset)
     }
@@ -341,7 +358,7 @@ fn bad(key: &str, value: &str, expected: &str) -> PresetError {
 }
 
 /// toml's multi-line message (location, source line, caret, reason) as "location: reason".
-fn one_line(message: &str) -> String {
+pub fn one_line(message: &str) -> String {
     let quoted_source =
         |line: &str| line.starts_with('|') || line.split_once(" |").is_some_and(|(n, _)| n.parse::<u32>().is_ok());
     let lines: Vec<&str> = message.lines().map(str::trim).filter(|l| !l.is_empty() && !quoted_source(l)).collect();
@@ -474,5 +491,15 @@ mod tests {
         assert!(kind.contains("orbit") || kind.contains("line 2"), "{kind}");
         assert!(Preset::from_toml("[capture]\nsupersample = 5\n").is_err());
         assert!(Preset::from_toml("version = 2\n").unwrap_err().0.starts_with("version"));
+    }
+
+    #[test]
+    fn a_lesson_file_reads_as_its_preset() {
+        let lesson = "title = \"t\"\ncaption = \"c\"\nclaim = \"{changed}\"\n\
+                      [preset.shading]\nstrength = 2.5\n[[tiles]]\nlabel = \"a\"\n";
+        assert_eq!(Preset::from_toml(lesson).unwrap().shading.strength, 2.5);
+        let typo = "title = \"t\"\n\n[preset.shading]\nstrenght = 2.5\n";
+        let message = Preset::from_toml(typo).unwrap_err().0;
+        assert!(message.contains("line 4") && message.contains("strenght"), "{message}");
     }
 }
