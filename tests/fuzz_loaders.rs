@@ -194,7 +194,7 @@ fn png_file() -> impl Strategy<Value = Vec<u8>> {
     (
         1u32..64,
         1u32..64,
-        prop::sample::select(&kinds[..]),
+        prop::sample::select(kinds.to_vec()),
         any::<bool>(),
         any::<prop::sample::Index>(),
         any::<u8>(),
