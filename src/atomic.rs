@@ -4,8 +4,12 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Writes `path` through `write`, atomically: into a temporary file in the same folder
-/// (`.<name>.<pid>.tmp`), synced, then renamed over `path`, so readers see the old file or
-/// the complete new one. The temporary file is removed when anything fails (a panic in
+/// (`.<name>.<pid>.<n>.tmp`), synced, then renamed over `path`, so readers see the old file or
+/// the complete new one. The temporary is created exclusively ([`create_temporary`]: a file
+/// or symbolic link already at its name is never opened, followed or truncated; another name
+/// is tried). An existing `path` that is not a regular file (a directory, device, FIFO,
+/// socket, or a symbolic link to one) is refused before anything is written
+/// ([`refuse_non_regular`]). The temporary file is removed when anything fails (a panic in
 /// `write` included); those a killed run left beside `path` ([`remove_stale_temporaries`])
 /// are removed first. The folder must exist.
 pub fn write_atomically(
@@ -14,16 +18,68 @@ pub fn write_atomically(
 ) -> std::io::Result<()> {
     let file_name =
         path.file_name().ok_or_else(|| std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a file path"))?;
+    if let Some(kind) = non_regular_kind(path) {
+        let message = format!("is {kind}, not a regular file: refusing to write over it");
+        return Err(std::io::Error::new(std::io::ErrorKind::InvalidInput, message));
+    }
     remove_stale_temporaries(path);
-    let mut temporary =
-        Temporary { path: path.with_file_name(temporary_name(file_name, std::process::id())), renamed: false };
-    let file = std::fs::File::create(&temporary.path)?;
+    let (file, temporary_path) = create_temporary(path, file_name)?;
+    let mut temporary = Temporary { path: temporary_path, renamed: false };
     let mut writer = std::io::BufWriter::new(file);
     write(&mut writer)?;
     writer.into_inner().map_err(|e| e.into_error())?.sync_all()?;
     std::fs::rename(&temporary.path, path)?;
     temporary.renamed = true;
     Ok(())
+}
+
+/// The most names [`create_temporary`] tries before giving up.
+const TEMPORARY_TRIES: u32 = 64;
+
+/// Creates a new temporary file beside `path`, `.<name>.<pid>.<n>.tmp` for the first free `n`:
+/// opened with `create_new` (`O_CREAT | O_EXCL`, which by POSIX fails on any existing name, a
+/// symbolic link included, dangling or not, so a link planted at the name is neither followed
+/// nor truncated) and retried under the next name when one exists.
+fn create_temporary(path: &Path, file_name: &std::ffi::OsStr) -> std::io::Result<(std::fs::File, PathBuf)> {
+    let pid = std::process::id();
+    for n in 0..TEMPORARY_TRIES {
+        let candidate = path.with_file_name(temporary_name(file_name, pid, n));
+        match std::fs::OpenOptions::new().write(true).create_new(true).open(&candidate) {
+            Ok(file) => return Ok((file, candidate)),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(e),
+        }
+    }
+    let message = format!("{TEMPORARY_TRIES} temporary names beside it are taken");
+    Err(std::io::Error::new(std::io::ErrorKind::AlreadyExists, message))
+}
+
+/// What `path` is when it exists and is not a regular file, following a symbolic link:
+/// "a directory", "a FIFO", "a device"... `None` for a regular file, a link to one, a dangling
+/// link (renaming over a link replaces the link, not its target) or nothing at all.
+pub fn non_regular_kind(path: &Path) -> Option<&'static str> {
+    std::fs::symlink_metadata(path).ok()?;
+    let kind = std::fs::metadata(path).ok()?.file_type();
+    if kind.is_file() {
+        return None;
+    }
+    if kind.is_dir() {
+        return Some("a directory");
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if kind.is_fifo() {
+            return Some("a FIFO");
+        }
+        if kind.is_socket() {
+            return Some("a socket");
+        }
+        if kind.is_block_device() || kind.is_char_device() {
+            return Some("a device");
+        }
+    }
+    Some("not a regular file")
 }
 
 /// A temporary file, removed when dropped unless it was renamed into place (so on every
@@ -41,13 +97,13 @@ impl Drop for Temporary {
     }
 }
 
-/// The temporary file name of process `pid` writing `file_name`.
-fn temporary_name(file_name: &std::ffi::OsStr, pid: u32) -> String {
-    format!(".{}.{pid}.tmp", file_name.to_string_lossy())
+/// The `n`th temporary file name of process `pid` writing `file_name`.
+fn temporary_name(file_name: &std::ffi::OsStr, pid: u32, n: u32) -> String {
+    format!(".{}.{pid}.{n}.tmp", file_name.to_string_lossy())
 }
 
 /// Removes the temporary files that runs killed while writing `path` left beside it:
-/// `.<name>.<pid>.tmp` of a process that no longer runs (on Linux, no `/proc/<pid>`;
+/// `.<name>.<pid>.<n>.tmp` (or the older `.<name>.<pid>.tmp`) of a process that no longer runs (on Linux, no `/proc/<pid>`;
 /// elsewhere, untouched for an hour). Best effort: a file that cannot be removed stays.
 pub fn remove_stale_temporaries(path: &Path) {
     let (Some(folder), Some(file_name)) = (path.parent(), path.file_name()) else { return };
@@ -57,6 +113,7 @@ pub fn remove_stale_temporaries(path: &Path) {
     for entry in entries.flatten() {
         let name = entry.file_name().to_string_lossy().into_owned();
         let pid = name.strip_prefix(&prefix).and_then(|rest| rest.strip_suffix(".tmp"));
+        let pid = pid.map(|p| p.split_once('.').map_or(p, |(pid, n)| if n.parse::<u32>().is_ok() { pid } else { "" }));
         let Some(pid) = pid.and_then(|p| p.parse::<u32>().ok()) else { continue };
         if pid != std::process::id() && !running(pid, &entry.path()) {
             let _ = std::fs::remove_file(entry.path());
@@ -84,28 +141,47 @@ pub enum OutputRefusal {
     /// The output is one of the command's inputs (the same file, by canonical path).
     #[error("{}: is also an input ({}): refusing to write over it, nothing was written", output.display(), input.display())]
     IsInput { output: PathBuf, input: PathBuf },
+    /// Two of the command's outputs are one file (by canonical path).
+    #[error("{}: is written twice (also as {}): give each output its own name, nothing was written", output.display(), other.display())]
+    Twice { output: PathBuf, other: PathBuf },
+    /// The output exists and is not a regular file ([`non_regular_kind`]); `--force` does not
+    /// replace it.
+    #[error("{}: is {kind}, not a regular file: refusing to write over it, even with --force", output.display())]
+    NotRegular { output: PathBuf, kind: &'static str },
     /// The output exists and replacing it was not asked for.
     #[error("{}: exists and was kept: pass --force to replace it", output.display())]
     Exists { output: PathBuf },
 }
 
-/// Checks, before any work, that no output of a command is one of its inputs (compared by
-/// canonical path, so `d/../d/a.png` or a symbolic link to an input is caught, and on Unix by
-/// device and inode, so a hard link is too) and, unless `force`, that no output exists yet.
+/// Checks, before any work, every output a command will write: none is one of its inputs
+/// (compared by canonical path, so `d/../d/a.png` or a symbolic link to an input is caught,
+/// and on Unix by device and inode, so a hard link is too), no two are one file, none that
+/// exists is anything but a regular file (a directory, device such as `/dev/null`, FIFO,
+/// socket or a symbolic link to one, `force` or not), and, unless `force`, none exists yet.
 /// Inputs that do not exist are skipped (reading them fails later with its own message).
 pub fn check_outputs(inputs: &[&Path], outputs: &[&Path], force: bool) -> Result<(), OutputRefusal> {
     let inputs: Vec<(PathBuf, &Path)> =
         inputs.iter().filter_map(|&input| Some((std::fs::canonicalize(input).ok()?, input))).collect();
+    let mut written: Vec<(PathBuf, &Path)> = Vec::with_capacity(outputs.len());
     for &output in outputs {
-        let same = |(canonical, input): &&(PathBuf, &Path)| {
-            canonical_output(output).is_some_and(|c| c == *canonical) || same_file(output, input)
-        };
+        let canonical = canonical_output(output);
+        let same = |(c, input): &&(PathBuf, &Path)| canonical.as_ref() == Some(c) || same_file(output, input);
         if let Some((_, input)) = inputs.iter().find(same) {
             return Err(OutputRefusal::IsInput { output: output.to_owned(), input: input.to_path_buf() });
+        }
+        if let Some(kind) = non_regular_kind(output) {
+            return Err(OutputRefusal::NotRegular { output: output.to_owned(), kind });
+        }
+        // An output whose folder does not exist yet is compared by its absolute path.
+        let key =
+            canonical.clone().unwrap_or_else(|| std::path::absolute(output).unwrap_or_else(|_| output.to_owned()));
+        if let Some((_, other)) = written.iter().find(|(k, other)| *k == key || same_file(output, other)) {
+            return Err(OutputRefusal::Twice { output: output.to_owned(), other: other.to_path_buf() });
         }
         if !force && std::fs::symlink_metadata(output).is_ok() {
             return Err(OutputRefusal::Exists { output: output.to_owned() });
         }
+        written.push((key, output));
     }
     Ok(())
 }
@@ -175,9 +251,9 @@ mod tests {
         let mut child = std::process::Command::new("true").spawn().unwrap();
         let gone = child.id();
         child.wait().unwrap();
-        let stale = dir.join(temporary_name("a.txt".as_ref(), gone));
-        let other = dir.join(temporary_name("b.txt".as_ref(), gone));
-        let live = dir.join(temporary_name("a.txt".as_ref(), 1));
+        let stale = dir.join(temporary_name("a.txt".as_ref(), gone, 0));
+        let other = dir.join(temporary_name("b.txt".as_ref(), gone, 0));
+        let live = dir.join(temporary_name("a.txt".as_ref(), 1, 0));
         for file in [&stale, &other, &live] {
             std::fs::write(file, b"left behind").unwrap();
         }

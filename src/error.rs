@@ -83,17 +83,25 @@ pub enum PresetSceneError {
     Load(#[from] LoadError),
 }
 
-/// `text` with every control character (ESC, newline, DEL, C1 controls…) written as Rust
-/// escapes it, `\u{1b}`: text from files (names, URIs, paths) printed to a terminal, which
-/// would otherwise act on its escape sequences. Idempotent: the result has no control
-/// characters.
+/// `text` with every control character (ESC, newline, DEL, C1 controls…) and every
+/// bidirectional formatting character (U+202A–U+202E embeddings and overrides such as the
+/// right-to-left override, U+2066–U+2069 isolates, U+200E/U+200F/U+061C marks) written as Rust
+/// escapes it, `\u{1b}`, `\u{202e}`: text from files (names, URIs, paths) printed to a
+/// terminal, which would otherwise act on its escape sequences or show it reordered (a file
+/// `gnp.exe` displayed as `exe.png`). Idempotent: the result has none of them.
 pub fn escape_controls(text: &str) -> std::borrow::Cow<'_, str> {
-    if !text.chars().any(char::is_control) {
+    if !text.chars().any(needs_escape) {
         return std::borrow::Cow::Borrowed(text);
     }
     let escaped =
-        text.chars().map(|c| if c.is_control() { format!("\\u{{{:x}}}", c as u32) } else { c.to_string() }).collect();
+        text.chars().map(|c| if needs_escape(c) { format!("\\u{{{:x}}}", c as u32) } else { c.to_string() }).collect();
     std::borrow::Cow::Owned(escaped)
+}
+
+/// Whether [`escape_controls`] escapes `c`: a control or a bidirectional formatting character.
+fn needs_escape(c: char) -> bool {
+    c.is_control()
+        || matches!(c, '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}' | '\u{200e}' | '\u{200f}' | '\u{61c}')
 }
 
 #[cfg(test)]
@@ -104,6 +112,7 @@ mod tests {
     fn control_characters_are_escaped_and_the_rest_kept() {
         assert_eq!(escape_controls("a\u{1b}[31mred\nb\u{7f}\u{9b}é"), "a\\u{1b}[31mred\\u{a}b\\u{7f}\\u{9b}é");
         assert_eq!(escape_controls("plain ünïcode"), "plain ünïcode");
+        assert_eq!(escape_controls("a\u{202e}gnp.exe\u{2066}x\u{200f}"), "a\\u{202e}gnp.exe\\u{2066}x\\u{200f}");
         let once = escape_controls("\u{1b}]0;title\u{7}").into_owned();
         assert_eq!(escape_controls(&once), once);
     }

@@ -103,8 +103,7 @@ fn every_model_and_texture_loads_and_renders_without_nan() {
             normal: Some(asset(&base, normal)),
             height: height.map(|h| asset(&base, h)),
             gloss: Some(asset(&base, "textures/ambientCG_Rock058/roughness.jpg")),
-            detail: None,
-            builtin: None,
+            ..Default::default()
         };
         replace_textures(&mut scene, &slots).unwrap_or_else(|e| panic!("{e}"));
         draw(&scene, color);

@@ -231,37 +231,43 @@ fn alpha_of(args: &BakeArgs, filter: MipFilter) -> Result<Box<dyn Fn(f32) -> f32
 }
 
 /// `bake --mips`: every input's chain into the directory `--out`, one line per file written.
+/// Every level file of every input is planned from the images' headers and checked against
+/// all inputs and each other before the first is written ([`plan_levels`]).
 fn run_mips(args: &BakeArgs, filter: MipFilter) -> Result<(), Failure> {
     let name: &str = filter.into();
     let alpha = alpha_of(args, filter).map_err(|reason| Failure::BadArguments(format!("--mips {name}: {reason}")))?;
-    if args.out.is_file() {
-        return Err(Failure::BadArguments(format!("--out {}: --mips writes a directory", args.out.display())));
+    if std::fs::symlink_metadata(&args.out).is_ok() && !args.out.is_dir() {
+        let out = args.out.display();
+        return Err(Failure::BadArguments(format!(
+            "--out {out}: is not a directory: --mips writes one file per level into a directory"
+        )));
     }
+    let planned = plan_levels(args, filter);
+    let inputs: Vec<&Path> = args.inputs.iter().map(PathBuf::as_path).collect();
+    let all: Vec<&Path> = planned.iter().flatten().flatten().map(PathBuf::as_path).collect();
+    check_outputs(&inputs, &all, args.force).map_err(|e| Failure::BadArguments(e.to_string()))?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| Failure::Failed(format!("{}: cannot create the directory: {e}", args.out.display())))?;
     let mut failed = 0;
-    for input in &args.inputs {
-        let map = match load_texture(input, TextureKind::NormalMap) {
-            Ok(map) => map,
-            Err(e) => {
-                eprintln!("bumpview: {}", escape_controls(&e.to_string()));
-                failed += 1;
-                continue;
+    for (input, paths) in args.inputs.iter().zip(&planned) {
+        let written = paths.as_ref().ok_or_else(|| unreadable_header(input)).and_then(|paths| {
+            let map = load_texture(input, TextureKind::NormalMap).map_err(|e| e.to_string())?;
+            let levels = mip_levels(&map, filter.has_mips(), &alpha);
+            if levels.len() != paths.len() {
+                return Err(format!("{}: changed while baking (its header said another size)", input.display()));
             }
-        };
-        let levels = mip_levels(&map, filter.has_mips(), &alpha);
-        let paths: Vec<PathBuf> = (0..levels.len()).map(|k| level_path(&args.out, input, k)).collect();
-        let planned: Vec<&Path> = paths.iter().map(PathBuf::as_path).collect();
-        check_outputs(&[input.as_path()], &planned, args.force).map_err(|e| Failure::BadArguments(e.to_string()))?;
-        match write_levels(&levels, &paths) {
-            Ok(()) => {
-                for (level, path) in levels.iter().zip(&paths) {
+            write_levels(&levels, paths).map_err(|e| e.to_string())?;
+            Ok(levels.iter().map(|l| (l.width, l.height)).collect::<Vec<_>>())
+        });
+        match written {
+            Ok(sizes) => {
+                for ((width, height), path) in sizes.into_iter().zip(paths.iter().flatten()) {
                     let path = path.display().to_string();
-                    println!("wrote {} ({}x{}, {name})", escape_controls(&path), level.width, level.height);
+                    println!("wrote {} ({width}x{height}, {name})", escape_controls(&path));
                 }
             }
             Err(e) => {
-                eprintln!("bumpview: {}", escape_controls(&e.to_string()));
+                eprintln!("bumpview: {}", escape_controls(&e));
                 failed += 1;
             }
         }
@@ -269,5 +275,41 @@ fn run_mips(args: &BakeArgs, filter: MipFilter) -> Result<(), Failure> {
     match failed {
         0 => Ok(()),
         n => Err(Failure::Failed(format!("{n} of {} files failed", args.inputs.len()))),
+    }
+}
+
+/// The level files `bake --mips` writes for each input (`None` where its header cannot be
+/// read; that input then fails alone): as many as the chain down to 1×1 has,
+/// `floor(log2(max(width, height))) + 1`, or level 0 alone for a method without mips.
+fn plan_levels(args: &BakeArgs, filter: MipFilter) -> Vec<Option<Vec<PathBuf>>> {
+    let count =
+        |[width, height]: [u32; 2]| if filter.has_mips() { width.max(height).max(1).ilog2() as usize + 1 } else { 1 };
+    let plan = |input: &PathBuf| {
+        let levels = count(header_size(input)?);
+        Some((0..levels).map(|k| level_path(&args.out, input, k)).collect())
+    };
+    args.inputs.iter().map(plan).collect()
+}
+
+/// An image file's size from its header, without decoding its pixels; `None` for anything but
+/// a regular file (a FIFO is never opened) or an unreadable header. TGA, which has no
+/// signature, by its extension.
+fn header_size(path: &Path) -> Option<[u32; 2]> {
+    if !std::fs::metadata(path).ok()?.is_file() {
+        return None;
+    }
+    let mut reader = image::ImageReader::open(path).ok()?.with_guessed_format().ok()?;
+    if reader.format().is_none() {
+        reader.set_format(image::ImageFormat::from_path(path).ok().filter(|&f| f == image::ImageFormat::Tga)?);
+    }
+    let (width, height) = reader.into_dimensions().ok()?;
+    Some([width, height])
+}
+
+/// The line for an input whose header could not be read (its load names the problem).
+fn unreadable_header(input: &Path) -> String {
+    match load_texture(input, TextureKind::NormalMap) {
+        Err(e) => e.to_string(),
+        Ok(_) => format!("{}: its image header could not be read", input.display()),
     }
 }

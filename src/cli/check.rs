@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use bumpview::check::{Severity, check_scene};
 use bumpview::error::escape_controls;
-use bumpview::load::{is_image_path, load_scene, texture_scene};
+use bumpview::load::{is_image_path, load_model, texture_scene};
 use bumpview::scene::{MaterialOverrides, NormalLayout};
 
 use super::args;
@@ -21,6 +21,10 @@ pub struct CheckArgs {
     /// they load with.
     #[arg(long, value_parser = args::named::<NormalLayout>())]
     normal_layout: Option<NormalLayout>,
+    /// Let the meshes read files outside their folders (an absolute path, `..`, or a
+    /// symbolic link leading out); without it such a file is refused, named.
+    #[arg(long)]
+    allow_outside_files: bool,
 }
 
 /// Prints a check report per file; the exit status is the worst finding (a file that does
@@ -29,7 +33,7 @@ pub fn run(args: &CheckArgs) -> ExitCode {
     let mut worst = Severity::Clean;
     for path in &args.files {
         println!("{}", escape_controls(&path.display().to_string()));
-        let loaded = if is_image_path(path) { texture_scene(path) } else { load_scene(path) };
+        let loaded = if is_image_path(path) { texture_scene(path) } else { load_model(path, args.allow_outside_files) };
         let severity = match loaded {
             Ok(scene) => {
                 let overrides = MaterialOverrides { layout: args.normal_layout, ..Default::default() };

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use bumpview::load::SceneFiles;
 
-/// The command line's face of [`SceneFiles`]: the same six files, with their help.
+/// The command line's face of [`SceneFiles`]: the same six files and permission, with their help.
 #[derive(clap::Args, Clone, Debug, Default)]
 pub struct InputArgs {
     /// A glTF 2.0 (.gltf, .glb) or OBJ (.obj) file; without one, the built-in scene.
@@ -29,12 +29,17 @@ pub struct InputArgs {
     /// map; its tiling, strength and blend: --detail-tiling, --detail-strength, --detail-blend.
     #[arg(long, value_name = "FILE")]
     pub detail: Option<PathBuf>,
+    /// Let the mesh read files outside its folder (buffers, textures and material libraries
+    /// named by an absolute path, through `..`, or by a symbolic link leading out); without
+    /// it (or a preset's `allow_outside_files = true` in [files]) such a file is refused.
+    #[arg(long)]
+    pub allow_outside_files: bool,
 }
 
 impl InputArgs {
     /// The files given.
     pub fn files(&self) -> SceneFiles {
-        let InputArgs { mesh, color, normal, height, gloss, detail } = self.clone();
-        SceneFiles { mesh, color, normal, height, gloss, detail, builtin: None }
+        let InputArgs { mesh, color, normal, height, gloss, detail, allow_outside_files } = self.clone();
+        SceneFiles { mesh, color, normal, height, gloss, detail, builtin: None, allow_outside_files }
     }
 }

@@ -23,6 +23,12 @@ pub struct ReportArgs {
 /// Runs the measurements (a progress bar on a terminal) and writes the report; says what it
 /// wrote and how long it took.
 pub fn run(args: &ReportArgs) -> Result<(), Failure> {
+    if std::fs::symlink_metadata(&args.out).is_ok() && !args.out.is_dir() {
+        let out = args.out.display();
+        return Err(Failure::BadArguments(format!(
+            "--out {out}: is not a directory: the report writes its files into one"
+        )));
+    }
     let started = std::time::Instant::now();
     let mut plan = if args.quick { bumpview::report::Plan::quick() } else { bumpview::report::Plan::full() };
     if !args.quick {

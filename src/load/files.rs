@@ -41,6 +41,11 @@ pub struct SceneFiles {
     pub detail: Option<PathBuf>,
     /// Without a mesh: the built-in scene to make (`None`: [`TeachingScene::Bricks`]).
     pub builtin: Option<TeachingScene>,
+    /// Let the mesh read files outside its folder (buffers, textures, material libraries
+    /// named by an absolute path, through `..` or a symbolic link leading out); without it
+    /// such a file fails the load, named ([`load_model`]). `--allow-outside-files`.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub allow_outside_files: bool,
 }
 
 /// A texture slot of [`SceneFiles`].
@@ -73,9 +78,9 @@ impl TextureSlot {
 }
 
 impl SceneFiles {
-    /// Whether no file is named (the built-in scene as it is).
+    /// Whether no file is named (the built-in scene as it is; a permission alone names none).
     pub fn is_empty(&self) -> bool {
-        self == &SceneFiles::default()
+        SceneFiles { allow_outside_files: false, ..self.clone() } == SceneFiles::default()
     }
 
     /// The file in `slot`.
@@ -125,6 +130,7 @@ impl SceneFiles {
             gloss: map(&self.gloss),
             detail: map(&self.detail),
             builtin: self.builtin,
+            allow_outside_files: self.allow_outside_files,
         }
     }
 
@@ -163,21 +169,30 @@ impl SceneFiles {
             gloss: self.gloss.or(base.gloss),
             detail: self.detail.or(base.detail),
             builtin: self.builtin.or(base.builtin),
+            allow_outside_files: self.allow_outside_files || base.allow_outside_files,
         }
     }
 
-    /// Loads the scene: the mesh file ([`load_scene`]) or, without one, the built-in scene
+    /// Loads the scene: the mesh file ([`load_model`], outside files as allowed) or, without one, the built-in scene
     /// with its brick normal map made by `kernel`, then the slot textures on every material
     /// ([`replace_textures`]). Reads files, so it may take a while (the viewer runs it on a
     /// worker thread). The error names the file that failed.
     pub fn build(&self, kernel: Kernel) -> Result<Scene, LoadError> {
         let mut scene = match &self.mesh {
-            Some(path) => load_scene(path)?,
+            Some(path) => load_model(path, self.allow_outside_files)?,
             None => self.builtin.unwrap_or_default().build(kernel),
         };
         replace_textures(&mut scene, self)?;
         Ok(scene)
     }
+}
+
+/// Loads the model at `path` ([`load_scene`]) reading the files it names outside its folder
+/// only when `allow_outside_files`; otherwise the first such file fails the load with one
+/// line naming it and how to allow it ([`super::uri::with_outside_files`]), and nothing
+/// outside was read. How the command line and the viewer load models.
+pub fn load_model(path: &Path, allow_outside_files: bool) -> Result<Scene, LoadError> {
+    super::uri::with_outside_files(path, allow_outside_files, || load_scene(path))
 }
 
 /// Loads each texture file of `files` (its mesh is not read) and puts it into its slot on

@@ -24,7 +24,8 @@ use glam::Vec3;
 use crate::read::FileKind;
 use crate::scene::Scene;
 pub use files::{
-    SceneFiles, TextureSlot, add_height_map, is_image_path, replace_textures, texture_scene, xray_pair_beside,
+    SceneFiles, TextureSlot, add_height_map, is_image_path, load_model, replace_textures, texture_scene,
+    xray_pair_beside,
 };
 pub use framing::{bounds, frame_scene};
 

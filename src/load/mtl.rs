@@ -41,6 +41,7 @@ pub fn load_libraries(
     let mut names = HashMap::new();
     for library in libraries {
         let path = base.join(library.replace('\\', "/"));
+        super::uri::admit_file(&path, obj, "material library")?;
         let text = crate::read::read_file(&path, crate::read::FileKind::MaterialLibrary).map_err(|e| {
             let obj_name = obj.file_name().unwrap_or_default().to_string_lossy();
             LoadError::new(&path, format!("could not read the material library that {obj_name} names: {e}"))
@@ -106,7 +107,10 @@ fn parse(text: &str, path: &Path, scene: &mut Scene, names: &mut HashMap<String,
                 _ => Err(at(format!("{keyword} needs a colour"))),
             }
         };
-        let map = || TextureRef::parse(rest, base).ok_or_else(|| at(format!("{keyword} names no file")));
+        let map = || {
+            let reference = TextureRef::parse(rest, base).ok_or_else(|| at(format!("{keyword} names no file")))?;
+            super::uri::admit_file(&reference.path, path, "texture").map(|_| reference)
+        };
         let lower = keyword.to_ascii_lowercase();
         match lower.as_str() {
             "kd" => {

@@ -247,16 +247,12 @@ pub fn measure(plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> Vec<Row> 
 }
 
 /// Writes `bytes` to `path` through a temporary file in the same directory and a rename, so
-/// readers never see a half-written file.
+/// readers never see a half-written file ([`crate::atomic::write_bytes_atomically`]: the
+/// temporary is created exclusively, and an existing `path` that is not a regular file is
+/// refused).
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), ReportError> {
-    let failed = |e: std::io::Error| ReportError::Write { path: path.to_owned(), reason: e.to_string() };
-    let name = path.file_name().map_or("report".into(), |n| n.to_string_lossy().into_owned());
-    let temporary = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
-    let result = std::fs::write(&temporary, bytes).and_then(|()| std::fs::rename(&temporary, path)).map_err(failed);
-    if result.is_err() {
-        let _ = std::fs::remove_file(&temporary);
-    }
-    result
+    crate::atomic::write_bytes_atomically(path, bytes)
+        .map_err(|e| ReportError::Write { path: path.to_owned(), reason: e.to_string() })
 }
 
 /// Measures `plan` and writes the report into `out` (created if missing), telling

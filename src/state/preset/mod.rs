@@ -8,7 +8,10 @@
 //!   naming the key (and, for parse errors, the line);
 //! - a **missing** key takes its default: the scene's own camera, light and ambient light, the viewer's
 //!   start settings ([`ShadingSettings::default`], [`SceneOptions::default`], the default
-//!   kernel), no files (the built-in scene), and a capture at the caller's size.
+//!   kernel), no files (the built-in scene), and a capture at the caller's size;
+//! - `allow_outside_files = true` in `[files]` lets the mesh read files outside its folder, as
+//!   `--allow-outside-files` does ([`SceneFiles::allow_outside_files`]); it is written only
+//!   when set.
 //!
 //! Numbers survive a round trip exactly: `f32` values are written as the shortest decimal that
 //! reads back to the same bits, and angles go through `f64` degrees, so a saved state renders
