@@ -88,9 +88,10 @@ pub fn decode_texture_within(
         }
         let texels = header.texels() * if kind == TextureKind::Height { 2 } else { 1 };
         if texels > room {
-            let what = if kind == TextureKind::Height { " (twice: a height map and its normal map)" } else { "" };
+            let twice =
+                if kind == TextureKind::Height { "; a height map counts twice, for its normal map" } else { "" };
             return Err(format!(
-                "{width}x{height} texels{what} is over the {} Mi texels a texture may have here (at most {} Mi per texture, {} Mi per scene)",
+                "{width}x{height} texels is over the {} Mi texels a texture may have here (at most {} Mi per texture, {} Mi per scene{twice})",
                 room >> 20,
                 MAX_TEXELS >> 20,
                 MAX_SCENE_TEXELS >> 20
