@@ -102,6 +102,18 @@ pub fn primitive_mesh(
     if !matches!(primitive.mode(), Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
         return Ok(None);
     }
+    // The counts charged are first checked by the rules (a count no bytes back is named as such).
+    let compressed = primitive.extension_value("KHR_draco_mesh_compression").is_some();
+    if let Some(accessor) = primitive.get(&Semantic::Positions).filter(|_| !compressed) {
+        let index = accessor.index();
+        check_accessor(document.as_json(), index, AccessorUse::Positions, buffers)
+            .map_err(|p| LoadError::new(path, format!("{name}: accessor {index} (Positions) {p}")))?;
+    }
+    if let Some(accessor) = primitive.indices().filter(|_| !compressed) {
+        let index = accessor.index();
+        check_accessor(document.as_json(), index, AccessorUse::Indices, buffers)
+            .map_err(|p| LoadError::new(path, format!("{name}: index accessor {index} {p}")))?;
+    }
     budget.charge(mesh_bytes(primitive)).map_err(|over| {
         LoadError::new(path, format!("{name}: the primitive's accessors declare a mesh that {over}"))
     })?;
