@@ -65,6 +65,10 @@ pub enum LoadWarning {
     /// A texture that reads another set of texture coordinates than the mesh's one stream.
     #[error("material {material:?}: {texture} reads TEXCOORD_{wanted}; drawn with TEXCOORD_{drawn}")]
     TextureCoordinates { material: String, texture: String, wanted: u32, drawn: u32 },
+    /// A triangle primitive with fewer than 3 indices (or vertices, without indices): it
+    /// draws nothing and is left out.
+    #[error("{mesh:?} has no whole triangle (fewer than 3 indices): left out")]
+    EmptyPrimitive { mesh: String },
 }
 
 /// A preset could not be read, parsed, understood or written; the message says which key or

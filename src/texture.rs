@@ -1,6 +1,7 @@
 //! CPU images with their colour space, and their mip chains (a normal map's by its
 //! [`MipFilter`]).
 
+pub mod decode;
 mod lean;
 mod mip_filter;
 mod normal_mips;

@@ -8,13 +8,14 @@
 //! 0.18–0.22 s but 31 MB for fdeflate's `Compression::Fast` (no match finding, 3.7× larger).
 //! Compression runs on its own thread while the next band of rows is computed.
 
-use std::io::{Cursor, Write};
+use std::io::Write;
 use std::path::Path;
 use std::sync::mpsc;
 
-use image::{DynamicImage, ImageDecoder, ImageFormat, ImageReader, Limits};
+use image::{DynamicImage, ImageFormat};
 
 use super::BakeError;
+use crate::texture::decode::decode_admitted;
 
 /// The largest side, in texels, the bake reads: a 16384² 16-bit height map is 512 MiB and its
 /// normal map 1.5 GiB. Larger headers are refused before their pixels are allocated.
@@ -53,20 +54,30 @@ pub fn read_image_admitted(
         .ok()
         .or_else(|| ImageFormat::from_path(path).ok().filter(|&f| f == ImageFormat::Tga))
         .ok_or_else(|| BakeError::new(path, "not an image (expected PNG, JPEG, TGA or BMP data)"))?;
-    let unreadable = |e: image::ImageError| BakeError::new(path, format!("not a readable image: {e}"));
-    // Limits are set on the decoder after the size check, so oversized headers get its message.
-    let mut reader = ImageReader::with_format(Cursor::new(&bytes[..]), format);
-    reader.no_limits();
-    let mut decoder = reader.into_decoder().map_err(unreadable)?;
-    let (width, height) = decoder.dimensions();
-    check_size(path, width, height)?;
-    let mut limits = Limits::no_limits();
-    limits.max_image_width = Some(MAX_SIDE);
-    limits.max_image_height = Some(MAX_SIDE);
-    decoder.set_limits(limits).map_err(unreadable)?;
-    let color = decoder.color_type();
-    admit(&Header { width, height, file_bytes: bytes.len() as u64, decoded_bytes: decoder.total_bytes(), color })?;
-    DynamicImage::from_decoder(decoder).map_err(unreadable)
+    let mut refused = None;
+    let admit_header = |h: &crate::texture::decode::Header| {
+        let stated = Header {
+            width: h.width,
+            height: h.height,
+            file_bytes: bytes.len() as u64,
+            decoded_bytes: h.decoded_bytes,
+            color: h.color,
+        };
+        let admitted = check_size(path, h.width, h.height).and_then(|()| admit(&stated));
+        admitted.map_err(|e| {
+            let line = e.to_string();
+            refused = Some(e);
+            line
+        })
+    };
+    // No cap of the decoder's own: the sides and `admit` (the bake's --max-memory) bound it.
+    let decoded = decode_admitted(&bytes, format, u64::MAX, admit_header);
+    match (decoded, refused) {
+        (Ok(image), _) => Ok(image),
+        // The caller's own error, as it made it.
+        (Err(_), Some(refused)) => Err(refused),
+        (Err(problem), None) => Err(BakeError::new(path, problem)),
+    }
 }
 
 fn check_size(path: &Path, width: u32, height: u32) -> Result<(), BakeError> {

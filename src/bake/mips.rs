@@ -18,24 +18,23 @@ use crate::texture::TextureImage;
 /// false): RGB the re-normalised mean normal, alpha `round(255 · alpha(|Na|))` with `alpha`
 /// clamped to 0..1.
 pub fn mip_levels(map: &TextureImage, levels_past_0: bool, alpha: impl Fn(f32) -> f32) -> Vec<TextureImage> {
-    let means = map.normal_means();
-    let count = if levels_past_0 { means.len() } else { 1 };
-    means
-        .into_iter()
-        .take(count)
-        .map(|(width, height, normals)| {
-            let rgba = normals
-                .iter()
-                .flat_map(|&mean| {
-                    let length = mean.length().min(1.0);
-                    let rgb = (mean.try_normalize().unwrap_or(Vec3::Z) * 0.5 + 0.5).to_array();
-                    let [r, g, b] = rgb.map(|c| (c * 255.0).round() as u8);
-                    [r, g, b, (alpha(length).clamp(0.0, 1.0) * 255.0).round() as u8]
-                })
-                .collect();
-            TextureImage { name: map.name.clone(), width, height, kind: map.kind, rgba }
-        })
-        .collect()
+    let level = |width: u32, height: u32, normals: &mut dyn Iterator<Item = Vec3>| {
+        let rgba = normals
+            .flat_map(|mean| {
+                let length = mean.length().min(1.0);
+                let rgb = (mean.try_normalize().unwrap_or(Vec3::Z) * 0.5 + 0.5).to_array();
+                let [r, g, b] = rgb.map(|c| (c * 255.0).round() as u8);
+                [r, g, b, (alpha(length).clamp(0.0, 1.0) * 255.0).round() as u8]
+            })
+            .collect();
+        TextureImage { name: map.name.clone(), width, height, kind: map.kind, rgba }
+    };
+    let mut levels = vec![level(map.width, map.height, &mut map.base_normals())];
+    if levels_past_0 {
+        let below = map.normal_means().into_iter();
+        levels.extend(below.map(|(width, height, normals)| level(width, height, &mut normals.into_iter())));
+    }
+    levels
 }
 
 /// The file of level `level` of `input` in `dir`: `<input stem>_mip<level>.png`.

@@ -39,12 +39,18 @@ pub struct LevelShortening {
 /// Every level of `map`'s chain (level 0 first, down to 1×1) for exponent `shininess` (0 or
 /// less: no highlight to sharpen, every ratio 1).
 pub fn mip_shortening(map: &TextureImage, shininess: f32) -> Vec<LevelShortening> {
-    map.normal_means()
-        .into_iter()
+    // Level 0 from its bytes, one normal at a time; the means below from the chain.
+    let base_length = map.base_normals().map(|n| n.length().min(1.0) as f64).sum::<f64>();
+    let base = (map.width, map.height, base_length / (map.rgba.len() / 4).max(1) as f64);
+    let below = map.normal_means().into_iter().map(|(width, height, means)| {
+        let count = means.len().max(1) as f64;
+        (width, height, means.iter().map(|m| m.length().min(1.0) as f64).sum::<f64>() / count)
+    });
+    std::iter::once(base)
+        .chain(below)
         .enumerate()
-        .map(|(level, (width, height, means))| {
-            let count = means.len().max(1) as f32;
-            let mean_length = means.iter().map(|m| m.length().min(1.0)).sum::<f32>() / count;
+        .map(|(level, (width, height, mean_length))| {
+            let mean_length = mean_length as f32;
             let (widened, _) = widened_shininess(MipFilter::Toksvig, shininess, 2.0 * toksvig_variance(mean_length));
             // An exponent of 0 (a lobe as wide as it gets) cannot be widened: ratio 1.
             let exponent_ratio = if shininess > 0.0 { widened / shininess } else { 1.0 };

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::image::load_texture;
+use super::image::load_scene_texture;
 use super::load_scene;
 use crate::error::LoadError;
 use crate::height::Kernel;
@@ -202,11 +202,13 @@ pub fn load_model(path: &Path, allow_outside_files: bool) -> Result<Scene, LoadE
 pub fn replace_textures(scene: &mut Scene, files: &SceneFiles) -> Result<(), LoadError> {
     let pair = files.color.as_deref().filter(|_| files.normal.is_none() && files.height.is_none());
     if let Some((bump, correction)) = pair.and_then(xray_pair_beside) {
-        scene.textures.push(load_texture(&bump, TextureKind::NormalMap)?);
+        let texture = load_scene_texture(scene, &bump, TextureKind::NormalMap)?;
+        scene.textures.push(texture);
         let bump_index = scene.textures.len() - 1;
         let correction_index = match &correction {
             Some(path) => {
-                scene.textures.push(load_texture(path, TextureKind::Data)?);
+                let texture = load_scene_texture(scene, path, TextureKind::Data)?;
+                scene.textures.push(texture);
                 Some(scene.textures.len() - 1)
             }
             None => None,
@@ -216,11 +218,13 @@ pub fn replace_textures(scene: &mut Scene, files: &SceneFiles) -> Result<(), Loa
     }
     if let Some(path) = &files.height {
         let every: Vec<usize> = (0..scene.materials.len()).collect();
-        add_height_map(scene, &every, load_texture(path, TextureKind::Height)?, 1.0);
+        let heights = load_scene_texture(scene, path, TextureKind::Height)?;
+        add_height_map(scene, &every, heights, 1.0);
     }
     let mut each = |path: &Option<PathBuf>, kind, set: fn(&mut crate::scene::Material, usize)| {
         if let Some(path) = path {
-            scene.textures.push(load_texture(path, kind)?);
+            let texture = load_scene_texture(scene, path, kind)?;
+            scene.textures.push(texture);
             let texture = scene.textures.len() - 1;
             scene.materials.iter_mut().for_each(|m| set(m, texture));
         }
@@ -254,7 +258,7 @@ pub fn is_image_path(path: &Path) -> bool {
     ext.is_some_and(|e| IMAGE_EXTENSIONS.contains(&e.as_str()))
 }
 
-/// Image extensions this build decodes ([`load_texture`]).
+/// Image extensions this build decodes ([`super::image::load_texture`]).
 const IMAGE_EXTENSIONS: [&str; 5] = ["png", "jpg", "jpeg", "tga", "bmp"];
 
 /// X-Ray's (S.T.A.L.K.E.R.) normal-map pair beside a colour texture `NAME.*`: the files
@@ -282,8 +286,9 @@ pub fn xray_pair_beside(color: &Path) -> Option<(PathBuf, Option<PathBuf>)> {
 
 /// Puts a [`TextureKind::Height`] texture into the height map slot of `materials`, spanning
 /// `multiplier ·` [`HEIGHT_RANGE_M`] metres, and the normal map made from it with the slot's
-/// settings ([`HeightMap::new`]: central differences, wrapping) into its normal map slot.
-pub fn add_height_map(scene: &mut Scene, materials: &[usize], heights: TextureImage, multiplier: f32) {
+/// settings ([`HeightMap::new`]: central differences, wrapping) into its normal map slot;
+/// returns the height map slot (the normal map is the texture before its own).
+pub fn add_height_map(scene: &mut Scene, materials: &[usize], heights: TextureImage, multiplier: f32) -> HeightMap {
     let range_m = HEIGHT_RANGE_M * if multiplier.is_finite() { multiplier } else { 1.0 };
     let slot = HeightMap::new(scene.textures.len() + 1, range_m);
     let normal_map = slot.to_normal_map(&heights, TEXTURE_SPAN_M);
@@ -292,4 +297,5 @@ pub fn add_height_map(scene: &mut Scene, materials: &[usize], heights: TextureIm
         scene.materials[m].normal_map = Some(NormalMap::new(slot.texture - 1, 1.0));
         scene.materials[m].height_map = Some(slot.clone());
     }
+    slot
 }

@@ -14,8 +14,9 @@ use std::path::{Path, PathBuf};
 
 use glam::{Mat4, Vec3, Vec4};
 
-use super::gltf_mesh::{UvChoice, primitive_mesh};
-use super::image::decode_texture;
+use super::budget::{Budget, INDEX_BYTES, VERTEX_BYTES};
+use super::gltf_mesh::{PrimitiveKey, UvChoice, primitive_mesh};
+use super::image::{decode_texture_within, texel_room};
 use super::uri::{NOT_PORTABLE_NOTE, UriTarget, read_uri, resolve_uri};
 use crate::error::{LoadError, LoadWarning};
 use crate::read::FileKind;
@@ -68,7 +69,9 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
         })
         .collect::<Result<Vec<_>, _>>()?;
     let (buffers, sources): (Vec<_>, Vec<_>) = buffers.into_iter().unzip();
+    let read = bytes.len() as u64 + buffers.iter().map(|b| b.len() as u64).sum::<u64>();
     let mut loader = Loader {
+        budget: Budget::for_input(read),
         path,
         base,
         document: &document,
@@ -114,9 +117,14 @@ fn parse(bytes: &[u8], path: &Path) -> Result<(gltf::Document, Option<Vec<u8>>),
         let count = root.accessors.len();
         return Err(LoadError::new(path, format!("a primitive attribute names accessor {bad}, but there are {count}")));
     }
-    let document = match gltf::Document::from_json(root.clone()) {
-        Ok(document) => document,
-        Err(gltf::Error::Validation(errors)) => {
+    // `Document::from_json`'s validation, without the copy of the JSON it would need here.
+    let mut errors = vec![];
+    gltf::json::validation::Validate::validate(&root, &root, gltf::json::Path::new, &mut |path, error| {
+        errors.push((path(), error))
+    });
+    let document = match errors.is_empty() {
+        true => gltf::Document::from_json_without_validation(root),
+        false => {
             // The gltf crate does not know two extensions this loader reads: it calls them
             // unsupported, and Draco's accessors (which have no bufferView) incomplete.
             let draco_accessors = draco_accessors(&root);
@@ -140,7 +148,6 @@ fn parse(bytes: &[u8], path: &Path) -> Result<(gltf::Document, Option<Vec<u8>>),
             }
             gltf::Document::from_json_without_validation(root)
         }
-        Err(e) => return Err(LoadError::new(path, describe(e))),
     };
     Ok((document, gltf.blob))
 }
@@ -165,9 +172,12 @@ struct Loader<'a> {
     textures: HashMap<(usize, TextureKind), Option<usize>>,
     /// glTF material (`None`: the default material) → index in `scene.materials`.
     materials: HashMap<Option<usize>, usize>,
-    /// (glTF mesh, primitive) → index in `scene.meshes`; `None` for primitives without
-    /// triangles (points, lines).
-    meshes: HashMap<(usize, usize), Option<usize>>,
+    /// A primitive's data ([`PrimitiveKey`]) → index in `scene.meshes`, so primitives that
+    /// read the same accessors share one mesh; `None` for primitives without triangles
+    /// (points, lines, fewer than 3 indices).
+    meshes: HashMap<PrimitiveKey, Option<usize>>,
+    /// What the meshes may still allocate.
+    budget: Budget,
 }
 
 impl Loader<'_> {
@@ -178,8 +188,9 @@ impl Loader<'_> {
         let roots: Vec<gltf::Node> = match document.default_scene().or_else(|| document.scenes().next()) {
             Some(scene) => scene.nodes().collect(),
             None => {
-                let children: Vec<usize> = document.nodes().flat_map(|n| n.children().map(|c| c.index())).collect();
-                document.nodes().filter(|n| !children.contains(&n.index())).collect()
+                let mut is_child = vec![false; document.nodes().len()];
+                document.nodes().flat_map(|n| n.children()).for_each(|c| is_child[c.index()] = true);
+                document.nodes().filter(|n| !is_child[n.index()]).collect()
             }
         };
         let mut visited = vec![false; document.nodes().len()];
@@ -201,14 +212,21 @@ impl Loader<'_> {
 
     fn add_instance(&mut self, mesh: &gltf::Mesh, primitive: &gltf::Primitive, world: Mat4) -> Result<(), LoadError> {
         let material = self.material(primitive.material())?;
-        let key = (mesh.index(), primitive.index());
+        let uv = uv_choice(&primitive.material());
+        let key = PrimitiveKey::new(self.document, mesh, primitive, uv);
         let index = match self.meshes.get(&key) {
             Some(&index) => index,
             None => {
                 let name = format!("{} #{}", mesh.name().unwrap_or("mesh"), primitive.index());
-                let uv = uv_choice(&primitive.material());
-                let buffers = &self.buffers;
-                let loaded = primitive_mesh(self.document, primitive, &name, uv, buffers, self.path)?;
+                let (buffers, budget) = (&self.buffers, &mut self.budget);
+                let loaded = primitive_mesh(self.document, primitive, &name, uv, buffers, budget, self.path)?;
+                let loaded = loaded.and_then(|m| {
+                    if m.indices.is_empty() {
+                        self.scene.warnings.push(LoadWarning::EmptyPrimitive { mesh: name.clone() });
+                        return None;
+                    }
+                    Some(m)
+                });
                 let index = loaded.map(|m| {
                     self.scene.meshes.push(m);
                     self.scene.meshes.len() - 1
@@ -218,6 +236,13 @@ impl Loader<'_> {
             }
         };
         if let Some(mesh) = index {
+            // Each instance is drawn (and framed) vertex by vertex: its mesh counts again.
+            let drawn = &self.scene.meshes[mesh];
+            let bytes = drawn.positions.len() as u64 * VERTEX_BYTES + drawn.indices.len() as u64 * INDEX_BYTES;
+            let bytes = bytes + std::mem::size_of::<Instance>() as u64;
+            self.budget
+                .charge(bytes)
+                .map_err(|over| LoadError::new(self.path, format!("drawing mesh {:?} once more {over}", drawn.name)))?;
             self.scene.instances.push(Instance { mesh, material, transform: world });
         }
         Ok(())
@@ -412,7 +437,11 @@ impl Loader<'_> {
                 (bytes.to_vec(), PathBuf::from(format!("{} (image {})", self.path.display(), image.index())))
             }
         };
-        Ok(decode_texture(&bytes, &file, kind))
+        let room = match texel_room(&self.scene) {
+            Ok(room) => room,
+            Err(problem) => return Ok(Err(LoadError::new(&file, problem))),
+        };
+        Ok(decode_texture_within(&bytes, &file, kind, room))
     }
 }
 

@@ -11,6 +11,7 @@ use gltf::mesh::{Mode, Semantic};
 
 use super::accessor::read_vectors;
 use super::accessor_rules::{AccessorUse, check_accessor};
+use super::budget::{Budget, INDEX_BYTES, VERTEX_BYTES, try_vec};
 use super::draco;
 use super::mesh_ops::{check, transform_uvs, with_flat_normals};
 use crate::error::LoadError;
@@ -62,18 +63,60 @@ impl UvChoice {
     }
 }
 
-/// The primitive as a triangle mesh, or `None` for points and lines.
+/// What makes two primitives the same mesh: their attribute and index accessors, mode and
+/// Draco stream (as the JSON states them) and the UV set and transform their material
+/// chooses. Primitives with equal keys are read once.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct PrimitiveKey(String);
+
+impl PrimitiveKey {
+    pub fn new(
+        document: &gltf::Document,
+        mesh: &gltf::Mesh,
+        primitive: &gltf::Primitive,
+        uv: UvChoice,
+    ) -> PrimitiveKey {
+        let json = &document.as_json().meshes[mesh.index()].primitives[primitive.index()];
+        let draco = primitive.extension_value("KHR_draco_mesh_compression").map(Value::to_string);
+        let uv = (
+            uv.set,
+            uv.offset.to_array().map(f32::to_bits),
+            uv.rotation.to_bits(),
+            uv.scale.to_array().map(f32::to_bits),
+        );
+        PrimitiveKey(format!("{:?}|{:?}|{:?}|{draco:?}|{uv:?}", json.attributes, json.indices, json.mode))
+    }
+}
+
+/// The primitive as a triangle mesh, or `None` for points and lines. The mesh it will make
+/// (from the accessors' counts) is charged to `budget` before any accessor is read.
 pub fn primitive_mesh(
     document: &gltf::Document,
     primitive: &gltf::Primitive,
     name: &str,
     uv: UvChoice,
     buffers: &[Vec<u8>],
+    budget: &mut Budget,
     path: &Path,
 ) -> Result<Option<Mesh>, LoadError> {
     if !matches!(primitive.mode(), Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
         return Ok(None);
     }
+    // The counts charged are first checked by the rules (a count no bytes back is named as such).
+    let compressed = primitive.extension_value("KHR_draco_mesh_compression").is_some();
+    if let Some(accessor) = primitive.get(&Semantic::Positions).filter(|_| !compressed) {
+        let index = accessor.index();
+        check_accessor(document.as_json(), index, AccessorUse::Positions, buffers)
+            .map_err(|p| LoadError::new(path, format!("{name}: accessor {index} (Positions) {p}")))?;
+    }
+    if let Some(accessor) = primitive.indices().filter(|_| !compressed) {
+        let index = accessor.index();
+        check_accessor(document.as_json(), index, AccessorUse::Indices, buffers)
+            .map_err(|p| LoadError::new(path, format!("{name}: index accessor {index} {p}")))?;
+    }
+    budget.charge(mesh_bytes(primitive)).map_err(|over| {
+        LoadError::new(path, format!("{name}: the primitive's accessors declare a mesh that {over}"))
+    })?;
     let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
     let mut mesh = Mesh::empty(name);
     let draco = match primitive.extension_value("KHR_draco_mesh_compression") {
@@ -129,10 +172,13 @@ pub fn primitive_mesh(
                 check_accessor(document.as_json(), index, AccessorUse::Indices, buffers)
                     .map_err(|p| LoadError::new(path, format!("{name}: index accessor {index} {p}")))?;
                 let indices = reader.read_indices();
-                indices
+                let indices = indices
                     .ok_or_else(|| LoadError::new(path, format!("{name}: index accessor {index} has no data")))?
-                    .into_u32()
-                    .collect()
+                    .into_u32();
+                let mut list = try_vec(accessor.count())
+                    .ok_or_else(|| LoadError::new(path, format!("{name}: no memory for index accessor {index}")))?;
+                list.extend(indices);
+                list
             }
             None => (0..mesh.positions.len() as u32).collect(),
         },
@@ -149,6 +195,19 @@ pub fn primitive_mesh(
     }
     mesh.normals.iter_mut().for_each(|n| *n = normalize_or(*n, Vec3::Z));
     Ok(Some(mesh))
+}
+
+/// Bytes of the [`Mesh`] a primitive makes at most, from its accessors' declared counts:
+/// its vertices, its index list and the triangle list made from it (three per index for a
+/// strip or fan), and a vertex per corner when the file has no normals
+/// ([`with_flat_normals`]). Draco primitives count their accessors' counts too.
+fn mesh_bytes(primitive: &gltf::Primitive) -> u64 {
+    let vertices = primitive.get(&Semantic::Positions).map_or(0, |a| a.count() as u64);
+    let listed = primitive.indices().map_or(vertices, |a| a.count() as u64);
+    let corners = if primitive.mode() == Mode::Triangles { listed } else { listed.saturating_mul(3) };
+    let flat = if primitive.get(&Semantic::Normals).is_none() { corners } else { 0 };
+    let vertex_bytes = vertices.saturating_add(flat).saturating_mul(VERTEX_BYTES);
+    vertex_bytes.saturating_add(listed.saturating_add(corners).saturating_mul(INDEX_BYTES))
 }
 
 /// Triangle-list indices from glTF's list, strip or fan, each triangle counter-clockwise.

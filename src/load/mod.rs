@@ -5,6 +5,7 @@
 
 mod accessor;
 mod accessor_rules;
+mod budget;
 mod draco;
 mod files;
 mod framing;

@@ -5,15 +5,15 @@
 //! map there; the image decides ([`looks_like_normal_map`]). A height map becomes a normal
 //! map (and the height map slot) as `--height` does ([`super::files`]).
 
-use std::collections::HashMap;
-use std::path::Path;
+use std::collections::{HashMap, HashSet};
+use std::path::{Path, PathBuf};
 
 use glam::{Vec3, Vec4};
 
 use super::files::add_height_map;
-use super::image::load_texture;
+use super::image::load_scene_texture;
 use crate::error::{LoadError, LoadWarning};
-use crate::scene::{Material, NormalMap, Scene, TextureImage, TextureKind};
+use crate::scene::{HeightMap, Material, NormalMap, Scene, TextureImage, TextureKind};
 
 /// Blinn-Phong exponents `Ns` is clamped to.
 const SHININESS: std::ops::RangeInclusive<f32> = 1.0..=1024.0;
@@ -30,8 +30,22 @@ fn default_material(name: &str) -> Material {
     }
 }
 
-/// Reads every library, adding its materials and textures to `scene`; returns material
-/// name → index in `scene.materials`.
+/// What the libraries of one OBJ loaded already, so that a library or an image named again
+/// is read and decoded once: 2,000 `mtllib` lines naming one file, or 2,000 `map_Kd` lines
+/// naming one image, cost one read.
+#[derive(Default)]
+struct Loaded {
+    /// Libraries read.
+    libraries: HashSet<PathBuf>,
+    /// (image, kind) → index in `scene.textures`; `None`: unreadable (warned about once).
+    textures: HashMap<(PathBuf, TextureKind), Option<usize>>,
+    /// (bump image, `-bm` bits, `norm`?) → the normal map and height map slots it gave a
+    /// material; `None`: unreadable.
+    bumps: HashMap<(PathBuf, u32, bool), Option<(NormalMap, Option<HeightMap>)>>,
+}
+
+/// Reads every library (each file once), adding its materials and textures to `scene`;
+/// returns material name → index in `scene.materials`.
 pub fn load_libraries(
     libraries: &[String],
     base: &Path,
@@ -39,38 +53,85 @@ pub fn load_libraries(
     scene: &mut Scene,
 ) -> Result<HashMap<String, usize>, LoadError> {
     let mut names = HashMap::new();
+    let mut loaded = Loaded::default();
     for library in libraries {
         let path = base.join(library.replace('\\', "/"));
+        if !loaded.libraries.insert(path.clone()) {
+            continue;
+        }
         super::uri::admit_file(&path, obj, "material library")?;
         let text = crate::read::read_file(&path, crate::read::FileKind::MaterialLibrary).map_err(|e| {
             let obj_name = obj.file_name().unwrap_or_default().to_string_lossy();
             LoadError::new(&path, format!("could not read the material library that {obj_name} names: {e}"))
         })?;
-        parse(&String::from_utf8_lossy(&text), &path, scene, &mut names)?;
+        parse(&String::from_utf8_lossy(&text), &path, scene, &mut names, &mut loaded)?;
         scene.files.push(path);
     }
     Ok(names)
 }
 
-/// The material index for a `usemtl` name; unknown or missing names share a default material.
-pub fn material_index(name: Option<&str>, materials: &HashMap<String, usize>, scene: &mut Scene) -> usize {
-    if let Some(&index) = name.and_then(|n| materials.get(n)) {
-        return index;
-    }
-    if let Some(index) = scene.materials.iter().position(|m| m.name == "default") {
+/// The material index for a `usemtl` name; unknown or missing names share a default material
+/// (the library's `default`, else one made on first need and named in `materials`).
+pub fn material_index(name: Option<&str>, materials: &mut HashMap<String, usize>, scene: &mut Scene) -> usize {
+    if let Some(&index) = name.and_then(|n| materials.get(n)).or_else(|| materials.get("default")) {
         return index;
     }
     scene.materials.push(default_material("default"));
+    materials.insert("default".to_owned(), scene.materials.len() - 1);
     scene.materials.len() - 1
 }
 
-/// [`load_texture`], and `path` remembered in [`Scene::files`] (readable or not, so that hot
-/// reload picks it up once it is fixed); `None` with a [`LoadWarning`] when it cannot be read.
+/// The texture `path` read as `kind` in `scene`, loaded once ([`load_referenced`]); `None`
+/// when it cannot be read.
+fn texture(scene: &mut Scene, loaded: &mut Loaded, path: &Path, kind: TextureKind) -> Option<usize> {
+    let key = (path.to_owned(), kind);
+    if let Some(&index) = loaded.textures.get(&key) {
+        return index;
+    }
+    let index = load_referenced(scene, path, kind).map(|image| add(scene, image));
+    loaded.textures.insert(key, index);
+    index
+}
+
+/// The normal map (and height map) slots of a bump statement (`norm` when `norm`), loaded
+/// once per file and multiplier: a tangent-space normal map as it is, a height map as
+/// `--height` makes it ([`add_height_map`]).
+fn bump(
+    scene: &mut Scene,
+    loaded: &mut Loaded,
+    reference: &TextureRef,
+    norm: bool,
+) -> Option<(NormalMap, Option<HeightMap>)> {
+    let key = (reference.path.clone(), reference.bump_multiplier.to_bits(), norm);
+    if let Some(slots) = loaded.bumps.get(&key) {
+        return slots.clone();
+    }
+    let slots = match load_referenced(scene, &reference.path, TextureKind::NormalMap) {
+        Some(image) if norm || looks_like_normal_map(&image) => {
+            let texture = add(scene, image);
+            Some((NormalMap::new(texture, reference.bump_multiplier), None))
+        }
+        Some(image) => {
+            drop(image);
+            load_referenced(scene, &reference.path, TextureKind::Height).map(|heights| {
+                let slot = add_height_map(scene, &[], heights, reference.bump_multiplier);
+                (NormalMap::new(slot.texture - 1, 1.0), Some(slot))
+            })
+        }
+        None => None,
+    };
+    loaded.bumps.insert(key, slots.clone());
+    slots
+}
+
+/// [`load_scene_texture`], and `path` remembered in [`Scene::files`] (readable or not, so that
+/// hot reload picks it up once it is fixed); `None` with a [`LoadWarning`] when it cannot be
+/// read.
 fn load_referenced(scene: &mut Scene, path: &Path, kind: TextureKind) -> Option<TextureImage> {
     if !scene.files.iter().any(|f| f == path) {
         scene.files.push(path.to_owned());
     }
-    match load_texture(path, kind) {
+    match load_scene_texture(scene, path, kind) {
         Ok(image) => Some(image),
         Err(e) => {
             let warning = LoadWarning::UnreadableTexture { file: e.path, problem: e.problem };
@@ -82,7 +143,13 @@ fn load_referenced(scene: &mut Scene, path: &Path, kind: TextureKind) -> Option<
     }
 }
 
-fn parse(text: &str, path: &Path, scene: &mut Scene, names: &mut HashMap<String, usize>) -> Result<(), LoadError> {
+fn parse(
+    text: &str,
+    path: &Path,
+    scene: &mut Scene,
+    names: &mut HashMap<String, usize>,
+    loaded: &mut Loaded,
+) -> Result<(), LoadError> {
     let base = path.parent().unwrap_or(Path::new("."));
     for (number, line) in text.lines().enumerate() {
         let at = |problem: String| LoadError::new(path, format!("line {}: {problem}", number + 1));
@@ -124,14 +191,12 @@ fn parse(text: &str, path: &Path, scene: &mut Scene, names: &mut HashMap<String,
                 scene.materials[material_index].shininess = ns.clamp(*SHININESS.start(), *SHININESS.end());
             }
             "map_kd" => {
-                if let Some(image) = load_referenced(scene, &map()?.path, TextureKind::Color) {
-                    let texture = add(scene, image);
+                if let Some(texture) = texture(scene, loaded, &map()?.path, TextureKind::Color) {
                     scene.materials[material_index].base_color_texture = Some(texture);
                 }
             }
             "map_ke" => {
-                if let Some(image) = load_referenced(scene, &map()?.path, TextureKind::Color) {
-                    let texture = add(scene, image);
+                if let Some(texture) = texture(scene, loaded, &map()?.path, TextureKind::Color) {
                     let material = &mut scene.materials[material_index];
                     material.emissive_texture = Some(texture);
                     // The texture scales Ke; without a Ke (or with a black one) it shows as is.
@@ -141,20 +206,17 @@ fn parse(text: &str, path: &Path, scene: &mut Scene, names: &mut HashMap<String,
                 }
             }
             "map_ks" | "map_ns" => {
-                if let Some(image) = load_referenced(scene, &map()?.path, TextureKind::Data) {
-                    let texture = add(scene, image);
+                if let Some(texture) = texture(scene, loaded, &map()?.path, TextureKind::Data) {
                     scene.materials[material_index].gloss_texture = Some(texture);
                 }
             }
             "norm" | "map_bump" | "bump" => {
-                let reference = map()?;
-                let Some(image) = load_referenced(scene, &reference.path, TextureKind::NormalMap) else { continue };
-                if lower == "norm" || looks_like_normal_map(&image) {
-                    let texture = add(scene, image);
-                    scene.materials[material_index].normal_map =
-                        Some(NormalMap::new(texture, reference.bump_multiplier));
-                } else if let Some(heights) = load_referenced(scene, &reference.path, TextureKind::Height) {
-                    add_height_map(scene, &[material_index], heights, reference.bump_multiplier);
+                if let Some((normal_map, height_map)) = bump(scene, loaded, &map()?, lower == "norm") {
+                    let material = &mut scene.materials[material_index];
+                    material.normal_map = Some(normal_map);
+                    if height_map.is_some() {
+                        material.height_map = height_map;
+                    }
                 }
             }
             _ => {}
@@ -170,7 +232,7 @@ fn add(scene: &mut Scene, texture: TextureImage) -> usize {
 
 /// A texture statement's file and the options this loader uses.
 struct TextureRef {
-    path: std::path::PathBuf,
+    path: PathBuf,
     /// `-bm`: bump multiplier (normal map scale, or height range factor), 1 by default.
     bump_multiplier: f32,
 }

@@ -12,6 +12,7 @@ use std::path::Path;
 
 use glam::{Mat4, Vec2, Vec3};
 
+use super::budget::{Budget, INDEX_BYTES, VERTEX_BYTES};
 use super::mesh_ops::{check, triangulate};
 use super::mtl;
 use crate::error::LoadError;
@@ -20,6 +21,10 @@ use crate::scene::{Instance, Mesh, Scene};
 
 /// A face corner: indices (from 0) into positions, texture coordinates and normals.
 type Corner = (usize, Option<usize>, Option<usize>);
+
+/// Bytes a triangle takes while loading, charged to the load's [`Budget`]: three corners as
+/// read (40 bytes each) and as mesh vertices and indices ([`VERTEX_BYTES`], [`INDEX_BYTES`]).
+const TRIANGLE_BYTES: u64 = 3 * (40 + VERTEX_BYTES + INDEX_BYTES);
 
 /// The file's contents before meshes are built.
 #[derive(Default)]
@@ -43,10 +48,10 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
     }
     let mut scene = super::empty_scene();
     let base = path.parent().unwrap_or(Path::new("."));
-    let materials = mtl::load_libraries(&data.libraries, base, path, &mut scene)?;
+    let mut materials = mtl::load_libraries(&data.libraries, base, path, &mut scene)?;
     let smooth = position_normals(&data);
     for (material_name, triangles) in data.groups.iter().filter(|(_, t)| !t.is_empty()) {
-        let material = mtl::material_index(material_name.as_deref(), &materials, &mut scene);
+        let material = mtl::material_index(material_name.as_deref(), &mut materials, &mut scene);
         let name = material_name.clone().unwrap_or_else(|| "obj".into());
         let mesh = build_mesh(&data, triangles, &smooth, &name);
         check(&mesh, path)?;
@@ -60,6 +65,9 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
 fn parse(text: &str, path: &Path) -> Result<ObjData, LoadError> {
     let mut data = ObjData::default();
     let mut current = 0;
+    // `usemtl` name → index in `data.groups`.
+    let mut group_of: HashMap<String, usize> = HashMap::new();
+    let mut budget = Budget::for_input(text.len() as u64);
     for (number, line) in text.lines().enumerate() {
         let at = |problem: String| LoadError::new(path, format!("line {}: {problem}", number + 1));
         let line = line.split('#').next().unwrap_or("").trim();
@@ -86,16 +94,19 @@ fn parse(text: &str, path: &Path) -> Result<ObjData, LoadError> {
                 if data.groups.is_empty() {
                     data.groups.push((None, vec![]));
                 }
+                let triangles = corners.len().saturating_sub(2) as u64;
+                budget.charge(triangles * TRIANGLE_BYTES).map_err(|over| at(format!("the faces so far {over}")))?;
                 let positions: Vec<Vec3> = corners.iter().map(|c| data.positions[c.0]).collect();
                 let triangles = triangulate(&positions).into_iter().map(|t| t.map(|k| corners[k]));
                 data.groups[current].1.extend(triangles);
             }
             "usemtl" => {
-                let name = line["usemtl".len()..].trim().to_owned();
-                current = match data.groups.iter().position(|(n, _)| n.as_deref() == Some(&*name)) {
-                    Some(i) => i,
+                let name = line["usemtl".len()..].trim();
+                current = match group_of.get(name) {
+                    Some(&i) => i,
                     None => {
-                        data.groups.push((Some(name), vec![]));
+                        data.groups.push((Some(name.to_owned()), vec![]));
+                        group_of.insert(name.to_owned(), data.groups.len() - 1);
                         data.groups.len() - 1
                     }
                 };

@@ -139,13 +139,50 @@ impl TextureCache<'_> {
             ));
         }
         let levels: Vec<Level> = mips[fits..].iter().map(|m| ([m.width, m.height], m.rgba.as_slice())).collect();
-        let texture = self.create(&image.name, format, 4, &levels);
+        let texture = self.create(&image.name, format, 4, &levels).unwrap_or_else(|problem| {
+            self.notices.push(format!(
+                "texture {:?} ({}x{}) could not be uploaded ({problem}): drawn without it",
+                image.name, image.width, image.height
+            ));
+            let neutral = match image.kind {
+                TextureKind::NormalMap => [128, 128, 255, 255],
+                TextureKind::Height => [0, 0, 0, 255],
+                TextureKind::Color | TextureKind::Data => [255; 4],
+            };
+            self.create(&image.name, format, 4, &[([1, 1], &neutral)]).expect("a 1x1 texture fits any device")
+        });
         counters.textures_uploaded += 1;
         texture.create_view(&Default::default())
     }
 
-    /// A sampled 2D texture of `format` (`texel_bytes` a texel) holding `levels`, level 0 first.
-    fn create(&self, label: &str, format: wgpu::TextureFormat, texel_bytes: u32, levels: &[Level]) -> wgpu::Texture {
+    /// A sampled 2D texture of `format` (`texel_bytes` a texel) holding `levels`, level 0
+    /// first; the device's out-of-memory or validation error, on one line, instead of the
+    /// uncaptured-error panic (caught by error scopes around the creation and the writes).
+    fn create(
+        &self,
+        label: &str,
+        format: wgpu::TextureFormat,
+        texel_bytes: u32,
+        levels: &[Level],
+    ) -> Result<wgpu::Texture, String> {
+        let out_of_memory = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let invalid = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let texture = self.create_unscoped(label, format, texel_bytes, levels);
+        let errors = [invalid.pop(), out_of_memory.pop()].map(popped_now);
+        match errors.into_iter().flatten().next() {
+            Some(error) => Err(error.to_string().lines().next().unwrap_or("GPU error").to_owned()),
+            None => Ok(texture),
+        }
+    }
+
+    /// [`Self::create`] without the error scopes.
+    fn create_unscoped(
+        &self,
+        label: &str,
+        format: wgpu::TextureFormat,
+        texel_bytes: u32,
+        levels: &[Level],
+    ) -> wgpu::Texture {
         let size = |[width, height]: [u32; 2]| wgpu::Extent3d { width, height, depth_or_array_layers: 1 };
         let texture = self.device.create_texture(&wgpu::TextureDescriptor {
             label: Some(label),
@@ -205,7 +242,11 @@ impl TextureCache<'_> {
                 .map(|(m, bits)| ([m.width, m.height], bytemuck::cast_slice(bits)))
                 .collect();
             let label = format!("LEAN moments of {}", prepared.scene.textures[index].name);
-            let texture = self.create(&label, wgpu::TextureFormat::Rgba16Float, 8, &levels);
+            let format = wgpu::TextureFormat::Rgba16Float;
+            let texture = self.create(&label, format, 8, &levels).unwrap_or_else(|problem| {
+                self.notices.push(format!("{label} could not be uploaded ({problem}): drawn without them"));
+                self.create(&label, format, 8, &[([1, 1], &[0; 8])]).expect("a 1x1 texture fits any device")
+            });
             counters.textures_uploaded += 1;
             self.lean[index] = Some(texture.create_view(&Default::default()));
         }
@@ -225,6 +266,16 @@ impl TextureCache<'_> {
             self.white = Some(self.upload(&image, &image.mip_chain(), counters));
         }
         self.white.clone().expect("uploaded above")
+    }
+}
+
+/// The error an error scope's pop resolved to, if it resolved at once (native backends do;
+/// where it does not, as on the web, the error goes to the device's handler as before).
+fn popped_now(popped: impl std::future::Future<Output = Option<wgpu::Error>>) -> Option<wgpu::Error> {
+    let mut context = std::task::Context::from_waker(std::task::Waker::noop());
+    match std::pin::pin!(popped).poll(&mut context) {
+        std::task::Poll::Ready(error) => error,
+        std::task::Poll::Pending => None,
     }
 }
 

@@ -28,49 +28,63 @@ impl TextureImage {
         if !(filter.keeps_length() && self.kind == TextureKind::NormalMap) {
             return self.mip_chain();
         }
-        let means = self.normal_means();
-        means
-            .iter()
-            .enumerate()
-            .map(|(level, (width, height, normals))| {
-                let rgba = if level == 0 {
-                    self.rgba.chunks_exact(4).flat_map(|t| [t[0], t[1], t[2], 255]).collect()
-                } else {
-                    normals
-                        .iter()
-                        .flat_map(|&mean| {
-                            let rgb = normalize_or(mean, Vec3::Z) * 0.5 + 0.5;
-                            let [r, g, b] = rgb.to_array().map(|c| (c * 255.0).round() as u8);
-                            [r, g, b, (mean.length().min(1.0) * 255.0).round() as u8]
-                        })
-                        .collect()
-                };
-                TextureImage { name: self.name.clone(), width: *width, height: *height, kind: self.kind, rgba }
-            })
-            .collect()
-    }
-
-    /// Per mip level (level 0 first, down to 1×1): its width, height and, row by row, the mean
-    /// of level 0's unit normals ([`decode_unit_normal`]) each texel covers, by the same 2×2
-    /// boxes (edge texels repeated on odd sizes) as [`TextureImage::downsampled`]. Its length
-    /// is `|Na|`.
-    pub fn normal_means(&self) -> Vec<(u32, u32, Vec<Vec3>)> {
-        let base: Vec<Vec3> = self.rgba.chunks_exact(4).map(|t| decode_unit_normal([t[0], t[1], t[2]])).collect();
-        let mut levels = vec![(self.width, self.height, base)];
-        while let Some((w, h, last)) = levels.last().filter(|(w, h, _)| *w > 1 || *h > 1) {
-            let (w, h) = (*w as usize, *h as usize);
-            let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
-            let at = |x: usize, y: usize| last[y.min(h - 1) * w + x.min(w - 1)];
-            let next = (0..nh)
-                .flat_map(|y| (0..nw).map(move |x| (x, y)))
-                .map(|(x, y)| {
-                    (at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) + at(2 * x + 1, 2 * y + 1)) / 4.0
+        let rgba = self.rgba.chunks_exact(4).flat_map(|t| [t[0], t[1], t[2], 255]).collect();
+        let base =
+            TextureImage { name: self.name.clone(), width: self.width, height: self.height, kind: self.kind, rgba };
+        let below = self.normal_means().into_iter().map(|(width, height, normals)| {
+            let rgba = normals
+                .iter()
+                .flat_map(|&mean| {
+                    let rgb = normalize_or(mean, Vec3::Z) * 0.5 + 0.5;
+                    let [r, g, b] = rgb.to_array().map(|c| (c * 255.0).round() as u8);
+                    [r, g, b, (mean.length().min(1.0) * 255.0).round() as u8]
                 })
                 .collect();
-            levels.push((nw as u32, nh as u32, next));
+            TextureImage { name: self.name.clone(), width, height, kind: self.kind, rgba }
+        });
+        std::iter::once(base).chain(below).collect()
+    }
+
+    /// Level 0's unit normals ([`decode_unit_normal`]), row by row, read from the bytes as
+    /// they are needed (12 bytes a texel would be three times the texture).
+    pub fn base_normals(&self) -> impl Iterator<Item = Vec3> + '_ {
+        self.rgba.chunks_exact(4).map(|t| decode_unit_normal([t[0], t[1], t[2]]))
+    }
+
+    /// Per mip level below level 0 (level 1 first, down to 1×1; none for a 1×1 image): its
+    /// width, height and, row by row, the mean of level 0's unit normals
+    /// ([`Self::base_normals`]) each texel covers, by the same 2×2 boxes (edge texels repeated
+    /// on odd sizes) as [`TextureImage::downsampled`]. Its length is `|Na|`. Level 1 is made
+    /// from level 0's bytes, so the chain takes 12 bytes per texel of level 1 and below (a
+    /// third of level 0's texel count at most, 4 bytes per level-0 texel).
+    pub fn normal_means(&self) -> Vec<(u32, u32, Vec<Vec3>)> {
+        let (w, h) = (self.width as usize, self.height as usize);
+        if w <= 1 && h <= 1 {
+            return vec![];
+        }
+        let base = |x: usize, y: usize| {
+            let i = (y.min(h - 1) * w + x.min(w - 1)) * 4;
+            decode_unit_normal([self.rgba[i], self.rgba[i + 1], self.rgba[i + 2]])
+        };
+        let mut levels = vec![box_level(w, h, base)];
+        while let Some((w, h, last)) = levels.last().filter(|(w, h, _)| *w > 1 || *h > 1) {
+            let (w, h) = (*w as usize, *h as usize);
+            let next = box_level(w, h, |x, y| last[y.min(h - 1) * w + x.min(w - 1)]);
+            levels.push(next);
         }
         levels
     }
+}
+
+/// The level below a `w × h` level whose texel `(x, y)` (clamped by the caller) is `at(x, y)`:
+/// each texel the mean of a 2×2 box.
+fn box_level(w: usize, h: usize, at: impl Fn(usize, usize) -> Vec3) -> (u32, u32, Vec<Vec3>) {
+    let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
+    let next = (0..nh)
+        .flat_map(|y| (0..nw).map(move |x| (x, y)))
+        .map(|(x, y)| (at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) + at(2 * x + 1, 2 * y + 1)) / 4.0)
+        .collect();
+    (nw as u32, nh as u32, next)
 }
 
 #[cfg(test)]
@@ -97,8 +111,8 @@ mod tests {
         });
         let means = image.normal_means();
         let expected = (2.0 + 2.0 * std::f32::consts::FRAC_1_SQRT_2) / 4.0;
-        assert!((means[1].2[0].length() - expected).abs() < 4e-3, "{}", means[1].2[0]);
-        assert_eq!(chain[1].texel(0, 0)[3], (means[1].2[0].length() * 255.0).round() as u8);
+        assert!((means[0].2[0].length() - expected).abs() < 4e-3, "{}", means[0].2[0]);
+        assert_eq!(chain[1].texel(0, 0)[3], (means[0].2[0].length() * 255.0).round() as u8);
         assert_eq!(&chain[1].texel(0, 0)[..3], &[128, 128, 255]);
         assert_eq!(image.mip_chain_filtered(MipFilter::BaseOnly), vec![image.clone()]);
         assert_eq!(image.mip_chain_filtered(MipFilter::RenormalizedBox), image.mip_chain());
