@@ -317,7 +317,7 @@ fn to_height_refuses_inputs_over_the_memory_limit_from_the_header() {
     assert!(refused.starts_with(&small.display().to_string()) && refused.contains(expected), "{refused}");
     assert!(!refused.contains('\n'));
     let admitted = to_height_file(&small, &out, &with_limit(176)).unwrap_err().to_string();
-    assert!(admitted.contains("not a readable image"), "{admitted}");
+    assert!(admitted.contains("not a readable PNG image"), "{admitted}");
     // 16384² RGB 16-bit, clamped: 6 B decoded + 16 B packed a texel = 22 · 256 MiB = 5632 MiB,
     // over the default 4096 MiB.
     let big = dir.join("rgb16.png");

@@ -188,7 +188,7 @@ fn to_height_memory_limit_is_named_and_raisable() {
         "{stderr}"
     );
     let (status, stderr) = run(&["--to-height", "--max-memory", "176"]);
-    assert!(status == Some(1) && stderr.contains("not a readable image"), "{stderr}");
+    assert!(status == Some(1) && stderr.contains("not a readable PNG image"), "{stderr}");
     let (status, stderr) = run(&["--max-memory", "176"]);
     assert_eq!(status, Some(2), "{stderr}");
     assert!(!out.exists());

@@ -196,6 +196,19 @@ fn lay_out_inputs(dir: &Path) {
         "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n",
     )
     .unwrap();
+    // lecture/: a lesson file of one's own beside its model, as docs/lessons.md writes it.
+    let lecture = dir.join("lecture");
+    std::fs::create_dir_all(lecture.join("model")).unwrap();
+    for entry in std::fs::read_dir(fixtures.join("NormalTangentTest/glTF")).unwrap() {
+        let path = entry.unwrap().path();
+        std::fs::copy(&path, lecture.join("model").join(path.file_name().unwrap())).unwrap();
+    }
+    std::fs::write(
+        lecture.join("my-model.toml"),
+        "title = \"t\"\ncaption = \"c\"\nclaim = \"{changed}\"\nlabels = [\"off\", \"on\"]\n\
+         [preset.files]\nmesh = \"model/NormalTangentTest.gltf\"\n[preset.split]\nenabled = true\n",
+    )
+    .unwrap();
     let height = image::GrayImage::from_fn(64, 64, |x, y| image::Luma([((x * 7 + y * 3) % 64 * 4) as u8]));
     height.save(dir.join("height.png")).unwrap();
 }

@@ -140,7 +140,7 @@ fn toksvig_and_vmf_estimate_the_variance_of_gaussian_slope_fields() {
         let means = map.normal_means();
         let chain = map.mip_chain_filtered(MipFilter::Toksvig);
         let level = 6;
-        let (w, _, normals) = &means[level];
+        let (w, _, normals) = &means[level - 1]; // normal_means starts at level 1
         assert_eq!((*w, chain[level].width), (4, 4));
         let count = normals.len() as f32;
         let toksvig = normals.iter().map(|n| toksvig_variance(n.length())).sum::<f32>() / count;

@@ -387,8 +387,8 @@ mod tests {
     }
 
     /// The bricks' averaged normals shorten but stay under the warning; a map of texels
-    /// tilted ±0.5 rad checkerwise (|Na| = cos 0.5 = 0.878 from level 1 on; 0.875 as its
-    /// 8-bit texels decode) is warned about, with the level, the length and Toksvig's exponent.
+    /// tilted ±0.5 rad checkerwise (|Na| = cos 0.5 = 0.878 from level 1 on; 0.876 as level 1 is
+    /// averaged from its 8-bit texels) is warned about, with the level, the length and Toksvig's exponent.
     #[test]
     fn a_map_whose_mips_over_sharpen_the_highlight_is_warned_about() {
         let report = check_scene(&teaching_scene());
@@ -404,7 +404,7 @@ mod tests {
             texel.copy_from_slice(&[x, 128, (127.5 + 127.5 * 0.5f32.cos()).round() as u8, 255]);
         }
         let warnings = check_scene(&scene).warnings();
-        let expected = "from mip level 1 (256×256) its averaged normals are 0.875 long: a re-normalised chain \
+        let expected = "from mip level 1 (256×256) its averaged normals are 0.876 long: a re-normalised chain \
                         draws the highlight with exponent 32 where the bumps it averages spread it to 5.8";
         assert!(warnings.iter().any(|w| w.contains(expected)), "{warnings:?}");
     }

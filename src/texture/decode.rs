@@ -37,7 +37,8 @@ pub fn decode_admitted(
     max_bytes: u64,
     admit: impl FnOnce(&Header) -> Result<(), String>,
 ) -> Result<DynamicImage, String> {
-    let unreadable = |e: image::ImageError| format!("not a readable {format:?} image: {e}");
+    let name = format!("{format:?}").to_uppercase();
+    let unreadable = |e: image::ImageError| format!("not a readable {name} image: {e}");
     // Limits are set after the caller's check, so an oversized header gets the caller's message.
     let mut reader = ImageReader::with_format(Cursor::new(bytes), format);
     reader.no_limits();
