@@ -4,7 +4,8 @@
 //! 1024². Run: `cargo bench --no-default-features --bench bake`. Throughput is texels per
 //! second; compare ratios within one run (the machine is shared).
 
-use bumpview::height::integrate::{Derivative, Slopes, integrate};
+use bumpview::height::derivative::Derivative;
+use bumpview::height::integrate::{Slopes, integrate};
 use bumpview::height::rows::{Channels, HeightGrid, MapFormat, Samples, encode_normal_map, normals};
 use bumpview::height::{Border, HeightField, Kernel};
 use bumpview::names::Named;

@@ -1,4 +1,4 @@
-// Normal-map mip filtering (issue 24): how much the filtered normal map widens the highlight,
+// Normal-map mip filtering: how much the filtered normal map widens the highlight,
 // as a variance added to α², and the classic exponent and the perceptual roughness widened by
 // it. The CPU twins are src/shading/mip_filter.rs, run by chain::shade. Part of the mesh pass
 // (render::shaders::MESH); uses frame.wgsl's Frame uniform.

@@ -1,4 +1,4 @@
-//! Hostile and careless inputs (issue 23): devices, FIFOs and links to them are refused by
+//! Hostile and careless inputs: devices, FIFOs and links to them are refused by
 //! type before they are opened; no command writes over its inputs, and an existing output is
 //! kept without `--force`; work asked by flags is refused up front past its budget; text from
 //! files is printed escaped; and the smaller items (NaN preset values, `--height-range 0`,

@@ -18,8 +18,10 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("data", &["texture"]),
     ("data", &["height"]),
     ("data", &["scene"]),
-    ("methods", &["load", "bake"]),
-    ("methods", &["tangent", "shading"]),
+    // The shading formulas need only the data: the loaders (a glTF roughness's exponent) and
+    // the bakes (a mip level's alpha) use them.
+    ("methods", &["shading"]),
+    ("methods", &["tangent", "load", "bake"]),
     ("frame", &["frame"]),
     ("chain", &["chain"]),
     ("prepare", &["prepare"]),
@@ -331,8 +333,8 @@ fn use_tree(chars: &[char], at: &mut usize, prefix: &mut Vec<String>, out: &mut 
     }
 }
 
-/// Every use in `sources` against the layers, one line each.
-fn violations(sources: &[Source]) -> Vec<String> {
+/// The files of `sources` that are not tests, each with its code without test modules.
+fn checked(sources: &[Source]) -> Vec<(&Source, String)> {
     let test_files: BTreeSet<(Crate, Vec<String>)> = sources
         .iter()
         .flat_map(|s| {
@@ -343,9 +345,17 @@ fn violations(sources: &[Source]) -> Vec<String> {
             })
         })
         .collect();
+    sources
+        .iter()
+        .filter(|s| !test_files.contains(&(s.krate, s.module.clone())))
+        .map(|s| (s, without_test_modules(&s.code).0))
+        .collect()
+}
+
+/// Every use in `sources` against the layers, one line each.
+fn violations(sources: &[Source]) -> Vec<String> {
     let mut wrong = vec![];
-    for source in sources.iter().filter(|s| !test_files.contains(&(s.krate, s.module.clone()))) {
-        let code = without_test_modules(&source.code).0;
+    for (source, code) in checked(sources) {
         let top = source.module.first().map_or("", String::as_str);
         for (root, path) in paths(&code, &source.module) {
             let used = path[0].as_str();
@@ -374,6 +384,71 @@ fn violations(sources: &[Source]) -> Vec<String> {
         }
     }
     wrong
+}
+
+/// A module (file) of one crate: `(crate, module path)`.
+type FileModule = (Crate, Vec<String>);
+
+/// The uses between the files of each crate: file A uses file B when a path in A's code (from
+/// `crate::` or `super::`) names B's module or an item in it (the longest prefix of the path
+/// that is a file's module). A folder's files are one module to the outside: what a file uses
+/// outside a folder it is in, that folder's `mod.rs` uses too, and a file's uses of its own
+/// ancestors (`super::Item`) and descendants are no edge.
+fn file_uses(sources: &[Source]) -> BTreeSet<(FileModule, FileModule)> {
+    let files: BTreeSet<FileModule> = sources.iter().map(|s| (s.krate, s.module.clone())).collect();
+    let mut uses = BTreeSet::new();
+    for (source, code) in checked(sources) {
+        let user = &source.module;
+        for (_, path) in paths(&code, user).into_iter().filter(|(root, _)| *root == Root::Own) {
+            let Some(used) =
+                (1..=path.len()).rev().map(|n| path[..n].to_vec()).find(|m| files.contains(&(source.krate, m.clone())))
+            else {
+                continue;
+            };
+            for folder in (1..=user.len()).map(|n| &user[..n]).filter(|f| !used.starts_with(f)) {
+                if !folder.starts_with(&used) && files.contains(&(source.krate, folder.to_vec())) {
+                    uses.insert(((source.krate, folder.to_vec()), (source.krate, used.clone())));
+                }
+            }
+        }
+    }
+    uses
+}
+
+/// Every import circle between files of `sources`, each as `a → b → … → a`.
+fn circles(sources: &[Source]) -> Vec<String> {
+    let uses = file_uses(sources);
+    let name = |(_, module): &FileModule| if module.is_empty() { "(crate root)".to_owned() } else { module.join("::") };
+    let mut finished = BTreeSet::new();
+    let mut found = vec![];
+    for (start, _) in &uses {
+        let mut stack: Vec<(FileModule, Vec<FileModule>)> = vec![];
+        let next = |from: &FileModule| {
+            uses.range((from.clone(), (from.0, vec![]))..)
+                .take_while(|(a, _)| a == from)
+                .map(|(_, b)| b.clone())
+                .collect::<Vec<_>>()
+        };
+        if finished.contains(start) {
+            continue;
+        }
+        stack.push((start.clone(), next(start)));
+        while let Some((file, pending)) = stack.last_mut() {
+            let Some(used) = pending.pop() else {
+                finished.insert(file.clone());
+                stack.pop();
+                continue;
+            };
+            if let Some(at) = stack.iter().position(|(f, _)| *f == used) {
+                let circle: Vec<String> = stack[at..].iter().map(|(f, _)| name(f)).chain([name(&used)]).collect();
+                found.push(circle.join(" → "));
+            } else if !finished.contains(&used) {
+                let after = next(&used);
+                stack.push((used, after));
+            }
+        }
+    }
+    found
 }
 
 fn read_tree(dir: &Path, root: &Path, out: &mut Vec<Source>) {
@@ -408,6 +483,16 @@ fn every_module_uses_only_lower_layers() {
     }
     let wrong = violations(&sources);
     assert!(wrong.is_empty(), "uses against the layers:\n{}", wrong.join("\n"));
+}
+
+#[test]
+fn no_import_circle_between_files() {
+    let found = circles(&the_tree());
+    assert!(
+        found.is_empty(),
+        "import circles between files (a shared piece belongs in a leaf below both):\n{}",
+        found.join("\n")
+    );
 }
 
 #[test]
@@ -488,6 +573,34 @@ mod the_check_sees {
         let wrong = violations(&[app]);
         assert_eq!(wrong.len(), 2, "{wrong:?}");
         assert!(wrong[0].contains("blinn_phong") && wrong[1].contains("chain"), "{wrong:?}");
+    }
+
+    #[test]
+    fn an_import_circle_between_two_files() {
+        let integrate = library("height/integrate.rs", "use super::spectrum::PackedSlopes;");
+        let spectrum = library("height/spectrum.rs", "use super::integrate::{BLIND, Phase};");
+        let mod_rs = library("height/mod.rs", "pub mod integrate;\npub mod spectrum;");
+        let found = circles(&[mod_rs, integrate, spectrum]);
+        assert_eq!(found, ["height::integrate → height::spectrum → height::integrate"]);
+    }
+
+    #[test]
+    fn an_import_circle_through_a_folder_in_the_binary() {
+        let action = Source::new("app/action.rs", Crate::Binary, "use super::controller::SceneReady;");
+        let controller = Source::new("app/controller/mod.rs", Crate::Binary, "mod scene_job;\npub struct SceneReady;");
+        let job =
+            Source::new("app/controller/scene_job.rs", Crate::Binary, "fn f() { crate::app::action::Action::Reload; }");
+        // The job's use is its folder's: the controller uses the action that names it.
+        assert_eq!(circles(&[action, controller, job]), ["app::action → app::controller → app::action"]);
+    }
+
+    #[test]
+    fn no_circle_between_a_folder_and_its_files_or_across_crates() {
+        let parent = library("scene/mod.rs", "pub use crate::scene::material::Material;\npub struct Wrap;");
+        let child = library("scene/material.rs", "use super::Wrap;");
+        let app = Source::new("app/mod.rs", Crate::Binary, "use bumpview::scene::Scene;");
+        let scene = library("scene/build.rs", "use crate::app::X;");
+        assert!(circles(&[parent, child, app, scene]).is_empty());
     }
 
     #[test]

@@ -1,14 +1,15 @@
-//! Normal-map mip filtering (issue 24): every method draws plain shading at 1× (level 0), the
+//! Normal-map mip filtering: every method draws plain shading at 1× (level 0), the
 //! CPU twins equal the GPU at probe points at a distance, Toksvig's and vMF's variance
 //! estimates against synthetic Gaussian slope fields of known variance.
 
 mod common;
 
-use bumpview::frame::{MipFilter, SceneOptions};
+use bumpview::frame::SceneOptions;
 use bumpview::names::Named;
 use bumpview::render::capture::render_image;
 use bumpview::scene::{ShadingModel, TextureImage, TextureKind};
 use bumpview::shading::mip_filter::{toksvig_variance, vmf_variance};
+use bumpview::texture::MipFilter;
 use common::*;
 use glam::Vec3;
 

@@ -5,7 +5,7 @@
 //! Halves are compared exactly: both pictures come from the same pipelines, uniforms, vertex
 //! data and target size (so the same rasterisation and MSAA coverage); the scissor rectangle
 //! only decides which pixels each draw may write. A margin of columns next to the divider is
-//! left out as the brief asks, though the frames match there too (the supersampled test
+//! left out of this comparison, though the frames match there too (the supersampled test
 //! compares every column).
 
 mod common;

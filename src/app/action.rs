@@ -1,14 +1,12 @@
 //! What the user asked for or what arrived from another thread: a viewer [`Command`] or an
-//! action only the app knows. The panel, the keys, the mouse, dropped files, the file dialog,
-//! hot reload and the scene jobs all produce these; the controller
+//! action only the app knows. The panel, the keys, the mouse, dropped files, the file dialog
+//! and hot reload all produce these (a finished scene job is the controller's own); the controller
 //! ([`super::controller::Controller::apply`]) is the one place they take effect.
 
 use std::path::PathBuf;
 
 use bumpview::load::TextureSlot;
 use bumpview::state::Command;
-
-use super::controller::SceneReady;
 
 #[derive(Debug, Clone, PartialEq)]
 pub enum Action {
@@ -33,9 +31,6 @@ pub enum Action {
     DialogClosed { slot: Option<TextureSlot>, path: Option<PathBuf> },
     /// Files of the scene changed on disk and have settled: re-make it, keeping the view.
     Reload,
-    /// A scene job finished: the scene loaded (when files changed), prepared and measured, or
-    /// why not. Only the latest job's is installed.
-    SceneReady(Box<SceneReady>),
     /// Pin the pixel probe at `pixel` of a view `size` pixels (P + click, `--probe`).
     PinProbe { pixel: [u32; 2], size: [u32; 2] },
     /// Remove the pixel probe.

@@ -1,6 +1,6 @@
 //! The native file dialog (the `rfd` crate), run on its own thread so the window keeps
 //! drawing while it is open. In the web build it is the browser's file picker (rfd's async
-//! dialog), whose file is read as bytes and held in memory ([`crate::app::web::hold`]).
+//! dialog), whose file is read as bytes and held in memory ([`crate::app::browser::hold`]).
 
 use std::path::PathBuf;
 use std::sync::mpsc;
@@ -109,7 +109,7 @@ fn pick(
     let dialog = dialog!(rfd::AsyncFileDialog, slot);
     wasm_bindgen_futures::spawn_local(async move {
         let chosen = match dialog.pick_file().await {
-            Some(file) => Some(crate::app::web::hold(&file.file_name(), file.read().await)),
+            Some(file) => Some(crate::app::browser::hold(&file.file_name(), file.read().await)),
             None => None,
         };
         let _ = sender.send(chosen);

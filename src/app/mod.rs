@@ -7,6 +7,8 @@
 
 mod action;
 mod automation;
+#[cfg(target_arch = "wasm32")]
+mod browser;
 mod controller;
 mod dialog;
 mod files;

@@ -83,7 +83,7 @@ impl Units {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BakeOptions {
     /// The derivative: forward, it makes the slopes; backward, its symbol is inverted
-    /// ([`crate::height::integrate::Derivative::Kernel`]) unless [`Self::spectral`].
+    /// ([`crate::height::derivative::Derivative::Kernel`]) unless [`Self::spectral`].
     pub kernel: Kernel,
     /// Backward only: integrate with the continuous derivative `iω` instead of the kernel's.
     pub spectral: bool,

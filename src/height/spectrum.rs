@@ -23,7 +23,7 @@ use rustfft::num_complex::Complex32;
 use rustfft::{Fft, FftPlanner};
 
 use super::Border;
-use super::integrate::{BLIND, Derivative, Phase, signed_frequency};
+use super::derivative::{BLIND, Derivative, Phase, signed_frequency};
 
 /// Column frequency pairs `(kx, −kx)` solved per batch: at most `2·BATCH` columns in scratch.
 const BATCH: usize = 32;

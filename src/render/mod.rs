@@ -23,6 +23,7 @@ pub mod glyphs;
 pub mod gpu;
 mod held;
 mod legacy;
+mod marker_gpu;
 pub mod pipelines;
 mod scene_gpu;
 pub mod shaders;

@@ -11,7 +11,7 @@ use super::spaces::SpaceRow;
 use super::stiff::StabilityRow;
 use super::surfaces::{POLE_DEGREES, Region};
 use super::{LARGE_PLANE, LARGE_TORUS, MIKKTSPACE_SANITY_SPHERE, Machine, Plan};
-use crate::height::integrate::Derivative;
+use crate::height::derivative::Derivative;
 use crate::names::Named;
 
 /// Everything the page shows.

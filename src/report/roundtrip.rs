@@ -7,7 +7,8 @@ use glam::Vec3;
 use super::surfaces::{Reference, SineBumps};
 use super::timing::{Repeats, median_seconds};
 use crate::bake::slopes_of;
-use crate::height::integrate::{Derivative, integrate};
+use crate::height::derivative::Derivative;
+use crate::height::integrate::integrate;
 use crate::height::{Border, Kernel, rows};
 use crate::tangent::{AngleStats, TangentMethod, frame_angles, tangents};
 

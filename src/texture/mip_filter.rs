@@ -1,6 +1,6 @@
-//! How a normal map is filtered at a distance (issue 24): what its mip chain holds and how the
-//! highlight is widened from it. A scene option (`crate::frame::SceneOptions::mip_filter`,
-//! re-exported as `crate::frame::MipFilter`) — it decides what is baked and uploaded — and a
+//! How a normal map is filtered at a distance: what its mip chain holds and how the
+//! highlight is widened from it. A scene option (`crate::frame::SceneOptions::mip_filter`; the
+//! enum is imported from `crate::texture` only) — it decides what is baked and uploaded — and a
 //! pipeline variant (the `MIP_FILTER` constant, shaders/mip_filter.wgsl). Here, in the data
 //! layer, because the mip chains ([`super::TextureImage::mip_chain_filtered`]) depend on it;
 //! the formulas are `crate::shading::mip_filter`'s; docs/mip-filtering.md lists them with
@@ -15,7 +15,7 @@ pub enum MipFilter {
     /// the aliasing itself.
     BaseOnly,
     /// 2×2 box-filtered mips, each averaged normal re-normalised: what most viewers do, and
-    /// this one before issue 24.
+    /// the default.
     #[default]
     RenormalizedBox,
     /// Toksvig (NVIDIA technical brief 2004; JGT 2005): the averaged normal's length `|Na|`

@@ -1,6 +1,6 @@
 //! Screenshots of the 3D view and tile exports: rendered offscreen at any size the adapter
 //! allows, written atomically as fresh PNGs (`bumpview-<unix seconds>.png`). Not in the web build,
-//! whose page cannot wait for the GPU read-back ([`crate::app::web::NO_CAPTURE`]): there only the
+//! whose page cannot wait for the GPU read-back ([`crate::app::browser::NO_CAPTURE`]): there only the
 //! form is kept (presets carry its settings).
 
 #[cfg(not(target_arch = "wasm32"))]

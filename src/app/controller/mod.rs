@@ -42,8 +42,8 @@ pub use lessons::{LessonsForm, Measurement};
 pub use presets::PresetForm;
 #[cfg(not(target_arch = "wasm32"))]
 pub use presets::last_state_file;
+pub use scene_job::JobTimes;
 use scene_job::SceneJobs;
-pub use scene_job::{JobTimes, SceneReady};
 
 use super::action::Action;
 use super::dialog::Dialog;
@@ -290,7 +290,7 @@ impl Controller {
             Action::ExportTiles => self.screenshot.message = Some(self.export_tiles()),
             #[cfg(target_arch = "wasm32")]
             Action::Screenshot | Action::ExportTiles => {
-                self.screenshot.message = Some(Err(crate::app::web::NO_CAPTURE.into()));
+                self.screenshot.message = Some(Err(crate::app::browser::NO_CAPTURE.into()));
             }
             Action::SavePreset(path) => self.preset.message = Some(self.save_preset(&path)),
             Action::LoadPreset(path) => self.preset.message = Some(self.load_preset(&path)),
@@ -324,7 +324,6 @@ impl Controller {
             }
             Action::ClearProbe => self.probe.clear(),
             Action::SetInteractiveFrames(on) => self.interactive.enabled = on,
-            Action::SceneReady(ready) => self.scene_ready(*ready),
             Action::OpenLesson(index) => self.open_lesson(index),
             Action::StepLesson(step) => {
                 if let Some(index) = self.lessons.stepped(step) {
@@ -338,10 +337,7 @@ impl Controller {
     /// Takes in what arrived from other threads: the dialog's answer, settled file changes and
     /// finished scene jobs. Returns how soon to look again while file changes are settling.
     pub fn poll_background(&mut self, now: Instant) -> Option<Duration> {
-        let mut actions = Vec::new();
-        if let Some((slot, path)) = self.dialog.poll() {
-            actions.push(Action::DialogClosed { slot, path });
-        }
+        let closed = self.dialog.poll().map(|(slot, path)| Action::DialogClosed { slot, path });
         // Scene files are relative where the mesh path was (a command-line argument); the
         // watcher reports absolute paths.
         let referred =
@@ -349,19 +345,22 @@ impl Controller {
         if self.watcher.changes().iter().any(|path| files::affects(&self.files.scene_files, path) || referred(path)) {
             self.files.debouncer.changed(now);
         }
-        actions.extend(self.jobs.poll());
+        let finished = self.jobs.poll();
         self.lessons.poll();
         // A reload waits for a scene job in flight (which wakes the UI when done), so that it
         // does not replace a mesh the user is opening.
-        let mut wait = None;
+        let (mut wait, mut reload) = (None, None);
         if self.jobs.busy().is_none() {
             if self.files.debouncer.fire(now) {
-                actions.push(Action::Reload);
+                reload = Some(Action::Reload);
             } else {
                 wait = self.files.debouncer.remaining(now);
             }
         }
-        self.apply(actions);
+        // In the order they arrived: the dialog's answer, the finished jobs, then the reload.
+        closed.into_iter().for_each(|action| self.apply_one(action));
+        finished.into_iter().for_each(|ready| self.scene_ready(ready));
+        self.apply(reload);
         wait
     }
 

@@ -44,7 +44,7 @@ impl Controller {
     #[cfg(target_arch = "wasm32")]
     pub(super) fn save_preset(&self, path: &Path) -> Result<String, String> {
         let name = path.file_name().map_or("bumpview.toml".into(), |n| n.to_string_lossy().into_owned());
-        crate::app::web::download(&name, "application/toml", self.current_preset().to_toml().as_bytes())?;
+        crate::app::browser::download(&name, "application/toml", self.current_preset().to_toml().as_bytes())?;
         Ok(format!("downloaded {name}"))
     }
 

@@ -2,7 +2,7 @@
 //! for the options it will be drawn with (tangent frames and drawn geometry,
 //! [`PreparedScene::new`]; the textures' mip chains, [`PreparedScene::precompute_mip_chains`])
 //! and upload it to the GPU ([`Uploader`]), and measure it for the panel ([`SceneFacts`]), then
-//! hand the UI one [`Action::SceneReady`]. The UI thread only installs what arrives (a swap,
+//! hand the UI one [`SceneReady`]. The UI thread only installs what arrives (a swap,
 //! [`bumpview::render::Renderer::install`]); the window keeps drawing the previous scene
 //! meanwhile.
 //!
@@ -24,7 +24,6 @@ use bumpview::render::{ReferenceFrames, SceneUpload, Uploader};
 use bumpview::scene::Scene;
 
 use super::facts::SceneFacts;
-use crate::app::action::Action;
 use crate::app::files::{Job, Purpose};
 
 /// Makes a scene from its files and the built-in scene's kernel: [`SceneFiles::build`], or a
@@ -107,7 +106,7 @@ pub struct Ready {
     pub times: JobTimes,
 }
 
-/// The one action a job hands the UI ([`Action::SceneReady`]).
+/// The one result a job hands the UI ([`super::Controller::poll_background`] installs it).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SceneReady {
     /// Which job this is; only the latest's result is installed.
@@ -134,8 +133,8 @@ struct Busy {
 pub struct SceneJobs {
     build: BuildFn,
     uploader: Uploader,
-    sender: mpsc::Sender<Action>,
-    receiver: mpsc::Receiver<Action>,
+    sender: mpsc::Sender<SceneReady>,
+    receiver: mpsc::Receiver<SceneReady>,
     /// Number of the latest job started; workers read it to stop when superseded.
     latest: Arc<AtomicU64>,
     busy: Option<Busy>,
@@ -174,7 +173,7 @@ impl SceneJobs {
         let run = move || {
             if let Some(ready) = worker.run(job_source, job_uploads) {
                 // The receiver is gone only when the viewer closed.
-                let _ = sender.send(Action::SceneReady(Box::new(ready)));
+                let _ = sender.send(ready);
                 wake();
             }
         };
@@ -197,14 +196,14 @@ impl SceneJobs {
         self.busy.as_ref().map(|busy| (&busy.source, &busy.uploads, busy.reference))
     }
 
-    /// The actions jobs have sent since the last call.
-    pub fn poll(&self) -> Vec<Action> {
+    /// The results jobs have sent since the last call.
+    pub fn poll(&self) -> Vec<SceneReady> {
         self.receiver.try_iter().collect()
     }
 
-    /// Waits up to `timeout` for the next action a job sends.
+    /// Waits up to `timeout` for the next result a job sends.
     #[cfg(test)]
-    pub fn wait(&self, timeout: std::time::Duration) -> Option<Action> {
+    pub fn wait(&self, timeout: std::time::Duration) -> Option<SceneReady> {
         self.receiver.recv_timeout(timeout).ok()
     }
 

@@ -1,5 +1,5 @@
 //! Scene jobs through the controller, without a window: the scene given at start, option
-//! changes and loads are made ready off the UI thread, one action each, and only the latest
+//! changes and loads are made ready off the UI thread, one result each, and only the latest
 //! job's result is installed.
 
 use std::path::{Path, PathBuf};
@@ -14,13 +14,19 @@ use bumpview::state::Command;
 use bumpview::tangent::TangentMethod;
 
 use super::Controller;
-use super::scene_job::BuildFn;
+use super::scene_job::{BuildFn, SceneReady};
 use super::tests::{controller, settle, start};
 use crate::app::action::Action;
 use crate::app::files::Status;
 
 /// Long enough for any job on the built-in scene under a loaded machine.
 const JOB_TIMEOUT: Duration = Duration::from_secs(60);
+
+/// Installs a job's `ready` as [`Controller::poll_background`] does when it arrives.
+fn install(controller: &mut Controller, ready: SceneReady) {
+    controller.scene_ready(ready);
+    controller.sync_uploads();
+}
 
 /// The tangent method the renderer's main upload was prepared with.
 fn drawn_method(controller: &Controller) -> Option<TangentMethod> {
@@ -42,7 +48,7 @@ fn the_scene_given_at_start_is_prepared_by_a_job() {
 }
 
 /// An option change only starts a job: when `apply` returns, the renderer still holds the old
-/// upload and the state the new option; the job's one action brings the new upload, made on
+/// upload and the state the new option; the job's one result brings the new upload, made on
 /// its worker, and installing it draws that upload.
 #[test]
 fn an_option_change_is_prepared_off_the_ui_thread() {
@@ -54,11 +60,10 @@ fn an_option_change_is_prepared_off_the_ui_thread() {
     assert_eq!(controller.renderer().counters().scenes_uploaded, 1);
     assert!(controller.busy().is_some());
 
-    let ready = controller.jobs.wait(JOB_TIMEOUT).expect("the job's action");
-    assert!(matches!(&ready, Action::SceneReady(ready) if ready.load.is_none()), "a re-prepare loads nothing");
-    let Action::SceneReady(job) = &ready else { unreachable!("matched above") };
-    let uploaded = job.outcome.as_ref().expect("the scene").main.clone();
-    controller.apply([ready]);
+    let ready = controller.jobs.wait(JOB_TIMEOUT).expect("the job's result");
+    assert!(ready.load.is_none(), "a re-prepare loads nothing");
+    let uploaded = ready.outcome.as_ref().expect("the scene").main.clone();
+    install(&mut controller, ready);
     assert_eq!(drawn_method(&controller), Some(TangentMethod::PerFace));
     assert_eq!(
         controller.renderer().held(false),
@@ -76,9 +81,9 @@ fn a_superseded_jobs_result_is_dropped() {
     let mut controller = controller();
     let before = drawn_method(&controller);
     controller.apply([Command::SetTangentMethod(Some(TangentMethod::PerFace)).into()]);
-    let stale = controller.jobs.wait(JOB_TIMEOUT).expect("the first job's action");
+    let stale = controller.jobs.wait(JOB_TIMEOUT).expect("the first job's result");
     controller.apply([Command::SetTangentMethod(Some(TangentMethod::AveragedAngle)).into()]);
-    controller.apply([stale]);
+    install(&mut controller, stale);
     assert_eq!(drawn_method(&controller), before, "the superseded result is not installed");
     assert_eq!(controller.renderer().counters().scenes_uploaded, 1);
     assert!(controller.busy().is_some(), "the newer job is still awaited");
@@ -95,10 +100,9 @@ fn a_failed_job_is_not_started_again_for_the_same_options() {
     let mut controller = controller();
     let before = drawn_method(&controller);
     controller.apply([Command::SetTangentMethod(Some(TangentMethod::PerFace)).into()]);
-    let mut failed = controller.jobs.wait(JOB_TIMEOUT).expect("the job's action");
-    let Action::SceneReady(ready) = &mut failed else { panic!("not a scene job's action: {failed:?}") };
-    ready.outcome = Err("the scene: preparing failed (a bug): planted".into());
-    controller.apply([failed]);
+    let mut failed = controller.jobs.wait(JOB_TIMEOUT).expect("the job's result");
+    failed.outcome = Err("the scene: preparing failed (a bug): planted".into());
+    install(&mut controller, failed);
     assert_eq!(controller.files.status, Some(Status::Failed("the scene: preparing failed (a bug): planted".into())));
     assert_eq!(drawn_method(&controller), before);
     controller.poll_background(std::time::Instant::now());

@@ -2,14 +2,15 @@
 //! texture conventions and shading model per material, and what `bumpview check` finds.
 
 use bumpview::check::GreenConvention;
+use bumpview::frame::BumpSource;
 use bumpview::frame::ViewMode;
-use bumpview::frame::{BumpSource, MipFilter};
 use bumpview::height::{Border, Kernel};
 use bumpview::names::Named;
 use bumpview::scene::camera::{MAX_DISTANCE, MIN_DISTANCE};
 use bumpview::scene::{GreenAxis, Material, MaterialOverrides, NormalLayout, ShadingModel};
 use bumpview::state::{Command, ViewerState};
 use bumpview::tangent::{MethodMeasurement, TangentMethod};
+use bumpview::texture::MipFilter;
 
 use crate::app::action::Action;
 use crate::app::controller::Controller;
@@ -64,7 +65,7 @@ pub(super) fn methods(
 }
 
 /// The normal maps' mip filter (every material) and the camera's distance beside it, to
-/// minify the surface and watch the highlight sparkle or hold (issue 24).
+/// minify the surface and watch the highlight sparkle or hold.
 fn mip_filter(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
     let mut filter = state.scene_options.mip_filter;
     egui::ComboBox::from_label("normal-map mips").selected_text(filter.name()).show_ui(ui, |ui| {

@@ -31,7 +31,7 @@ pub fn show(
     let mut actions = Vec::new();
     files::heading(ui, controller, &mut actions);
     #[cfg(target_arch = "wasm32")]
-    crate::app::web::panel_note(ui, &controller.renderer().adapter_name());
+    crate::app::browser::panel_note(ui, &controller.renderer().adapter_name());
     if let Some(error) = render_error {
         ui.colored_label(ui.visuals().error_fg_color, error);
     }

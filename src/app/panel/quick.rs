@@ -2,14 +2,15 @@
 //! and the light.
 
 use bumpview::frame::{
-    BumpSource, DetailBlend, LightingSpace, MAX_DISPLACEMENT_LEVEL, MipFilter, Mistake, Parallax, STRENGTH_RANGE,
-    ShadingMode, ViewMode,
+    BumpSource, DetailBlend, LightingSpace, MAX_DISPLACEMENT_LEVEL, Mistake, Parallax, STRENGTH_RANGE, ShadingMode,
+    ViewMode,
 };
 use bumpview::names::Named;
 use bumpview::scene::GreenAxis;
 use bumpview::shading::OVER_TILT_LIMIT_DEG;
 use bumpview::state::{Command, SplitDifference, ViewerState};
 use bumpview::tangent::TangentMethod;
+use bumpview::texture::MipFilter;
 
 use crate::app::action::Action;
 

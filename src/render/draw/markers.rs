@@ -1,5 +1,5 @@
 //! The light markers: a small unlit octahedron at each light that is on, in its colour, when
-//! the half's shading shows them, sized from the scene's bounds ([`marker_radius`]). Light i
+//! the half's shading shows them, sized from the scene's bounds ([`crate::render::marker_gpu::marker_radius`]). Light i
 //! is instance i of the marker mesh, its centre and colour element i of the markers' uniform
 //! ([`uniforms`]).
 
@@ -8,23 +8,9 @@ use glam::Vec3;
 
 use super::FramePipelines;
 use crate::frame::{FrameParams, ShadingSettings};
+use crate::render::marker_gpu::{GpuMarker, MarkerUniform};
 use crate::render::pipelines::Pass;
-use crate::render::scene_gpu::{GpuMarker, MarkerUniform};
-use crate::scene::{MAX_LIGHTS, Scene};
-
-/// A marker's radius (centre to tip) as a share of the scene's bounding-box diagonal: 0.058 m
-/// on the built-in scene (5.83 m), 3.0 mm on WaterBottle (0.30 m).
-pub const MARKER_SHARE_OF_SCENE: f32 = 0.01;
-
-/// The light markers' radius for `scene`, metres: [`MARKER_SHARE_OF_SCENE`] of the diagonal
-/// of its drawn bounds ([`crate::load::bounds`]); 0.06 m for a scene without finite vertices.
-pub fn marker_radius(scene: &Scene) -> f32 {
-    let diagonal = crate::load::bounds(scene).map(|(low, high)| (high - low).length());
-    match diagonal {
-        Some(d) if d.is_finite() && d > 0.0 => MARKER_SHARE_OF_SCENE * d,
-        _ => 0.06,
-    }
-}
+use crate::scene::MAX_LIGHTS;
 
 /// The markers' pass.
 pub const PASS: Pass = Pass::LightMarker;
