@@ -9,8 +9,7 @@ mod looks;
 mod parallax;
 
 pub use crate::scene::DetailBlend;
-pub use crate::texture::MipFilter;
-pub use lighting::LightingSpace;
+pub use lighting::{LightingSpace, SurfaceLighting};
 pub use looks::{CUBE_MAP_SIZES, LegacyLook, LegacySettings, Mistake};
 pub use parallax::{
     Displacement, MAX_DISPLACED_TRIANGLES, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS, MAX_PARALLAX_SHADOW_STRENGTH,
@@ -22,6 +21,7 @@ use crate::scene::{
     Lights, MaterialOverrides, NormalSpace, OrbitCamera, PerMaterialOverrides, Scene, ShadingModel, SpecularMode,
 };
 use crate::tangent::TangentMethod;
+use crate::texture::MipFilter;
 
 /// The bump strength's range (the slider's; typed values outside it are clamped).
 pub const STRENGTH_RANGE: std::ops::RangeInclusive<f32> = -2.0..=4.0;

@@ -217,8 +217,8 @@ fn checker_normal_png(dir: &Path) -> (PathBuf, f32) {
 /// roughness, `--mips base-only` level 0 alone; LEAN has nothing per level (status 2).
 #[test]
 fn mips_are_written_one_png_a_level_with_the_methods_alpha() {
-    use bumpview::frame::MipFilter;
     use bumpview::shading::mip_filter::{toksvig_variance, vmf_variance, widened_roughness, widened_shininess};
+    use bumpview::texture::MipFilter;
     let dir = temp_dir("mips");
     let (map, length) = checker_normal_png(&dir);
     let out = dir.join("toksvig");

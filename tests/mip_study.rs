@@ -2,11 +2,11 @@
 //! the methods that widen the highlight from the filtered normal map beat re-normalised mips
 //! on both static error and shimmer, and at 1× every method draws what plain shading draws.
 
-use bumpview::frame::MipFilter;
 use bumpview::names::Named;
 use bumpview::render::{Gpu, Renderer};
 use bumpview::report::mip_specimen::Shape;
 use bumpview::report::mip_study::{MipPlan, MipRow, measure};
+use bumpview::texture::MipFilter;
 
 fn renderer() -> Renderer {
     let gpu =

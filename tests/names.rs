@@ -2,14 +2,13 @@
 //! them, so they must stay as they are. Each enum derives its names ([`bumpview::names`]);
 //! this pins every one, in order (the panel's, `--help`'s and the reports' order).
 
-use bumpview::frame::{
-    BumpSource, DetailBlend, LegacyLook, LightingSpace, MipFilter, Mistake, Parallax, ShadingMode, ViewMode,
-};
+use bumpview::frame::{BumpSource, DetailBlend, LegacyLook, LightingSpace, Mistake, Parallax, ShadingMode, ViewMode};
 use bumpview::height::{Border, Kernel};
 use bumpview::names::Named;
 use bumpview::scene::{GreenAxis, LightKind, NormalLayout, ShadingModel, SpecularMode};
 use bumpview::state::SplitDifference;
 use bumpview::tangent::TangentMethod;
+use bumpview::texture::MipFilter;
 
 #[test]
 fn every_enum_keeps_its_names_in_order() {

@@ -11,7 +11,7 @@ use std::ops::Sub;
 
 use glam::{Mat3, UVec2, Vec2, Vec3, Vec4};
 
-use crate::frame::MipFilter;
+use crate::texture::MipFilter;
 
 /// The vertex stage's outputs at one point, interpolated perspective-correct.
 #[derive(Debug, Clone, Copy, PartialEq)]

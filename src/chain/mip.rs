@@ -5,11 +5,11 @@
 use glam::{Vec3, Vec4};
 
 use super::fragment::{Footprint, Fragment, Map};
-use crate::frame::MipFilter;
 use crate::shading::NormalTexel;
 use crate::shading::mip_filter::{
     alpha_variance, lean_fade, lean_normal, lean_variance, widened_roughness, widened_shininess,
 };
+use crate::texture::MipFilter;
 
 /// What the mip filtering step takes besides the texel: the method, the screen-space
 /// derivatives of the shading normal (geometric specular AA only; `None` otherwise or without

@@ -80,10 +80,7 @@ pub struct MapFindings {
 pub fn material_exponent(material: &Material) -> f32 {
     match material.shading_model {
         ShadingModel::BlinnPhong => material.shininess,
-        ShadingModel::MetallicRoughness => {
-            let alpha = material.roughness.clamp(0.0, 1.0).powi(2);
-            (2.0 / alpha.powi(2).max(1e-6) - 2.0).clamp(0.0, 1e4)
-        }
+        ShadingModel::MetallicRoughness => crate::shading::pbr::roughness_exponent(material.roughness).min(1e4),
     }
 }
 

@@ -9,14 +9,15 @@ use bumpview::error::escape_controls;
 
 use bumpview::bake::mips::{level_path, mip_levels, write_levels};
 use bumpview::bake::{BakeOptions, Direction, TexelSize, Units, bake_all, plan_outputs};
-use bumpview::frame::{DetailBlend, MipFilter};
+use bumpview::frame::DetailBlend;
 use bumpview::height::rows::Channels;
 use bumpview::height::{Border, Kernel};
 use bumpview::load::image::load_texture;
 use bumpview::scene::DEFAULT_DETAIL_TILING;
 use bumpview::scene::GreenAxis;
 use bumpview::scene::TextureKind;
-use bumpview::shading::mip_filter::{toksvig_variance, vmf_variance, widened_roughness, widened_shininess};
+use bumpview::shading::mip_filter::baked_alpha;
+use bumpview::texture::MipFilter;
 
 use super::{Failure, args, progress};
 use args::parse_positive;
@@ -207,35 +208,14 @@ pub fn run(args: &BakeArgs) -> Result<(), Failure> {
     }
 }
 
-/// What alpha holds for `filter` as a function of `|Na|`; `None` where the method has nothing
-/// per level to bake (with the reason).
-fn alpha_of(args: &BakeArgs, filter: MipFilter) -> Result<Box<dyn Fn(f32) -> f32>, String> {
-    match filter {
-        MipFilter::BaseOnly | MipFilter::RenormalizedBox => Ok(Box::new(|_| 1.0)),
-        MipFilter::Toksvig => {
-            let s = args.shininess.unwrap_or(32.0);
-            Ok(Box::new(move |length| widened_shininess(filter, s, 2.0 * toksvig_variance(length)).0 / s))
-        }
-        MipFilter::Vmf => {
-            let r = args.roughness.unwrap_or(0.5).min(1.0);
-            Ok(Box::new(move |length| widened_roughness(r, vmf_variance(length))))
-        }
-        MipFilter::Lean => {
-            Err("lean keeps its slope moments in two textures of their own, not one image per level".into())
-        }
-        MipFilter::GeometricSpecularAa => Err(
-            "geometric-specular-aa widens from screen-space derivatives while drawing: its mips are renormalized-box's"
-                .into(),
-        ),
-    }
-}
-
 /// `bake --mips`: every input's chain into the directory `--out`, one line per file written.
 /// Every level file of every input is planned from the images' headers and checked against
 /// all inputs and each other before the first is written ([`plan_levels`]).
 fn run_mips(args: &BakeArgs, filter: MipFilter) -> Result<(), Failure> {
     let name: &str = filter.into();
-    let alpha = alpha_of(args, filter).map_err(|reason| Failure::BadArguments(format!("--mips {name}: {reason}")))?;
+    let (shininess, roughness) = (args.shininess.unwrap_or(32.0), args.roughness.unwrap_or(0.5));
+    let alpha = baked_alpha(filter, shininess, roughness)
+        .map_err(|reason| Failure::BadArguments(format!("--mips {name}: {reason}")))?;
     if std::fs::symlink_metadata(&args.out).is_ok() && !args.out.is_dir() {
         let out = args.out.display();
         return Err(Failure::BadArguments(format!(

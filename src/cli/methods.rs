@@ -1,11 +1,12 @@
 //! The flags for the numerical methods and texture conventions behind a picture, shared by the
 //! viewer and `render`, and the viewer [`Command`]s they stand for.
 
-use bumpview::frame::{BumpSource, DetailBlend, MipFilter};
+use bumpview::frame::{BumpSource, DetailBlend};
 use bumpview::height::{Border, Kernel};
 use bumpview::scene::{GreenAxis, MaterialOverrides, NormalLayout, ShadingModel};
 use bumpview::state::{Command, ViewerState};
 use bumpview::tangent::TangentMethod;
+use bumpview::texture::MipFilter;
 
 use super::args::{self, AutoOr};
 

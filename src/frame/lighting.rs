@@ -3,8 +3,8 @@
 //! view vectors taken into world, tangent or view space first; and where a frame's light
 //! markers are.
 
-use super::FrameParams;
-use crate::scene::LightKind;
+use super::{FrameParams, ShadingSettings};
+use crate::scene::{LightKind, ShadingModel};
 
 /// Where the lighting is computed. A pipeline variant of the lit views of tangent-space
 /// normal-mapped surfaces (other surfaces have no tangent frame and light in world space).
@@ -30,6 +30,31 @@ impl LightingSpace {
     /// The index the `LIGHTING_SPACE` pipeline constant takes.
     pub fn shader_index(self) -> u32 {
         self as u32
+    }
+}
+
+/// How one surface is lit: the model its lights are shaded with and the space they are
+/// computed in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SurfaceLighting {
+    pub shading_model: ShadingModel,
+    pub lighting_space: LightingSpace,
+}
+
+impl ShadingSettings {
+    /// How a surface whose material shades with `material_model` is lit: with the frame's
+    /// override of the model, else the material's; in the frame's lighting space when its
+    /// normal comes from a tangent-space normal map through a tangent frame
+    /// (`tangent_space_normal`) and the classic model lights it, else in world space (other
+    /// surfaces have no tangent frame to light in). The chain and the draw planner both ask
+    /// this, so the CPU twin and the pipeline chosen agree.
+    pub fn surface_lighting(&self, material_model: ShadingModel, tangent_space_normal: bool) -> SurfaceLighting {
+        let shading_model = self.shading_override.unwrap_or(material_model);
+        let lighting_space = match (tangent_space_normal, shading_model) {
+            (true, ShadingModel::BlinnPhong) => self.lighting_space,
+            _ => LightingSpace::World,
+        };
+        SurfaceLighting { shading_model, lighting_space }
     }
 }
 

@@ -15,9 +15,10 @@ use std::borrow::Cow;
 use glam::{Mat4, Vec4};
 use rayon::prelude::*;
 
-use crate::frame::{BumpKind, MipFilter, SceneOptions, bump_kind};
+use crate::frame::{BumpKind, SceneOptions, bump_kind};
 use crate::scene::{Material, Mesh, Scene, TextureImage, TextureKind};
 use crate::tangent::{self, TangentMethod};
+use crate::texture::MipFilter;
 
 /// What a drawn instance needs from its pipeline: by its [`BumpKind`], plus whether the mesh
 /// brings a tangent stream to show in the T/B views.

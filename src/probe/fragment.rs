@@ -154,12 +154,12 @@ impl Fragment for Pixel<'_> {
         self.mips(map).map(|(chain, _)| UVec2::new(chain[0].width, chain[0].height))
     }
 
-    fn mip_filter(&self) -> crate::frame::MipFilter {
+    fn mip_filter(&self) -> crate::texture::MipFilter {
         self.instance.mip_filter
     }
 
     fn lean_moments(&self, uv: Vec2, footprint: Footprint) -> Option<Vec4> {
-        if self.instance.mip_filter != crate::frame::MipFilter::Lean {
+        if self.instance.mip_filter != crate::texture::MipFilter::Lean {
             return None;
         }
         let (texture, wrap) = self.texture(Map::Bump)?;

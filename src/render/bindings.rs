@@ -151,7 +151,7 @@ mod tests {
 
     use super::*;
     use crate::frame::{LegacyLook, LegacySettings, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Mistake, Parallax};
-    use crate::frame::{LightingSpace, MipFilter, ShadingMode, ViewMode};
+    use crate::frame::{LightingSpace, ShadingMode, ViewMode};
     use crate::names::Named;
     use crate::render::shaders::{MARKER, MESH, MESH_LEAN};
     use crate::render::uniforms::{
@@ -160,6 +160,7 @@ mod tests {
         HAS_OCCLUSION_TEXTURE, HAS_PARALLAX_HEIGHT, PARALLAX_CLAMP_U, PARALLAX_CLAMP_V,
     };
     use crate::scene::{NormalConvention, ShadingModel, SpecularMode};
+    use crate::texture::MipFilter;
 
     fn module(wgsl: &crate::render::shaders::Wgsl) -> naga::Module {
         let source = wgsl.source();

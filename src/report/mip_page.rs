@@ -7,8 +7,8 @@ use std::fmt::Write;
 use super::chart::{COLOURS, ChartError, Marker, Series, XAxis, png};
 use super::mip_specimen::{SHININESS, SLOPE_SIGMA, Shape};
 use super::mip_study::{MipPlan, MipRow, MipStudy, PAN_PX_PER_FRAME};
-use crate::frame::MipFilter;
 use crate::names::Named;
+use crate::texture::MipFilter;
 
 /// The chart's file name.
 pub const CHART: &str = "mip-filters.png";

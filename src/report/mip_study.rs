@@ -26,12 +26,13 @@ use strum::VariantArray;
 use super::gpu_time::gpu_frame_ms;
 use super::mip_specimen::{MipSpecimen, Shape};
 use crate::error::RenderError;
-use crate::frame::{FrameParams, MipFilter, Msaa, SceneOptions, ShadingSettings};
+use crate::frame::{FrameParams, Msaa, SceneOptions, ShadingSettings};
 use crate::names::Named;
 use crate::prepare::PreparedScene;
 use crate::render::capture::{FLOAT_FORMAT, draw_offscreen};
 use crate::render::{Background, DrawOptions, Renderer};
 use crate::scene::SpecularMode;
+use crate::texture::MipFilter;
 
 /// Pan per frame, pixels.
 pub const PAN_PX_PER_FRAME: f32 = 1.0 / 8.0;

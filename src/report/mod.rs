@@ -435,7 +435,7 @@ fn mip_filter_study(
         Default::default()
     });
     let drawn: Vec<&str> = study.rows.iter().map(|r| r.method).collect();
-    for filter in <crate::frame::MipFilter as strum::VariantArray>::VARIANTS {
+    for filter in <crate::texture::MipFilter as strum::VariantArray>::VARIANTS {
         if !study.rows.is_empty() && !drawn.contains(&filter.name()) {
             notes.push(format!(
                 "{} left out: the renderer does not draw it yet (it falls back to another method)",

@@ -1,4 +1,4 @@
-//! The formulas of normal-map mip filtering (issue 24), one per method, twins of
+//! The formulas of normal-map mip filtering, one per method, twins of
 //! `shaders/mip_filter.wgsl`: how much a filtered normal map widens the highlight, as a
 //! variance added to the GGX/Beckmann `α²` ([`alpha_variance`]), and that variance applied to
 //! the classic model's exponent ([`widened_shininess`]) or to a perceptual roughness
@@ -157,6 +157,27 @@ pub fn widened_roughness(roughness: f32, variance: f32) -> f32 {
     (alpha * alpha + variance).min(1.0).sqrt().sqrt()
 }
 
+/// What a baked mip level's alpha holds for `filter`, as a function of the level's `|Na|`:
+/// Toksvig's exponent ratio `s′/s` at `shininess`, vMF's widened roughness from `roughness`
+/// (at most 1), 1 for the methods that widen nothing. `Err` says why a method has nothing per
+/// level to bake.
+pub fn baked_alpha(filter: MipFilter, shininess: f32, roughness: f32) -> Result<Box<dyn Fn(f32) -> f32>, &'static str> {
+    match filter {
+        MipFilter::BaseOnly | MipFilter::RenormalizedBox => Ok(Box::new(|_| 1.0)),
+        MipFilter::Toksvig => Ok(Box::new(move |length| {
+            widened_shininess(filter, shininess, 2.0 * toksvig_variance(length)).0 / shininess
+        })),
+        MipFilter::Vmf => {
+            let roughness = roughness.min(1.0);
+            Ok(Box::new(move |length| widened_roughness(roughness, vmf_variance(length))))
+        }
+        MipFilter::Lean => Err("lean keeps its slope moments in two textures of their own, not one image per level"),
+        MipFilter::GeometricSpecularAa => Err(
+            "geometric-specular-aa widens from screen-space derivatives while drawing: its mips are renormalized-box's",
+        ),
+    }
+}
+
 /// `|Na|` within [`MIN_NORMAL_LENGTH`]..1 (a non-finite length reads as 1).
 fn clamped_length(length: f32) -> f32 {
     if length.is_finite() { length.clamp(MIN_NORMAL_LENGTH, 1.0) } else { 1.0 }
@@ -166,7 +187,7 @@ fn clamped_length(length: f32) -> f32 {
 mod tests {
     use super::*;
 
-    /// At strength 1 the Toksvig exponent is the brief's `|Na|·s / (|Na| + s(1 − |Na|))`, its
+    /// At strength 1 the Toksvig exponent is Toksvig's `|Na|·s / (|Na| + s(1 − |Na|))`, its
     /// energy factor `(1 + s′)/(1 + s)`; the vMF and Toksvig variances agree to first order in
     /// `1 − |Na|`; nothing widens at `|Na| = 1`.
     #[test]

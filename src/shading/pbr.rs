@@ -15,6 +15,15 @@ use super::{LightingVectors, SELF_SHADOW_FADE};
 use crate::math::{normalize_or, smoothstep};
 use crate::scene::{Light, Lights};
 
+/// The classic model's exponent whose highlight a metallic-roughness `roughness` has:
+/// Beckmann's `2/α² − 2` with `α = roughness²` (Walter et al. 2007), roughness clamped to
+/// 0..1 and `α` to at least 10⁻³ (an exponent of at most 2·10⁶ − 2). Callers clamp it to the
+/// range they draw.
+pub fn roughness_exponent(roughness: f32) -> f32 {
+    let alpha = roughness.clamp(0.0, 1.0).powi(2).max(1e-3);
+    2.0 / (alpha * alpha) - 2.0
+}
+
 /// Sky radiance straight up.
 pub const SKY_ZENITH: Vec3 = Vec3::new(0.12, 0.22, 0.45);
 /// Sky radiance just above the horizon.

@@ -4,10 +4,11 @@
 use glam::{Vec2, Vec3};
 
 use super::{LightCommand, SplitDifference};
-use crate::frame::{BumpSource, LegacySettings, MipFilter, Mistake, Parallax, ShadingMode, ViewMode};
+use crate::frame::{BumpSource, LegacySettings, Mistake, Parallax, ShadingMode, ViewMode};
 use crate::height::Kernel;
 use crate::scene::{GreenAxis, MaterialOverrides, ShadingModel};
 use crate::tangent::TangentMethod;
+use crate::texture::MipFilter;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Command {

@@ -2,11 +2,11 @@
 //! to the half's view, or with the Difference pass.
 
 use super::{FramePipelines, InstanceDraw};
-use crate::frame::{LegacySettings, LightingSpace, MipFilter, Parallax, ShadingSettings, ViewMode};
+use crate::frame::{LegacySettings, LightingSpace, Parallax, ShadingSettings, ViewMode};
 use crate::prepare::Variant;
 use crate::render::pipelines::Pass;
 use crate::render::scene_gpu::{GpuInstance, GpuScene};
-use crate::scene::ShadingModel;
+use crate::texture::MipFilter;
 
 /// Every instance of `scene` with the pass it is drawn with in `shading`.
 pub fn plan(scene: &GpuScene, shading: &ShadingSettings) -> Vec<InstanceDraw> {
@@ -50,15 +50,12 @@ fn drawn_pass(instance: &GpuInstance, scene: &GpuScene, shading: &ShadingSetting
     if shading.view == ViewMode::Difference && scene.prepared.meshes[instance.mesh].frames.is_some() {
         return Pass::Difference { variant, cull_back_faces, mirrored };
     }
-    let lighting = shading.view.is_lit().then(|| shading.shading_override.unwrap_or(instance.shading_model));
+    let surface = shading.surface_lighting(instance.shading_model, variant == Variant::NormalMapped);
+    let lighting = shading.view.is_lit().then_some(surface.shading_model);
     let parallax = if instance.parallax_height { shading.parallax.technique } else { Parallax::Off };
     let legacy = if shading.view.is_lit() { shading.legacy } else { LegacySettings::default() };
     let (view, mistake) = (shading.view, shading.mistake);
-    // As chain::shade decides: the classic model on tangent-space normal-mapped surfaces.
-    let lighting_space = match (variant, lighting) {
-        (Variant::NormalMapped, Some(ShadingModel::BlinnPhong)) => shading.lighting_space,
-        _ => LightingSpace::World,
-    };
+    let lighting_space = if lighting.is_some() { surface.lighting_space } else { LightingSpace::World };
     // The highlight widening is the lit views' (the debug views show the normal as drawn);
     // the methods that do not widen share the plain pipelines. LEAN draws its own normal, the
     // mean slope's, in every view, where its texture is bound.

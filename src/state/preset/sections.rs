@@ -44,7 +44,7 @@ pub struct SplitPreset {
     pub lighting_spaces: [String; 2],
     /// The right half's displacement level in the `displacement` split (1 to 10).
     pub displacement_level: u32,
-    /// [`MipFilter`](crate::frame::MipFilter) names, left and right.
+    /// [`MipFilter`](crate::texture::MipFilter) names, left and right.
     pub mip_filters: [String; 2],
     /// [`DetailBlend`](crate::frame::DetailBlend) names, left and right.
     pub detail_blends: [String; 2],
@@ -289,7 +289,7 @@ pub struct ScenePreset {
     /// Displacement's tessellation level, 0 (off) to 10: materials with a height map drawn
     /// as displaced geometry, the depth the parallax depth.
     pub displacement: u32,
-    /// A [`MipFilter`](crate::frame::MipFilter) name: how every normal map is mip-filtered.
+    /// A [`MipFilter`](crate::texture::MipFilter) name: how every normal map is mip-filtered.
     pub mip_filter: String,
 }
 
@@ -311,7 +311,7 @@ pub struct OverridesPreset {
     pub height_kernel: Option<String>,
     /// `wrap` or `clamp`.
     pub height_border: Option<String>,
-    /// A [`MipFilter`](crate::frame::MipFilter) name for the normal map (over `[scene]
+    /// A [`MipFilter`](crate::texture::MipFilter) name for the normal map (over `[scene]
     /// mip_filter`).
     pub mip_filter: Option<String>,
     /// The detail normal map's repeats per base UV unit (above 0).
