@@ -10,6 +10,7 @@ mod draco;
 mod files;
 mod framing;
 pub mod gltf;
+mod gltf_document;
 mod gltf_mesh;
 pub mod image;
 mod mesh_ops;

@@ -4,16 +4,16 @@
 
 use std::sync::{Arc, OnceLock};
 
-use glam::Vec3;
 use wgpu::util::DeviceExt;
 
 use super::bindings;
 use super::glyphs::{MAX_GLYPHS_PER_MESH, glyph_lines};
+use super::marker_gpu::GpuMarker;
 use super::pipelines::Layouts;
 use super::uniforms::ObjectUniform;
 use crate::counters::WorkCounters;
-use crate::prepare::{PreparedMesh, PreparedScene, Variant};
-use crate::scene::{MAX_LIGHTS, SamplerWrap, ShadingModel, TextureImage, TextureKind, Wrap};
+use crate::prepare::{PreparedInstance, PreparedMesh, PreparedScene, Variant};
+use crate::scene::{SamplerWrap, ShadingModel, TextureImage, TextureKind, Wrap};
 use crate::tangent;
 
 pub struct GpuMesh {
@@ -47,7 +47,7 @@ pub struct GpuInstance {
     pub features: u32,
     /// How its normal map is mip-filtered ([`crate::prepare::PreparedInstance::mip_filter`];
     /// the `MIP_FILTER` constant of its lit pipelines).
-    pub mip_filter: crate::frame::MipFilter,
+    pub mip_filter: crate::texture::MipFilter,
     /// How its material blends its detail normal map (a frame may override it); the
     /// `DETAIL_BLEND` constant of its pipelines where it has one.
     pub detail_blend: crate::frame::DetailBlend,
@@ -55,27 +55,6 @@ pub struct GpuInstance {
     /// Group 2 of its LEAN pipelines, LEAN's texture of its normal map
     /// ([`bindings::LEAN_GROUP`]); `None` unless it draws LEAN.
     pub lean_bind_group: Option<wgpu::BindGroup>,
-}
-
-/// The light markers: an octahedron drawn once per light that is on, at its centre in its
-/// colour ([`MarkerUniform`]).
-pub struct GpuMarker {
-    pub positions: wgpu::Buffer,
-    pub indices: wgpu::Buffer,
-    pub index_count: u32,
-    /// `[MarkerUniform; MAX_LIGHTS]`, by the frame's light index.
-    pub lights: wgpu::Buffer,
-    pub bind_group: wgpu::BindGroup,
-}
-
-/// WGSL `Marker` (shaders/marker.wgsl): one light's marker.
-#[repr(C)]
-#[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct MarkerUniform {
-    /// World space, metres ([`crate::frame::FrameParams::marker_position`]); w unused.
-    pub centre: [f32; 4],
-    /// The light's colour with each channel at most 1; a unused.
-    pub color: [f32; 4],
 }
 
 pub struct GpuScene {
@@ -309,16 +288,6 @@ impl SamplerCache {
     }
 }
 
-/// The light marker's geometry: an octahedron of `radius` metres around the origin.
-fn octahedron(radius: f32) -> (Vec<Vec3>, Vec<u32>) {
-    let positions = [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z].map(|v| v * radius).to_vec();
-    let mut indices = vec![];
-    for (a, b) in [(0u32, 4u32), (4, 1), (1, 5), (5, 0)] {
-        indices.extend([b, a, 2, a, b, 3]);
-    }
-    (positions, indices)
-}
-
 /// Uploads what `prepared` holds: its drawn geometry, tangent streams and T/B/N glyph lines
 /// where it made frames, and each texture an instance binds, once, with its mip chain. Needs
 /// no renderer, only its device, queue and `layouts` ([`super::Uploader`]): it may run on any
@@ -344,113 +313,120 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, pre
     let instances = prepared
         .instances
         .iter()
-        .map(|instance| {
-            let material = &scene.materials[instance.material];
-            let object = ObjectUniform::new(instance, material);
-            let uniform = buffer(device, "object", &[object], wgpu::BufferUsages::UNIFORM);
-            let slots = &instance.textures;
-            let base_color = match slots.base_color {
-                Some(t) => textures.get(&prepared, t, counters),
-                None => textures.white(counters),
-            };
-            // Without a metallic-roughness, occlusion, gloss, emissive or clear-coat texture the
-            // base colour view stands in (no upload); the shader then ignores it (flags,
-            // occlusion strength 0).
-            let mut optional = |slot: Option<usize>| match slot {
-                Some(t) => textures.get(&prepared, t, counters),
-                None => base_color.clone(),
-            };
-            let metallic_roughness = optional(slots.metallic_roughness);
-            let occlusion = optional(slots.occlusion);
-            let gloss = optional(slots.gloss);
-            let emissive = optional(slots.emissive);
-            let clearcoat = optional(slots.clearcoat);
-            let clearcoat_roughness = optional(slots.clearcoat_roughness);
-            let clearcoat_normal = optional(slots.clearcoat_normal);
-            let height = optional(slots.height);
-            let correction = optional(slots.bump_correction);
-            let detail = optional(slots.detail);
-            let base_sampler = samplers.get(device, material.base_color_wrap);
-            let detail_sampler = samplers.get(device, material.detail_wrap);
-            let view = wgpu::BindingResource::TextureView;
-            let sampler = wgpu::BindingResource::Sampler;
-            let mut entries = vec![
-                bindings::OBJECT.entry(uniform.as_entire_binding()),
-                bindings::BASE_COLOR_TEXTURE.entry(view(&base_color)),
-                bindings::BASE_COLOR_SAMPLER.entry(sampler(&base_sampler)),
-                bindings::DETAIL_SAMPLER.entry(sampler(&detail_sampler)),
-                bindings::METALLIC_ROUGHNESS_TEXTURE.entry(view(&metallic_roughness)),
-                bindings::OCCLUSION_TEXTURE.entry(view(&occlusion)),
-                bindings::GLOSS_TEXTURE.entry(view(&gloss)),
-                bindings::EMISSIVE_TEXTURE.entry(view(&emissive)),
-                bindings::CLEARCOAT_TEXTURE.entry(view(&clearcoat)),
-                bindings::CLEARCOAT_ROUGHNESS_TEXTURE.entry(view(&clearcoat_roughness)),
-                bindings::CLEARCOAT_NORMAL_TEXTURE.entry(view(&clearcoat_normal)),
-                bindings::HEIGHT_TEXTURE.entry(view(&height)),
-                bindings::DETAIL_NORMAL_TEXTURE.entry(view(&detail)),
-            ];
-            // The normal map or the height map, as the variant needs.
-            let bump = slots.bump.map(|t| textures.get(&prepared, t, counters));
-            if let Some(bump) = &bump {
-                entries.push(bindings::BUMP_TEXTURE.entry(view(bump)));
-                entries.push(bindings::BUMP_CORRECTION_TEXTURE.entry(view(&correction)));
-            }
-            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some(&scene.meshes[instance.mesh].name),
-                layout: layouts.material(instance.variant),
-                entries: &entries,
-            });
-            let lean = instance
-                .mip_filter
-                .reads_moments()
-                .then(|| slots.bump.and_then(|t| textures.lean(&prepared, t, counters)))
-                .flatten();
-            let lean_bind_group = lean.map(|lean| {
-                device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("LEAN moments"),
-                    layout: &layouts.lean,
-                    entries: &[bindings::LEAN_MOMENTS.entry(wgpu::BindingResource::TextureView(&lean))],
-                })
-            });
-            // A mirroring transform turns front faces clockwise on screen; the pipeline's front
-            // face follows, so culling and `front_facing` (the double-sided flip) stay right.
-            GpuInstance {
-                mesh: instance.mesh,
-                variant: instance.variant,
-                cull_back_faces: !material.double_sided,
-                mirrored: instance.mirrored(),
-                shading_model: material.shading_model,
-                parallax_height: instance.textures.height.is_some(),
-                features: object.features(),
-                mip_filter: instance.mip_filter,
-                detail_blend: material.detail_map.map(|d| d.blend).unwrap_or_default(),
-                bind_group,
-                lean_bind_group,
-            }
-        })
+        .map(|instance| upload_instance(layouts, &prepared, instance, &mut textures, &mut samplers, counters))
         .collect();
 
-    let (positions, indices) = octahedron(super::draw::markers::marker_radius(scene));
-    let lights = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("light markers"),
-        size: std::mem::size_of::<[MarkerUniform; MAX_LIGHTS]>() as u64,
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("light marker"),
-        layout: &layouts.marker,
-        entries: &[bindings::MARKERS.entry(lights.as_entire_binding())],
-    });
-    let marker = GpuMarker {
-        positions: buffer(device, "marker positions", &positions, wgpu::BufferUsages::VERTEX),
-        indices: buffer(device, "marker indices", &indices, wgpu::BufferUsages::INDEX),
-        index_count: indices.len() as u32,
-        lights,
-        bind_group,
-    };
+    let marker = GpuMarker::upload(device, layouts, scene);
     let notices = prepared.notices.iter().cloned().chain(textures.notices).collect();
     GpuScene { meshes, instances, marker, notices, prepared, work }
+}
+
+/// Uploads what `instance` binds (its object uniform and textures, once each through
+/// `textures`) and makes its bind groups.
+fn upload_instance(
+    layouts: &Layouts,
+    prepared: &PreparedScene,
+    instance: &PreparedInstance,
+    textures: &mut TextureCache,
+    samplers: &mut SamplerCache,
+    counters: &mut WorkCounters,
+) -> GpuInstance {
+    let scene = &prepared.scene;
+    let material = &scene.materials[instance.material];
+    let object = ObjectUniform::new(instance, material);
+    let device = textures.device;
+    let uniform = buffer(device, "object", &[object], wgpu::BufferUsages::UNIFORM);
+    let slots = &instance.textures;
+    let base_color = match slots.base_color {
+        Some(t) => textures.get(prepared, t, counters),
+        None => textures.white(counters),
+    };
+    // Without a metallic-roughness, occlusion, gloss, emissive or clear-coat texture the
+    // base colour view stands in (no upload); the shader then ignores it (flags,
+    // occlusion strength 0).
+    let mut optional = |slot: Option<usize>| match slot {
+        Some(t) => textures.get(prepared, t, counters),
+        None => base_color.clone(),
+    };
+    let metallic_roughness = optional(slots.metallic_roughness);
+    let occlusion = optional(slots.occlusion);
+    let gloss = optional(slots.gloss);
+    let emissive = optional(slots.emissive);
+    let clearcoat = optional(slots.clearcoat);
+    let clearcoat_roughness = optional(slots.clearcoat_roughness);
+    let clearcoat_normal = optional(slots.clearcoat_normal);
+    let height = optional(slots.height);
+    let correction = optional(slots.bump_correction);
+    let detail = optional(slots.detail);
+    let base_sampler = samplers.get(device, material.base_color_wrap);
+    let detail_sampler = samplers.get(device, material.detail_wrap);
+    let view = wgpu::BindingResource::TextureView;
+    let sampler = wgpu::BindingResource::Sampler;
+    let mut entries = vec![
+        bindings::OBJECT.entry(uniform.as_entire_binding()),
+        bindings::BASE_COLOR_TEXTURE.entry(view(&base_color)),
+        bindings::BASE_COLOR_SAMPLER.entry(sampler(&base_sampler)),
+        bindings::DETAIL_SAMPLER.entry(sampler(&detail_sampler)),
+        bindings::METALLIC_ROUGHNESS_TEXTURE.entry(view(&metallic_roughness)),
+        bindings::OCCLUSION_TEXTURE.entry(view(&occlusion)),
+        bindings::GLOSS_TEXTURE.entry(view(&gloss)),
+        bindings::EMISSIVE_TEXTURE.entry(view(&emissive)),
+        bindings::CLEARCOAT_TEXTURE.entry(view(&clearcoat)),
+        bindings::CLEARCOAT_ROUGHNESS_TEXTURE.entry(view(&clearcoat_roughness)),
+        bindings::CLEARCOAT_NORMAL_TEXTURE.entry(view(&clearcoat_normal)),
+        bindings::HEIGHT_TEXTURE.entry(view(&height)),
+        bindings::DETAIL_NORMAL_TEXTURE.entry(view(&detail)),
+    ];
+    // The normal map or the height map, as the variant needs.
+    let bump = slots.bump.map(|t| textures.get(prepared, t, counters));
+    if let Some(bump) = &bump {
+        entries.push(bindings::BUMP_TEXTURE.entry(view(bump)));
+        entries.push(bindings::BUMP_CORRECTION_TEXTURE.entry(view(&correction)));
+    }
+    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(&scene.meshes[instance.mesh].name),
+        layout: layouts.material(instance.variant),
+        entries: &entries,
+    });
+    let lean_bind_group = lean_bind_group(layouts, prepared, instance, textures, counters);
+    // A mirroring transform turns front faces clockwise on screen; the pipeline's front
+    // face follows, so culling and `front_facing` (the double-sided flip) stay right.
+    GpuInstance {
+        mesh: instance.mesh,
+        variant: instance.variant,
+        cull_back_faces: !material.double_sided,
+        mirrored: instance.mirrored(),
+        shading_model: material.shading_model,
+        parallax_height: instance.textures.height.is_some(),
+        features: object.features(),
+        mip_filter: instance.mip_filter,
+        detail_blend: material.detail_map.map(|d| d.blend).unwrap_or_default(),
+        bind_group,
+        lean_bind_group,
+    }
+}
+
+/// Group 2 of `instance`'s LEAN pipelines, LEAN's texture of its normal map; `None` unless it
+/// draws LEAN.
+fn lean_bind_group(
+    layouts: &Layouts,
+    prepared: &PreparedScene,
+    instance: &PreparedInstance,
+    textures: &mut TextureCache,
+    counters: &mut WorkCounters,
+) -> Option<wgpu::BindGroup> {
+    let lean = instance
+        .mip_filter
+        .reads_moments()
+        .then(|| instance.textures.bump.and_then(|t| textures.lean(prepared, t, counters)))
+        .flatten();
+    lean.map(|lean| {
+        textures.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("LEAN moments"),
+            layout: &layouts.lean,
+            entries: &[bindings::LEAN_MOMENTS.entry(wgpu::BindingResource::TextureView(&lean))],
+        })
+    })
 }
 
 /// Uploads a prepared mesh's streams (already repaired and one entry per vertex).

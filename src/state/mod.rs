@@ -5,6 +5,7 @@
 mod command;
 pub mod interactive;
 mod lighting;
+mod motion;
 pub mod preset;
 mod split;
 
@@ -19,8 +20,7 @@ use crate::frame::{
     SplitFrame,
 };
 use crate::height::Kernel;
-use crate::math::normalize_or;
-use crate::scene::{LightKind, Lights, OrbitCamera, Scene};
+use crate::scene::{Lights, OrbitCamera, Scene};
 
 /// Allowed colour-scale spans of the Difference view, degrees.
 pub const DIFFERENCE_RANGE: std::ops::Range<f32> = 0.01..180.0;
@@ -132,7 +132,17 @@ impl ViewerState {
         self.light_orbit
     }
 
+    /// The one place a command takes effect.
     pub fn apply(&mut self, command: Command) {
+        if let Command::Lighting(command) = command {
+            self.apply_lighting(command);
+        } else if !self.split.apply(command) && !self.apply_motion(command) {
+            self.apply_picture(command);
+        }
+    }
+
+    /// The commands that change the picture itself (bump, views, methods, their settings).
+    fn apply_picture(&mut self, command: Command) {
         match command {
             Command::SetBump(on) => self.shading.bump_enabled = on,
             Command::ToggleBump => self.shading.bump_enabled = !self.shading.bump_enabled,
@@ -143,48 +153,10 @@ impl ViewerState {
             Command::StepStrength(delta) => self.apply(Command::SetStrength(self.shading.strength + delta)),
             Command::SetView(view) => self.shading.view = view,
             Command::CycleView => self.shading.view = self.shading.view.next(),
-            Command::SetLightPosition(p) if p.is_finite() => {
-                let selected = self.selected_light();
-                self.lights[selected].position = p
-            }
-            Command::SetLightPosition(_) => {}
-            Command::DragLight { pixels, viewport_height } => {
-                let selected = self.selected_light();
-                let marker = self.frame_params().marker_position(selected);
-                let depth = (marker - self.camera.eye()).length();
-                let (right, up) = self.camera.right_up();
-                let scale = self.camera.metres_per_pixel(depth, viewport_height);
-                let moved = marker + (pixels.x * right - pixels.y * up) * scale;
-                let light = &mut self.lights[selected];
-                light.position = match light.kind {
-                    LightKind::Point => moved,
-                    LightKind::Directional => normalize_or(moved - self.camera.target, light.position),
-                };
-            }
-            Command::SetLightOrbit(on) => self.light_orbit = on,
-            Command::ToggleLightOrbit => self.light_orbit = !self.light_orbit,
             Command::SetLightMarker(on) => self.shading.show_light_marker = on,
-            Command::OrbitCamera { d_yaw, d_pitch } => self.camera.orbit(d_yaw, d_pitch),
-            Command::Zoom(factor) => self.camera.zoom(factor),
-            Command::PanCamera { pixels, viewport_height } => self.camera.pan(pixels, viewport_height),
-            Command::ResetCamera => self.camera = self.default_camera,
-            Command::PointCamera { yaw, pitch, distance } => self.camera.point(yaw, pitch, distance),
-            Command::Tick(seconds) if self.light_orbit && seconds.is_finite() => {
-                // Turn every light about the vertical axis through the camera target.
-                let rotation = glam::Quat::from_rotation_y(LIGHT_ORBIT_SPEED * seconds);
-                let target = self.camera.target;
-                for light in self.lights.as_mut_slice() {
-                    light.position = match light.kind {
-                        LightKind::Point => target + rotation * (light.position - target),
-                        LightKind::Directional => rotation * light.position,
-                    };
-                }
-            }
-            Command::Tick(_) => {}
             Command::SetTangentMethod(method) => self.scene_options.tangent_method = method,
             Command::SetBumpSource(source) => self.scene_options.bump_source = source,
             Command::SetMipFilter(filter) => self.scene_options.mip_filter = filter,
-            Command::SetSplitMipFilters(filters) => self.split.mip_filters = filters,
             Command::SetKernel(kernel) => self.kernel = kernel,
             Command::SetDifferenceRange(degrees) if degrees.is_finite() => {
                 self.shading.difference_range_deg = degrees.clamp(DIFFERENCE_RANGE.start, DIFFERENCE_RANGE.end)
@@ -195,7 +167,6 @@ impl ViewerState {
             }
             Command::SetShadingOverride(model) => self.shading.shading_override = model,
             Command::SetDetailBlend(method) => self.shading.detail_blend = method,
-            Command::SetSplitDetailBlends(methods) => self.split.detail_blends = methods,
             Command::SetShadingMode(mode) => self.shading.mode = mode,
             Command::SetWireframe(on) => self.shading.wireframe = on,
             Command::SetParallax(technique) => self.shading.parallax.technique = technique,
@@ -214,36 +185,16 @@ impl ViewerState {
             Command::SetDisplacement(level) => {
                 self.scene_options.displacement.level = level.min(MAX_DISPLACEMENT_LEVEL)
             }
-            Command::SetSplitDisplacement(technique, level) => {
-                self.split.parallax[0] = technique;
-                self.split.displacement_level = level.clamp(1, MAX_DISPLACEMENT_LEVEL);
-            }
             Command::ToggleWireframe => self.shading.wireframe = !self.shading.wireframe,
             Command::SetGlyphs(on) => self.shading.tbn_glyphs = on,
             Command::ToggleGlyphs => self.shading.tbn_glyphs = !self.shading.tbn_glyphs,
-            Command::SetSplit(on) => self.split.enabled = on,
-            Command::ToggleSplit => self.split.enabled = !self.split.enabled,
-            Command::SetSplitDifference(difference) => self.split.difference = difference,
-            Command::SetSplitDivider(x) if x.is_finite() => self.split.divider = x.clamp(0.0, 1.0),
-            Command::SetSplitDivider(_) => {}
-            Command::SetSplitViews(views) => self.split.views = views,
-            Command::SetSplitStrengths(strengths) if strengths.iter().all(|s| s.is_finite()) => {
-                self.split.strengths = strengths.map(|s| s.clamp(*STRENGTH_RANGE.start(), *STRENGTH_RANGE.end()))
-            }
-            Command::SetSplitStrengths(_) => {}
-            Command::SetSplitModes(modes) => self.split.modes = modes,
-            Command::SetSplitTangentMethods(methods) => self.split.tangent_methods = methods,
-            Command::SetSplitConventions(conventions) => self.split.conventions = conventions,
-            Command::SetSplitBumpSources(sources) => self.split.bump_sources = sources,
-            Command::SetSplitParallax(techniques) => self.split.parallax = techniques,
-            Command::SetSplitMistakes(mistakes) => self.split.mistakes = mistakes,
             Command::SetMistake(mistake) => self.shading.mistake = mistake,
             Command::SetLegacy(legacy) => {
                 let size = legacy.cube_map_size.filter(|s| crate::frame::CUBE_MAP_SIZES.contains(s));
                 self.shading.legacy = LegacySettings { cube_map_size: size, ..legacy };
             }
-            Command::SetSplitLightingSpaces(spaces) => self.split.lighting_spaces = spaces,
-            Command::Lighting(command) => self.apply_lighting(command),
+            // The lights, their motion and the camera's, and the split view: applied before.
+            _ => {}
         }
     }
 }

@@ -1,13 +1,15 @@
 //! The split view: two pictures side by side that differ in one thing, in uniforms (one scene
 //! upload) or in GPU data (a second upload for the right half).
 
+use super::Command;
 use crate::frame::{
-    BumpSource, DetailBlend, LightingSpace, MipFilter, Mistake, Parallax, SceneOptions, ShadingMode, ShadingSettings,
-    ViewMode,
+    BumpSource, DetailBlend, LightingSpace, MAX_DISPLACEMENT_LEVEL, Mistake, Parallax, STRENGTH_RANGE, SceneOptions,
+    ShadingMode, ShadingSettings, ViewMode,
 };
 use crate::names::Named;
 use crate::scene::GreenAxis;
 use crate::tangent::TangentMethod;
+use crate::texture::MipFilter;
 
 /// What the split view's two halves differ in. Bump, view, strength, mode, parallax and
 /// lighting space are uniforms or pipeline variants, so both halves share one scene upload; the others change GPU data
@@ -112,6 +114,37 @@ impl Default for SplitView {
 }
 
 impl SplitView {
+    /// Applies `command` if it is one of the split view's; whether it was.
+    pub(super) fn apply(&mut self, command: Command) -> bool {
+        match command {
+            Command::SetSplitMipFilters(filters) => self.mip_filters = filters,
+            Command::SetSplitDetailBlends(methods) => self.detail_blends = methods,
+            Command::SetSplitDisplacement(technique, level) => {
+                self.parallax[0] = technique;
+                self.displacement_level = level.clamp(1, MAX_DISPLACEMENT_LEVEL);
+            }
+            Command::SetSplit(on) => self.enabled = on,
+            Command::ToggleSplit => self.enabled = !self.enabled,
+            Command::SetSplitDifference(difference) => self.difference = difference,
+            Command::SetSplitDivider(x) if x.is_finite() => self.divider = x.clamp(0.0, 1.0),
+            Command::SetSplitDivider(_) => {}
+            Command::SetSplitViews(views) => self.views = views,
+            Command::SetSplitStrengths(strengths) if strengths.iter().all(|s| s.is_finite()) => {
+                self.strengths = strengths.map(|s| s.clamp(*STRENGTH_RANGE.start(), *STRENGTH_RANGE.end()))
+            }
+            Command::SetSplitStrengths(_) => {}
+            Command::SetSplitModes(modes) => self.modes = modes,
+            Command::SetSplitTangentMethods(methods) => self.tangent_methods = methods,
+            Command::SetSplitConventions(conventions) => self.conventions = conventions,
+            Command::SetSplitBumpSources(sources) => self.bump_sources = sources,
+            Command::SetSplitParallax(techniques) => self.parallax = techniques,
+            Command::SetSplitMistakes(mistakes) => self.mistakes = mistakes,
+            Command::SetSplitLightingSpaces(spaces) => self.lighting_spaces = spaces,
+            _ => return false,
+        }
+        true
+    }
+
     /// The left and right shading: `current` with the chosen difference applied.
     pub fn shading(&self, current: &ShadingSettings) -> [ShadingSettings; 2] {
         let side = |i: usize| {
