@@ -26,6 +26,12 @@ fn to_world(position: vec3<f32>, normal: vec3<f32>, uv: vec2<f32>, tangent: vec4
     return out;
 }
 
+// shading::height_sample: a height map's texel as a height sample, 0..1 of the full range: 16
+// bits in red (high byte) and green (low byte), TextureKind::Height.
+fn height_sample(texel: vec4<f32>) -> f32 {
+    return (texel.r * 65280.0 + texel.g * 255.0) / 65535.0;
+}
+
 // ---- guarded vector helpers (src/math.rs) ----
 
 fn normalize_or(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {

@@ -67,7 +67,7 @@ fn emboss_brightness(slope: vec2<f32>, light: vec2<f32>) -> f32 {
 // The height sample (0..1, after the depth flip) at mip 0, `offset` from `uv`.
 fn emboss_height(uv: vec2<f32>, offset: vec2<f32>) -> f32 {
     let texel = textureSampleLevel(height_texture, detail_sampler, uv + offset, 0.0);
-    let sample = (texel.r * 65280.0 + texel.g * 255.0) / 65535.0;
+    let sample = height_sample(texel);
     return select(sample, 1.0 - sample, (object.flags & DEPTH_MAP) != 0u);
 }
 

@@ -74,7 +74,7 @@ const LIGHTING_VIEW: u32 = 2u;
 // lit views, else world space (0).
 override LIGHTING_SPACE: u32 = 0u;
 
-// Tangent-space lighting's inputs at this fragment (fs_normal_mapped_tangent_space sets them):
+// Tangent-space lighting's inputs at this fragment (normal_mapped_surface sets them when LIGHTING_SPACE is tangent):
 // the map's normal after strength, and the triangle's inverse frame (world → tangent space).
 struct TangentSpaceInputs {
     normal: vec3<f32>,

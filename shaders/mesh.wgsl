@@ -8,8 +8,8 @@
 //   vs_plain  + fs_plain          mesh without tangents, material without normal map
 //   vs_tangent + fs_tangent       mesh with tangents, material without normal map
 //   vs_tangent + fs_normal_mapped mesh with tangents and a tangent-space normal map, read at
-//                                 the UV the parallax family shifts (parallax.wgsl)
-//   vs_tangent + fs_normal_mapped_tangent_space  the same, lit in tangent space
+//                                 the UV the parallax family shifts (parallax.wgsl), lit in
+//                                 any space (LIGHTING_SPACE)
 //   vs_plain  + fs_object_space   object-space normal map, no tangents
 //   vs_plain  + fs_height_bump    bump from the height map in screen space, no tangents
 //
@@ -57,8 +57,23 @@ fn tangent_surface(in: VertexOutput, front_facing: bool) -> vec4<f32> {
     return surface_color(in, n, frame_tb, base, clearcoat_normal(in, n, frame_tb));
 }
 
+// A tangent-space normal map read at the UV the parallax family shifts. Lit in tangent space
+// (LIGHTING_SPACE, blinn_phong's LIGHTING_TANGENT branch): the same normal, frame and views,
+// with the light and view vectors taken by the triangle's inverse frame from screen-space
+// derivatives (the ARB-era tangent-space shaders take light − P per vertex and interpolate;
+// with one frame per triangle that is the frame times light − P at the pixel, exactly).
 fn normal_mapped_surface(vertex: VertexOutput, front_facing: bool) -> vec4<f32> {
     let n = geometric_normal(vertex.world_normal, front_facing);
+    if LIGHTING_SPACE == LIGHTING_TANGENT {
+        tangent_space.to_tangent = triangle_inverse_tbn(
+            dpdx(vertex.world_position),
+            dpdy(vertex.world_position),
+            dpdx(vertex.uv),
+            dpdy(vertex.uv),
+            n,
+        );
+        tangent_space.normal = vec3<f32>(0.0, 0.0, 1.0);
+    }
     var in = vertex;
     in.uv = parallax_uv(vertex.uv, n, vertex.world_position);
     let frame_tb = mistaken_frame(in.world_tangent, n);
@@ -69,38 +84,9 @@ fn normal_mapped_surface(vertex: VertexOutput, front_facing: bool) -> vec4<f32> 
         let strength = frame.strength * object.normal_scale;
         let nt = detailed_normal(tangent_space_normal(texel, strength, mistaken_flags(object.flags)), in.uv);
         n_shading = tangent_to_world(frame_tb, n_shading, nt);
-    }
-    set_mip_variance_from_normal(n_shading);
-    return surface_color(in, n, frame_tb, n_shading, clearcoat_normal(in, n, frame_tb));
-}
-
-// fs_normal_mapped lit in tangent space (blinn_phong's LIGHTING_TANGENT branch): the same
-// normal, frame and views, with the light and view vectors taken by the triangle's inverse
-// frame from screen-space derivatives (the ARB-era tangent-space shaders take light − P per
-// vertex and interpolate; with one frame per triangle that is the frame times light − P at
-// the pixel, exactly).
-fn normal_mapped_tangent_space_surface(vertex: VertexOutput, front_facing: bool) -> vec4<f32> {
-    let n = geometric_normal(vertex.world_normal, front_facing);
-    tangent_space.to_tangent = triangle_inverse_tbn(
-        dpdx(vertex.world_position),
-        dpdy(vertex.world_position),
-        dpdx(vertex.uv),
-        dpdy(vertex.uv),
-        n,
-    );
-    var in = vertex;
-    in.uv = parallax_uv(vertex.uv, n, vertex.world_position);
-    let frame_tb = mistaken_frame(in.world_tangent, n);
-    let texel = mistaken_texel(lean_texel(sample_normal_map(in.uv), in.uv, frame.strength * object.normal_scale));
-    set_mip_variance_from_texel(texel.texel, frame.strength * object.normal_scale);
-    var n_shading = base_normal(vertex.world_normal, front_facing, n);
-    tangent_space.normal = vec3<f32>(0.0, 0.0, 1.0);
-    if frame.bump_enabled != 0u {
-        let strength = frame.strength * object.normal_scale;
-        let flags = mistaken_flags(object.flags);
-        let nt = detailed_normal(tangent_space_normal(texel, strength, flags), in.uv);
-        n_shading = tangent_to_world(frame_tb, n_shading, nt);
-        tangent_space.normal = nt;
+        if LIGHTING_SPACE == LIGHTING_TANGENT {
+            tangent_space.normal = nt;
+        }
     }
     set_mip_variance_from_normal(n_shading);
     return surface_color(in, n, frame_tb, n_shading, clearcoat_normal(in, n, frame_tb));
@@ -124,12 +110,11 @@ fn object_space_surface(in: VertexOutput, front_facing: bool) -> vec4<f32> {
 }
 
 // Blinn's bump from a height field without tangents: Mikkelsen's surface gradient from
-// screen-space derivatives of the position and of the height (metres). Heights are 16 bits in
-// red (high byte) and green (low byte), TextureKind::Height.
+// screen-space derivatives of the position and of the height (metres, height_sample).
 fn height_bump_surface(in: VertexOutput, front_facing: bool) -> vec4<f32> {
     let n = geometric_normal(in.world_normal, front_facing);
     let texel = textureSample(bump_texture, detail_sampler, in.uv);
-    var sample = (texel.r * 65280.0 + texel.g * 255.0) / 65535.0;
+    var sample = height_sample(texel);
     if (object.flags & DEPTH_MAP) != 0u {
         sample = 1.0 - sample;
     }
@@ -165,11 +150,6 @@ fn fs_tangent(in: Varyings, @builtin(front_facing) front_facing: bool) -> @locat
 @fragment
 fn fs_normal_mapped(in: Varyings, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     return normal_mapped_surface(fragment_inputs(in), front_facing);
-}
-
-@fragment
-fn fs_normal_mapped_tangent_space(in: Varyings, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
-    return normal_mapped_tangent_space_surface(fragment_inputs(in), front_facing);
 }
 
 @fragment

@@ -8,9 +8,10 @@ use std::collections::HashMap;
 use super::bindings;
 use super::shaders::{self, Wgsl};
 use crate::counters::WorkCounters;
-use crate::frame::{DetailBlend, LegacyLook, LegacySettings, LightingSpace, MipFilter, Mistake, Parallax, ViewMode};
+use crate::frame::{DetailBlend, LegacyLook, LegacySettings, LightingSpace, Mistake, Parallax, ViewMode};
 use crate::prepare::Variant;
 use crate::scene::ShadingModel;
+use crate::texture::MipFilter;
 
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -233,55 +234,10 @@ fn build(
         _ => wgpu::FrontFace::Ccw,
     };
     let (group1, vs, fs, buffers, cull_mode, constants): (_, _, _, &[_], _, Vec<(&str, f64)>) = match key.pass {
-        Pass::Mesh {
-            variant,
-            cull_back_faces,
-            view,
-            lighting,
-            parallax,
-            mistake,
-            legacy,
-            lighting_space,
-            features,
-            mip_filter,
-            detail_blend,
-            ..
-        } => {
-            let (vs, fs, buffers): (_, _, &[_]) = match variant {
-                Variant::NormalMapped if lighting_space == LightingSpace::Tangent => {
-                    ("vs_tangent", "fs_normal_mapped_tangent_space", &[POSITION, NORMAL, UV, TANGENT])
-                }
-                Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
-                Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
-                Variant::NormalMapped => ("vs_tangent", "fs_normal_mapped", &[POSITION, NORMAL, UV, TANGENT]),
-                Variant::ObjectSpace => ("vs_plain", "fs_object_space", &[POSITION, NORMAL, UV]),
-                Variant::HeightBump => ("vs_plain", "fs_height_bump", &[POSITION, NORMAL, UV]),
-            };
+        Pass::Mesh { variant, cull_back_faces, .. } => {
+            let (vs, fs, buffers) = mesh_entry_points(variant);
             let cull = cull_back_faces.then_some(wgpu::Face::Back);
-            let mut constants = vec![
-                encodes_srgb,
-                ("VIEW", f64::from(view.shader_index())),
-                ("MATERIAL_FEATURES", f64::from(features)),
-            ];
-            constants.extend(lighting.map(|model| ("SHADING_MODEL", f64::from(model.shader_index()))));
-            if parallax != Parallax::Off {
-                constants.push(("PARALLAX", f64::from(parallax.shader_index())));
-            }
-            if mistake != Mistake::None {
-                constants.push(("MISTAKE", f64::from(mistake.shader_index())));
-            }
-            if legacy.look != LegacyLook::Off {
-                constants.push(("LEGACY", f64::from(legacy.shader_index())));
-            }
-            if lighting_space != LightingSpace::World {
-                constants.push(("LIGHTING_SPACE", f64::from(lighting_space.shader_index())));
-            }
-            if mip_filter.widens() {
-                constants.push(("MIP_FILTER", f64::from(mip_filter.shader_index())));
-            }
-            if detail_blend != DetailBlend::default() {
-                constants.push(("DETAIL_BLEND", f64::from(detail_blend.shader_index())));
-            }
+            let constants = mesh_constants(key.pass, encodes_srgb);
             (layouts.material(variant), vs, fs, buffers, cull, constants)
         }
         Pass::Difference { variant, cull_back_faces, .. } => {
@@ -344,4 +300,58 @@ fn build(
         multiview_mask: None,
         cache: None,
     })
+}
+
+/// The vertex and fragment entry points and the vertex streams of a mesh pass of `variant`
+/// (the lighting space is a pipeline constant, `LIGHTING_SPACE`).
+fn mesh_entry_points(variant: Variant) -> (&'static str, &'static str, &'static [wgpu::VertexBufferLayout<'static>]) {
+    match variant {
+        Variant::Plain => ("vs_plain", "fs_plain", &[POSITION, NORMAL, UV]),
+        Variant::Tangent => ("vs_tangent", "fs_tangent", &[POSITION, NORMAL, UV, TANGENT]),
+        Variant::NormalMapped => ("vs_tangent", "fs_normal_mapped", &[POSITION, NORMAL, UV, TANGENT]),
+        Variant::ObjectSpace => ("vs_plain", "fs_object_space", &[POSITION, NORMAL, UV]),
+        Variant::HeightBump => ("vs_plain", "fs_height_bump", &[POSITION, NORMAL, UV]),
+    }
+}
+
+/// The pipeline constants of a mesh pass (`pass` is a [`Pass::Mesh`]): the view, the
+/// material's features and each variant choice that is not its default.
+fn mesh_constants(pass: Pass, encodes_srgb: (&'static str, f64)) -> Vec<(&'static str, f64)> {
+    let Pass::Mesh {
+        view,
+        lighting,
+        parallax,
+        mistake,
+        legacy,
+        lighting_space,
+        features,
+        mip_filter,
+        detail_blend,
+        ..
+    } = pass
+    else {
+        return vec![encodes_srgb];
+    };
+    let mut constants =
+        vec![encodes_srgb, ("VIEW", f64::from(view.shader_index())), ("MATERIAL_FEATURES", f64::from(features))];
+    constants.extend(lighting.map(|model| ("SHADING_MODEL", f64::from(model.shader_index()))));
+    if parallax != Parallax::Off {
+        constants.push(("PARALLAX", f64::from(parallax.shader_index())));
+    }
+    if mistake != Mistake::None {
+        constants.push(("MISTAKE", f64::from(mistake.shader_index())));
+    }
+    if legacy.look != LegacyLook::Off {
+        constants.push(("LEGACY", f64::from(legacy.shader_index())));
+    }
+    if lighting_space != LightingSpace::World {
+        constants.push(("LIGHTING_SPACE", f64::from(lighting_space.shader_index())));
+    }
+    if mip_filter.widens() {
+        constants.push(("MIP_FILTER", f64::from(mip_filter.shader_index())));
+    }
+    if detail_blend != DetailBlend::default() {
+        constants.push(("DETAIL_BLEND", f64::from(detail_blend.shader_index())));
+    }
+    constants
 }

@@ -102,16 +102,8 @@ pub const ALL: [(Wgsl, &[&str]); 8] = [
 ];
 
 /// The mesh pass's entry points, the same in each of its modules.
-const MESH_ENTRY_POINTS: [&str; 8] = [
-    "vs_plain",
-    "vs_tangent",
-    "fs_plain",
-    "fs_tangent",
-    "fs_normal_mapped",
-    "fs_normal_mapped_tangent_space",
-    "fs_object_space",
-    "fs_height_bump",
-];
+const MESH_ENTRY_POINTS: [&str; 7] =
+    ["vs_plain", "vs_tangent", "fs_plain", "fs_tangent", "fs_normal_mapped", "fs_object_space", "fs_height_bump"];
 
 #[cfg(test)]
 mod tests {
