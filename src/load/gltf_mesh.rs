@@ -117,7 +117,6 @@ pub fn primitive_mesh(
     budget.charge(mesh_bytes(primitive)).map_err(|over| {
         LoadError::new(path, format!("{name}: the primitive's accessors declare a mesh that {over}"))
     })?;
-    let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
     let mut mesh = Mesh::empty(name);
     let draco = match primitive.extension_value("KHR_draco_mesh_compression") {
         Some(extension) => Some(
@@ -163,25 +162,9 @@ pub fn primitive_mesh(
     transform_uvs(&mut mesh.uvs, uv.offset, uv.rotation, uv.scale);
     mesh.tangents =
         attribute!(Semantic::Tangents, AccessorUse::Tangents, 4).map(|t| t.into_iter().map(Vec4::from).collect());
-    let list: Vec<u32> = match &draco {
+    let list = match &draco {
         Some(decoded) => decoded.indices.clone(),
-        None => match primitive.indices() {
-            // The rules first: the gltf crate's index reader panics on what glTF forbids.
-            Some(accessor) => {
-                let index = accessor.index();
-                check_accessor(document.as_json(), index, AccessorUse::Indices, buffers)
-                    .map_err(|p| LoadError::new(path, format!("{name}: index accessor {index} {p}")))?;
-                let indices = reader.read_indices();
-                let indices = indices
-                    .ok_or_else(|| LoadError::new(path, format!("{name}: index accessor {index} has no data")))?
-                    .into_u32();
-                let mut list = try_vec(accessor.count())
-                    .ok_or_else(|| LoadError::new(path, format!("{name}: no memory for index accessor {index}")))?;
-                list.extend(indices);
-                list
-            }
-            None => (0..mesh.positions.len() as u32).collect(),
-        },
+        None => accessor_indices(document, primitive, buffers, mesh.positions.len(), (name, path))?,
     };
     mesh.indices = triangle_list(primitive.mode(), &list);
     let count = mesh.positions.len();
@@ -195,6 +178,35 @@ pub fn primitive_mesh(
     }
     mesh.normals.iter_mut().for_each(|n| *n = normalize_or(*n, Vec3::Z));
     Ok(Some(mesh))
+}
+
+/// The index list of a primitive without Draco: its index accessor's (checked by the rules
+/// first), else `0..vertex_count`. Errors name the primitive (`name`) and the file.
+fn accessor_indices(
+    document: &gltf::Document,
+    primitive: &gltf::Primitive,
+    buffers: &[Vec<u8>],
+    vertex_count: usize,
+    (name, path): (&str, &Path),
+) -> Result<Vec<u32>, LoadError> {
+    let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
+    Ok(match primitive.indices() {
+        // The rules first: the gltf crate's index reader panics on what glTF forbids.
+        Some(accessor) => {
+            let index = accessor.index();
+            check_accessor(document.as_json(), index, AccessorUse::Indices, buffers)
+                .map_err(|p| LoadError::new(path, format!("{name}: index accessor {index} {p}")))?;
+            let indices = reader.read_indices();
+            let indices = indices
+                .ok_or_else(|| LoadError::new(path, format!("{name}: index accessor {index} has no data")))?
+                .into_u32();
+            let mut list = try_vec(accessor.count())
+                .ok_or_else(|| LoadError::new(path, format!("{name}: no memory for index accessor {index}")))?;
+            list.extend(indices);
+            list
+        }
+        None => (0..vertex_count as u32).collect(),
+    })
 }
 
 /// Bytes of the [`Mesh`] a primitive makes at most, from its accessors' declared counts:

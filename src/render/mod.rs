@@ -30,6 +30,7 @@ pub mod shaders;
 pub mod srgb_copy;
 mod targets;
 pub mod text;
+mod texture_cache;
 pub mod timing;
 mod uniforms;
 pub mod upload;

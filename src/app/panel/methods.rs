@@ -2,8 +2,8 @@
 //! texture conventions and shading model per material, and what `bumpview check` finds.
 
 use bumpview::check::GreenConvention;
-use bumpview::frame::BumpSource;
 use bumpview::frame::ViewMode;
+use bumpview::frame::{BumpSource, SceneOptions};
 use bumpview::height::{Border, Kernel};
 use bumpview::names::Named;
 use bumpview::scene::camera::{MAX_DISTANCE, MIN_DISTANCE};
@@ -167,6 +167,13 @@ pub(super) fn conventions(ui: &mut egui::Ui, state: &ViewerState, materials: &[M
     if new != old {
         actions.push(Command::SetMaterialOverrides { material: target, overrides: new }.into());
     }
+    conventions_in_use(ui, options, materials);
+    shading_model(ui, state, actions);
+    super::detail::detail(ui, state, materials.iter().any(|m| m.detail_map.is_some()), actions);
+}
+
+/// What each material is drawn with (after overrides), `*` marking its own settings.
+fn conventions_in_use(ui: &mut egui::Ui, options: &SceneOptions, materials: &[Material]) {
     ui.weak("in use (after overrides); * marks a material with its own settings");
     egui::Grid::new("conventions in use").striped(true).num_columns(2).show(ui, |ui| {
         for (index, material) in materials.iter().enumerate() {
@@ -177,6 +184,10 @@ pub(super) fn conventions(ui: &mut egui::Ui, state: &ViewerState, materials: &[M
             ui.end_row();
         }
     });
+}
+
+/// The shading model for every material: the material's own (auto) or one for all.
+fn shading_model(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
     let shading_name = |m: Option<ShadingModel>| match m {
         None => "auto (glTF: metallic-roughness, else Blinn-Phong)",
         Some(ShadingModel::BlinnPhong) => "Blinn-Phong",
@@ -191,7 +202,6 @@ pub(super) fn conventions(ui: &mut egui::Ui, state: &ViewerState, materials: &[M
     if shading != state.shading.shading_override {
         actions.push(Command::SetShadingOverride(shading).into());
     }
-    super::detail::detail(ui, state, materials.iter().any(|m| m.detail_map.is_some()), actions);
 }
 
 /// "index: name" of material `index`.

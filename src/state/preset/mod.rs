@@ -31,8 +31,10 @@ use crate::state::ViewerState;
 
 mod checked;
 mod sections;
+mod split_section;
 
 pub use sections::*;
+pub use split_section::SplitPreset;
 
 /// The preset format this code writes and reads.
 pub const FORMAT_VERSION: u32 = 1;
