@@ -419,20 +419,20 @@ fn file_uses(sources: &[Source]) -> BTreeSet<(FileModule, FileModule)> {
 fn circles(sources: &[Source]) -> Vec<String> {
     let uses = file_uses(sources);
     let name = |(_, module): &FileModule| if module.is_empty() { "(crate root)".to_owned() } else { module.join("::") };
+    let used_by = |from: &FileModule| {
+        uses.range((from.clone(), (from.0, vec![]))..)
+            .take_while(|(a, _)| a == from)
+            .map(|(_, b)| b.clone())
+            .collect::<Vec<_>>()
+    };
+    // Depth first from each file; a use of a file still on the path closes a circle.
     let mut finished = BTreeSet::new();
     let mut found = vec![];
     for (start, _) in &uses {
-        let mut stack: Vec<(FileModule, Vec<FileModule>)> = vec![];
-        let next = |from: &FileModule| {
-            uses.range((from.clone(), (from.0, vec![]))..)
-                .take_while(|(a, _)| a == from)
-                .map(|(_, b)| b.clone())
-                .collect::<Vec<_>>()
-        };
         if finished.contains(start) {
             continue;
         }
-        stack.push((start.clone(), next(start)));
+        let mut stack: Vec<(FileModule, Vec<FileModule>)> = vec![(start.clone(), used_by(start))];
         while let Some((file, pending)) = stack.last_mut() {
             let Some(used) = pending.pop() else {
                 finished.insert(file.clone());
@@ -443,7 +443,7 @@ fn circles(sources: &[Source]) -> Vec<String> {
                 let circle: Vec<String> = stack[at..].iter().map(|(f, _)| name(f)).chain([name(&used)]).collect();
                 found.push(circle.join(" → "));
             } else if !finished.contains(&used) {
-                let after = next(&used);
+                let after = used_by(&used);
                 stack.push((used, after));
             }
         }
