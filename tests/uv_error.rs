@@ -12,8 +12,9 @@ fn error_of(rows: &[bumpview::report::uv_error::UvError], technique: Parallax, l
     rows.iter().find(|r| r.technique == technique && r.layers == Some(layers)).map(|r| r.mean).expect("row")
 }
 
-/// Steep, occlusion and relief: the mean UV error at 8 layers is below that at 4, and so on
-/// up to 64, at 45° and 70° (a search of more layers brackets the crossing more tightly).
+/// Every search (steep, occlusion, relief): the mean UV error at 8 layers is below that at 4,
+/// and so on up to 64, at 45° and 70° (a search of more layers brackets the crossing more
+/// tightly).
 #[test]
 fn each_search_gets_closer_as_its_layers_grow() {
     let relief = Relief::wall();
@@ -21,7 +22,7 @@ fn each_search_gets_closer_as_its_layers_grow() {
     let rows = study(&relief, &[45.0, 70.0], &layers, N);
     for angle in [45.0, 70.0] {
         let at: Vec<_> = rows.iter().filter(|r| r.angle_deg == angle).copied().collect();
-        for technique in [Parallax::Steep, Parallax::Occlusion, Parallax::Relief] {
+        for technique in Parallax::shifting().filter(|t| t.marches()) {
             let means = layers.map(|n| error_of(&at, technique, n));
             assert!(means.windows(2).all(|w| w[1] < w[0]), "{technique:?} at {angle}°: {means:?}");
             assert!(means.iter().all(|m| m.is_finite()));
@@ -39,9 +40,7 @@ fn face_on_and_depth_zero_have_no_uv_error() {
     for (relief, angles) in [(&wall, vec![0.0]), (&flat, vec![0.0, 45.0, 70.0, 85.0])] {
         for angle in angles {
             let hits: Vec<_> = points.iter().map(|&uv| relief.exact(uv, angle)).collect();
-            for technique in
-                [Parallax::Offset, Parallax::OffsetLimited, Parallax::Steep, Parallax::Occlusion, Parallax::Relief]
-            {
+            for technique in Parallax::shifting() {
                 for layers in [Some(4), Some(64)] {
                     let e = uv_error(relief, &points, &hits, angle, (technique, layers));
                     assert_eq!(

@@ -61,7 +61,7 @@ pub fn march(settings: &ParallaxSettings, inputs: &MarchInputs, height: impl Fn(
     let (n, v) = (inputs.normal, inputs.view_dir);
     let gradients = uv_gradients(inputs);
     let Some((grad_u, grad_v)) = gradients
-        .filter(|_| settings.technique != Parallax::Off && inputs.depth_m != 0.0 && inputs.depth_m.is_finite())
+        .filter(|_| settings.technique.shifts() && inputs.depth_m != 0.0 && inputs.depth_m.is_finite())
     else {
         return unshifted;
     };
@@ -100,23 +100,26 @@ pub fn march(settings: &ParallaxSettings, inputs: &MarchInputs, height: impl Fn(
                     let w = after / (after - before);
                     t_prev * w + t * (1.0 - w)
                 }
-                Parallax::Relief if i > 0 => {
-                    let (mut low, mut high) = (t_prev, t);
-                    for _ in 0..settings.steps.min(MAX_PARALLAX_STEPS) {
-                        let mid = 0.5 * (low + high);
-                        if mid >= depth_at(mid) {
-                            high = mid;
-                        } else {
-                            low = mid;
-                        }
-                    }
-                    high
-                }
+                Parallax::Relief if i > 0 => binary_search(t_prev, t, settings.steps, depth_at),
                 _ => t,
             };
             done(layers, i, uv_at(t_hit), t_hit)
         }
     }
+}
+
+/// Relief mapping's binary search between depths `low` (above the relief) and `high`:
+/// `steps` halvings (at most [`MAX_PARALLAX_STEPS`]), the last depth at or below it.
+fn binary_search(mut low: f32, mut high: f32, steps: u32, depth_at: impl Fn(f32) -> f32) -> f32 {
+    for _ in 0..steps.min(MAX_PARALLAX_STEPS) {
+        let mid = 0.5 * (low + high);
+        if mid >= depth_at(mid) {
+            high = mid;
+        } else {
+            low = mid;
+        }
+    }
+    high
 }
 
 /// `uv` with the axes `inputs.clamp` names held in 0..1.
@@ -196,6 +199,7 @@ pub fn soft_shadow(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::names::Named;
 
     /// A flat surface in the z = 0 plane, u along +x and v along −y, one UV unit per metre,
     /// seen from direction `view_dir`.
@@ -235,7 +239,7 @@ mod tests {
 
     #[test]
     fn face_on_off_and_depth_zero_do_not_shift() {
-        for technique in [Parallax::Off, Parallax::Offset, Parallax::Steep, Parallax::Relief] {
+        for &technique in Parallax::all() {
             let m = march(&settings(technique, 8), &inputs(Vec3::Z), |uv| uv.x.fract());
             assert_eq!(m.uv, Vec2::new(0.5, 0.5), "{technique:?}");
             let flat = MarchInputs { depth_m: 0.0, ..inputs(Vec3::new(1.0, 0.0, 0.2).normalize()) };
@@ -249,7 +253,7 @@ mod tests {
         let views = [Vec3::X, Vec3::new(1.0, 0.0, -0.3).normalize(), Vec3::new(0.0, 1.0, 1e-4).normalize()];
         for view in views {
             for layers in [1, 256] {
-                for technique in [Parallax::Offset, Parallax::OffsetLimited, Parallax::Steep, Parallax::Occlusion] {
+                for technique in Parallax::shifting() {
                     let clamped = MarchInputs { clamp: [true; 2], ..inputs(view) };
                     let m = march(&settings(technique, layers), &clamped, |uv| 0.5 + 0.5 * (uv.x * 40.0).sin());
                     assert!(m.uv.is_finite() && m.depth.is_finite(), "{technique:?} {view} {layers}: {m:?}");
@@ -273,7 +277,7 @@ mod tests {
         let floor = |_: Vec2| 0.5;
         let ridge = |uv: Vec2| if (0.52..0.56).contains(&uv.x) { 1.0 } else { 0.5 };
         let low_light = Vec3::new(1.0, 0.0, 0.3).normalize();
-        for technique in [Parallax::Steep, Parallax::Occlusion, Parallax::Relief] {
+        for technique in Parallax::shifting().filter(|t| t.marches()) {
             let hit = march(&shadowed(technique, 16), &face_on, floor);
             let light_ts = light_in_tangent_space(&face_on, low_light);
             assert_eq!(soft_shadow(&shadowed(technique, 16), &face_on, &hit, light_ts, floor), 1.0);

@@ -264,7 +264,7 @@ fn build(
                 ("MATERIAL_FEATURES", f64::from(features)),
             ];
             constants.extend(lighting.map(|model| ("SHADING_MODEL", f64::from(model.shader_index()))));
-            if parallax != Parallax::Off {
+            if parallax.shifts() {
                 constants.push(("PARALLAX", f64::from(parallax.shader_index())));
             }
             if mistake != Mistake::None {

@@ -178,7 +178,7 @@ pub fn study(relief: &Relief, angles_deg: &[f32], layers: &[u32], n: u32) -> Vec
     let mut rows = Vec::new();
     for &angle in angles_deg {
         let hits: Vec<ExactHit> = points.iter().map(|&uv| relief.exact(uv, angle)).collect();
-        for case in cases(layers).into_iter().filter(|(t, _)| *t != Parallax::Off) {
+        for case in cases(layers).into_iter().filter(|(t, _)| t.shifts()) {
             rows.push(uv_error(relief, &points, &hits, angle, case));
         }
     }

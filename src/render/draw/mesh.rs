@@ -51,7 +51,7 @@ fn drawn_pass(instance: &GpuInstance, scene: &GpuScene, shading: &ShadingSetting
         return Pass::Difference { variant, cull_back_faces, mirrored };
     }
     let lighting = shading.view.is_lit().then(|| shading.shading_override.unwrap_or(instance.shading_model));
-    let parallax = if instance.parallax_height { shading.parallax.technique } else { Parallax::Off };
+    let parallax = if instance.parallax_height { shading.parallax.technique } else { Parallax::default() };
     let legacy = if shading.view.is_lit() { shading.legacy } else { LegacySettings::default() };
     let (view, mistake) = (shading.view, shading.mistake);
     // As chain::shade decides: the classic model on tangent-space normal-mapped surfaces.
