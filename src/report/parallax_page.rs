@@ -105,8 +105,7 @@ pub fn markdown(page: &ParallaxPage) -> String {
         list
     });
     for specimen in &specimens {
-        let _ = writeln!(s, "### {specimen}
-");
+        let _ = writeln!(s, "### {specimen}\n");
         let converged = write_convergence(&mut s, page, specimen);
         write_technique_table(&mut s, page, specimen);
         if let Some((_, chart)) = page.charts.iter().find(|(name, _)| name == specimen).filter(|_| converged) {
@@ -255,7 +254,10 @@ fn write_layers_needed(s: &mut String, page: &ParallaxPage, specimen: &str) {
     let name = capitalized(technique.name());
     match needed.within_rmse {
         Some(n) => {
-            let _ = write!(s, "{name} comes within {WITHIN_RMSE} RMSE (1 %) of displacement at {angle}° with **{n} layers**");
+            let _ = write!(
+                s,
+                "{name} comes within {WITHIN_RMSE} RMSE (1 %) of displacement at {angle}° with **{n} layers**"
+            );
         }
         None => {
             let _ = write!(

@@ -13,7 +13,6 @@ use crate::frame::Parallax;
 /// Mean errors below this many texels (0 face-on) are drawn at it.
 pub const TEXEL_FLOOR: f64 = 1e-3;
 
-
 /// The file of [`ms_chart`] for `specimen` at `angle_deg`.
 pub fn ms_chart_name(specimen: &str, angle_deg: f32) -> String {
     format!("uv-ms-{}-{angle_deg}.png", specimen.to_lowercase())
