@@ -10,7 +10,7 @@ use glam::{Vec2, Vec3};
 use super::ChainValues;
 use super::fragment::{Footprint, Fragment, Map, Varyings};
 use super::parallax::{March, MarchInputs, light_in_tangent_space, march, soft_shadow};
-use super::read::relief_height;
+use super::read::{relief_cone, relief_height};
 use crate::frame::FrameParams;
 use crate::math::normalize_or;
 use crate::scene::{MAX_LIGHTS, Material, Wrap};
@@ -67,12 +67,13 @@ pub fn step(material: &Material, fragment: &impl Fragment, at: &Varyings, facing
     let detail = material.detail_wrap;
     let clamp = [detail.u == Wrap::ClampToEdge, detail.v == Wrap::ClampToEdge];
     let height = |uv| relief_height(material, fragment, uv, interpolated);
+    let cone = |uv| relief_cone(material, fragment, uv);
     let eye = frame.camera.eye();
     let march_at = |v: &Varyings| {
         let normal = normalize_or(v.world_normal, Vec3::Z) * facing;
         let view_dir = normalize_or(eye - v.position, normal);
         let inputs = MarchInputs { uv: v.uv, normal, view_dir, dp_dx, dp_dy, duv_dx, duv_dy, depth_m, clamp };
-        (march(parallax, &inputs, height), inputs)
+        (march(parallax, &inputs, height, cone), inputs)
     };
     let marched = march_at(at);
     let footprint = fragment.derivatives(|v| march_at(v).0.uv);

@@ -7,7 +7,7 @@ use crate::names::Named;
 /// the colour are read (the parallax family). The reference plane is the mesh surface, the
 /// top of the relief: a texel of height `h` (0..1, white = high; `1 − sample` for a depth map)
 /// lies `(1 − h) · depth` metres below it. A uniform. Named `off`, `offset`, `offset-limited`,
-/// `steep`, `occlusion`, `relief`.
+/// `steep`, `occlusion`, `relief`, `relaxed-cone`.
 ///
 /// This enum is the family's registry: the report, panel, command line and lessons iterate
 /// [`Parallax::shifting`] and ask the capabilities below instead of naming a technique.
@@ -33,6 +33,12 @@ pub enum Parallax {
     /// Policarpo, Oliveira & Comba 2005, "Real-time relief mapping on arbitrary polygonal
     /// surfaces": the linear search, then binary-search steps between the last two layers.
     Relief,
+    /// Policarpo & Oliveira 2007, "Relaxed cone stepping for relief mapping" (GPU Gems 3
+    /// ch. 18), on cone maps after Dummer 2006: steps as far as the relaxed cone read at the
+    /// ray's texel allows (the layers are the most steps), then the binary search of relief
+    /// mapping. Reads the cone map the prepare stage packs into the height texture
+    /// ([`crate::height::cone`]).
+    RelaxedCone,
 }
 
 impl Parallax {
@@ -53,14 +59,16 @@ impl Parallax {
     }
 
     /// Whether the technique searches along the ray, taking `ParallaxSettings::layers` steps
-    /// (steep, occlusion, relief): it has a layer count and casts the soft self-shadows.
+    /// (steep, occlusion, relief, relaxed cones): it has a layer count and casts the soft
+    /// self-shadows.
     pub fn marches(self) -> bool {
-        matches!(self, Parallax::Steep | Parallax::Occlusion | Parallax::Relief)
+        matches!(self, Parallax::Steep | Parallax::Occlusion | Parallax::Relief | Parallax::RelaxedCone)
     }
 
-    /// Whether the technique ends with `ParallaxSettings::steps` binary-search steps (relief).
+    /// Whether the technique ends with `ParallaxSettings::steps` binary-search steps (relief,
+    /// relaxed cones).
     pub fn refines(self) -> bool {
-        matches!(self, Parallax::Relief)
+        matches!(self, Parallax::Relief | Parallax::RelaxedCone)
     }
 
     /// The technique the studies measure the others against at equal layers: the search with
