@@ -9,8 +9,8 @@ use crate::names::Named;
 /// lies `(1 − h) · depth` metres below it. A uniform. Named `off`, `offset`, `offset-limited`,
 /// `steep`, `occlusion`, `relief`, `relaxed-cone`.
 ///
-/// This enum is the family's registry: the report, panel, command line and lessons iterate
-/// [`Parallax::shifting`] and ask the capabilities below instead of naming a technique.
+/// This enum is the family's registry: the report, panel, split view and command line iterate
+/// it ([`Parallax::shifting`]) and ask the capabilities below instead of naming a technique.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
 #[strum(serialize_all = "kebab-case")]
 pub enum Parallax {
