@@ -5,7 +5,8 @@
 // Part of the mesh pass (render::shaders::MESH); normal_mapped_surface calls parallax_uv, the lighting
 // multiplies each light by parallax_light_visibility (the searches' soft self-shadows).
 
-@group(1) @binding(12) var height_texture: texture_2d<f32>; // linear: 16-bit height in R (high), G (low)
+@group(1) @binding(12) var height_texture: texture_2d<f32>; // linear: 16-bit height in R (high), G (low),
+// and for relaxed cones the cone ratio in B at level 0 (height::cone::encode_cone_ratio)
 
 // The technique the pipeline draws: Parallax::shader_index(), one of the PARALLAX_ constants
 // below (0 is off). A pipeline constant, so a pipeline compiles only its own march.
@@ -16,6 +17,9 @@ const PARALLAX_OFFSET_LIMITED: u32 = 2u;
 const PARALLAX_STEEP: u32 = 3u;
 const PARALLAX_OCCLUSION: u32 = 4u;
 const PARALLAX_RELIEF: u32 = 5u;
+const PARALLAX_RELAXED_CONE: u32 = 6u;
+const MAX_CONE_RATIO: f32 = 0.25; // height::cone::MAX_CONE_RATIO
+const SMALLEST_NORMAL_F32: f32 = 1.17549435e-38; // f32::MIN_POSITIVE
 const MAX_PARALLAX_LAYERS: u32 = 256u;
 const MAX_PARALLAX_STEPS: u32 = 16u;
 const GRAZING_N_DOT_V: f32 = 0.05;
@@ -113,6 +117,11 @@ fn parallax_uv(uv: vec2<f32>, n: vec3<f32>, position: vec3<f32>) -> vec2<f32> {
         return parallax_clamp(uv + along * parallax_depth_at(ray, 0.0));
     }
     let layers = parallax_layers(n_dot_v);
+    if PARALLAX == PARALLAX_RELAXED_CONE {
+        let cone_hit_uv = parallax_uv_at(ray, parallax_relaxed_cone(ray, layers));
+        parallax_hit = ParallaxHit(ray, cone_hit_uv, grad_u, grad_v, n, depth_m, 1u);
+        return cone_hit_uv;
+    }
     var i = 0u;
     var t = 0.0;
     var d = parallax_depth_at(ray, 0.0);
@@ -148,6 +157,47 @@ fn parallax_uv(uv: vec2<f32>, n: vec3<f32>, position: vec3<f32>) -> vec2<f32> {
     let hit_uv = parallax_uv_at(ray, t_hit);
     parallax_hit = ParallaxHit(ray, hit_uv, grad_u, grad_v, n, depth_m, 1u);
     return hit_uv;
+}
+
+// What relaxed cone stepping reads at depth fraction t along the ray (chain::read::relief_cone):
+// level 0, filtered; x = 1 − height, y = the cone ratio (height::cone::decode_cone_ratio).
+fn parallax_cone_at(ray: ParallaxRay, t: f32) -> vec2<f32> {
+    let texel = textureSampleLevel(height_texture, detail_sampler, parallax_uv_at(ray, t), 0.0);
+    var sample = (texel.r * 65280.0 + texel.g * 255.0) / 65535.0;
+    if (object.flags & DEPTH_MAP) != 0u {
+        sample = 1.0 - sample;
+    }
+    return vec2<f32>(1.0 - sample, MAX_CONE_RATIO * texel.b * texel.b);
+}
+
+// chain::parallax's relaxed cone steps then binary search: the depth fraction the ray stops at.
+fn parallax_relaxed_cone(ray: ParallaxRay, layers: u32) -> f32 {
+    let ray_ratio = length(ray.per_depth);
+    var i = 0u;
+    var t = 0.0;
+    var t_prev = 0.0;
+    var texel = parallax_cone_at(ray, 0.0);
+    while i < layers && t < texel.x {
+        let below = texel.x - t;
+        t_prev = t;
+        t += texel.y * below / max(ray_ratio + texel.y, SMALLEST_NORMAL_F32);
+        i += 1u;
+        texel = parallax_cone_at(ray, t);
+    }
+    if i == 0u {
+        return t;
+    }
+    var low_t = t_prev;
+    var high_t = t;
+    for (var k = 0u; k < min(frame.parallax_steps, MAX_PARALLAX_STEPS); k += 1u) {
+        let mid = 0.5 * (low_t + high_t);
+        if mid >= parallax_cone_at(ray, mid).x {
+            high_t = mid;
+        } else {
+            low_t = mid;
+        }
+    }
+    return high_t;
 }
 
 // chain::parallax::light_in_tangent_space and soft_shadow: the light towards unit direction

@@ -612,3 +612,6 @@ mod the_check_sees {
         assert_eq!(violations(&[low]).len(), 1);
     }
 }
+
+#[path = "layers/technique_rooms.rs"]
+mod technique_rooms;

@@ -58,7 +58,7 @@ fn every_enum_keeps_its_names_in_order() {
     assert_eq!(GreenAxis::names(), ["opengl", "directx"]);
     assert_eq!(Border::names(), ["wrap", "clamp"]);
     assert_eq!(ShadingModel::names(), ["blinn-phong", "pbr"]);
-    assert_eq!(Parallax::names(), ["off", "offset", "offset-limited", "steep", "occlusion", "relief"]);
+    assert_eq!(Parallax::names(), ["off", "offset", "offset-limited", "steep", "occlusion", "relief", "relaxed-cone"]);
     assert_eq!(NormalLayout::names(), ["rgb", "rg", "ag", "xray"]);
     let mistakes = [
         "none",

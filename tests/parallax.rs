@@ -28,8 +28,13 @@ fn parallax_renderer(scene: &Scene) -> Renderer {
 }
 
 const SIZE: [u32; 2] = [256, 256];
-const ALL: [Parallax; 5] =
-    [Parallax::Offset, Parallax::OffsetLimited, Parallax::Steep, Parallax::Occlusion, Parallax::Relief];
+/// The largest CPU-against-GPU difference of relaxed cone stepping's pixels, 8-bit steps: each
+/// cone step's length is the filtered cone ratio at the ray's texel, so a GPU filtering weight
+/// a fraction of a texel off moves every later step, and at a few pixels decides whether the
+/// last step reaches the relief (measured: max 32, one point of 144, 90 % within 1.6).
+const RELAXED_CONE_TWIN_MAX: f32 = 40.0;
+
+/// The searches the convergence test holds against relief mapping's reference.
 const SEARCHES: [Parallax; 3] = [Parallax::Steep, Parallax::Occlusion, Parallax::Relief];
 
 /// The close wall seen from `yaw_deg` degrees off its normal at 0.4 m.
@@ -63,7 +68,7 @@ fn depth_zero_is_the_normal_mapped_picture() {
     let mut renderer = parallax_renderer(&scene);
     let params = oblique(&scene, 60.0);
     let plain = render_image(&mut renderer, SIZE, &params).unwrap();
-    for technique in ALL {
+    for technique in Parallax::shifting() {
         let flat = render_image(&mut renderer, SIZE, &with(&params, technique, 32, 5, Some(0.0))).unwrap();
         assert!(plain == flat, "{technique:?} at depth 0 differs: {:?}", difference(&plain, &flat));
     }
@@ -83,7 +88,7 @@ fn face_on_every_technique_is_plain_normal_mapping() {
     let mut params = close_wall_params(&scene, 20.0);
     params.camera.fov_y = 2.0 * (0.0625f32 / 20.0).atan();
     let plain = render_image(&mut renderer, SIZE, &params).unwrap();
-    for technique in ALL {
+    for technique in Parallax::shifting() {
         for layers in [1, 32, 256] {
             let image = render_image(&mut renderer, SIZE, &with(&params, technique, layers, 8, None)).unwrap();
             let (max, mean) = difference(&plain, &image);
@@ -97,7 +102,7 @@ fn face_on_every_technique_is_plain_normal_mapping() {
 /// The probe's march (chain::parallax) is the shader's: on a 12 × 12 grid over the wall seen
 /// at 60°, with 16 layers and 5 steps, the probe's colour is within 3 steps of the rendered
 /// pixel at 90% of the points (as the plain chain is everywhere, tests/probe.rs) and within
-/// 20 steps at all. The rest sit where the marched ray meets a mortar bevel almost
+/// 20 steps at all (relaxed cones: [`RELAXED_CONE_TWIN_MAX`]). The rest sit where the marched ray meets a mortar bevel almost
 /// tangentially: the GPU's 8-bit filtering weights move the hit by a fraction of a texel
 /// across a height step (measured: at most 17 steps, 2–7 points of 144 over 3). Occlusion
 /// with 4–64 layers by the view angle takes the same counts on both sides (the CPU's vary over
@@ -107,7 +112,8 @@ fn the_probe_marches_as_the_shader_does() {
     let scene = scene();
     let mut renderer = parallax_renderer(&scene);
     let probe = ProbeScene::new(&scene, &parallax_options());
-    let fixed = ALL.map(|technique| with(&oblique(&scene, 60.0), technique, 16, 5, None));
+    let fixed: Vec<_> =
+        Parallax::shifting().map(|technique| with(&oblique(&scene, 60.0), technique, 16, 5, None)).collect();
     let mut by_angle = with(&oblique(&scene, 60.0), Parallax::Occlusion, 0, 5, None);
     (by_angle.shading.parallax.layers_min, by_angle.shading.parallax.layers_max) = (4, 64);
     for params in fixed.into_iter().chain([by_angle]) {
@@ -131,8 +137,10 @@ fn the_probe_marches_as_the_shader_does() {
         }
         diffs.sort_by(f32::total_cmp);
         let (p90, max) = (percentile(&diffs, 0.9), diffs[diffs.len() - 1]);
-        println!("twin {technique:?} {counts:?} layers: 90% within {p90}, max {max}");
-        assert!(p90 <= 3.0 && max <= 20.0, "{technique:?}: 90th percentile {p90}, max {max}");
+        let over = diffs.iter().filter(|&&d| d > 20.0).count();
+        println!("twin {technique:?} {counts:?} layers: 90% within {p90}, max {max}, {over} over 20");
+        let limit = if technique == Parallax::RelaxedCone { RELAXED_CONE_TWIN_MAX } else { 20.0 };
+        assert!(p90 <= 3.0 && max <= limit, "{technique:?}: 90th percentile {p90}, max {max}");
         assert!(settings.layers_min == settings.layers_max || counts.len() > 3, "{counts:?}");
     }
 }
@@ -193,7 +201,7 @@ fn grazing_views_few_and_many_layers_and_clamped_borders_stay_finite() {
             let mut base = oblique(&scene, yaw);
             base.camera.pitch = f32::to_radians(pitch);
             let mut marched = 0;
-            for technique in ALL {
+            for technique in Parallax::shifting() {
                 for layers in [1, 256] {
                     let params = with(&base, technique, layers, 16, None);
                     for y in (0..SIZE[1]).step_by(37) {
@@ -228,7 +236,7 @@ fn grazing_views_render_finite_pixels() {
     for (yaw, pitch) in [(88.0, 0.0), (85.0, -80.0), (0.0, -89.0), (150.0, -30.0)] {
         let mut base = oblique(&scene, yaw);
         base.camera.pitch = f32::to_radians(pitch);
-        for technique in ALL {
+        for technique in Parallax::shifting() {
             for (layers, depth) in [(1, None), (256, Some(1.0))] {
                 for view in [ViewMode::Lit, ViewMode::ShadingNormal] {
                     let mut params = with(&base, technique, layers, 16, depth);

@@ -10,6 +10,7 @@
 //! written atomically ([`crate::atomic`]); many files are baked in parallel ([`bake_all`]),
 //! except backward, where one solve already uses every core and memory is budgeted per file.
 
+pub mod cone;
 pub mod detail;
 pub mod image_io;
 pub mod mips;

@@ -9,8 +9,9 @@
 //! coordinates (UV units per metre), from screen-space derivatives of the position and the UV
 //! as in Mikkelsen's surface gradient: the surface's UV density comes from the pixel, not from
 //! the tangent frame, so one relief is equally deep under every technique and on every UV
-//! layout. The searches (steep, occlusion, relief) take `ParallaxSettings::layers` layers and
-//! relief `steps` more samples: at most 257 + 16 height samples per pixel.
+//! layout. The searches (steep, occlusion, relief, relaxed cones) take `ParallaxSettings::layers`
+//! layers (cone steps) and relief and relaxed cones `steps` more samples: at most 257 + 16
+//! height samples per pixel.
 
 use glam::{Vec2, Vec3};
 
@@ -53,15 +54,31 @@ pub struct March {
     pub depth: f32,
 }
 
+/// What relaxed cone stepping reads at one UV: the height texture's level 0, filtered.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ConeTexel {
+    /// Height 0..1, white = high, a depth map already flipped.
+    pub height: f32,
+    /// The relaxed cone's ratio, UV units per unit of depth fraction
+    /// ([`crate::height::cone`]).
+    pub ratio: f32,
+}
+
 /// The texture coordinates of `inputs` shifted by `settings`' technique, reading heights
-/// (0..1, white = high, a depth map already flipped) with `height`. Off, depth 0 or a surface
-/// seen edge-on in screen space return the UV unchanged without a sample.
-pub fn march(settings: &ParallaxSettings, inputs: &MarchInputs, height: impl Fn(Vec2) -> f32) -> March {
+/// (0..1, white = high, a depth map already flipped) with `height` (at the pixel's footprint)
+/// and, for relaxed cones, the cone map with `cone`. Off, depth 0 or a surface seen edge-on
+/// in screen space return the UV unchanged without a sample.
+pub fn march(
+    settings: &ParallaxSettings,
+    inputs: &MarchInputs,
+    height: impl Fn(Vec2) -> f32,
+    cone: impl Fn(Vec2) -> ConeTexel,
+) -> March {
     let unshifted = March { layers: 0, layer_hit: 0, uv: inputs.uv, shift: Vec2::ZERO, depth: 0.0 };
     let (n, v) = (inputs.normal, inputs.view_dir);
     let gradients = uv_gradients(inputs);
-    let Some((grad_u, grad_v)) = gradients
-        .filter(|_| settings.technique != Parallax::Off && inputs.depth_m != 0.0 && inputs.depth_m.is_finite())
+    let Some((grad_u, grad_v)) =
+        gradients.filter(|_| settings.technique.shifts() && inputs.depth_m != 0.0 && inputs.depth_m.is_finite())
     else {
         return unshifted;
     };
@@ -100,23 +117,51 @@ pub fn march(settings: &ParallaxSettings, inputs: &MarchInputs, height: impl Fn(
                     let w = after / (after - before);
                     t_prev * w + t * (1.0 - w)
                 }
-                Parallax::Relief if i > 0 => {
-                    let (mut low, mut high) = (t_prev, t);
-                    for _ in 0..settings.steps.min(MAX_PARALLAX_STEPS) {
-                        let mid = 0.5 * (low + high);
-                        if mid >= depth_at(mid) {
-                            high = mid;
-                        } else {
-                            low = mid;
-                        }
-                    }
-                    high
-                }
+                Parallax::Relief if i > 0 => binary_search(t_prev, t, settings.steps, depth_at),
                 _ => t,
             };
             done(layers, i, uv_at(t_hit), t_hit)
         }
+        Parallax::RelaxedCone => {
+            let layers = settings.layers(n_dot_v);
+            let cone_at = |t: f32| cone(uv_at(t));
+            let (i, t_prev, t) = relaxed_cone_steps(layers, per_depth.length(), cone_at);
+            let depth_of = |t: f32| 1.0 - cone_at(t).height;
+            let t_hit = if i > 0 { binary_search(t_prev, t, settings.steps, depth_of) } else { t };
+            done(layers, i, uv_at(t_hit), t_hit)
+        }
     }
+}
+
+/// Policarpo & Oliveira's relaxed cone steps along a ray moving `ray_ratio` UV units per unit
+/// of depth fraction: from depth `t`, where the cone at the ray's texel (ratio `c`, its apex
+/// at depth `d`) meets the ray, `t + c · (d − t) / (ray_ratio + c)`; at most `layers` steps,
+/// stopping at or below the relief. Returns the steps taken and the last two depths.
+fn relaxed_cone_steps(layers: u32, ray_ratio: f32, cone_at: impl Fn(f32) -> ConeTexel) -> (u32, f32, f32) {
+    let (mut i, mut t, mut t_prev) = (0u32, 0.0f32, 0.0f32);
+    let mut texel = cone_at(0.0);
+    while i < layers && t < 1.0 - texel.height {
+        let below = 1.0 - texel.height - t;
+        t_prev = t;
+        t += texel.ratio * below / (ray_ratio + texel.ratio).max(f32::MIN_POSITIVE);
+        i += 1;
+        texel = cone_at(t);
+    }
+    (i, t_prev, t)
+}
+
+/// Relief mapping's binary search between depths `low` (above the relief) and `high`:
+/// `steps` halvings (at most [`MAX_PARALLAX_STEPS`]), the last depth at or below it.
+fn binary_search(mut low: f32, mut high: f32, steps: u32, depth_at: impl Fn(f32) -> f32) -> f32 {
+    for _ in 0..steps.min(MAX_PARALLAX_STEPS) {
+        let mid = 0.5 * (low + high);
+        if mid >= depth_at(mid) {
+            high = mid;
+        } else {
+            low = mid;
+        }
+    }
+    high
 }
 
 /// `uv` with the axes `inputs.clamp` names held in 0..1.
@@ -196,6 +241,8 @@ pub fn soft_shadow(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::height::cone::MAX_CONE_RATIO;
+    use crate::names::Named;
 
     /// A flat surface in the z = 0 plane, u along +x and v along −y, one UV unit per metre,
     /// seen from direction `view_dir`.
@@ -213,6 +260,11 @@ mod tests {
         }
     }
 
+    /// The widest cones stored, over `height` (a flat floor's own relaxed cones).
+    fn open_cones(height: impl Fn(Vec2) -> f32) -> impl Fn(Vec2) -> ConeTexel {
+        move |uv| ConeTexel { height: height(uv), ratio: MAX_CONE_RATIO }
+    }
+
     fn settings(technique: Parallax, layers: u32) -> ParallaxSettings {
         ParallaxSettings { technique, layers_min: layers, layers_max: layers, steps: 8, ..Default::default() }
     }
@@ -222,24 +274,28 @@ mod tests {
     #[test]
     fn a_flat_floor_is_found_at_its_depth_by_every_technique() {
         let v = Vec3::new(1.0, 0.0, 1.0).normalize();
-        for technique in [Parallax::Offset, Parallax::Occlusion, Parallax::Relief] {
-            let m = march(&settings(technique, 16), &inputs(v), |_| 0.5);
+        for technique in [Parallax::Offset, Parallax::Occlusion, Parallax::Relief, Parallax::RelaxedCone] {
+            let m = march(&settings(technique, 16), &inputs(v), |_| 0.5, open_cones(|_| 0.5));
             assert!((m.shift - Vec2::new(-0.05, 0.0)).length() < 1e-5, "{technique:?}: {:?}", m.shift);
         }
-        let steep = march(&settings(Parallax::Steep, 16), &inputs(v), |_| 0.5);
+        let steep = march(&settings(Parallax::Steep, 16), &inputs(v), |_| 0.5, open_cones(|_| 0.5));
         assert_eq!(steep.layer_hit, 8);
         assert!((steep.shift.x + 0.05).abs() < 1e-5, "{:?}", steep.shift);
-        let limited = march(&settings(Parallax::OffsetLimited, 16), &inputs(v), |_| 0.5);
+        let limited = march(&settings(Parallax::OffsetLimited, 16), &inputs(v), |_| 0.5, open_cones(|_| 0.5));
         assert!((limited.shift.x + 0.05 * v.x).abs() < 1e-5, "{:?}", limited.shift);
     }
 
     #[test]
     fn face_on_off_and_depth_zero_do_not_shift() {
-        for technique in [Parallax::Off, Parallax::Offset, Parallax::Steep, Parallax::Relief] {
-            let m = march(&settings(technique, 8), &inputs(Vec3::Z), |uv| uv.x.fract());
+        for &technique in Parallax::all() {
+            let m = march(&settings(technique, 8), &inputs(Vec3::Z), |uv| uv.x.fract(), open_cones(|uv| uv.x.fract()));
             assert_eq!(m.uv, Vec2::new(0.5, 0.5), "{technique:?}");
             let flat = MarchInputs { depth_m: 0.0, ..inputs(Vec3::new(1.0, 0.0, 0.2).normalize()) };
-            assert_eq!(march(&settings(technique, 8), &flat, |_| 0.0).shift, Vec2::ZERO, "{technique:?}");
+            assert_eq!(
+                march(&settings(technique, 8), &flat, |_| 0.0, open_cones(|_| 0.0)).shift,
+                Vec2::ZERO,
+                "{technique:?}"
+            );
         }
     }
 
@@ -249,9 +305,10 @@ mod tests {
         let views = [Vec3::X, Vec3::new(1.0, 0.0, -0.3).normalize(), Vec3::new(0.0, 1.0, 1e-4).normalize()];
         for view in views {
             for layers in [1, 256] {
-                for technique in [Parallax::Offset, Parallax::OffsetLimited, Parallax::Steep, Parallax::Occlusion] {
+                for technique in Parallax::shifting() {
                     let clamped = MarchInputs { clamp: [true; 2], ..inputs(view) };
-                    let m = march(&settings(technique, layers), &clamped, |uv| 0.5 + 0.5 * (uv.x * 40.0).sin());
+                    let wavy = |uv: Vec2| 0.5 + 0.5 * (uv.x * 40.0).sin();
+                    let m = march(&settings(technique, layers), &clamped, wavy, open_cones(wavy));
                     assert!(m.uv.is_finite() && m.depth.is_finite(), "{technique:?} {view} {layers}: {m:?}");
                     assert!(m.uv.cmpge(Vec2::ZERO).all() && m.uv.cmple(Vec2::ONE).all(), "{m:?}");
                     assert!(m.layer_hit <= layers);
@@ -273,8 +330,8 @@ mod tests {
         let floor = |_: Vec2| 0.5;
         let ridge = |uv: Vec2| if (0.52..0.56).contains(&uv.x) { 1.0 } else { 0.5 };
         let low_light = Vec3::new(1.0, 0.0, 0.3).normalize();
-        for technique in [Parallax::Steep, Parallax::Occlusion, Parallax::Relief] {
-            let hit = march(&shadowed(technique, 16), &face_on, floor);
+        for technique in Parallax::shifting().filter(|t| t.marches()) {
+            let hit = march(&shadowed(technique, 16), &face_on, floor, open_cones(floor));
             let light_ts = light_in_tangent_space(&face_on, low_light);
             assert_eq!(soft_shadow(&shadowed(technique, 16), &face_on, &hit, light_ts, floor), 1.0);
             assert_eq!(soft_shadow(&shadowed(technique, 16), &face_on, &hit, light_ts, ridge), 0.0, "{technique:?}");
@@ -295,7 +352,7 @@ mod tests {
                 }
             }
         }
-        let offset = march(&shadowed(Parallax::Offset, 16), &face_on, floor);
+        let offset = march(&shadowed(Parallax::Offset, 16), &face_on, floor, open_cones(floor));
         let light_ts = light_in_tangent_space(&face_on, low_light);
         assert_eq!(soft_shadow(&shadowed(Parallax::Offset, 16), &face_on, &offset, light_ts, ridge), 1.0);
     }

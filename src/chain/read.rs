@@ -8,7 +8,9 @@ use glam::{Mat3, Vec2, Vec3, Vec4};
 
 use super::fragment::{Footprint, Fragment, Map, Varyings};
 use super::legacy::EmbossSample;
+use super::parallax::ConeTexel;
 use crate::frame::{BumpKind, FrameParams, LightingSpace};
+use crate::height::cone::decode_cone_ratio;
 use crate::scene::Material;
 use crate::shading::spaces::triangle_inverse_tbn;
 use crate::shading::{NormalTexel, height_sample};
@@ -79,6 +81,14 @@ pub enum BumpSample {
 pub fn relief_height(material: &Material, fragment: &impl Fragment, uv: Vec2, footprint: Footprint) -> f32 {
     let sample = fragment.sample(Map::Height, uv, footprint).map_or(0.0, |t| height_sample(t.truncate()));
     if material.height_map.as_ref().is_some_and(|h| h.depth) { 1.0 - sample } else { sample }
+}
+
+/// What relaxed cone stepping reads of the height texture at `uv`: level 0, filtered, the
+/// height as [`relief_height`] decodes it and the cone ratio the prepare stage packed into
+/// blue ([`decode_cone_ratio`]).
+pub fn relief_cone(material: &Material, fragment: &impl Fragment, uv: Vec2) -> ConeTexel {
+    let ratio = fragment.sample(Map::Height, uv, None).map_or(0.0, |t| decode_cone_ratio(t.z));
+    ConeTexel { height: relief_height(material, fragment, uv, None), ratio }
 }
 
 /// Every texture the lighting of an instance bumped by `bump` reads at `uv` (the UV after

@@ -10,8 +10,8 @@ use glam::{Vec2, Vec3};
 use super::ChainValues;
 use super::fragment::{Footprint, Fragment, Map, Varyings};
 use super::parallax::{March, MarchInputs, light_in_tangent_space, march, soft_shadow};
-use super::read::relief_height;
-use crate::frame::{FrameParams, Parallax};
+use super::read::{relief_cone, relief_height};
+use crate::frame::FrameParams;
 use crate::math::normalize_or;
 use crate::scene::{MAX_LIGHTS, Material, Wrap};
 use crate::shading::lights::incident;
@@ -58,7 +58,7 @@ pub fn step(material: &Material, fragment: &impl Fragment, at: &Varyings, facing
     let depth_m = parallax.depth_m.map_or(material.height_map.as_ref().map_or(0.0, |h| h.range_m), |d| d.max(0.0));
     let interpolated = fragment.derivatives(|v| v.uv);
     let unshifted = Step { marched: None, uv: at.uv, footprint: interpolated, height_footprint: interpolated };
-    let on = parallax.technique != Parallax::Off && depth_m != 0.0 && fragment.size(Map::Height).is_some();
+    let on = parallax.technique.shifts() && depth_m != 0.0 && fragment.size(Map::Height).is_some();
     let Some(((dp_dx, dp_dy), (duv_dx, duv_dy))) =
         on.then(|| fragment.derivatives(|v| v.position)).flatten().zip(interpolated)
     else {
@@ -67,12 +67,13 @@ pub fn step(material: &Material, fragment: &impl Fragment, at: &Varyings, facing
     let detail = material.detail_wrap;
     let clamp = [detail.u == Wrap::ClampToEdge, detail.v == Wrap::ClampToEdge];
     let height = |uv| relief_height(material, fragment, uv, interpolated);
+    let cone = |uv| relief_cone(material, fragment, uv);
     let eye = frame.camera.eye();
     let march_at = |v: &Varyings| {
         let normal = normalize_or(v.world_normal, Vec3::Z) * facing;
         let view_dir = normalize_or(eye - v.position, normal);
         let inputs = MarchInputs { uv: v.uv, normal, view_dir, dp_dx, dp_dy, duv_dx, duv_dy, depth_m, clamp };
-        (march(parallax, &inputs, height), inputs)
+        (march(parallax, &inputs, height, cone), inputs)
     };
     let marched = march_at(at);
     let footprint = fragment.derivatives(|v| march_at(v).0.uv);

@@ -1,6 +1,7 @@
 //! `bumpview bake`: height maps to tangent-space normal map PNGs, or normal maps back to
 //! height maps (`--to-height`), many files in parallel ([`bumpview::bake`]); or a normal map's
-//! mip chain with a mip-filter method's gloss or roughness (`--mips`, [`bumpview::bake::mips`]).
+//! mip chain with a mip-filter method's gloss or roughness (`--mips`, [`bumpview::bake::mips`]);
+//! or a height map's relaxed cone map (`--cone-map`, [`bumpview::bake::cone`]).
 
 use std::path::{Path, PathBuf};
 
@@ -113,6 +114,14 @@ pub struct BakeArgs {
     /// With --detail: the detail map's strength, as a normal map's scale [default: 1].
     #[arg(long, value_name = "S", requires = "detail")]
     detail_strength: Option<f32>,
+    /// The one input height map's relaxed cone map (Policarpo & Oliveira 2007), the data
+    /// `--parallax relaxed-cone` marches with: an 8-bit grey PNG at --out,
+    /// `255 · √(ratio / 0.25)` (white = the widest cone); --depth-map reads white as deep.
+    #[arg(long, conflicts_with_all = [
+        "to_height", "kernel", "spectral", "height_range", "texel_size", "texture_width", "strength",
+        "border", "normal_convention", "bits", "height_in_alpha", "two_channel", "mips", "detail",
+    ])]
+    cone_map: bool,
     /// Replace outputs that exist (without it, an existing output is kept and nothing is
     /// baked). An input is never written over, even with --force.
     #[arg(long)]
@@ -160,6 +169,9 @@ impl BakeArgs {
 pub fn run(args: &BakeArgs) -> Result<(), Failure> {
     if let Some(filter) = args.mips {
         return run_mips(args, filter);
+    }
+    if args.cone_map {
+        return super::bake_cone::run(&args.inputs, &args.out, args.depth_map, args.force);
     }
     if let Some(detail) = &args.detail {
         let method = args.blend.unwrap_or_default();

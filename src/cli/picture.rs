@@ -30,9 +30,8 @@ pub struct PictureArgs {
     /// target (clamped to ±89), metres from it (positive; clamped to 0.05…500).
     #[arg(long, value_parser = args::parse_triple, allow_hyphen_values = true)]
     camera: Option<[f32; 3]>,
-    /// Parallax technique on normal-mapped surfaces with a height map: off, offset (Kaneko
-    /// 2001), offset-limited (Welsh 2004), steep (McGuire 2005), occlusion (Tatarchuk 2006) or
-    /// relief (Policarpo 2005) [default: off].
+    /// Parallax technique on normal-mapped surfaces with a height map, one of the possible
+    /// values below (docs/parallax.md cites each one's paper) [default: off].
     #[arg(long, value_parser = args::named::<Parallax>())]
     parallax: Option<Parallax>,
     /// The searches' layers MIN,MAX (1 to 256 each; MAX face-on, MIN at grazing views)

@@ -7,7 +7,10 @@ use crate::names::Named;
 /// the colour are read (the parallax family). The reference plane is the mesh surface, the
 /// top of the relief: a texel of height `h` (0..1, white = high; `1 − sample` for a depth map)
 /// lies `(1 − h) · depth` metres below it. A uniform. Named `off`, `offset`, `offset-limited`,
-/// `steep`, `occlusion`, `relief`.
+/// `steep`, `occlusion`, `relief`, `relaxed-cone`.
+///
+/// This enum is the family's registry: the report, panel, split view and command line iterate
+/// it ([`Parallax::shifting`]) and ask the capabilities below instead of naming a technique.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
 #[strum(serialize_all = "kebab-case")]
 pub enum Parallax {
@@ -30,6 +33,12 @@ pub enum Parallax {
     /// Policarpo, Oliveira & Comba 2005, "Real-time relief mapping on arbitrary polygonal
     /// surfaces": the linear search, then binary-search steps between the last two layers.
     Relief,
+    /// Policarpo & Oliveira 2007, "Relaxed cone stepping for relief mapping" (GPU Gems 3
+    /// ch. 18), on cone maps after Dummer 2006: steps as far as the relaxed cone read at the
+    /// ray's texel allows (the layers are the most steps), then the binary search of relief
+    /// mapping. Reads the cone map the prepare stage packs into the height texture
+    /// ([`crate::height::cone`]).
+    RelaxedCone,
 }
 
 impl Parallax {
@@ -38,9 +47,46 @@ impl Parallax {
         self as u32
     }
 
-    /// Whether the technique searches through layers (steep, occlusion, relief).
+    /// Whether the technique shifts the UV at all (every one but off).
+    pub fn shifts(self) -> bool {
+        self != Parallax::Off
+    }
+
+    /// Every technique that shifts the UV, in declaration order: what the studies, charts
+    /// and CPU-against-GPU tests iterate.
+    pub fn shifting() -> impl Iterator<Item = Parallax> {
+        Parallax::all().iter().copied().filter(|t| t.shifts())
+    }
+
+    /// Whether the technique searches along the ray, taking `ParallaxSettings::layers` steps
+    /// (steep, occlusion, relief, relaxed cones): it has a layer count and casts the soft
+    /// self-shadows.
     pub fn marches(self) -> bool {
-        matches!(self, Parallax::Steep | Parallax::Occlusion | Parallax::Relief)
+        matches!(self, Parallax::Steep | Parallax::Occlusion | Parallax::Relief | Parallax::RelaxedCone)
+    }
+
+    /// Whether the technique ends with `ParallaxSettings::steps` binary-search steps (relief,
+    /// relaxed cones).
+    pub fn refines(self) -> bool {
+        matches!(self, Parallax::Relief | Parallax::RelaxedCone)
+    }
+
+    /// The technique the studies measure the others against at equal layers: the search with
+    /// the fewest extra samples per layer (steep).
+    pub fn plainest_search() -> Parallax {
+        Parallax::Steep
+    }
+
+    /// The technique whose layers-for-half-a-texel the parallax page leads with (occlusion,
+    /// Tatarchuk's, the usual one in engines).
+    pub fn headline() -> Parallax {
+        Parallax::Occlusion
+    }
+
+    /// The technique references are drawn with: relief mapping (at many layers and steps it
+    /// converges on the exact hit).
+    pub fn reference() -> Parallax {
+        Parallax::Relief
     }
 }
 
@@ -112,11 +158,13 @@ impl ParallaxSettings {
             Some(depth) => format!(", depth {:.2} cm", depth * 100.0),
             None => String::new(),
         };
-        let name = self.technique.name();
-        match self.technique {
-            Parallax::Off | Parallax::Offset | Parallax::OffsetLimited => format!("parallax: {name}{depth}"),
-            Parallax::Steep | Parallax::Occlusion => format!("parallax: {name}, {layers}{shadows}{depth}"),
-            Parallax::Relief => format!("parallax: {name}, {layers} + {} steps{shadows}{depth}", self.steps),
+        let (name, technique) = (self.technique.name(), self.technique);
+        if technique.refines() {
+            format!("parallax: {name}, {layers} + {} steps{shadows}{depth}", self.steps)
+        } else if technique.marches() {
+            format!("parallax: {name}, {layers}{shadows}{depth}")
+        } else {
+            format!("parallax: {name}{depth}")
         }
     }
 

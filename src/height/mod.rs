@@ -9,6 +9,7 @@
 //! formulas; [`rows`] computes whole images the same way, rows in parallel, and [`integrate`]
 //! goes back from slopes to heights.
 
+pub mod cone;
 pub mod derivative;
 pub mod integrate;
 pub mod rows;

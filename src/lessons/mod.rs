@@ -62,6 +62,7 @@ const FILES: &[(&str, &str)] = &[
     ("emboss", include_str!("../../assets/lessons/emboss.toml")),
     ("xray-packing", include_str!("../../assets/lessons/xray-packing.toml")),
     ("parallax-family", include_str!("../../assets/lessons/parallax-family.toml")),
+    ("relaxed-cone", include_str!("../../assets/lessons/relaxed-cone.toml")),
     ("self-shadowing", include_str!("../../assets/lessons/self-shadowing.toml")),
     ("silhouettes", include_str!("../../assets/lessons/silhouettes.toml")),
     ("over-tilt", include_str!("../../assets/lessons/over-tilt.toml")),

@@ -6,6 +6,7 @@
 //! could not honour as notices. The GPU renderer uploads exactly what a prepared scene holds;
 //! the CPU probe samples and shades the same prepared scene, so both draw the same surface.
 
+mod cone;
 pub mod displace;
 mod repair;
 mod weld;
@@ -291,10 +292,19 @@ impl PreparedScene {
     /// Texture `index`'s mip chain, made now.
     fn made_mip_chain(&self, index: usize) -> Vec<TextureImage> {
         let texture = &self.scene.textures[index];
-        match self.normal_map_filter(index) {
-            Some(filter) => texture.mip_chain_filtered(filter),
-            None => texture.mip_chain(),
+        match (self.normal_map_filter(index), self.marched_height_map(index)) {
+            (Some(filter), _) => texture.mip_chain_filtered(filter),
+            (None, Some(slot)) => cone::with_cone_map(texture, slot).mip_chain(),
+            (None, None) => texture.mip_chain(),
         }
+    }
+
+    /// The height map slot of the first instance that binds texture `index` for the parallax
+    /// family to march ([`InstanceTextures::height`]): its texture carries the cone map.
+    fn marched_height_map(&self, index: usize) -> Option<&crate::scene::HeightMap> {
+        let marches = |i: &&PreparedInstance| i.textures.height == Some(index);
+        let instance = self.instances.iter().find(marches)?;
+        self.scene.materials[instance.material].height_map.as_ref()
     }
 
     /// Makes the mip chains of every texture an instance binds now (textures in parallel), so

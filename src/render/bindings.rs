@@ -246,7 +246,7 @@ mod tests {
         for mistake in Mistake::all().iter().copied().filter(|&m| m != Mistake::None) {
             expected.insert(constant_name("MISTAKE_", mistake.name()), mistake.shader_index());
         }
-        for technique in Parallax::all().iter().copied().filter(|&p| p != Parallax::Off) {
+        for technique in Parallax::shifting() {
             expected.insert(constant_name("PARALLAX_", technique.name()), technique.shader_index());
         }
         expected.insert("MAX_PARALLAX_LAYERS".into(), MAX_PARALLAX_LAYERS);

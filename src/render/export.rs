@@ -214,7 +214,7 @@ pub fn caption_lines(shading: &ShadingSettings, scene: &CaptionScene) -> Vec<Str
     if shading.lighting_space != LightingSpace::World {
         lines.push(format!("lighting space: {}", shading.lighting_space.name()));
     }
-    if shading.parallax.technique != Parallax::Off {
+    if shading.parallax.technique.shifts() {
         lines.push(shading.parallax.caption());
     }
     if let Some(summary) = &scene.displacement {

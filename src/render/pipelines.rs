@@ -335,7 +335,7 @@ fn mesh_constants(pass: Pass, encodes_srgb: (&'static str, f64)) -> Vec<(&'stati
     let mut constants =
         vec![encodes_srgb, ("VIEW", f64::from(view.shader_index())), ("MATERIAL_FEATURES", f64::from(features))];
     constants.extend(lighting.map(|model| ("SHADING_MODEL", f64::from(model.shader_index()))));
-    if parallax != Parallax::Off {
+    if parallax.shifts() {
         constants.push(("PARALLAX", f64::from(parallax.shader_index())));
     }
     if mistake != Mistake::None {

@@ -14,6 +14,7 @@ pub mod detail_page;
 pub mod detail_study;
 pub mod exact_hit;
 pub mod gpu_time;
+pub mod image_error;
 mod markdown;
 pub mod measure;
 pub mod mip_page;

@@ -20,16 +20,14 @@ use crate::frame::{
 };
 use crate::load::add_height_map;
 use crate::load::image::load_texture;
-use crate::math::srgb_to_linear;
 use crate::render::capture::{CaptureOptions, render_capture};
 use crate::render::timing::{TimedPicture, time_frames};
 use crate::render::{Background, Renderer};
 use crate::report::gpu_time::gpu_frame_ms;
+pub use crate::report::image_error::{ImageError, OFF_BY, image_error};
 use crate::scene::builtin::{BRICK_TILE_M, teaching_scene, torus_mesh};
 use crate::scene::{Instance, Light, Lights, Mesh, OrbitCamera, Scene, TextureKind};
 
-/// Largest channel difference, in 8-bit steps, beyond which a pixel counts as off.
-pub const OFF_BY: u8 = 5;
 /// The squares are measured within 0.4 m of their centre: 10 cm inside the border, more
 /// than a 2 cm relief moves it at 80° (2 cm · tan 80° = 11 cm... seen along x, the border
 /// rows and columns of texels).
@@ -168,38 +166,6 @@ pub fn rock(assets: &Path) -> Result<Specimen, LoadError> {
         reference_level: 10,
         measured_half_size: Some(MEASURED_HALF_SIZE),
     })
-}
-
-/// How far a picture is from the reference.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ImageError {
-    /// RMSE over the linear RGB channels of every pixel.
-    pub rmse: f64,
-    /// Share (0..1) of pixels with a channel off by more than [`OFF_BY`] / 255.
-    pub off_share: f64,
-}
-
-/// The error of `image` against `reference` (same size, sRGB-encoded RGBA) over the pixels
-/// `mask` holds (row by row; `None`: all).
-pub fn image_error(image: &image::RgbaImage, reference: &image::RgbaImage, mask: Option<&[bool]>) -> ImageError {
-    assert_eq!(image.dimensions(), reference.dimensions(), "compared pictures differ in size");
-    let mut squares = 0.0f64;
-    let (mut off, mut pixels) = (0usize, 0usize);
-    for (index, (a, b)) in image.pixels().zip(reference.pixels()).enumerate() {
-        if mask.is_some_and(|m| !m.get(index).copied().unwrap_or(false)) {
-            continue;
-        }
-        pixels += 1;
-        let mut largest = 0u8;
-        for c in 0..3 {
-            let (x, y) = (srgb_to_linear(a[c] as f32 / 255.0), srgb_to_linear(b[c] as f32 / 255.0));
-            squares += ((x - y) as f64).powi(2);
-            largest = largest.max(a[c].abs_diff(b[c]));
-        }
-        off += usize::from(largest > OFF_BY);
-    }
-    let pixels = pixels.max(1);
-    ImageError { rmse: (squares / (3 * pixels) as f64).sqrt(), off_share: off as f64 / pixels as f64 }
 }
 
 /// Draws pictures of one specimen: one renderer, the scene uploaded per displacement level.
@@ -346,9 +312,12 @@ pub const DISPLACEMENT: &str = "displacement";
 
 /// Every technique the study draws with its layer counts: the ones without a search once.
 pub fn cases(layers: &[u32]) -> Vec<(Parallax, Option<u32>)> {
-    let mut cases = vec![(Parallax::Off, None), (Parallax::Offset, None), (Parallax::OffsetLimited, None)];
-    for technique in [Parallax::Steep, Parallax::Occlusion, Parallax::Relief] {
-        cases.extend(layers.iter().map(|&n| (technique, Some(n))));
+    let mut cases = vec![(Parallax::default(), None)];
+    for technique in Parallax::shifting() {
+        match technique.marches() {
+            true => cases.extend(layers.iter().map(|&n| (technique, Some(n)))),
+            false => cases.push((technique, None)),
+        }
     }
     cases
 }
@@ -383,7 +352,7 @@ pub fn measure_specimen(
     step: &mut dyn FnMut(),
 ) -> Result<Vec<ParallaxRow>, RenderError> {
     let mut bench = Bench::new(renderer, specimen, plan.size);
-    let off = settings(Parallax::Off, None);
+    let off = settings(Parallax::default(), None);
     let reference_level = specimen.reference_level;
     let mut rows = vec![];
     let mut references = vec![];

@@ -86,7 +86,7 @@ pub const FACE_ON_DEG: f32 = 0.0;
 /// is not the floor: the camera's rays reach 17° at the square's edge, a shift off does not
 /// make. `None` where the study did not draw face-on.
 pub fn face_on_floor(rows: &[ParallaxRow], specimen: &str) -> Option<f64> {
-    let off: &str = Parallax::Off.into();
+    let off = Parallax::default().name();
     rows.iter()
         .filter(|r| r.specimen == specimen && r.angle_deg == FACE_ON_DEG)
         .filter(|r| r.technique != DISPLACEMENT && r.technique != off)
@@ -94,10 +94,35 @@ pub fn face_on_floor(rows: &[ParallaxRow], specimen: &str) -> Option<f64> {
         .min_by(f64::total_cmp)
 }
 
-/// The markdown section.
+/// The markdown section: the method, each specimen's tables and sentence, Blinn's sphere.
 pub fn markdown(page: &ParallaxPage) -> String {
     let mut s = String::new();
+    write_method(&mut s, page);
+    let specimens: Vec<&str> = page.rows.iter().fold(vec![], |mut list, r| {
+        if !list.contains(&r.specimen.as_str()) {
+            list.push(&r.specimen);
+        }
+        list
+    });
+    for specimen in &specimens {
+        let _ = writeln!(s, "### {specimen}\n");
+        let converged = write_convergence(&mut s, page, specimen);
+        write_technique_table(&mut s, page, specimen);
+        if let Some((_, chart)) = page.charts.iter().find(|(name, _)| name == specimen).filter(|_| converged) {
+            let angle = page.plan.convergence_angle_deg;
+            let _ = writeln!(s, "![{specimen}: RMSE against frame time at {angle}°]({chart})\n");
+        }
+        write_layers_needed(&mut s, page, specimen);
+    }
+    write_blinn(&mut s, page.blinn);
+    s
+}
+
+/// The heading, how the pictures are drawn and measured, and the page's notes.
+fn write_method(s: &mut String, page: &ParallaxPage) {
     let plan = page.plan;
+    let refining: Vec<&str> = Parallax::shifting().filter(|t| t.refines()).map(Parallax::name).collect();
+    let refining = capitalized(&refining.join(" and "));
     let _ = writeln!(s, "## Parallax: image error against frame time\n");
     let _ = writeln!(
         s,
@@ -106,7 +131,7 @@ pub fn markdown(page: &ParallaxPage) -> String {
          where its picture stopped changing (each surface's test below). Error: RMSE of the linear \
          RGB channels, and the share of pixels with a channel off by more than {OFF_BY}/255, over the \
          picture (on the squares over the pixels whose view ray meets the surface within {} m of the \
-         centre). Time: median of {} full-quality frame(s), {}. Relief takes 5 binary-search steps; \
+         centre). Time: median of {} full-quality frame(s), {}. {} take 5 binary-search steps; \
          depth is each material's height range.\n",
         plan.size[0],
         plan.size[1],
@@ -118,6 +143,7 @@ pub fn markdown(page: &ParallaxPage) -> String {
         } else {
             "wall time, each submitted alone and waited for (the device has no timestamp queries inside encoders)"
         },
+        refining,
     );
     for note in page.notes {
         let _ = writeln!(s, "- {note}");
@@ -125,134 +151,136 @@ pub fn markdown(page: &ParallaxPage) -> String {
     if !page.notes.is_empty() {
         s.push('\n');
     }
-    let specimens: Vec<&str> = page.rows.iter().fold(vec![], |mut list, r| {
-        if !list.contains(&r.specimen.as_str()) {
-            list.push(&r.specimen);
+}
+
+/// Displacement's convergence table and whether its reference level converged.
+fn write_convergence(s: &mut String, page: &ParallaxPage, specimen: &str) -> bool {
+    let angle = page.plan.convergence_angle_deg;
+    let _ = writeln!(s, "Displacement's convergence at {angle}° (RMSE against the reference level):\n");
+    let _ = writeln!(s, "| level | RMSE | off > {OFF_BY}/255 | ms |\n|---|---|---|---|");
+    let levels = page.rows.iter().filter(|r| r.specimen == specimen && r.technique == DISPLACEMENT);
+    for r in levels.filter(|r| r.angle_deg == angle) {
+        let level = r.level.unwrap_or(0);
+        let (rmse, off) = (r.error.rmse, 100.0 * r.error.off_share);
+        let _ = writeln!(s, "| {level} | {rmse:.4} | {off:.2} % | {:.1} |", r.frame_ms);
+    }
+    s.push('\n');
+    let step = reference_step(page.rows, specimen, angle);
+    let converged = step.is_some_and(|step| step.converged());
+    match step {
+        Some(step) => {
+            let _ = writeln!(
+                s,
+                "Reference level {}: **{}** (level {} is {:.4} RMSE from it, {:.1} % of pixels off; the test: at \
+                 most {REFERENCE_STEP_RMSE}).{}\n",
+                step.level,
+                if converged { "converged" } else { "not converged" },
+                step.level - 1,
+                step.below.rmse,
+                100.0 * step.below.off_share,
+                if converged { "" } else { " No chart is drawn against it." },
+            );
         }
-        list
-    });
-    for specimen in &specimens {
-        let rows: Vec<&ParallaxRow> = page.rows.iter().filter(|r| r.specimen == *specimen).collect();
-        let _ = writeln!(s, "### {specimen}\n");
+        None => {
+            let _ = writeln!(
+                s,
+                "Reference: **convergence not measured** (no level below it drawn). No chart is drawn against it.\n"
+            );
+        }
+    }
+    converged
+}
+
+/// The face-on floor and the table of every technique at every angle, displacement last.
+fn write_technique_table(s: &mut String, page: &ParallaxPage, specimen: &str) {
+    let plan = page.plan;
+    let rows: Vec<&ParallaxRow> = page.rows.iter().filter(|r| r.specimen == specimen).collect();
+    let floor = face_on_floor(page.rows, specimen);
+    if let Some(floor) = floor {
         let _ = writeln!(
             s,
-            "Displacement's convergence at {}° (RMSE against the reference level):\n",
-            plan.convergence_angle_deg
+            "Face-on floor: **{floor:.4}** RMSE (the best technique at {FACE_ON_DEG}°: the shading difference no UV \
+             shift removes); each cell's (+…) is the part of its RMSE above it.\n"
         );
-        let _ = writeln!(s, "| level | RMSE | off > {OFF_BY}/255 | ms |\n|---|---|---|---|");
-        for r in rows.iter().filter(|r| r.technique == DISPLACEMENT && r.angle_deg == plan.convergence_angle_deg) {
-            let level = r.level.unwrap_or(0);
-            let _ = writeln!(
-                s,
-                "| {level} | {:.4} | {:.2} % | {:.1} |",
-                r.error.rmse,
-                100.0 * r.error.off_share,
-                r.frame_ms
-            );
+    }
+    let above = |rmse: f64| floor.map_or(String::new(), |f| format!(" (+{:.4})", rmse - f));
+    let angles = &plan.angles_deg;
+    let _ = write!(s, "| technique |");
+    for angle in angles {
+        let _ = write!(s, " {angle}°: RMSE · off · ms |");
+    }
+    let _ = writeln!(s, "\n|---|{}", "---|".repeat(angles.len()));
+    let mut labels: Vec<String> = vec![];
+    for r in rows.iter().filter(|r| r.technique != DISPLACEMENT) {
+        let l = label(r);
+        if !labels.contains(&l) {
+            labels.push(l);
         }
-        s.push('\n');
-        let step = reference_step(page.rows, specimen, plan.convergence_angle_deg);
-        let converged = step.is_some_and(|step| step.converged());
-        match step {
-            Some(step) => {
-                let _ = writeln!(
-                    s,
-                    "Reference level {}: **{}** (level {} is {:.4} RMSE from it, {:.1} % of pixels off; the test: at \
-                     most {REFERENCE_STEP_RMSE}).{}\n",
-                    step.level,
-                    if converged { "converged" } else { "not converged" },
-                    step.level - 1,
-                    step.below.rmse,
-                    100.0 * step.below.off_share,
-                    if converged { "" } else { " No chart is drawn against it." },
-                );
-            }
-            None => {
-                let _ = writeln!(
-                    s,
-                    "Reference: **convergence not measured** (no level below it drawn). No chart is drawn against it.\n"
-                );
-            }
-        }
-        let floor = face_on_floor(page.rows, specimen);
-        if let Some(floor) = floor {
-            let _ = writeln!(
-                s,
-                "Face-on floor: **{floor:.4}** RMSE (the best technique at {FACE_ON_DEG}°: the shading difference no UV \
-                 shift removes); each cell's (+…) is the part of its RMSE above it.\n"
-            );
-        }
-        let above = |rmse: f64| floor.map_or(String::new(), |f| format!(" (+{:.4})", rmse - f));
-        let angles = &plan.angles_deg;
-        let _ = write!(s, "| technique |");
+    }
+    for l in &labels {
+        let _ = write!(s, "| {l} |");
         for angle in angles {
-            let _ = write!(s, " {angle}°: RMSE · off · ms |");
-        }
-        let _ = writeln!(s, "\n|---|{}", "---|".repeat(angles.len()));
-        let mut labels: Vec<String> = vec![];
-        for r in rows.iter().filter(|r| r.technique != DISPLACEMENT || r.angle_deg != plan.convergence_angle_deg) {
-            let l = label(r);
-            if !labels.contains(&l) && r.technique != DISPLACEMENT {
-                labels.push(l);
-            }
-        }
-        for l in &labels {
-            let _ = write!(s, "| {l} |");
-            for angle in angles {
-                match rows.iter().find(|r| r.angle_deg == *angle && label(r) == *l) {
-                    Some(r) => {
-                        let e = r.error;
-                        let _ = write!(
-                            s,
-                            " {:.4}{} · {:.1} % · {:.1} |",
-                            e.rmse,
-                            above(e.rmse),
-                            100.0 * e.off_share,
-                            r.frame_ms
-                        );
-                    }
-                    None => s.push_str(" – |"),
-                }
-            }
-            s.push('\n');
-        }
-        let _ = write!(s, "| displacement (reference) |");
-        for angle in angles {
-            match rows.iter().find(|r| r.angle_deg == *angle && r.technique == DISPLACEMENT) {
+            match rows.iter().find(|r| r.angle_deg == *angle && label(r) == *l) {
                 Some(r) => {
-                    let _ = write!(s, " level {} · {:.1} ms |", r.level.unwrap_or(0), r.frame_ms);
+                    let e = r.error;
+                    let (off, ms) = (100.0 * e.off_share, r.frame_ms);
+                    let _ = write!(s, " {:.4}{} · {off:.1} % · {ms:.1} |", e.rmse, above(e.rmse));
                 }
                 None => s.push_str(" – |"),
             }
         }
-        s.push_str("\n\n");
-        if let Some((_, chart)) = page.charts.iter().find(|(name, _)| name == specimen).filter(|_| converged) {
-            let _ = writeln!(s, "![{specimen}: RMSE against frame time at {}°]({chart})\n", plan.convergence_angle_deg);
-        }
-        let angle = plan.convergence_angle_deg;
-        let needed = layers_needed(page.rows, specimen, angle, Parallax::Occlusion);
-        if let Some((most, rmse)) = needed.most {
-            match needed.within_rmse {
-                Some(n) => {
-                    let _ = write!(
-                        s,
-                        "Occlusion comes within {WITHIN_RMSE} RMSE (1 %) of displacement at {angle}° with **{n} layers**"
-                    );
-                }
-                None => {
-                    let _ = write!(
-                        s,
-                        "Occlusion does not come within {WITHIN_RMSE} RMSE (1 %) of displacement at {angle}° with up to \
-                         {most} layers (RMSE {rmse:.4} at {most})"
-                    );
-                }
+        s.push('\n');
+    }
+    let _ = write!(s, "| displacement (reference) |");
+    for angle in angles {
+        match rows.iter().find(|r| r.angle_deg == *angle && r.technique == DISPLACEMENT) {
+            Some(r) => {
+                let _ = write!(s, " level {} · {:.1} ms |", r.level.unwrap_or(0), r.frame_ms);
             }
-            if let Some(n) = needed.within_converged {
-                let _ = write!(s, "; it comes within 1 % of its error at {most} layers with **{n} layers**");
-            }
-            s.push_str(".\n\n");
+            None => s.push_str(" – |"),
         }
     }
+    s.push_str("\n\n");
+}
+
+/// The sentence on the layers [`Parallax::headline`] needs at the convergence angle.
+fn write_layers_needed(s: &mut String, page: &ParallaxPage, specimen: &str) {
+    let angle = page.plan.convergence_angle_deg;
+    let technique = Parallax::headline();
+    let needed = layers_needed(page.rows, specimen, angle, technique);
+    let Some((most, rmse)) = needed.most else {
+        return;
+    };
+    let name = capitalized(technique.name());
+    match needed.within_rmse {
+        Some(n) => {
+            let _ = write!(
+                s,
+                "{name} comes within {WITHIN_RMSE} RMSE (1 %) of displacement at {angle}° with **{n} layers**"
+            );
+        }
+        None => {
+            let _ = write!(
+                s,
+                "{name} does not come within {WITHIN_RMSE} RMSE (1 %) of displacement at {angle}° with up to \
+                 {most} layers (RMSE {rmse:.4} at {most})"
+            );
+        }
+    }
+    if let Some(n) = needed.within_converged {
+        let _ = write!(s, "; it comes within 1 % of its error at {most} layers with **{n} layers**");
+    }
+    s.push_str(".\n\n");
+}
+
+/// `text` with its first letter upper-case.
+fn capitalized(text: &str) -> String {
+    let mut chars = text.chars();
+    chars.next().map_or(String::new(), |first| first.to_uppercase().chain(chars).collect())
+}
+
+/// Blinn's approximation against the exact normal of a displaced sphere.
+fn write_blinn(s: &mut String, blinn: &[BlinnRow]) {
     let _ = writeln!(s, "### Blinn's approximation on a sphere\n");
     let _ = writeln!(
         s,
@@ -260,7 +288,7 @@ pub fn markdown(page: &ParallaxPage) -> String {
          terms dropped) against the exact normal of the displaced sphere, over θ in 0.1π..0.9π (CPU):\n"
     );
     let _ = writeln!(s, "| h/R | mean tilt (°) | mean error (°) | max error (°) |\n|---|---|---|---|");
-    for r in page.blinn {
+    for r in blinn {
         let _ = writeln!(
             s,
             "| {} | {:.3} | {:.5} | {:.5} |",
@@ -268,7 +296,6 @@ pub fn markdown(page: &ParallaxPage) -> String {
         );
     }
     s.push('\n');
-    s
 }
 
 /// CSV rows (header first): one per picture measured.

@@ -13,10 +13,6 @@ use crate::frame::Parallax;
 /// Mean errors below this many texels (0 face-on) are drawn at it.
 pub const TEXEL_FLOOR: f64 = 1e-3;
 
-/// The techniques the study measures, in the charts' order.
-const TECHNIQUES: [Parallax; 5] =
-    [Parallax::Offset, Parallax::OffsetLimited, Parallax::Steep, Parallax::Occlusion, Parallax::Relief];
-
 /// The file of [`ms_chart`] for `specimen` at `angle_deg`.
 pub fn ms_chart_name(specimen: &str, angle_deg: f32) -> String {
     format!("uv-ms-{}-{angle_deg}.png", specimen.to_lowercase())
@@ -51,10 +47,10 @@ pub fn ms_chart(
     angle_deg: f32,
 ) -> Option<Result<Vec<u8>, ChartError>> {
     let mut series = vec![];
-    for (index, technique) in TECHNIQUES.iter().enumerate() {
+    for (index, technique) in Parallax::shifting().enumerate() {
         let mut points: Vec<(u32, f64, f64)> = rows
             .iter()
-            .filter(|r| r.specimen == specimen && r.technique == *technique && r.angle_deg == angle_deg)
+            .filter(|r| r.specimen == specimen && r.technique == technique && r.angle_deg == angle_deg)
             .filter_map(|r| gpu_ms(r, gpu).map(|ms| (r.layers.unwrap_or(0), ms.max(1e-3), r.mean.max(TEXEL_FLOOR))))
             .collect();
         points.sort_by_key(|p| p.0);
@@ -96,12 +92,12 @@ pub fn angle_chart(rows: &[UvError], specimen: &str, layers: &[u32]) -> Result<V
         _ => vec![],
     };
     let mut series = vec![];
-    for (index, technique) in TECHNIQUES.iter().enumerate() {
-        let searches = rows.iter().any(|r| r.technique == *technique && r.layers.is_some());
+    for (index, technique) in Parallax::shifting().enumerate() {
+        let searches = rows.iter().any(|r| r.technique == technique && r.layers.is_some());
         for (k, &count) in if searches { counts.as_slice() } else { &[None] }.iter().enumerate() {
             let mut points: Vec<(f64, f64)> = rows
                 .iter()
-                .filter(|r| r.specimen == specimen && r.technique == *technique && r.layers == count)
+                .filter(|r| r.specimen == specimen && r.technique == technique && r.layers == count)
                 .map(|r| (f64::from(r.angle_deg), r.mean.max(TEXEL_FLOOR)))
                 .collect();
             points.sort_by(|a, b| a.0.total_cmp(&b.0));

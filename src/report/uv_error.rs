@@ -11,15 +11,17 @@
 //! every point sees the same direction. Heights (16 bits, as the GPU's texture holds them) are
 //! read bilinearly from level 0 with repeat wrapping ([`bilinear`]) by both the technique and
 //! the exact hit: the mip level the GPU's footprint picks is left out, so the error is the
-//! technique's alone.
+//! technique's alone. Relaxed cone stepping reads the cone map the prepare stage packs
+//! beside the heights ([`crate::height::cone`], 8 bits as the texture holds it), bilinearly too.
 
 use glam::{DVec2, Vec2, Vec3};
 
 use super::exact_hit::{ExactHit, bilinear, exact_hit};
 use super::parallax::{Specimen, cases, settings};
-use crate::chain::parallax::{MarchInputs, march};
+use crate::chain::parallax::{ConeTexel, MarchInputs, march};
 use crate::frame::Parallax;
 use crate::height::HeightField;
+use crate::height::cone::{decode_cone_ratio, encode_cone_ratio, relaxed_cone_ratios};
 use crate::scene::bricks::brick_height_field;
 use crate::scene::builtin::BRICK_TILE_M;
 use crate::scene::material::TEXTURE_SPAN_M;
@@ -40,6 +42,9 @@ pub struct Relief {
     /// The field is bricks and joints: the wrong-brick share applies ([`Self::crosses_region`]).
     pub bricks: bool,
     pub field: HeightField,
+    /// The relaxed cone map's stored blue channel (0..1) of `field`, as the height texture
+    /// holds it ([`cone_channel`]).
+    pub cones: HeightField,
     /// The relief's depth, metres (0: no parallax).
     pub depth_m: f32,
     /// Metres of surface per UV unit.
@@ -51,7 +56,8 @@ impl Relief {
     /// height texture is ([`crate::texture::encode_height`]).
     pub fn wall() -> Relief {
         let field = brick_height_field(BRICK_TILE_M).quantized(16);
-        Relief { name: "wall", bricks: true, depth_m: field.range_m, field, tile_m: BRICK_TILE_M }
+        let cones = cone_channel(&field);
+        Relief { name: "wall", bricks: true, depth_m: field.range_m, field, cones, tile_m: BRICK_TILE_M }
     }
 
     /// The height map of `specimen`'s first material as the GPU reads it (16-bit samples
@@ -61,7 +67,8 @@ impl Relief {
         let slot = specimen.scene.materials.first()?.height_map.clone()?;
         let texture = specimen.scene.textures.get(slot.texture)?;
         let field = slot.height_field(texture, TEXTURE_SPAN_M);
-        Some(Relief { name, bricks: false, depth_m: slot.range_m, field, tile_m: TEXTURE_SPAN_M })
+        let cones = cone_channel(&field);
+        Some(Relief { name, bricks: false, depth_m: slot.range_m, field, cones, tile_m: TEXTURE_SPAN_M })
     }
 
     /// Texels per UV unit on each axis.
@@ -109,6 +116,13 @@ impl Relief {
     }
 }
 
+/// The relaxed cone map of `field` as the height texture's blue channel holds it: each ratio
+/// stored in 8 bits ([`encode_cone_ratio`]), as 0..1.
+pub fn cone_channel(field: &HeightField) -> HeightField {
+    let stored = relaxed_cone_ratios(field).iter().map(|&r| f32::from(encode_cone_ratio(r)) / 255.0).collect();
+    HeightField { samples: stored, ..field.clone() }
+}
+
 /// The angles the report measures the wall from: 0° to 85° in 5° steps.
 pub fn report_angles() -> Vec<f32> {
     (0..=17).map(|i| 5.0 * i as f32).collect()
@@ -149,10 +163,14 @@ pub fn uv_error(
 ) -> UvError {
     let parallax = settings(technique, layers);
     let height = |uv: Vec2| bilinear(&relief.field, uv.as_dvec2()) as f32;
+    let cone = |uv: Vec2| ConeTexel {
+        height: height(uv),
+        ratio: decode_cone_ratio(bilinear(&relief.cones, uv.as_dvec2()) as f32),
+    };
     let mut errors = Vec::with_capacity(points.len());
     let mut wrong = 0usize;
     for (&uv, hit) in points.iter().zip(hits) {
-        let read = march(&parallax, &relief.inputs(uv, angle_deg), height).uv.as_dvec2();
+        let read = march(&parallax, &relief.inputs(uv, angle_deg), height, cone).uv.as_dvec2();
         errors.push(((read - hit.uv) * relief.texels()).length());
         wrong += usize::from(relief.bricks && relief.crosses_region(hit.uv, read));
     }
@@ -178,7 +196,7 @@ pub fn study(relief: &Relief, angles_deg: &[f32], layers: &[u32], n: u32) -> Vec
     let mut rows = Vec::new();
     for &angle in angles_deg {
         let hits: Vec<ExactHit> = points.iter().map(|&uv| relief.exact(uv, angle)).collect();
-        for case in cases(layers).into_iter().filter(|(t, _)| *t != Parallax::Off) {
+        for case in cases(layers).into_iter().filter(|(t, _)| t.shifts()) {
             rows.push(uv_error(relief, &points, &hits, angle, case));
         }
     }

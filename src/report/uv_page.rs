@@ -67,9 +67,7 @@ pub fn markdown(rows: &[UvError], gpu: &[ParallaxRow], grid: u32, charts: &[(Str
         }
         let _ = writeln!(s, "\n|---|---|{}", "---|".repeat(angles.len()));
         for specimen in &specimens {
-            for technique in
-                [Parallax::Offset, Parallax::OffsetLimited, Parallax::Steep, Parallax::Occlusion, Parallax::Relief]
-            {
+            for technique in Parallax::shifting() {
                 let name: &str = technique.into();
                 let _ = write!(s, "| {specimen} | {name} |");
                 for &angle in &angles {

@@ -103,7 +103,7 @@ impl Default for SplitView {
             tangent_methods: [TangentMethod::PerFace, TangentMethod::MikkTSpace],
             conventions: [GreenAxis::OpenGl, GreenAxis::DirectX],
             bump_sources: [BumpSource::NormalMap, BumpSource::HeightInShader],
-            parallax: [Parallax::Steep, Parallax::Occlusion],
+            parallax: [Parallax::plainest_search(), Parallax::headline()],
             mistakes: [Mistake::None, Mistake::TbnTypo],
             lighting_spaces: [LightingSpace::World, LightingSpace::Tangent],
             displacement_level: 6,

@@ -64,7 +64,7 @@ pub(super) fn show(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Act
             }
         }
     }
-    if technique == Parallax::Relief {
+    if technique.refines() {
         let mut steps = settings.steps;
         if ui.add(egui::Slider::new(&mut steps, 0..=MAX_PARALLAX_STEPS).text("binary steps")).changed() {
             actions.push(Command::SetParallaxSteps(steps).into());

@@ -52,7 +52,7 @@ fn drawn_pass(instance: &GpuInstance, scene: &GpuScene, shading: &ShadingSetting
     }
     let surface = shading.surface_lighting(instance.shading_model, variant == Variant::NormalMapped);
     let lighting = shading.view.is_lit().then_some(surface.shading_model);
-    let parallax = if instance.parallax_height { shading.parallax.technique } else { Parallax::Off };
+    let parallax = if instance.parallax_height { shading.parallax.technique } else { Parallax::default() };
     let legacy = if shading.view.is_lit() { shading.legacy } else { LegacySettings::default() };
     let (view, mistake) = (shading.view, shading.mistake);
     let lighting_space = if lighting.is_some() { surface.lighting_space } else { LightingSpace::World };
