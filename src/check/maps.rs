@@ -7,11 +7,11 @@ use std::fmt::Write;
 use image::RgbaImage;
 
 use super::green::GreenConvention;
-use crate::names::Named;
 use super::material_exponent;
 use super::mip_shortening::{self, LevelShortening, first_over_sharp, mip_shortening};
 use super::normal_map::{NormalMapFindings, check_normal_map, decoded_normals, layout_evidence};
 use super::votes_picture::votes_picture;
+use crate::names::Named;
 use crate::scene::{Material, NormalLayout, NormalMap, Scene};
 
 /// The slot of a material a normal map sits in.

@@ -67,7 +67,10 @@ pub fn looks_object_space(normals: &[Vec3]) -> bool {
 
 /// The unit vectors of `image`'s texels read in `layout` (X-Ray without its correction).
 pub fn decoded_normals(image: &TextureImage, layout: NormalLayout) -> Vec<Vec3> {
-    let texel = |t: &[u8]| NormalTexel { rgba: Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32) / 255.0, correction: None };
+    let texel = |t: &[u8]| NormalTexel {
+        rgba: Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32) / 255.0,
+        correction: None,
+    };
     image.rgba.chunks_exact(4).map(|t| unpack_normal(texel(t), layout).try_normalize().unwrap_or(Vec3::Z)).collect()
 }
 

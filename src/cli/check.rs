@@ -5,10 +5,10 @@ use std::process::ExitCode;
 
 use bumpview::atomic::check_outputs;
 use bumpview::check::{CheckReport, Severity, check_scene};
-use bumpview::render::capture::write_png_atomically;
-use bumpview::scene::Scene;
 use bumpview::error::escape_controls;
 use bumpview::load::{is_image_path, load_model, texture_scene};
+use bumpview::render::capture::write_png_atomically;
+use bumpview::scene::Scene;
 use bumpview::scene::{MaterialOverrides, NormalLayout};
 
 use super::args;
@@ -93,7 +93,11 @@ fn write_votes(input: &Path, scene: &Scene, report: &CheckReport, dir: &Path, fo
     for (map, output) in report.normal_maps.iter().zip(&outputs) {
         let written = map.votes_picture(scene).map(|picture| write_png_atomically(&picture, output));
         match written {
-            Some(Ok(())) => println!("    votes of {}: {}", escape_controls(&map.name()), escape_controls(&output.display().to_string())),
+            Some(Ok(())) => println!(
+                "    votes of {}: {}",
+                escape_controls(&map.name()),
+                escape_controls(&output.display().to_string())
+            ),
             Some(Err(e)) => {
                 println!("  error: {}", escape_controls(&e.to_string()));
                 return Severity::Error;
