@@ -92,3 +92,45 @@ fn an_image_reports_its_layout_and_why() {
     assert!(text.contains("layout: rg (given by --normal-layout)"), "{text}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// ClearCoatTest's coat normal maps are checked in their own slot: its ribs bend along one
+/// axis only, so their green is undetermined, and the report says why.
+#[test]
+fn clear_coat_normal_maps_are_checked() {
+    let model = asset(&assets(), "gltf/ClearCoatTest/glTF/ClearCoatTest.gltf");
+    let (code, text) = check(&[&model]);
+    assert!(code <= 1, "{text}");
+    let coat: Vec<&str> = text.lines().filter(|l| l.contains("clear-coat normal map")).collect();
+    assert!(coat.len() >= 2, "{text}");
+    assert!(coat.iter().any(|l| l.contains("green: undetermined (one-directional relief)")), "{text}");
+}
+
+/// `--explain DIR` writes each map's votes as a PNG named after the file, the map's number
+/// and slot; a second run keeps them (exit 2) unless `--force`.
+#[test]
+fn explain_writes_the_votes_and_keeps_what_exists() {
+    let dir = std::env::temp_dir().join(format!("bumpview-check-explain-{}", std::process::id()));
+    let model = asset(&assets(), "gltf/NormalTangentTest/glTF/NormalTangentTest.gltf");
+    let explain = |extra: &[&str]| {
+        let output = Command::new(env!("CARGO_BIN_EXE_bumpview"))
+            .args(["check", "--explain"])
+            .arg(&dir)
+            .args(extra)
+            .arg(&model)
+            .output()
+            .expect("run bumpview");
+        (output.status.code(), String::from_utf8_lossy(&output.stdout).into_owned())
+    };
+    let (code, text) = explain(&[]);
+    assert_eq!(code, Some(0), "{text}");
+    let picture = dir.join("NormalTangentTest.1.normal.votes.png");
+    let (width, height) = image::image_dimensions(&picture).unwrap();
+    assert_eq!((width, height), (2048, 2048));
+    assert!(text.contains("votes of material"), "{text}");
+    let (code, text) = explain(&[]);
+    assert_eq!(code, Some(2), "{text}");
+    assert!(text.contains("exists and was kept"), "{text}");
+    let (code, text) = explain(&["--force"]);
+    assert_eq!(code, Some(0), "{text}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,11 +1,14 @@
 //! `bumpview check`: what in a mesh file will make bump mapping go wrong, per mesh and
 //! material — degenerate and mirrored UV triangles, UV seams, supplied tangents that are not
 //! unit or orthogonal or disagree on `w` inside a triangle, and normal-map sanity with the
-//! map's likely green-channel convention ([`normal_map`]), and how much its averaged normals
-//! shorten per mip level ([`mip_shortening`]).
+//! map's likely green-channel convention ([`green`]) in every normal slot ([`maps`]), and how
+//! much its averaged normals shorten per mip level ([`mip_shortening`]).
 
+pub mod green;
+pub mod maps;
 pub mod mip_shortening;
 pub mod normal_map;
+pub mod votes_picture;
 
 use std::collections::HashMap;
 use std::fmt::Write;
@@ -13,11 +16,11 @@ use std::fmt::Write;
 use glam::{Vec2, Vec3};
 
 use crate::error::LoadWarning;
-use crate::names::Named;
-use crate::scene::{Material, Mesh, NormalLayout, Scene, ShadingModel};
+use crate::scene::{Material, Mesh, Scene, ShadingModel};
 use crate::tangent::face_frame;
-use mip_shortening::{LevelShortening, first_over_sharp, mip_shortening};
-pub use normal_map::{GreenConvention, NormalMapFindings, check_normal_map, layout_evidence};
+pub use green::{GreenConvention, Undetermined};
+pub use maps::{MapFindings, NEGATIVE_Z_WARN_SHARE, NON_UNIT_WARN_SHARE, NormalSlot, check_normal_maps};
+pub use normal_map::{NormalMapFindings, check_normal_map, layout_evidence};
 
 /// How serious a finding is; decides the exit status (0 clean, 1 warnings, 2 errors).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -59,22 +62,6 @@ pub struct TangentFindings {
     pub mixed_w_triangles: usize,
 }
 
-/// One normal map as a material uses it.
-#[derive(Debug, Clone, PartialEq)]
-pub struct MapFindings {
-    pub material: String,
-    pub texture: String,
-    pub findings: NormalMapFindings,
-    /// The channel layout the map is drawn with (the material's, as loaded), and why.
-    pub layout: NormalLayout,
-    pub layout_reason: String,
-    /// The material's Blinn-Phong exponent (metallic-roughness: Beckmann's `2/α² − 2`).
-    pub shininess: f32,
-    /// Per mip level, how short the averaged normals get ([`mip_shortening`]); empty unless
-    /// the map is read as RGB.
-    pub mips: Vec<LevelShortening>,
-}
-
 /// The exponent the highlight of `material` has: its own, or for metallic-roughness
 /// Beckmann's `2/α² − 2` with `α = roughness²` (Walter et al. 2007), at most 10⁴.
 pub fn material_exponent(material: &Material) -> f32 {
@@ -92,15 +79,6 @@ pub struct CheckReport {
     /// What the loader could not read or honour ([`Scene::warnings`]).
     pub load_warnings: Vec<LoadWarning>,
 }
-
-/// Warn about texels that decode more than 10% off unit length when more than this share of
-/// a normal map's texels do.
-pub const NON_UNIT_WARN_SHARE: f32 = 0.05;
-/// Warn about texels with `z < 0` (pointing into the surface) from this share on: 0.01%, the
-/// smallest share the report prints as non-zero.
-pub const NEGATIVE_Z_WARN_SHARE: f32 = 1e-4;
-/// Warn that green looks DirectX above this confidence of the curl test.
-pub const DIRECTX_WARN_CONFIDENCE: f32 = 0.5;
 
 /// A position snapped to a grid of `cell` metres, for finding positions shared by several
 /// vertices (parametric seams are equal only up to rounding).
@@ -166,36 +144,7 @@ pub fn check_mesh(mesh: &Mesh) -> MeshFindings {
 /// Checks every mesh of `scene` and every normal map its materials use.
 pub fn check_scene(scene: &Scene) -> CheckReport {
     let meshes = scene.meshes.iter().map(check_mesh).collect();
-    let normal_maps = scene
-        .materials
-        .iter()
-        .filter_map(|m| m.normal_map.as_ref().map(|map| (m, map)))
-        .filter_map(|(material, map)| {
-            let texture = scene.textures.get(map.texture)?;
-            let findings = check_normal_map(texture);
-            let layout = map.convention.layout;
-            let evidence = layout_evidence(findings.suggested_layout);
-            let layout_reason = match (layout, map.correction.and_then(|c| scene.textures.get(c))) {
-                (NormalLayout::Xray, Some(correction)) => {
-                    format!("X-Ray pair: {:?} with the correction {:?} beside it", texture.name, correction.name)
-                }
-                (NormalLayout::Xray, None) => format!("X-Ray bump {:?} without a bump# correction", texture.name),
-                (layout, _) if layout == findings.suggested_layout => format!("as loaded, and {evidence}"),
-                _ => format!("as loaded, although {evidence}"),
-            };
-            let shininess = material_exponent(material);
-            let mips = if layout == NormalLayout::Rgb { mip_shortening(texture, shininess) } else { vec![] };
-            Some(MapFindings {
-                material: material.name.clone(),
-                texture: texture.name.clone(),
-                findings,
-                layout,
-                layout_reason,
-                shininess,
-                mips,
-            })
-        })
-        .collect();
+    let normal_maps = check_normal_maps(scene);
     CheckReport { meshes, normal_maps, load_warnings: scene.warnings.clone() }
 }
 
@@ -224,51 +173,7 @@ impl CheckReport {
                 ));
             }
         }
-        for map in &self.normal_maps {
-            let f = &map.findings;
-            let name = format!("material {:?}, normal map {:?}", map.material, map.texture);
-            if map.layout != f.suggested_layout && map.layout != NormalLayout::Xray {
-                let (suggested, evidence) = (f.suggested_layout.name(), layout_evidence(f.suggested_layout));
-                warnings.push(format!("{name}: {evidence}, which suggests --normal-layout {suggested}"));
-            }
-            // The texel statistics read red, green, blue as x, y, z.
-            if map.layout != NormalLayout::Rgb {
-                continue;
-            }
-            if f.non_unit_share > NON_UNIT_WARN_SHARE {
-                warnings
-                    .push(format!("{name}: {:.1}% of texels decode far from unit length", f.non_unit_share * 100.0));
-            }
-            if f.negative_z_share >= NEGATIVE_Z_WARN_SHARE {
-                warnings.push(format!(
-                    "{name}: {:.2}% of texels point into the surface (z < 0)",
-                    f.negative_z_share * 100.0
-                ));
-            }
-            if f.looks_srgb {
-                warnings.push(format!("{name}: looks sRGB-encoded (flat texels near 188 instead of 128)"));
-            }
-            if let Some((GreenConvention::DirectX, confidence)) = f.convention
-                && confidence > DIRECTX_WARN_CONFIDENCE
-            {
-                warnings.push(format!("{name}: green looks DirectX (−Y), confidence {confidence:.2}"));
-            }
-            if let Some(l) = first_over_sharp(&map.mips) {
-                warnings.push(format!(
-                    "{name}: from mip level {} ({}×{}) its averaged normals are {:.3} long: a re-normalised chain \
-                     draws the highlight with exponent {:.0} where the bumps it averages spread it to {:.1} \
-                     (Toksvig, {:.2}×, below {}×); --mip-filter toksvig or vmf widens it",
-                    l.level,
-                    l.width,
-                    l.height,
-                    l.mean_length,
-                    map.shininess,
-                    l.exponent_ratio * map.shininess,
-                    l.exponent_ratio,
-                    mip_shortening::WARN_EXPONENT_RATIO
-                ));
-            }
-        }
+        self.normal_maps.iter().for_each(|map| warnings.extend(map.warnings()));
         warnings
     }
 
@@ -300,35 +205,7 @@ impl CheckReport {
                 None => writeln!(out, "    tangents: none supplied (generated with MikkTSpace when needed)"),
             };
         }
-        for map in &self.normal_maps {
-            let f = &map.findings;
-            let convention = match f.convention {
-                Some((GreenConvention::OpenGl, c)) => format!("OpenGL (+Y), confidence {c:.2}"),
-                Some((GreenConvention::DirectX, c)) => format!("DirectX (−Y), confidence {c:.2}"),
-                None => "undetermined (too flat)".to_owned(),
-            };
-            let _ = writeln!(
-                out,
-                "  material {:?}, normal map {:?}: {:.1}% non-unit, {:.2}% z < 0, {}; green: {convention}",
-                map.material,
-                map.texture,
-                f.non_unit_share * 100.0,
-                f.negative_z_share * 100.0,
-                if f.looks_srgb { "looks sRGB-encoded" } else { "linear" },
-            );
-            let _ = writeln!(out, "    layout: {} ({})", map.layout.name(), map.layout_reason);
-            if !map.mips.is_empty() {
-                let lengths: Vec<String> = map.mips.iter().map(|l| format!("{:.3}", l.mean_length)).collect();
-                let ratios: Vec<String> = map.mips.iter().map(|l| format!("{:.2}", l.exponent_ratio)).collect();
-                let _ = writeln!(out, "    mips: mean |Na| per level {}", lengths.join(" "));
-                let _ = writeln!(
-                    out,
-                    "    Toksvig exponent over the material's {:.0} per level (1: a re-normalised chain is right) {}",
-                    map.shininess,
-                    ratios.join(" ")
-                );
-            }
-        }
+        self.normal_maps.iter().for_each(|map| map.write_text(&mut out));
         for error in self.errors() {
             let _ = writeln!(out, "  error: {error}");
         }

@@ -1,21 +1,12 @@
-//! Sanity of a tangent-space normal map, and its likely green-channel convention.
-//!
-//! A normal map is the gradient of some height field: with decoded `n`, the slopes are
-//! `p = ∂h/∂x = −n.x/n.z` and `q = ∂h/∂y_up = −n.y/n.z`, and a gradient field has zero curl,
-//! `∂p/∂y_up − ∂q/∂x = 0`. Read with the wrong green convention `q` changes sign, and the
-//! "curl" becomes `∂p/∂y_up + ∂q/∂x`, which is not zero where the relief bends. Comparing the
-//! two energies tells the convention (Kovesi's integrability test, in short).
+//! Sanity of a normal map: unit length, texels below the surface, sRGB encoding, the channel
+//! layout its texels suggest, whether it is in object space, and (for tangent-space maps)
+//! its likely green-channel convention ([`super::green`]).
 
+use glam::{Vec3, Vec4};
+
+use super::green::{GreenConvention, GreenEvidence, Undetermined, green_evidence};
 use crate::scene::{NormalLayout, TextureImage};
-
-/// Which way green points.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum GreenConvention {
-    /// +Y (green) up the image: OpenGL, glTF, Blender.
-    OpenGl,
-    /// +Y down the image: DirectX, Unreal.
-    DirectX,
-}
+use crate::shading::{NormalTexel, unpack_normal};
 
 /// Findings about one normal map.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,27 +15,68 @@ pub struct NormalMapFindings {
     pub non_unit_share: f32,
     /// Share of texels with `z < 0` (blue below 128): pointing into the surface.
     pub negative_z_share: f32,
-    /// The flat texel looks sRGB-encoded: most texels sit near (188, 188) in red and green
-    /// (0.5 encoded as sRGB) instead of near 128.
+    /// The flat texel looks sRGB-encoded: most texels sit near (188, 188, 255) (0.5 encoded
+    /// as sRGB in red and green, blue near full) instead of near (128, 128, 255).
     pub looks_srgb: bool,
     /// The channel layout the texels suggest ([`suggested_layout`]): RG where blue is
     /// constant, AG where red and blue are constant and alpha varies, else RGB. X-Ray's pair
     /// is told by its files, not its texels.
     pub suggested_layout: NormalLayout,
-    /// The convention whose slope field is closer to curl-free, with a confidence in 0..1
-    /// (`1 − smaller energy / larger energy`); `None` for a map too flat to tell.
+    /// The decoded normals spread over the sphere rather than around +Z ([`looks_object_space`]):
+    /// an object-space map, whose green has no tangent-space convention to judge.
+    pub looks_object_space: bool,
+    /// The layout the vectors were decoded in for the space and green tests: the one asked
+    /// for, or for RGB the one the texels suggest (a BC5 or DXT5nm map as it lands in RGB).
+    pub read_layout: NormalLayout,
+    /// The tiles' votes on the green convention, and the verdict or why there is none.
+    pub green: GreenEvidence,
+    /// The decided convention with its confidence (0.5..1, at least
+    /// [`super::green::DECIDED_CONFIDENCE`]); `None` when undetermined or in object space.
     pub convention: Option<(GreenConvention, f32)>,
 }
 
-/// Slopes (p, q) of texel (x, y) under the OpenGL reading, or `None` where z ≤ 0.
-fn slopes(image: &TextureImage, x: i64, y: i64) -> Option<(f32, f32)> {
-    let t = image.texel(x, y);
-    let [nx, ny, nz] = [0, 1, 2].map(|c| t[c] as f32 / 127.5 - 1.0);
-    (nz > 0.05).then(|| (-nx / nz, -ny / nz))
+impl NormalMapFindings {
+    /// The green verdict in words: `OpenGL (+Y), confidence 0.98`, `undetermined (too flat)`,
+    /// `not judged (object space)`.
+    pub fn green_text(&self) -> String {
+        match (self.looks_object_space, self.green.verdict) {
+            (true, _) => "not judged (object space)".to_owned(),
+            (false, Ok((GreenConvention::OpenGl, c))) => format!("OpenGL (+Y), confidence {c:.2}"),
+            (false, Ok((GreenConvention::DirectX, c))) => format!("DirectX (−Y), confidence {c:.2}"),
+            (false, Err(reason)) => format!("undetermined ({})", reason.reason()),
+        }
+    }
+
+    /// Why the convention is undetermined, for a tangent-space map without a verdict.
+    pub fn undetermined(&self) -> Option<Undetermined> {
+        self.green.verdict.err().filter(|_| !self.looks_object_space)
+    }
 }
 
-/// Checks `image` as a tangent-space normal map.
-pub fn check_normal_map(image: &TextureImage) -> NormalMapFindings {
+/// Share of texels with `z` below [`OBJECT_SPACE_Z`] from which a map reads as object space.
+pub const OBJECT_SPACE_SHARE: f32 = 0.25;
+/// A tangent-space normal leans at most about 73° from +Z on all but a few texels.
+pub const OBJECT_SPACE_Z: f32 = 0.3;
+
+/// Whether unit normals spread over the sphere rather than around +Z: at least
+/// [`OBJECT_SPACE_SHARE`] of them have `z < ` [`OBJECT_SPACE_Z`].
+pub fn looks_object_space(normals: &[Vec3]) -> bool {
+    let low = normals.iter().filter(|n| n.z < OBJECT_SPACE_Z).count();
+    low as f32 >= OBJECT_SPACE_SHARE * normals.len().max(1) as f32
+}
+
+/// The unit vectors of `image`'s texels read in `layout` (X-Ray without its correction).
+pub fn decoded_normals(image: &TextureImage, layout: NormalLayout) -> Vec<Vec3> {
+    let texel = |t: &[u8]| NormalTexel {
+        rgba: Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32) / 255.0,
+        correction: None,
+    };
+    image.rgba.chunks_exact(4).map(|t| unpack_normal(texel(t), layout).try_normalize().unwrap_or(Vec3::Z)).collect()
+}
+
+/// Checks `image` as a normal map read in `layout`; the RGB statistics (length, `z < 0`,
+/// sRGB) read red, green, blue as x, y, z.
+pub fn check_normal_map(image: &TextureImage, layout: NormalLayout) -> NormalMapFindings {
     let texels = (image.width as usize * image.height as usize).max(1) as f32;
     let (mut non_unit, mut negative_z, mut near_srgb_flat, mut near_linear_flat) = (0usize, 0usize, 0usize, 0usize);
     let first = image.rgba.get(..4).map_or([0; 4], |t| [t[0], t[1], t[2], t[3]]);
@@ -58,16 +90,25 @@ pub fn check_normal_map(image: &TextureImage) -> NormalMapFindings {
             negative_z += 1;
         }
         let near = |c: u8, centre: i32| (c as i32 - centre).abs() <= 12;
-        near_srgb_flat += (near(t[0], 188) && near(t[1], 188)) as usize;
-        near_linear_flat += (near(t[0], 128) && near(t[1], 128)) as usize;
+        near_srgb_flat += (near(t[0], 188) && near(t[1], 188) && t[2] >= 240) as usize;
+        near_linear_flat += (near(t[0], 128) && near(t[1], 128) && t[2] >= 240) as usize;
         (0..4).for_each(|c| constant[c] &= t[c] == first[c]);
     }
+    let suggested_layout = suggested_layout(constant, image.rgba.len() / 4);
+    let read_layout = if layout == NormalLayout::Rgb { suggested_layout } else { layout };
+    let normals = decoded_normals(image, read_layout);
+    let looks_object_space = looks_object_space(&normals);
+    let green = green_evidence(&normals, image.width, image.height);
+    let convention = green.verdict.ok().filter(|_| !looks_object_space);
     NormalMapFindings {
         non_unit_share: non_unit as f32 / texels,
         negative_z_share: negative_z as f32 / texels,
-        looks_srgb: near_srgb_flat > near_linear_flat.max(1) * 2,
-        suggested_layout: suggested_layout(constant, image.rgba.len() / 4),
-        convention: green_convention(image),
+        looks_srgb: !looks_object_space && near_srgb_flat > near_linear_flat.max(1) * 2,
+        suggested_layout,
+        looks_object_space,
+        read_layout,
+        green,
+        convention,
     }
 }
 
@@ -93,32 +134,6 @@ pub fn layout_evidence(layout: NormalLayout) -> &'static str {
     }
 }
 
-/// Integrability energies of both readings, summed over the image (central differences,
-/// wrapped); the smaller one wins.
-fn green_convention(image: &TextureImage) -> Option<(GreenConvention, f32)> {
-    let (mut opengl, mut directx) = (0.0f64, 0.0f64);
-    for y in 0..image.height as i64 {
-        for x in 0..image.width as i64 {
-            let (Some((p_up, _)), Some((p_down, _)), Some((_, q_right)), Some((_, q_left))) =
-                (slopes(image, x, y - 1), slopes(image, x, y + 1), slopes(image, x + 1, y), slopes(image, x - 1, y))
-            else {
-                continue;
-            };
-            // y_up runs towards smaller rows.
-            let dp_dy_up = (p_up - p_down) as f64 * 0.5;
-            let dq_dx = (q_right - q_left) as f64 * 0.5;
-            opengl += (dp_dy_up - dq_dx).powi(2);
-            directx += (dp_dy_up + dq_dx).powi(2);
-        }
-    }
-    let (smaller, larger) = (opengl.min(directx), opengl.max(directx));
-    if larger < 1e-6 * image.width as f64 * image.height as f64 {
-        return None;
-    }
-    let convention = if opengl <= directx { GreenConvention::OpenGl } else { GreenConvention::DirectX };
-    Some((convention, (1.0 - smaller / larger) as f32))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -134,13 +149,13 @@ mod tests {
     #[test]
     fn the_brick_map_reads_as_opengl_and_its_flip_as_directx() {
         let map = brick_height_field(1.0).to_normal_map(Kernel::CentralDifference, Border::Wrap, "bricks");
-        let findings = check_normal_map(&map);
+        let findings = check_normal_map(&map, NormalLayout::Rgb);
         let (convention, confidence) = findings.convention.unwrap();
         assert_eq!(convention, GreenConvention::OpenGl);
         assert!(confidence > 0.5, "{confidence}");
         assert!(!findings.looks_srgb && findings.negative_z_share == 0.0);
         assert_eq!(findings.suggested_layout, NormalLayout::Rgb);
-        let (flipped, confidence) = check_normal_map(&flip_green(&map)).convention.unwrap();
+        let (flipped, confidence) = check_normal_map(&flip_green(&map), NormalLayout::Rgb).convention.unwrap();
         assert_eq!(flipped, GreenConvention::DirectX);
         assert!(confidence > 0.5, "{confidence}");
     }
@@ -154,11 +169,11 @@ mod tests {
             kind: crate::scene::TextureKind::NormalMap,
             rgba: [rgb[0], rgb[1], rgb[2], 255].repeat(64),
         };
-        let linear = check_normal_map(&flat([128, 128, 255]));
+        let linear = check_normal_map(&flat([128, 128, 255]), NormalLayout::Rgb);
         assert!(linear.convention.is_none() && !linear.looks_srgb);
         assert_eq!(linear.suggested_layout, NormalLayout::Rg);
-        assert!(check_normal_map(&flat([188, 188, 255])).looks_srgb);
-        assert_eq!(check_normal_map(&flat([128, 128, 0])).negative_z_share, 1.0);
+        assert!(check_normal_map(&flat([188, 188, 255]), NormalLayout::Rgb).looks_srgb);
+        assert_eq!(check_normal_map(&flat([128, 128, 0]), NormalLayout::Rgb).negative_z_share, 1.0);
     }
 
     /// DXT5nm keeps red and blue constant and x in alpha; BC5 keeps blue constant.
@@ -169,7 +184,32 @@ mod tests {
         ag.rgba.chunks_exact_mut(4).for_each(|t| t.copy_from_slice(&[255, t[1], 0, t[0]]));
         let mut rg = map.clone();
         rg.rgba.chunks_exact_mut(4).for_each(|t| t[2] = 0);
-        let layouts = [&map, &ag, &rg].map(|m| check_normal_map(m).suggested_layout);
+        let layouts = [&map, &ag, &rg].map(|m| check_normal_map(m, NormalLayout::Rgb).suggested_layout);
         assert_eq!(layouts, [NormalLayout::Rgb, NormalLayout::Ag, NormalLayout::Rg]);
+    }
+
+    /// The normals of a sphere laid out by longitude and latitude spread over all directions:
+    /// object space, not judged for green, and not taken for sRGB.
+    #[test]
+    fn a_sphere_map_reads_as_object_space() {
+        let (width, height) = (64u32, 32u32);
+        let mut rgba = Vec::new();
+        for row in 0..height {
+            for x in 0..width {
+                let longitude = std::f32::consts::TAU * (x as f32 + 0.5) / width as f32;
+                let latitude = std::f32::consts::PI * ((row as f32 + 0.5) / height as f32 - 0.5);
+                let n = Vec3::new(latitude.cos() * longitude.cos(), latitude.cos() * longitude.sin(), -latitude.sin());
+                rgba.extend(n.to_array().map(|c| (127.5 * (c + 1.0)).round() as u8));
+                rgba.push(255);
+            }
+        }
+        let kind = crate::scene::TextureKind::NormalMap;
+        let sphere = TextureImage { name: "sphere".into(), width, height, kind, rgba };
+        let findings = check_normal_map(&sphere, NormalLayout::Rgb);
+        assert!(findings.looks_object_space && !findings.looks_srgb);
+        assert_eq!(findings.convention, None);
+        assert_eq!(findings.green_text(), "not judged (object space)");
+        let bricks = brick_height_field(1.0).to_normal_map(Kernel::CentralDifference, Border::Wrap, "bricks");
+        assert!(!check_normal_map(&bricks, NormalLayout::Rgb).looks_object_space);
     }
 }
