@@ -144,12 +144,7 @@ impl<'a> TextureCache<'a> {
             let levels = prepared.lean_texture(index)?;
             let limit = self.device.limits().max_texture_dimension_2d;
             let fits = levels.iter().position(|m| m.width <= limit && m.height <= limit).unwrap_or(levels.len() - 1);
-            let bytes: Vec<Vec<u16>> = levels[fits..].iter().map(|m| m.half_bits()).collect();
-            let levels: Vec<Level> = levels[fits..]
-                .iter()
-                .zip(&bytes)
-                .map(|(m, bits)| ([m.width, m.height], bytemuck::cast_slice(bits)))
-                .collect();
+            let levels: Vec<Level> = levels[fits..].iter().map(|m| ([m.width, m.height], m.bytes())).collect();
             let label = format!("LEAN moments of {}", prepared.scene.textures[index].name);
             let format = wgpu::TextureFormat::Rgba16Float;
             let texture = self.create(&label, format, 8, &levels).unwrap_or_else(|problem| {

@@ -191,7 +191,7 @@ pub fn texture_bytes(prepared: &PreparedScene) -> u64 {
             let chain: u64 = prepared.mip_chain(i).iter().map(|level| level.rgba.len() as u64).sum();
             // LEAN's moments: `Rgba16Float`, 8 bytes a texel, made only where LEAN draws.
             let moments: u64 =
-                prepared.lean_texture(i).unwrap_or_default().iter().map(|l| 8 * l.texels.len() as u64).sum();
+                prepared.lean_texture(i).unwrap_or_default().iter().map(|l| l.bytes().len() as u64).sum();
             chain + moments
         })
         .sum()

@@ -28,7 +28,7 @@ pub fn sample_trilinear_texels(
     trilinear(size, chain.len(), footprint, |level| {
         let texels = &chain[level];
         let width = texels.width;
-        bilinear([width, texels.height], uv, wrap, |x, y| texels.texels[(y * width + x) as usize])
+        bilinear([width, texels.height], uv, wrap, |x, y| texels.texel((y * width + x) as usize))
     })
 }
 

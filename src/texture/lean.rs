@@ -39,65 +39,92 @@ pub fn slopes(n: Vec3) -> Vec2 {
     Vec2::new(n.x, n.y) / n.z.max(MIN_LEAN_NZ)
 }
 
+/// A base texel's moments: its slopes `B` and `(Bx², By², Bx·By)`.
+fn texel_moments(t: &[u8]) -> (Vec2, Vec3) {
+    let b = slopes(decode_unit_normal([t[0], t[1], t[2]]));
+    (b, Vec3::new(b.x * b.x, b.y * b.y, b.x * b.y))
+}
+
+impl LeanLevel {
+    /// The next level (half size, at least 1×1): each texel the mean of the 2×2 box it covers
+    /// in a `width × height` level whose texel `i` has the moments `at(i)` (edge texels repeated
+    /// on odd sizes, as [`TextureImage::downsampled`]).
+    fn boxed(width: u32, height: u32, at: impl Fn(usize) -> (Vec2, Vec3)) -> LeanLevel {
+        let (w, h) = (width as usize, height as usize);
+        let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
+        let (mut first, mut second) = (Vec::with_capacity(nw * nh), Vec::with_capacity(nw * nh));
+        for y in 0..nh {
+            for x in 0..nw {
+                let corners = [(0, 0), (1, 0), (0, 1), (1, 1)]
+                    .map(|(dx, dy)| at((2 * y + dy).min(h - 1) * w + (2 * x + dx).min(w - 1)));
+                first.push(corners.iter().map(|c| c.0).sum::<Vec2>() / 4.0);
+                second.push(corners.iter().map(|c| c.1).sum::<Vec3>() / 4.0);
+            }
+        }
+        LeanLevel { width: nw as u32, height: nh as u32, first, second }
+    }
+
+    /// This level as uploaded: `(Bx, By, Bx², By²)` in half floats.
+    pub fn texels(&self) -> LeanTexels {
+        let bits = self.first.iter().zip(&self.second).map(|(b, m)| [b.x, b.y, m.x, m.y].map(half_bits));
+        LeanTexels { width: self.width, height: self.height, bits: bits.collect() }
+    }
+}
+
 impl TextureImage {
     /// LEAN's moments of this RGB normal map, level 0 first down to 1×1, by the same 2×2 boxes
-    /// as [`TextureImage::downsampled`].
+    /// as [`TextureImage::downsampled`]: level 0 from the texels ([`texel_moments`]), each
+    /// further level the box means of the one before, in f32.
     pub fn lean_moments(&self) -> Vec<LeanLevel> {
-        let (first, second) = self
-            .rgba
-            .chunks_exact(4)
-            .map(|t| {
-                let b = slopes(decode_unit_normal([t[0], t[1], t[2]]));
-                (b, Vec3::new(b.x * b.x, b.y * b.y, b.x * b.y))
-            })
-            .unzip();
-        let mut levels = vec![LeanLevel { width: self.width, height: self.height, first, second }];
-        while let Some(last) = levels.last().filter(|l| l.width > 1 || l.height > 1) {
-            let (w, h) = (last.width as usize, last.height as usize);
-            let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
-            let corners = |x: usize, y: usize| {
-                [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(dx, dy)| ((2 * y + dy).min(h - 1)) * w + (2 * x + dx).min(w - 1))
-            };
-            let cells: Vec<[usize; 4]> =
-                (0..nh).flat_map(|y| (0..nw).map(move |x| (x, y))).map(|(x, y)| corners(x, y)).collect();
-            let first = cells.iter().map(|c| c.iter().map(|&i| last.first[i]).sum::<Vec2>() / 4.0).collect();
-            let second = cells.iter().map(|c| c.iter().map(|&i| last.second[i]).sum::<Vec3>() / 4.0).collect();
-            levels.push(LeanLevel { width: nw as u32, height: nh as u32, first, second });
-        }
-        levels
+        let (first, second) = self.rgba.chunks_exact(4).map(texel_moments).unzip();
+        let base = LeanLevel { width: self.width, height: self.height, first, second };
+        std::iter::once(base).chain(self.lean_moments_below()).collect()
+    }
+
+    /// [`Self::lean_moments`] below level 0, made one level at a time: level 1 from the
+    /// texels' bytes, so level 0's moments (20 bytes a texel) are never held.
+    fn lean_moments_below(&self) -> impl Iterator<Item = LeanLevel> + '_ {
+        let level_1 = (self.width > 1 || self.height > 1)
+            .then(|| LeanLevel::boxed(self.width, self.height, |i| texel_moments(&self.rgba[4 * i..4 * i + 4])));
+        std::iter::successors(level_1, |last| {
+            (last.width > 1 || last.height > 1)
+                .then(|| LeanLevel::boxed(last.width, last.height, |i| (last.first[i], last.second[i])))
+        })
+    }
+
+    /// LEAN's texture of this RGB normal map as uploaded ([`LeanTexels`]), level 0 first down
+    /// to 1×1: the moments of [`TextureImage::lean_moments`] in half floats, 8 bytes a texel,
+    /// made with one level of f32 moments at a time.
+    pub fn lean_texture(&self) -> Vec<LeanTexels> {
+        let base = self.rgba.chunks_exact(4).map(|t| {
+            let (b, m) = texel_moments(t);
+            [b.x, b.y, m.x, m.y].map(half_bits)
+        });
+        let base = LeanTexels { width: self.width, height: self.height, bits: base.collect() };
+        std::iter::once(base).chain(self.lean_moments_below().map(|level| level.texels())).collect()
     }
 }
 
 /// One level of LEAN's texture as the GPU gets it (`Rgba16Float`, 8 bytes a texel): per texel
-/// `(Bx, By, Bx², By²)`, each rounded to the nearest half float ([`round_to_half`]), row by row.
-/// `Bx·By` is left out: the shader widens the highlight by the covariance's trace alone.
+/// `(Bx, By, Bx², By²)` as half floats ([`half_bits`]), row by row. `Bx·By` is left out: the
+/// shader widens the highlight by the covariance's trace alone.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LeanTexels {
     pub width: u32,
     pub height: u32,
-    pub texels: Vec<Vec4>,
-}
-
-impl LeanLevel {
-    /// This level as uploaded: `(Bx, By, Bx², By²)` rounded to half floats.
-    pub fn texels(&self) -> LeanTexels {
-        let texels = self.first.iter().zip(&self.second).map(|(b, m)| Vec4::new(b.x, b.y, m.x, m.y).map(round_to_half));
-        LeanTexels { width: self.width, height: self.height, texels: texels.collect() }
-    }
+    /// The half floats' bit patterns, RGBA (`Rgba16Float`'s texels).
+    pub bits: Vec<[u16; 4]>,
 }
 
 impl LeanTexels {
-    /// The texels' half-float bit patterns, RGBA row by row (`Rgba16Float`'s bytes, native endian).
-    pub fn half_bits(&self) -> Vec<u16> {
-        self.texels.iter().flat_map(|t| t.to_array().map(half_bits)).collect()
+    /// Texel `index`'s `(Bx, By, Bx², By²)` (the half floats' values).
+    pub fn texel(&self, index: usize) -> Vec4 {
+        Vec4::from_array(self.bits[index].map(half_value))
     }
-}
 
-impl TextureImage {
-    /// LEAN's texture of this RGB normal map as uploaded ([`LeanTexels`]), level 0 first down
-    /// to 1×1: the moments of [`TextureImage::lean_moments`] in half floats.
-    pub fn lean_texture(&self) -> Vec<LeanTexels> {
-        self.lean_moments().iter().map(LeanLevel::texels).collect()
+    /// The texels as the texture's bytes (native endian).
+    pub fn bytes(&self) -> &[u8] {
+        bytemuck::cast_slice(&self.bits)
     }
 }
 
@@ -146,6 +173,19 @@ pub fn round_to_half(x: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The uploaded texture, made one level at a time, is the full moments' chain in half
+    /// floats bit for bit, on odd and one-texel-wide sizes too.
+    #[test]
+    fn the_texture_is_the_moments_in_half_floats() {
+        for (width, height) in [(1, 1), (7, 5), (1, 6), (16, 16)] {
+            let rgba = (0..width * height * 4).map(|i| (i * 37 % 251) as u8).collect();
+            let kind = crate::texture::TextureKind::NormalMap;
+            let image = TextureImage { name: "n".into(), width, height, kind, rgba };
+            let from_moments: Vec<LeanTexels> = image.lean_moments().iter().map(LeanLevel::texels).collect();
+            assert_eq!(image.lean_texture(), from_moments, "{width}×{height}");
+        }
+    }
 
     /// Known half floats, ties to even, the subnormals and the overflow.
     #[test]
