@@ -1,4 +1,4 @@
-//! `bumpview report` (issue #4): angular error against run time for every tangent method and
+//! `bumpview report`: angular error against run time for every tangent method and
 //! height kernel, from exact references, written as `report.md`, `report.csv` and two PNG
 //! charts.
 //!
@@ -298,19 +298,8 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
     };
     let study = parallax_study(&plan.parallax, progress);
     let blinn = blinn::blinn_rows(if plan.quick { 64 } else { 256 });
-    let mut charts = vec![];
-    let mut chart_files = vec![];
     let angle = plan.parallax.convergence_angle_deg;
-    for specimen in study.rows.iter().map(|r| r.specimen.clone()).collect::<std::collections::BTreeSet<_>>() {
-        // No curve against a reference that has not converged (the page says so).
-        if !convergence::reference_step(&study.rows, &specimen, angle).is_some_and(|step| step.converged()) {
-            continue;
-        }
-        let bytes = parallax_page::chart(&study.rows, &specimen, angle)?;
-        let name = parallax_page::chart_name(&specimen);
-        charts.push((specimen, name.clone()));
-        chart_files.push((name, bytes));
-    }
+    let (charts, mut chart_files) = parallax_page::charts(&study.rows, angle)?;
     let parallax_section = parallax_page::markdown(&parallax_page::ParallaxPage {
         rows: &study.rows,
         plan: &plan.parallax,
@@ -320,29 +309,12 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
         blinn: &blinn,
         charts: &charts,
     });
-    let reliefs = std::iter::once(uv_error::Relief::wall()).chain(
-        study
-            .specimens
-            .iter()
-            .filter(|s| s.name == "Rock058")
-            .filter_map(|s| uv_error::Relief::of_specimen("Rock058", s)),
-    );
-    let mut uv_rows = vec![];
-    let mut uv_charts = vec![];
-    for relief in reliefs {
-        uv_rows.extend(uv_error::study(&relief, &uv_error::report_angles(), &plan.parallax.layers, plan.uv_grid));
-        if let Some(bytes) = uv_chart::ms_chart(&uv_rows, &study.rows, relief.name, angle) {
-            let name = uv_chart::ms_chart_name(relief.name, angle);
-            uv_charts.push((
-                format!("{}: mean UV error against GPU ms at {angle}°, the Pareto front marked", relief.name),
-                name.clone(),
-            ));
-            chart_files.push((name, bytes?));
-        }
-        let name = uv_chart::angle_chart_name(relief.name);
-        uv_charts.push((format!("{}: mean UV error against the view angle", relief.name), name.clone()));
-        chart_files.push((name, uv_chart::angle_chart(&uv_rows, relief.name, &plan.parallax.layers)?));
-    }
+    let rock = study.specimens.iter().filter(|s| s.name == "Rock058");
+    let reliefs = std::iter::once(uv_error::Relief::wall())
+        .chain(rock.filter_map(|s| uv_error::Relief::of_specimen("Rock058", s)));
+    let (uv_rows, uv_charts, uv_chart_files) =
+        uv_page::study(reliefs, &study.rows, &plan.parallax.layers, plan.uv_grid, angle)?;
+    chart_files.extend(uv_chart_files);
     let uv_section = uv_page::markdown(&uv_rows, &study.rows, plan.uv_grid, &uv_charts);
     let (mip, mip_adapter, mip_notes) = mip_filter_study(&plan.mip, progress);
     let mip_section = mip_page::markdown(&mip, &plan.mip, &mip_adapter, &mip_notes);

@@ -317,6 +317,28 @@ pub fn csv(rows: &[ParallaxRow]) -> String {
 /// Errors below this RMSE are drawn at it.
 const RMSE_FLOOR: f64 = 1e-5;
 
+/// The charts of every specimen whose reference converged at `angle` (in degrees; no curve
+/// against one that has not, the page says so): their (specimen, file name) for the page and
+/// their (file name, PNG bytes) to write.
+pub fn charts(rows: &[ParallaxRow], angle: f32) -> Result<ChartFiles, ChartError> {
+    let specimens: std::collections::BTreeSet<_> = rows.iter().map(|r| r.specimen.clone()).collect();
+    let mut named = vec![];
+    let mut files = vec![];
+    for specimen in specimens {
+        if !reference_step(rows, &specimen, angle).is_some_and(|step| step.converged()) {
+            continue;
+        }
+        let bytes = chart(rows, &specimen, angle)?;
+        let name = chart_name(&specimen);
+        named.push((specimen, name.clone()));
+        files.push((name, bytes));
+    }
+    Ok((named, files))
+}
+
+/// Charts as [`charts`] returns them: (specimen, file name) and (file name, PNG bytes).
+pub type ChartFiles = (Vec<(String, String)>, Vec<(String, Vec<u8>)>);
+
 /// The Pareto chart of `specimen` at `angle`: RMSE against frame time, a curve per technique
 /// through its layer counts (displacement through its levels), a point for each technique
 /// without layers, and the face-on floor ([`face_on_floor`]) as a line across.
