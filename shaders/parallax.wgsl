@@ -66,14 +66,18 @@ fn parallax_uv_at(ray: ParallaxRay, t: f32) -> vec2<f32> {
     return parallax_clamp(ray.uv + ray.per_depth * t);
 }
 
-// 1 − height at `uv`, sampled with the pixel's UV footprint `duv_dx`, `duv_dy`.
-fn parallax_depth_of(uv: vec2<f32>, duv_dx: vec2<f32>, duv_dy: vec2<f32>) -> f32 {
-    let texel = textureSampleGrad(height_texture, detail_sampler, uv, duv_dx, duv_dy);
-    var sample = (texel.r * 65280.0 + texel.g * 255.0) / 65535.0;
+// 1 − height of a height-map texel (a depth map's sample as it is).
+fn parallax_depth_of_texel(texel: vec4<f32>) -> f32 {
+    let sample = height_sample(texel);
     if (object.flags & DEPTH_MAP) != 0u {
-        sample = 1.0 - sample;
+        return sample;
     }
     return 1.0 - sample;
+}
+
+// 1 − height at `uv`, sampled with the pixel's UV footprint `duv_dx`, `duv_dy`.
+fn parallax_depth_of(uv: vec2<f32>, duv_dx: vec2<f32>, duv_dy: vec2<f32>) -> f32 {
+    return parallax_depth_of_texel(textureSampleGrad(height_texture, detail_sampler, uv, duv_dx, duv_dy));
 }
 
 // 1 − height at depth fraction t along the ray.
@@ -163,11 +167,7 @@ fn parallax_uv(uv: vec2<f32>, n: vec3<f32>, position: vec3<f32>) -> vec2<f32> {
 // level 0, filtered; x = 1 − height, y = the cone ratio (height::cone::decode_cone_ratio).
 fn parallax_cone_at(ray: ParallaxRay, t: f32) -> vec2<f32> {
     let texel = textureSampleLevel(height_texture, detail_sampler, parallax_uv_at(ray, t), 0.0);
-    var sample = (texel.r * 65280.0 + texel.g * 255.0) / 65535.0;
-    if (object.flags & DEPTH_MAP) != 0u {
-        sample = 1.0 - sample;
-    }
-    return vec2<f32>(1.0 - sample, MAX_CONE_RATIO * texel.b * texel.b);
+    return vec2<f32>(parallax_depth_of_texel(texel), MAX_CONE_RATIO * texel.b * texel.b);
 }
 
 // chain::parallax's relaxed cone steps then binary search: the depth fraction the ray stops at.
