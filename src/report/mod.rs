@@ -313,7 +313,7 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
     let reliefs = std::iter::once(uv_error::Relief::wall())
         .chain(rock.filter_map(|s| uv_error::Relief::of_specimen("Rock058", s)));
     let (uv_rows, uv_charts, uv_chart_files) =
-        uv_page::study(reliefs, &study.rows, &plan.parallax.layers, plan.uv_grid, angle)?;
+        uv_chart::study_and_charts(reliefs, &study.rows, &plan.parallax.layers, plan.uv_grid, angle)?;
     chart_files.extend(uv_chart_files);
     let uv_section = uv_page::markdown(&uv_rows, &study.rows, plan.uv_grid, &uv_charts);
     let (mip, mip_adapter, mip_notes) = mip_filter_study(&plan.mip, progress);

@@ -6,12 +6,41 @@ use plotters::style::{BLACK, RGBColor};
 
 use super::chart::{COLOURS, ChartError, Marker, Series, XAxis, png};
 use super::parallax::ParallaxRow;
-use super::uv_error::UvError;
+use super::uv_error::{self, Relief, UvError};
 use super::uv_page::gpu_ms;
 use crate::frame::Parallax;
 
 /// Mean errors below this many texels (0 face-on) are drawn at it.
 pub const TEXEL_FLOOR: f64 = 1e-3;
+
+/// The UV-error study over `reliefs` at [`uv_error::report_angles`] with the study's layer
+/// counts on an `n`×`n` grid of rays: its rows, its charts as (caption, file name) for the page,
+/// and their (file name, PNG bytes) to write. `angle` (degrees) is the view the chart of mean
+/// error against the GPU's milliseconds is drawn at.
+pub fn study_and_charts(
+    reliefs: impl Iterator<Item = Relief>,
+    gpu: &[ParallaxRow],
+    layers: &[u32],
+    n: u32,
+    angle: f32,
+) -> Result<(Vec<UvError>, Vec<(String, String)>, Vec<(String, Vec<u8>)>), ChartError> {
+    let mut rows = vec![];
+    let mut captions = vec![];
+    let mut files = vec![];
+    for relief in reliefs {
+        rows.extend(uv_error::study(&relief, &uv_error::report_angles(), layers, n));
+        if let Some(bytes) = ms_chart(&rows, gpu, relief.name, angle) {
+            let name = ms_chart_name(relief.name, angle);
+            let caption = format!("{}: mean UV error against GPU ms at {angle}°, the Pareto front marked", relief.name);
+            captions.push((caption, name.clone()));
+            files.push((name, bytes?));
+        }
+        let name = angle_chart_name(relief.name);
+        captions.push((format!("{}: mean UV error against the view angle", relief.name), name.clone()));
+        files.push((name, angle_chart(&rows, relief.name, layers)?));
+    }
+    Ok((rows, captions, files))
+}
 
 /// The file of [`ms_chart`] for `specimen` at `angle_deg`.
 pub fn ms_chart_name(specimen: &str, angle_deg: f32) -> String {

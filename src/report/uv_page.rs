@@ -6,9 +6,7 @@
 use std::fmt::Write;
 
 use super::parallax::ParallaxRow;
-use super::chart::ChartError;
-use super::uv_chart;
-use super::uv_error::{self, BRICK_ABOVE, MORTAR_BELOW, Relief, UvError};
+use super::uv_error::{BRICK_ABOVE, MORTAR_BELOW, UvError};
 use crate::frame::Parallax;
 
 /// The mean UV error (texels) the layer table asks each search to come under.
@@ -29,35 +27,6 @@ pub fn layers_for<'a>(rows: &'a [UvError], specimen: &str, technique: Parallax, 
         .filter(|r| r.specimen == specimen && r.technique == technique && r.angle_deg == angle_deg)
         .filter(|r| r.mean < UNDER_TEXELS)
         .min_by_key(|r| r.layers.unwrap_or(0))
-}
-
-/// The UV-error study over `reliefs` at [`uv_error::report_angles`] with the study's layer
-/// counts on an `n`×`n` grid of rays: its rows, its charts as (caption, file name) for the page,
-/// and their (file name, PNG bytes) to write. `angle` (degrees) is the view the chart of mean
-/// error against the GPU's milliseconds is drawn at.
-pub fn study(
-    reliefs: impl Iterator<Item = Relief>,
-    gpu: &[ParallaxRow],
-    layers: &[u32],
-    n: u32,
-    angle: f32,
-) -> Result<(Vec<UvError>, Vec<(String, String)>, Vec<(String, Vec<u8>)>), ChartError> {
-    let mut rows = vec![];
-    let mut captions = vec![];
-    let mut files = vec![];
-    for relief in reliefs {
-        rows.extend(uv_error::study(&relief, &uv_error::report_angles(), layers, n));
-        if let Some(bytes) = uv_chart::ms_chart(&rows, gpu, relief.name, angle) {
-            let name = uv_chart::ms_chart_name(relief.name, angle);
-            let caption = format!("{}: mean UV error against GPU ms at {angle}°, the Pareto front marked", relief.name);
-            captions.push((caption, name.clone()));
-            files.push((name, bytes?));
-        }
-        let name = uv_chart::angle_chart_name(relief.name);
-        captions.push((format!("{}: mean UV error against the view angle", relief.name), name.clone()));
-        files.push((name, uv_chart::angle_chart(&rows, relief.name, layers)?));
-    }
-    Ok((rows, captions, files))
 }
 
 /// The section: `rows` over a `grid × grid` grid of each relief, `gpu` the image study's rows,
