@@ -10,6 +10,8 @@ pub use lean::{LeanLevel, LeanTexels, MIN_LEAN_NZ, half_bits, half_value, round_
 pub use mip_filter::MipFilter;
 pub use normal_mips::decode_unit_normal;
 
+use std::collections::TryReserveError;
+
 use glam::Vec3;
 
 use crate::math::{linear_to_srgb, normalize_or, srgb_to_linear};
@@ -107,13 +109,34 @@ impl TextureImage {
         TextureImage { name: self.name.clone(), width: w, height: h, kind: self.kind, rgba }
     }
 
-    /// This image followed by its mip levels down to 1×1.
-    pub fn mip_chain(&self) -> Vec<TextureImage> {
-        let mut chain = vec![self.clone()];
+    /// This image followed by its mip levels down to 1×1; the system refusing the memory for
+    /// level 0's copy (the texture's size, which comes from the input) is an error, not an
+    /// abort.
+    pub fn mip_chain(&self) -> Result<Vec<TextureImage>, TryReserveError> {
+        let mut chain = vec![self.try_copy(|t| t)?];
         while let Some(last) = chain.last().filter(|t| t.width > 1 || t.height > 1) {
             chain.push(last.downsampled());
         }
-        chain
+        Ok(chain)
+    }
+
+    /// A copy of this image with each texel mapped by `texel`, its bytes reserved fallibly.
+    pub fn try_copy(&self, texel: impl Fn([u8; 4]) -> [u8; 4]) -> Result<TextureImage, TryReserveError> {
+        let mut rgba = Vec::new();
+        rgba.try_reserve_exact(self.rgba.len())?;
+        rgba.extend(self.rgba.chunks_exact(4).flat_map(|t| texel(t.try_into().expect("4 bytes"))));
+        Ok(TextureImage { name: self.name.clone(), width: self.width, height: self.height, kind: self.kind, rgba })
+    }
+
+    /// A 1×1 stand-in named `name` that draws as if the texture were absent: a flat normal, a
+    /// height of 0, white colour and data.
+    pub fn neutral(name: &str, kind: TextureKind) -> TextureImage {
+        let texel = match kind {
+            TextureKind::NormalMap => [128, 128, 255, 255],
+            TextureKind::Height => [0, 0, 0, 255],
+            TextureKind::Color | TextureKind::Data => [255; 4],
+        };
+        TextureImage { name: name.to_owned(), width: 1, height: 1, kind, rgba: texel.to_vec() }
     }
 }
 
@@ -143,7 +166,7 @@ mod tests {
     fn mip_chain_ends_at_one_texel_and_keeps_normals_unit() {
         let rgba = [[255, 128, 128, 255], [0, 128, 128, 255], [128, 255, 128, 255], [128, 128, 255, 255]].concat();
         let image = TextureImage { name: "n".into(), width: 2, height: 2, kind: TextureKind::NormalMap, rgba };
-        let chain = image.mip_chain();
+        let chain = image.mip_chain().unwrap();
         assert_eq!(chain.len(), 2);
         let t = chain[1].texel(0, 0);
         let n = Vec3::new(t[0] as f32, t[1] as f32, t[2] as f32) / 127.5 - 1.0;

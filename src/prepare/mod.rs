@@ -264,11 +264,12 @@ impl PreparedScene {
 
     /// The mip chain of texture `index` as it is sampled (level 0 first, box-filtered down to
     /// one texel; see [`TextureImage::mip_chain`]; a normal map's by its instances' method,
-    /// [`TextureImage::mip_chain_filtered`]): the one made ahead, else made now.
-    pub fn mip_chain(&self, index: usize) -> Cow<'_, [TextureImage]> {
+    /// [`TextureImage::mip_chain_filtered`]): the one made ahead, else made now; the notice
+    /// when the system refused its memory (draw [`Self::neutral_chain`] then).
+    pub fn mip_chain(&self, index: usize) -> Result<Cow<'_, [TextureImage]>, String> {
         match &self.mip_chains[index] {
-            Some(chain) => Cow::Borrowed(chain),
-            None => Cow::Owned(self.made_mip_chain(index)),
+            Some(chain) => Ok(Cow::Borrowed(chain)),
+            None => self.made_mip_chain(index).map(Cow::Owned),
         }
     }
 
@@ -289,14 +290,24 @@ impl PreparedScene {
         self.instances.iter().any(lean).then(|| self.scene.textures[index].lean_texture())
     }
 
-    /// Texture `index`'s mip chain, made now.
-    fn made_mip_chain(&self, index: usize) -> Vec<TextureImage> {
+    /// Texture `index`'s mip chain, made now; the system refusing its memory is a notice.
+    fn made_mip_chain(&self, index: usize) -> Result<Vec<TextureImage>, String> {
         let texture = &self.scene.textures[index];
-        match (self.normal_map_filter(index), self.marched_height_map(index)) {
+        let chain = match (self.normal_map_filter(index), self.marched_height_map(index)) {
             (Some(filter), _) => texture.mip_chain_filtered(filter),
-            (None, Some(slot)) => cone::with_cone_map(texture, slot).mip_chain(),
-            (None, None) => texture.mip_chain(),
-        }
+            (None, Some(slot)) if self.options.cone_maps => cone::with_cone_map(texture, slot).mip_chain(),
+            (None, _) => texture.mip_chain(),
+        };
+        chain.map_err(|problem| {
+            let (name, w, h) = (&texture.name, texture.width, texture.height);
+            format!("texture {name:?} ({w}x{h}): no memory for its mip chain ({problem}): drawn without it")
+        })
+    }
+
+    /// The chain texture `index` is drawn with when its own could not be made: a neutral 1×1.
+    pub fn neutral_chain(&self, index: usize) -> Vec<TextureImage> {
+        let texture = &self.scene.textures[index];
+        vec![TextureImage::neutral(&texture.name, texture.kind)]
     }
 
     /// The height map slot of the first instance that binds texture `index` for the parallax
@@ -308,13 +319,18 @@ impl PreparedScene {
     }
 
     /// Makes the mip chains of every texture an instance binds now (textures in parallel), so
-    /// that uploading the scene, on the UI thread, only copies them to the GPU.
+    /// that uploading the scene, on the UI thread, only copies them to the GPU. A chain the
+    /// system had no memory for is [`Self::neutral_chain`], with a notice.
     pub fn precompute_mip_chains(&mut self) {
         let used: Vec<usize> = (0..self.scene.textures.len()).filter(|&index| self.uses_texture(index)).collect();
-        let made: Vec<(usize, Vec<TextureImage>)> =
+        let made: Vec<(usize, Result<Vec<TextureImage>, String>)> =
             used.par_iter().map(|&index| (index, self.made_mip_chain(index))).collect();
         self.mip_chains = vec![None; self.scene.textures.len()];
         for (index, chain) in made {
+            let chain = chain.unwrap_or_else(|notice| {
+                self.notices.push(notice);
+                self.neutral_chain(index)
+            });
             self.mip_chains[index] = Some(chain);
         }
     }
@@ -416,13 +432,30 @@ mod tests {
     fn mip_chains_made_ahead_equal_those_made_on_upload() {
         let mut prepared = PreparedScene::new(&teaching_scene(), &SceneOptions::default());
         let on_demand: Vec<_> =
-            (0..prepared.scene.textures.len()).map(|i| prepared.mip_chain(i).into_owned()).collect();
+            (0..prepared.scene.textures.len()).map(|i| prepared.mip_chain(i).unwrap().into_owned()).collect();
         prepared.precompute_mip_chains();
         for (index, chain) in on_demand.iter().enumerate() {
             assert_eq!(prepared.mip_chains[index].is_some(), prepared.uses_texture(index));
-            assert_eq!(prepared.mip_chain(index).as_ref(), chain.as_slice());
+            assert_eq!(prepared.mip_chain(index).unwrap().as_ref(), chain.as_slice());
         }
         assert!(prepared.mip_chains.iter().any(Option::is_some));
+    }
+
+    #[test]
+    fn height_maps_carry_cone_maps_only_while_relaxed_cones_are_drawn() {
+        let scene = teaching_scene();
+        let marched = |options: &SceneOptions| {
+            let prepared = PreparedScene::new(&scene, options);
+            let index = prepared.instances.iter().find_map(|i| i.textures.height).expect("a marched height map");
+            let level0 = prepared.mip_chain(index).unwrap()[0].clone();
+            (level0, scene.textures[index].clone())
+        };
+        let (plain, original) = marched(&SceneOptions { parallax: true, ..Default::default() });
+        assert_eq!(plain, original, "no cone map for the other techniques");
+        let (packed, _) = marched(&SceneOptions { parallax: true, cone_maps: true, ..Default::default() });
+        assert!(packed.rgba.chunks_exact(4).any(|t| t[2] != 0), "the cone ratios in blue");
+        let same_heights = packed.rgba.chunks_exact(4).zip(original.rgba.chunks_exact(4));
+        assert!(same_heights.clone().all(|(p, o)| p[..2] == o[..2] && p[3] == o[3]));
     }
 
     #[test]

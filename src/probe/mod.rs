@@ -26,6 +26,7 @@
 mod fragment;
 mod pick;
 
+use std::borrow::Cow;
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
@@ -120,7 +121,13 @@ impl ProbeScene {
     pub fn wrap(prepared: Arc<PreparedScene>) -> ProbeScene {
         let used = |index: &usize| prepared.uses_texture(*index);
         let mips = (0..prepared.scene.textures.len())
-            .map(|index| if used(&index) { prepared.mip_chain(index).into_owned() } else { vec![] })
+            .map(|index| {
+                if used(&index) {
+                    prepared.mip_chain(index).map_or_else(|_| prepared.neutral_chain(index), Cow::into_owned)
+                } else {
+                    vec![]
+                }
+            })
             .collect();
         let lean =
             (0..prepared.scene.textures.len()).map(|index| prepared.lean_texture(index).unwrap_or_default()).collect();

@@ -1,6 +1,8 @@
 //! A scene's textures and samplers on the GPU, each made once, on first use: textures with
 //! their mip chains (LEAN's texture of a normal map, a white stand-in), samplers by wrap mode.
 
+use std::borrow::Cow;
+
 use crate::counters::WorkCounters;
 use crate::prepare::PreparedScene;
 use crate::scene::{SamplerWrap, TextureImage, TextureKind, Wrap};
@@ -53,12 +55,8 @@ impl<'a> TextureCache<'a> {
                 "texture {:?} ({}x{}) could not be uploaded ({problem}): drawn without it",
                 image.name, image.width, image.height
             ));
-            let neutral = match image.kind {
-                TextureKind::NormalMap => [128, 128, 255, 255],
-                TextureKind::Height => [0, 0, 0, 255],
-                TextureKind::Color | TextureKind::Data => [255; 4],
-            };
-            self.create(&image.name, format, 4, &[([1, 1], &neutral)]).expect("a 1x1 texture fits any device")
+            let neutral = TextureImage::neutral(&image.name, image.kind);
+            self.create(&image.name, format, 4, &[([1, 1], &neutral.rgba)]).expect("a 1x1 texture fits any device")
         });
         counters.textures_uploaded += 1;
         texture.create_view(&Default::default())
@@ -126,7 +124,11 @@ impl<'a> TextureCache<'a> {
     pub fn get(&mut self, prepared: &PreparedScene, index: usize, counters: &mut WorkCounters) -> wgpu::TextureView {
         if self.views[index].is_none() {
             let image = &prepared.scene.textures[index];
-            self.views[index] = Some(self.upload(image, &prepared.mip_chain(index), counters));
+            let chain = prepared.mip_chain(index).unwrap_or_else(|notice| {
+                self.notices.push(notice);
+                Cow::Owned(prepared.neutral_chain(index))
+            });
+            self.views[index] = Some(self.upload(image, &chain, counters));
         }
         self.views[index].clone().expect("uploaded above")
     }
@@ -160,14 +162,8 @@ impl<'a> TextureCache<'a> {
     /// A 1×1 white colour texture for materials without a base colour texture.
     pub fn white(&mut self, counters: &mut WorkCounters) -> wgpu::TextureView {
         if self.white.is_none() {
-            let image = TextureImage {
-                name: "white".into(),
-                width: 1,
-                height: 1,
-                kind: TextureKind::Color,
-                rgba: vec![255; 4],
-            };
-            self.white = Some(self.upload(&image, &image.mip_chain(), counters));
+            let image = TextureImage::neutral("white", TextureKind::Color);
+            self.white = Some(self.upload(&image, std::slice::from_ref(&image), counters));
         }
         self.white.clone().expect("uploaded above")
     }

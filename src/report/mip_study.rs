@@ -188,7 +188,8 @@ pub fn texture_bytes(prepared: &PreparedScene) -> u64 {
     (0..prepared.scene.textures.len())
         .filter(|&i| prepared.uses_texture(i))
         .map(|i| {
-            let chain: u64 = prepared.mip_chain(i).iter().map(|level| level.rgba.len() as u64).sum();
+            let chain: u64 =
+                prepared.mip_chain(i).iter().flat_map(|chain| chain.iter()).map(|level| level.rgba.len() as u64).sum();
             // LEAN's moments: `Rgba16Float`, 8 bytes a texel, made only where LEAN draws.
             let moments: u64 =
                 prepared.lean_texture(i).unwrap_or_default().iter().map(|l| l.bytes().len() as u64).sum();

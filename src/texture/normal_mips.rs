@@ -3,6 +3,8 @@
 //! floating point from level 0's unit normals, so level `k`'s `|Na|` is that of the whole
 //! `2ᵏ × 2ᵏ` block (exactly, for power-of-two sizes), not of re-quantised levels.
 
+use std::collections::TryReserveError;
+
 use glam::Vec3;
 
 use super::{MipFilter, TextureImage, TextureKind};
@@ -21,16 +23,14 @@ impl TextureImage {
     /// the block's mean unit normal, its direction in RGB (re-normalised) and its length `|Na|`
     /// in alpha (`round(255·|Na|)`); else [`TextureImage::mip_chain`] (re-normalised box mips;
     /// packed layouts average channel by channel). LEAN's moments are textures of their own.
-    pub fn mip_chain_filtered(&self, filter: MipFilter) -> Vec<TextureImage> {
+    pub fn mip_chain_filtered(&self, filter: MipFilter) -> Result<Vec<TextureImage>, TryReserveError> {
         if !filter.has_mips() {
-            return vec![self.clone()];
+            return Ok(vec![self.try_copy(|t| t)?]);
         }
         if !(filter.keeps_length() && self.kind == TextureKind::NormalMap) {
             return self.mip_chain();
         }
-        let rgba = self.rgba.chunks_exact(4).flat_map(|t| [t[0], t[1], t[2], 255]).collect();
-        let base =
-            TextureImage { name: self.name.clone(), width: self.width, height: self.height, kind: self.kind, rgba };
+        let base = self.try_copy(|[r, g, b, _]| [r, g, b, 255])?;
         let below = self.normal_means().into_iter().map(|(width, height, normals)| {
             let rgba = normals
                 .iter()
@@ -42,7 +42,7 @@ impl TextureImage {
                 .collect();
             TextureImage { name: self.name.clone(), width, height, kind: self.kind, rgba }
         });
-        std::iter::once(base).chain(below).collect()
+        Ok(std::iter::once(base).chain(below).collect())
     }
 
     /// Level 0's unit normals ([`decode_unit_normal`]), row by row, read from the bytes as
@@ -102,7 +102,7 @@ mod tests {
         };
         let rgba = [lean(1.0), lean(-1.0), lean(0.0), lean(0.0)].concat();
         let image = TextureImage { name: "n".into(), width: 2, height: 2, kind: TextureKind::NormalMap, rgba };
-        let chain = image.mip_chain_filtered(MipFilter::Toksvig);
+        let chain = image.mip_chain_filtered(MipFilter::Toksvig).unwrap();
         assert_eq!(chain.len(), 2);
         assert_eq!(chain[0].texel(0, 0), {
             let mut t = image.texel(0, 0);
@@ -114,7 +114,7 @@ mod tests {
         assert!((means[0].2[0].length() - expected).abs() < 4e-3, "{}", means[0].2[0]);
         assert_eq!(chain[1].texel(0, 0)[3], (means[0].2[0].length() * 255.0).round() as u8);
         assert_eq!(&chain[1].texel(0, 0)[..3], &[128, 128, 255]);
-        assert_eq!(image.mip_chain_filtered(MipFilter::BaseOnly), vec![image.clone()]);
+        assert_eq!(image.mip_chain_filtered(MipFilter::BaseOnly), Ok(vec![image.clone()]));
         assert_eq!(image.mip_chain_filtered(MipFilter::RenormalizedBox), image.mip_chain());
         let data = TextureImage { kind: TextureKind::Data, ..image.clone() };
         assert_eq!(data.mip_chain_filtered(MipFilter::Vmf), data.mip_chain());
