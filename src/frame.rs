@@ -334,6 +334,10 @@ pub struct SceneOptions {
     /// look: on while a technique or emboss is chosen (`ViewerState::scene_uploads` sets it),
     /// so the height maps are uploaded only then.
     pub parallax: bool,
+    /// Pack each marched height map's relaxed cone map ([`Parallax::reads_cones`]) into its
+    /// blue channel: on while a picture draws relaxed cone stepping (`ViewerState::scene_uploads`
+    /// sets it), so no other technique pays for building one.
+    pub cone_maps: bool,
     /// Displaced geometry instead of the normal map where a material has a height map.
     pub displacement: Displacement,
     /// Draw averaged and supplied tangent frames without Gram-Schmidt against the vertex

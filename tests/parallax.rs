@@ -14,10 +14,10 @@ use bumpview::scene::{SamplerWrap, Scene, Wrap};
 use common::*;
 use glam::Vec2;
 
-/// The scene options a picture with a parallax technique is drawn with: the height maps bound
-/// (`ViewerState::scene_uploads` sets this while a technique is chosen).
+/// The scene options a picture with a parallax technique is drawn with: the height maps bound,
+/// with their cone maps (`ViewerState::scene_uploads` sets these while a technique is chosen).
 fn parallax_options() -> SceneOptions {
-    SceneOptions { parallax: true, ..Default::default() }
+    SceneOptions { parallax: true, cone_maps: true, ..Default::default() }
 }
 
 /// A renderer holding `scene` uploaded for parallax.

@@ -65,6 +65,12 @@ impl Parallax {
         matches!(self, Parallax::Steep | Parallax::Occlusion | Parallax::Relief | Parallax::RelaxedCone)
     }
 
+    /// Whether the technique reads the relaxed cone map beside the heights (relaxed cones): the
+    /// scene is prepared with it only then ([`crate::frame::SceneOptions::cone_maps`]).
+    pub fn reads_cones(self) -> bool {
+        self == Parallax::RelaxedCone
+    }
+
     /// Whether the technique ends with `ParallaxSettings::steps` binary-search steps (relief,
     /// relaxed cones).
     pub fn refines(self) -> bool {

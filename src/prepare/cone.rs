@@ -1,7 +1,7 @@
 //! The prepare stage's branch for relaxed cone stepping ([`crate::frame::Parallax::RelaxedCone`]):
-//! a height texture the parallax family marches gets its relaxed cone map
-//! ([`crate::height::cone`]) in blue at level 0, where the march reads it with the height in
-//! one sample; the other techniques never read blue.
+//! while a picture draws relaxed cones (`SceneOptions::cone_maps`), a height texture the parallax
+//! family marches gets its relaxed cone map ([`crate::height::cone`]) in blue at level 0, where
+//! the march reads it with the height in one sample; the other techniques never read blue.
 
 use crate::height::cone::{encode_cone_ratio, relaxed_cone_ratios};
 use crate::scene::{HeightMap, TextureImage};

@@ -187,6 +187,7 @@ impl<'a> Bench<'a> {
         if self.uploaded != Some(level) {
             let options = SceneOptions {
                 parallax: level == 0,
+                cone_maps: level == 0,
                 displacement: Displacement { level, depth_m: None },
                 ..Default::default()
             };

@@ -97,14 +97,15 @@ impl ViewerState {
     }
 
     /// The scene options pictures with `shown` settings are drawn with: the height maps bound
-    /// while any of them marches or embosses, displacement at the parallax depth (so both
+    /// while any of them marches or embosses (with cone maps while one reads them), displacement at the parallax depth (so both
     /// draw the same relief); the split view aside.
     pub fn scene_options_drawing(&self, shown: &[ShadingSettings]) -> SceneOptions {
         let parallax =
             shown.iter().any(|s| s.parallax.technique != Parallax::Off || s.legacy.look == LegacyLook::Emboss);
+        let cone_maps = shown.iter().any(|s| s.parallax.technique.reads_cones());
         let mut displacement = self.scene_options.displacement;
         displacement.depth_m = self.shading.parallax.depth_m;
-        SceneOptions { parallax, displacement, ..self.scene_options.clone() }
+        SceneOptions { parallax, cone_maps, displacement, ..self.scene_options.clone() }
     }
 
     /// The picture at pixel column `column` of a view `width` pixels wide: its parameters, the
