@@ -1,7 +1,6 @@
 //! The numerical methods (tangent frames, bump source, normal-map mips, kernels) with their measurements, the
 //! texture conventions and shading model per material, and what `bumpview check` finds.
 
-use bumpview::check::GreenConvention;
 use bumpview::frame::ViewMode;
 use bumpview::frame::{BumpSource, SceneOptions};
 use bumpview::height::{Border, Kernel};
@@ -244,12 +243,7 @@ pub(super) fn check(ui: &mut egui::Ui, controller: &Controller, actions: &mut Ve
         ));
     }
     for map in maps {
-        let convention = match map.findings.convention {
-            Some((GreenConvention::OpenGl, c)) => format!("green looks OpenGL ({c:.2})"),
-            Some((GreenConvention::DirectX, c)) => format!("green looks DirectX ({c:.2})"),
-            None => "green undetermined (flat)".to_owned(),
-        };
-        ui.small(format!("{}: {convention}", map.material));
+        ui.small(format!("{}: green {}", map.material, map.findings.green_text()));
     }
     let warn = ui.visuals().warn_fg_color;
     for line in warnings.iter().chain(&controller.renderer().notices()) {
