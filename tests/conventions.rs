@@ -45,7 +45,7 @@ fn directx_flag_undoes_a_flipped_green_channel() {
     let original = scene();
     let mut flipped = original.clone();
     let map = flipped.materials[0].normal_map.as_ref().unwrap().texture;
-    flipped.textures[map].rgba.chunks_exact_mut(4).for_each(|t| t[1] = 255 - t[1]);
+    std::sync::Arc::make_mut(&mut flipped.textures[map]).rgba.chunks_exact_mut(4).for_each(|t| t[1] = 255 - t[1]);
     let mut params = default_params(&original);
     params.shading.view = ViewMode::ShadingNormal;
     let size = [160, 120];
@@ -72,7 +72,7 @@ fn directx_flag_undoes_a_flipped_green_channel() {
 fn two_channel_texels_outside_the_disc_give_finite_unit_normals() {
     let mut scene = wall_only(Mat4::IDENTITY);
     let texels = [[255, 255, 0, 255], [0, 255, 0, 255], [0, 0, 0, 255], [128, 128, 0, 255]];
-    scene.textures.push(texture("two-channel", TextureKind::NormalMap, 2, &texels));
+    scene.textures.push(texture("two-channel", TextureKind::NormalMap, 2, &texels).into());
     scene.materials[0].normal_map.as_mut().unwrap().texture = scene.textures.len() - 1;
     scene.materials[0].normal_map.as_mut().unwrap().convention.layout = NormalLayout::Rg;
     let mut params = close_wall_params(&scene, 0.5);
@@ -100,7 +100,7 @@ fn object_space_map_follows_the_normal_matrix() {
         * Mat4::from_translation(-centre);
     let mut scene = wall_only(model);
     let texel = [200u8, 150, 210, 255];
-    scene.textures.push(texture("object space", TextureKind::NormalMap, 1, &[texel]));
+    scene.textures.push(texture("object space", TextureKind::NormalMap, 1, &[texel]).into());
     let normal_map = scene.materials[0].normal_map.as_mut().unwrap();
     normal_map.texture = scene.textures.len() - 1;
     normal_map.convention.space = NormalSpace::Object;
@@ -135,7 +135,9 @@ fn samplers_repeat_clamp_and_mirror() {
         [(Wrap::Repeat, 'r', 'b'), (Wrap::ClampToEdge, 'b', 'b'), (Wrap::MirroredRepeat, 'b', 'r')]
     {
         let mut scene = wall_only(Mat4::IDENTITY);
-        scene.textures.push(texture("halves", TextureKind::Color, 8, &[red, red, red, red, blue, blue, blue, blue]));
+        scene
+            .textures
+            .push(texture("halves", TextureKind::Color, 8, &[red, red, red, red, blue, blue, blue, blue]).into());
         scene.materials[0].base_color_texture = Some(scene.textures.len() - 1);
         scene.materials[0].normal_map = None;
         scene.materials[0].base_color_wrap = SamplerWrap { u: wrap, v: Wrap::Repeat };
@@ -189,7 +191,7 @@ fn gltf_samplers_and_metallic_roughness_are_loaded() {
 fn new_variants_never_produce_nan() {
     let mut wild = scene();
     let texels = [[255, 255, 0, 255], [0, 0, 0, 255], [255, 0, 255, 255], [0, 255, 128, 255]];
-    wild.textures.push(texture("wild", TextureKind::NormalMap, 2, &texels));
+    wild.textures.push(texture("wild", TextureKind::NormalMap, 2, &texels).into());
     let wild_map = wild.textures.len() - 1;
     wild.materials.iter_mut().for_each(|m| m.normal_map.as_mut().unwrap().texture = wild_map);
     let on = Some(true);

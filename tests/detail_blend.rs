@@ -67,7 +67,7 @@ fn partial_derivatives_answer_added_heights_and_rnm_answers_the_rotated_detail()
 /// The built-in scene with a sine-pair detail map (two periods of slope 0.7, tiling 2) on every material.
 fn detailed_scene() -> Scene {
     let mut scene = scene();
-    scene.textures.push(sine_pair_normal_map(64, 2, 0.7));
+    scene.textures.push(sine_pair_normal_map(64, 2, 0.7).into());
     let texture = scene.textures.len() - 1;
     for material in &mut scene.materials {
         material.detail_map = Some(DetailMap { tiling: 2.0, ..DetailMap::new(texture, DetailBlend::Rnm) });

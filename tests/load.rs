@@ -231,7 +231,7 @@ fn twin_angles(scene: &Scene, group: usize, name: &str) -> Vec<f32> {
 fn flip_green(scene: &mut Scene) {
     let maps: Vec<usize> = scene.materials.iter().filter_map(|m| m.normal_map.as_ref().map(|n| n.texture)).collect();
     for texture in maps {
-        scene.textures[texture].rgba.chunks_exact_mut(4).for_each(|t| t[1] = 255 - t[1]);
+        std::sync::Arc::make_mut(&mut scene.textures[texture]).rgba.chunks_exact_mut(4).for_each(|t| t[1] = 255 - t[1]);
     }
 }
 

@@ -16,7 +16,7 @@ use glam::{Vec3, Vec4};
 
 /// The source normals: the built-in brick map's texels decoded as unit vectors (floats).
 fn source_normals(scene: &Scene) -> (TextureImage, Vec<Vec3>) {
-    let map = scene.textures[scene.materials[0].normal_map.as_ref().unwrap().texture].clone();
+    let map = (*scene.textures[scene.materials[0].normal_map.as_ref().unwrap().texture]).clone();
     let normals = map
         .rgba
         .chunks_exact(4)
@@ -105,12 +105,12 @@ fn packed_scene(layout: NormalLayout) -> Scene {
         kind,
         rgba: bytes.concat(),
     };
-    scene.textures.push(image("packed", TextureKind::NormalMap, packed.iter().map(|p| p.0).collect()));
+    scene.textures.push(image("packed", TextureKind::NormalMap, packed.iter().map(|p| p.0).collect()).into());
     let bump = scene.textures.len() - 1;
     let mut normal_map = NormalMap::new(bump, 1.0);
     normal_map.convention.layout = layout;
     if layout == NormalLayout::Xray {
-        scene.textures.push(image("packed#", TextureKind::Data, packed.iter().map(|p| p.1).collect()));
+        scene.textures.push(image("packed#", TextureKind::Data, packed.iter().map(|p| p.1).collect()).into());
         normal_map = NormalMap::xray(bump, Some(scene.textures.len() - 1));
     }
     scene.materials[0].normal_map = Some(normal_map);

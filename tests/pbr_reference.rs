@@ -37,13 +37,16 @@ fn differences_occluded(
     let mut scene = scene();
     if let Some(occluded) = occluded {
         let (width, height) = (8u32, 8u32);
-        scene.textures.push(bumpview::scene::TextureImage {
-            name: "occlusion".into(),
-            width,
-            height,
-            kind: bumpview::scene::TextureKind::Data,
-            rgba: [occluded.level, occluded.level, occluded.level, 255].repeat((width * height) as usize),
-        });
+        scene.textures.push(
+            bumpview::scene::TextureImage {
+                name: "occlusion".into(),
+                width,
+                height,
+                kind: bumpview::scene::TextureKind::Data,
+                rgba: [occluded.level, occluded.level, occluded.level, 255].repeat((width * height) as usize),
+            }
+            .into(),
+        );
         let texture = scene.textures.len() - 1;
         scene.materials[0].occlusion = Some(bumpview::scene::Occlusion { texture, strength: occluded.strength });
     }

@@ -33,7 +33,7 @@ fn with_normal_map(width: u32, height: u32, rgb: [u8; 3]) -> Scene {
     let mut scene = scene();
     let texture = scene.materials[0].normal_map.as_ref().unwrap().texture;
     let rgba = [rgb[0], rgb[1], rgb[2], 255].repeat((width * height) as usize);
-    scene.textures[texture] = TextureImage { width, height, rgba, ..scene.textures[texture].clone() };
+    scene.textures[texture] = TextureImage { width, height, rgba, ..(*scene.textures[texture]).clone() }.into();
     scene
 }
 
@@ -59,7 +59,7 @@ fn one_texel_textures_work() {
     let mut scene = with_normal_map(1, 1, [128, 128, 255]);
     let colour = scene.materials[0].base_color_texture.unwrap();
     scene.textures[colour] =
-        TextureImage { width: 1, height: 1, rgba: vec![180, 90, 60, 255], ..scene.textures[colour].clone() };
+        TextureImage { width: 1, height: 1, rgba: vec![180, 90, 60, 255], ..(*scene.textures[colour]).clone() }.into();
     let params = default_params(&scene);
     assert_finite_everywhere(&scene, &params, "1×1 textures");
 }
@@ -151,7 +151,7 @@ fn a_cliff_in_8_and_16_bit_heights_stays_finite_and_bounded() {
     let scene_with = |field: &HeightField| {
         let mut scene = scene();
         let texture = scene.materials[0].height_map.as_ref().expect("the bricks have a height map").texture;
-        scene.textures[texture] = field.to_height_texture("cliff");
+        scene.textures[texture] = field.to_height_texture("cliff").into();
         scene
     };
     let mut params = close_wall_params(&scene(), 0.3);

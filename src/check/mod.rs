@@ -270,7 +270,8 @@ mod tests {
         assert!(bricks.len() > 4 && bricks[4].mean_length < 0.99, "{bricks:?}");
         assert!(report.to_text().contains("    mips: mean |Na| per level 1.000 "), "{}", report.to_text());
         let mut scene = teaching_scene();
-        let map = &mut scene.textures[scene.materials[0].normal_map.as_ref().unwrap().texture];
+        let map =
+            std::sync::Arc::make_mut(&mut scene.textures[scene.materials[0].normal_map.as_ref().unwrap().texture]);
         let width = map.width as usize;
         for (i, texel) in map.rgba.chunks_exact_mut(4).enumerate() {
             let sign = if (i % width + i / width) % 2 == 0 { 1.0f32 } else { -1.0 };
@@ -290,7 +291,7 @@ mod tests {
         let with_inward = |count: usize| {
             let mut scene = teaching_scene();
             let texture = scene.materials[0].normal_map.as_ref().unwrap().texture;
-            let map = &mut scene.textures[texture];
+            let map = std::sync::Arc::make_mut(&mut scene.textures[texture]);
             for texel in map.rgba.chunks_exact_mut(4).take(count) {
                 texel.copy_from_slice(&[128, 128, 60, 255]);
             }

@@ -203,12 +203,12 @@ pub fn replace_textures(scene: &mut Scene, files: &SceneFiles) -> Result<(), Loa
     let pair = files.color.as_deref().filter(|_| files.normal.is_none() && files.height.is_none());
     if let Some((bump, correction)) = pair.and_then(xray_pair_beside) {
         let texture = load_scene_texture(scene, &bump, TextureKind::NormalMap)?;
-        scene.textures.push(texture);
+        scene.textures.push(texture.into());
         let bump_index = scene.textures.len() - 1;
         let correction_index = match &correction {
             Some(path) => {
                 let texture = load_scene_texture(scene, path, TextureKind::Data)?;
-                scene.textures.push(texture);
+                scene.textures.push(texture.into());
                 Some(scene.textures.len() - 1)
             }
             None => None,
@@ -224,7 +224,7 @@ pub fn replace_textures(scene: &mut Scene, files: &SceneFiles) -> Result<(), Loa
     let mut each = |path: &Option<PathBuf>, kind, set: fn(&mut crate::scene::Material, usize)| {
         if let Some(path) = path {
             let texture = load_scene_texture(scene, path, kind)?;
-            scene.textures.push(texture);
+            scene.textures.push(texture.into());
             let texture = scene.textures.len() - 1;
             scene.materials.iter_mut().for_each(|m| set(m, texture));
         }
@@ -292,7 +292,7 @@ pub fn add_height_map(scene: &mut Scene, materials: &[usize], heights: TextureIm
     let range_m = HEIGHT_RANGE_M * if multiplier.is_finite() { multiplier } else { 1.0 };
     let slot = HeightMap::new(scene.textures.len() + 1, range_m);
     let normal_map = slot.to_normal_map(&heights, TEXTURE_SPAN_M);
-    scene.textures.extend([normal_map, heights]);
+    scene.textures.extend([normal_map, heights].map(Into::into));
     for &m in materials {
         scene.materials[m].normal_map = Some(NormalMap::new(slot.texture - 1, 1.0));
         scene.materials[m].height_map = Some(slot.clone());

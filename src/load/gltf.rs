@@ -295,7 +295,7 @@ impl Loader<'_> {
         }
         let index = match self.decode(texture, kind)? {
             Ok(decoded) => {
-                self.scene.textures.push(decoded);
+                self.scene.textures.push(decoded.into());
                 Some(self.scene.textures.len() - 1)
             }
             Err(unreadable) => {

@@ -226,7 +226,7 @@ fn parse(
 }
 
 fn add(scene: &mut Scene, texture: TextureImage) -> usize {
-    scene.textures.push(texture);
+    scene.textures.push(texture.into());
     scene.textures.len() - 1
 }
 

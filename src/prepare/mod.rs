@@ -210,7 +210,7 @@ impl PreparedScene {
                     mip_filter: mip_filter_of(
                         options.mip_filter_of(instance.material),
                         variant,
-                        textures.bump.map(|t| &scene.textures[t]),
+                        textures.bump.map(|t| &*scene.textures[t]),
                     ),
                 }
             })

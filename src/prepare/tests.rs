@@ -57,7 +57,7 @@ fn height_maps_carry_cone_maps_only_while_relaxed_cones_are_drawn() {
         let prepared = PreparedScene::new(&scene, options);
         let index = prepared.instances.iter().find_map(|i| i.textures.height).expect("a marched height map");
         let level0 = prepared.mip_chain(index).unwrap()[0].clone();
-        (level0, scene.textures[index].clone())
+        (level0, (*scene.textures[index]).clone())
     };
     let (plain, original) = marched(&SceneOptions { parallax: true, ..Default::default() });
     assert_eq!(plain, original, "no cone map for the other techniques");

@@ -143,7 +143,7 @@ impl MipSpecimen {
         let scene = Scene {
             meshes: vec![mesh],
             materials: vec![material],
-            textures: vec![normal_map()],
+            textures: vec![normal_map().into()],
             instances: vec![Instance { mesh: 0, material: 0, transform: Mat4::IDENTITY }],
             ambient: Vec3::splat(0.03),
             default_light: default_light(),

@@ -154,7 +154,7 @@ pub fn rock(assets: &Path) -> Result<Specimen, LoadError> {
     let folder = assets.join("textures/ambientCG_Rock058");
     let mut scene = bricks_on(square_mesh("rock (1 m²)"), 0);
     scene.materials.truncate(1);
-    scene.textures = vec![load_texture(&folder.join("albedo.jpg"), TextureKind::Color)?];
+    scene.textures = vec![load_texture(&folder.join("albedo.jpg"), TextureKind::Color)?.into()];
     scene.materials[0].base_color_texture = Some(0);
     scene.materials[0].name = "Rock058".into();
     add_height_map(&mut scene, &[0], load_texture(&folder.join("displacement.jpg"), TextureKind::Height)?, 2.0);

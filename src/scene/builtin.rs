@@ -155,7 +155,7 @@ pub fn teaching_scene_with_kernel(kernel: Kernel) -> Scene {
     Scene {
         meshes: vec![wall_mesh(), floor_mesh(), torus_mesh(96, 32)],
         materials: vec![bricks, torus_material],
-        textures,
+        textures: textures.into_iter().map(Into::into).collect(),
         instances: vec![
             Instance { mesh: 0, material: 0, transform: Mat4::IDENTITY },
             Instance { mesh: 1, material: 0, transform: Mat4::IDENTITY },

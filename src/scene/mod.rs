@@ -59,7 +59,9 @@ pub struct Instance {
 pub struct Scene {
     pub meshes: Vec<Mesh>,
     pub materials: Vec<Material>,
-    pub textures: Vec<TextureImage>,
+    /// The images, shared: a copy of the scene (the material overrides make one) shares them
+    /// instead of copying every texel.
+    pub textures: Vec<std::sync::Arc<TextureImage>>,
     pub instances: Vec<Instance>,
     /// Linear RGB ambient light, multiplied by the albedo (Blinn-Phong; metallic-roughness
     /// materials take their ambient light from the procedural sky instead).

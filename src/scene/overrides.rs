@@ -116,12 +116,12 @@ impl MaterialOverrides {
                 && let Some(texture) = scene.textures.get_mut(map.texture)
                 && texture.kind == TextureKind::NormalMap
             {
-                texture.kind = TextureKind::Data;
+                std::sync::Arc::make_mut(texture).kind = TextureKind::Data;
             }
             scene.materials[index] = material;
             let Some(height) = scene.materials[index].height_map.clone().filter(|_| remade) else { continue };
             let normals = height.to_normal_map(&scene.textures[height.texture], TEXTURE_SPAN_M);
-            scene.textures.push(normals);
+            scene.textures.push(normals.into());
             scene.materials[index].normal_map = Some(NormalMap::new(scene.textures.len() - 1, 1.0));
         }
         scene
@@ -133,6 +133,16 @@ mod tests {
     use super::*;
     use crate::scene::NormalConvention;
     use crate::scene::builtin::{teaching_scene, teaching_scene_with_kernel};
+
+    #[test]
+    fn the_overridden_scene_shares_the_images_it_does_not_change() {
+        let scene = teaching_scene();
+        let same = MaterialOverrides::default().applied_to(&scene);
+        assert!(scene.textures.iter().zip(&same.textures).all(|(a, b)| std::sync::Arc::ptr_eq(a, b)));
+        let remade = MaterialOverrides { depth_map: Some(true), ..Default::default() }.applied_to(&scene);
+        let color = scene.materials[0].base_color_texture.unwrap();
+        assert!(std::sync::Arc::ptr_eq(&scene.textures[color], &remade.textures[color]));
+    }
 
     #[test]
     fn depth_flag_inverts_the_made_normal_map_and_keeps_the_original() {

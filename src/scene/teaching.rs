@@ -75,13 +75,13 @@ impl TeachingScene {
                 ];
             }
             TeachingScene::GlossyBricks => {
-                scene.textures.push(gloss_texture());
+                scene.textures.push(gloss_texture().into());
                 let gloss = scene.textures.len() - 1;
                 scene.materials.iter_mut().for_each(|m| m.gloss_texture = Some(gloss));
             }
             TeachingScene::XrayBricks => {
                 let packed = xray_texture(&scene.textures[1]);
-                scene.textures.push(packed);
+                scene.textures.push(packed.into());
                 let bump = scene.textures.len() - 1;
                 scene.materials.iter_mut().for_each(|m| m.normal_map = Some(NormalMap::xray(bump, None)));
             }
@@ -99,8 +99,8 @@ impl TeachingScene {
                 }
             }
             TeachingScene::DetailWaves => {
-                scene.textures.push(super::sine_pair_normal_map(256, 1, 1.2));
-                scene.textures.push(super::sine_pair_normal_map(64, 2, 0.8));
+                scene.textures.push(super::sine_pair_normal_map(256, 1, 1.2).into());
+                scene.textures.push(super::sine_pair_normal_map(64, 2, 0.8).into());
                 let (base, detail) = (scene.textures.len() - 2, scene.textures.len() - 1);
                 for material in &mut scene.materials {
                     material.normal_map = Some(NormalMap::new(base, 1.0));

@@ -103,7 +103,7 @@ fn recent_files(ui: &mut egui::Ui, files: &Files, actions: &mut Vec<Action>) {
 fn scene_maps(ui: &mut egui::Ui, scene: &Scene, tangents: &[Option<TangentMethod>]) {
     let texture = |index: Option<usize>| {
         // Texture names are the files they came from; the file name is enough here.
-        let name = |t: &bumpview::scene::TextureImage| file_name(std::path::Path::new(&t.name));
+        let name = |t: &std::sync::Arc<bumpview::scene::TextureImage>| file_name(std::path::Path::new(&t.name));
         index.and_then(|i| scene.textures.get(i)).map_or_else(|| "none".to_owned(), name)
     };
     let heading = format!("Scene: {} materials, {} meshes", scene.materials.len(), scene.meshes.len());
