@@ -89,12 +89,12 @@ pub fn decode_texture_within(
         let texels = header.texels() * if kind == TextureKind::Height { 2 } else { 1 };
         if texels > room {
             let counted = if kind == TextureKind::Height {
-                format!(", counted as {} Mi (a height map counts twice, for its normal map),", texels >> 20)
+                format!("{} Mi counted, as a height map counts twice for its normal map; ", texels >> 20)
             } else {
                 String::new()
             };
             return Err(format!(
-                "{width}x{height} texels{counted} is over the {} Mi texels a texture may have here (at most {} Mi per texture, {} Mi per scene)",
+                "{width}x{height} texels is over the {} Mi texels a texture may have here ({counted}at most {} Mi per texture, {} Mi per scene)",
                 room >> 20,
                 MAX_TEXELS >> 20,
                 MAX_SCENE_TEXELS >> 20
