@@ -132,6 +132,7 @@ impl ViewerApp {
             .ok_or("eframe started without a wgpu render state (the viewer needs the wgpu renderer)")?;
         let renderer =
             Renderer::new(render_state.device.clone(), render_state.queue.clone(), render_state.adapter.clone());
+        cc.egui_ctx.set_fonts(fonts());
         let ctx = cc.egui_ctx.clone();
         #[cfg(target_arch = "wasm32")]
         let wake_page = {
@@ -240,5 +241,33 @@ impl eframe::App for ViewerApp {
     fn clear_color(&self, visuals: &egui::Visuals) -> [f32; 4] {
         // Opaque, so a window screenshot has no see-through pixels.
         visuals.panel_fill.to_normalized_gamma_f32()
+    }
+}
+
+/// egui's default fonts with Hack behind the proportional face: Ubuntu Light has no "│" or "→"
+/// (lesson titles such as "Bump mapping off │ on" and "Height → normal"), Hack draws both.
+fn fonts() -> egui::FontDefinitions {
+    let mut fonts = egui::FontDefinitions::default();
+    fonts.families.entry(egui::FontFamily::Proportional).or_default().push("Hack".to_owned());
+    fonts
+}
+
+#[cfg(test)]
+mod tests {
+    /// Every character of the built-in lessons' titles, captions, claims and labels has a glyph in the panel's
+    /// proportional face (without the fallback, "│" and "→" were drawn as boxes).
+    #[test]
+    fn lesson_texts_have_glyphs_in_the_panel_font() {
+        let ctx = egui::Context::default();
+        ctx.set_fonts(super::fonts());
+        ctx.run_ui(Default::default(), |_| {}).textures_delta.clear();
+        let font = egui::FontId::proportional(14.0);
+        for lesson in bumpview::lessons::catalogue().expect("the built-in lessons read") {
+            let labels = lesson.sides.iter().map(|side| side.label.as_str());
+            let text: String =
+                [&lesson.title, &lesson.caption, &lesson.claim].map(String::as_str).into_iter().chain(labels).collect();
+            let missing: String = text.chars().filter(|&c| !ctx.fonts_mut(|f| f.has_glyph(&font, c))).collect();
+            assert!(missing.is_empty(), "{:?}: no glyph for {missing:?}", lesson.title);
+        }
     }
 }
