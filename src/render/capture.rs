@@ -2,6 +2,7 @@
 
 use std::path::Path;
 
+use super::gpu_errors::caught;
 use super::{Background, DrawOptions, RenderTarget, Renderer};
 use crate::error::RenderError;
 use crate::frame::{FrameParams, SplitFrame};
@@ -95,13 +96,16 @@ pub fn draw_offscreen(
     if let Some(error) = memory_error.or(pollster::block_on(validation.pop())) {
         return Err(RenderError::Gpu { width, height, reason: error.to_string() });
     }
-    renderer.queue().submit([commands]);
-
     let slice = buffer.slice(..);
     let (sender, receiver) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |result| {
-        let _ = sender.send(result);
-    });
+    // The submission and the mapping may meet the device's limits too (memory it cannot map).
+    caught(&device, || {
+        renderer.queue().submit([commands]);
+        slice.map_async(wgpu::MapMode::Read, move |result| {
+            let _ = sender.send(result);
+        });
+    })
+    .map_err(|reason| RenderError::Gpu { width, height, reason })?;
     device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| RenderError::Readback(e.to_string()))?;
     receiver
         .recv()

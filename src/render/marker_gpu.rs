@@ -4,9 +4,9 @@
 //! `render::draw::markers`.
 
 use glam::Vec3;
-use wgpu::util::DeviceExt;
 
 use super::bindings;
+use super::gpu_errors::buffer_with;
 use super::pipelines::Layouts;
 use crate::scene::{MAX_LIGHTS, Scene};
 
@@ -61,17 +61,18 @@ impl GpuMarker {
             entries: &[bindings::MARKERS.entry(lights.as_entire_binding())],
         });
         GpuMarker {
-            positions: buffer(device, "marker positions", bytemuck::cast_slice(&positions), wgpu::BufferUsages::VERTEX),
-            indices: buffer(device, "marker indices", bytemuck::cast_slice(&indices), wgpu::BufferUsages::INDEX),
+            positions: buffer_with(
+                device,
+                "marker positions",
+                bytemuck::cast_slice(&positions),
+                wgpu::BufferUsages::VERTEX,
+            ),
+            indices: buffer_with(device, "marker indices", bytemuck::cast_slice(&indices), wgpu::BufferUsages::INDEX),
             index_count: indices.len() as u32,
             lights,
             bind_group,
         }
     }
-}
-
-fn buffer(device: &wgpu::Device, label: &str, contents: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage })
 }
 
 /// The light marker's geometry: an octahedron of `radius` metres around the origin.

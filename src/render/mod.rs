@@ -21,6 +21,7 @@ mod floor;
 mod frame_group;
 pub mod glyphs;
 pub mod gpu;
+mod gpu_errors;
 mod held;
 mod legacy;
 mod marker_gpu;
@@ -361,7 +362,9 @@ impl Renderer {
             let scene = self.scene_in(half.scene).ok_or(RenderError::NoScene)?;
             let frame = FrameParams { shading: half.shading, ..*params };
             self.frame_groups.write(&self.queue, index, &FrameUniform::new(&frame, aspect));
-            self.queue.write_buffer(&scene.marker.lights, 0, bytemuck::bytes_of(&markers));
+            if let Some(marker) = &scene.marker {
+                self.queue.write_buffer(&marker.lights, 0, bytemuck::bytes_of(&markers));
+            }
         }
         Ok(())
     }

@@ -4,10 +4,9 @@
 
 use std::sync::{Arc, OnceLock};
 
-use wgpu::util::DeviceExt;
-
 use super::bindings;
 use super::glyphs::{MAX_GLYPHS_PER_MESH, glyph_lines};
+use super::gpu_errors::{buffer_with, caught};
 use super::marker_gpu::GpuMarker;
 use super::pipelines::Layouts;
 use super::texture_cache::{SamplerCache, TextureCache};
@@ -63,7 +62,8 @@ pub struct GpuScene {
     pub notices: Vec<String>,
     pub meshes: Vec<GpuMesh>,
     pub instances: Vec<GpuInstance>,
-    pub marker: GpuMarker,
+    /// The light markers' geometry; `None` where the device refused it (a notice says so).
+    pub marker: Option<GpuMarker>,
     /// What was uploaded: kept for what is made on first use (reference frames), and for the
     /// probe of the picture drawn from it.
     pub prepared: Arc<PreparedScene>,
@@ -74,11 +74,7 @@ pub struct GpuScene {
 }
 
 fn buffer<T: bytemuck::Pod>(device: &wgpu::Device, label: &str, data: &[T], usage: wgpu::BufferUsages) -> wgpu::Buffer {
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some(label),
-        contents: bytemuck::cast_slice(data),
-        usage,
-    })
+    buffer_with(device, label, bytemuck::cast_slice(data), usage)
 }
 
 /// Uploads what `prepared` holds: its drawn geometry, tangent streams and T/B/N glyph lines
@@ -93,17 +89,27 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, pre
     };
     let counters = &mut work;
     let scene = &prepared.scene;
-    let meshes = prepared.meshes.iter().map(|m| upload_mesh(device, m)).collect();
     let mut samplers = SamplerCache::default();
     let mut textures = TextureCache::new(device, queue, scene.textures.len());
-    let instances = prepared
-        .instances
-        .iter()
-        .map(|instance| upload_instance(layouts, &prepared, instance, &mut textures, &mut samplers, counters))
-        .collect();
-
-    let marker = GpuMarker::upload(device, layouts, scene);
-    let notices = prepared.notices.iter().cloned().chain(textures.notices).collect();
+    let drawn = caught(device, || {
+        let meshes: Vec<GpuMesh> = prepared.meshes.iter().map(|m| upload_mesh(device, m)).collect();
+        let instances: Vec<GpuInstance> = prepared
+            .instances
+            .iter()
+            .map(|instance| upload_instance(layouts, &prepared, instance, &mut textures, &mut samplers, counters))
+            .collect();
+        (meshes, instances)
+    });
+    let marker = caught(device, || GpuMarker::upload(device, layouts, scene));
+    let mut notices: Vec<String> = prepared.notices.iter().cloned().chain(textures.notices).collect();
+    let marker =
+        marker.map_err(|problem| notices.push(format!("the light markers could not be uploaded ({problem})"))).ok();
+    // Geometry the device could not hold (out of memory, or past its limits): nothing is drawn
+    // rather than buffers the device refused.
+    let (meshes, instances) = drawn.unwrap_or_else(|problem| {
+        notices.push(format!("the scene's geometry could not be uploaded ({problem}): nothing drawn"));
+        (vec![], vec![])
+    });
     GpuScene { meshes, instances, marker, notices, prepared, work }
 }
 

@@ -3,6 +3,7 @@
 
 use std::borrow::Cow;
 
+use super::gpu_errors::caught;
 use crate::counters::WorkCounters;
 use crate::prepare::PreparedScene;
 use crate::scene::{SamplerWrap, TextureImage, TextureKind, Wrap};
@@ -72,14 +73,7 @@ impl<'a> TextureCache<'a> {
         texel_bytes: u32,
         levels: &[Level],
     ) -> Result<wgpu::Texture, String> {
-        let out_of_memory = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
-        let invalid = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let texture = self.create_unscoped(label, format, texel_bytes, levels);
-        let errors = [invalid.pop(), out_of_memory.pop()].map(popped_now);
-        match errors.into_iter().flatten().next() {
-            Some(error) => Err(error.to_string().lines().next().unwrap_or("GPU error").to_owned()),
-            None => Ok(texture),
-        }
+        caught(self.device, || self.create_unscoped(label, format, texel_bytes, levels))
     }
 
     /// [`Self::create`] without the error scopes.
@@ -166,16 +160,6 @@ impl<'a> TextureCache<'a> {
             self.white = Some(self.upload(&image, std::slice::from_ref(&image), counters));
         }
         self.white.clone().expect("uploaded above")
-    }
-}
-
-/// The error an error scope's pop resolved to, if it resolved at once (native backends do;
-/// where it does not, as on the web, the error goes to the device's handler as before).
-fn popped_now(popped: impl std::future::Future<Output = Option<wgpu::Error>>) -> Option<wgpu::Error> {
-    let mut context = std::task::Context::from_waker(std::task::Waker::noop());
-    match std::pin::pin!(popped).poll(&mut context) {
-        std::task::Poll::Ready(error) => error,
-        std::task::Poll::Pending => None,
     }
 }
 

@@ -73,8 +73,8 @@ impl HalfPlan {
         mesh::record(pass, pipelines, scene, &self.meshes);
         wireframe::record(pass, pipelines, scene, &self.wireframe);
         glyphs::record(pass, pipelines, scene, &self.glyphs);
-        if let Some(draw) = &self.markers {
-            markers::record(pass, pipelines, &scene.marker, draw);
+        if let (Some(draw), Some(marker)) = (&self.markers, &scene.marker) {
+            markers::record(pass, pipelines, marker, draw);
         }
     }
 }
