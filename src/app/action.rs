@@ -45,6 +45,10 @@ pub enum Action {
     StepLesson(i32),
     /// Show or hide the current lesson's caption card.
     ShowLessonCard(bool),
+    /// Hide or show the control panel (H), so the 3D view and the card fill the window.
+    TogglePanel,
+    /// Make the window full-screen or windowed again (F11).
+    ToggleFullscreen,
 }
 
 impl From<Command> for Action {

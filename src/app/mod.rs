@@ -115,6 +115,8 @@ struct ViewerApp {
     automation: Automation,
     /// Where the panel's slot buttons were last drawn, for files dropped on them.
     slot_targets: Vec<(TextureSlot, egui::Rect)>,
+    /// Whether the window was last asked to be full-screen (the controller's wish, sent once).
+    fullscreen: bool,
     /// The web page's ready marker.
     #[cfg(target_arch = "wasm32")]
     page: web::Page,
@@ -155,6 +157,7 @@ impl ViewerApp {
             view: View::new(render_state.clone()),
             automation: Automation::new(options.probe, options.exit_after, options.capture_window, failure),
             slot_targets: Vec::new(),
+            fullscreen: false,
             #[cfg(target_arch = "wasm32")]
             page: web::Page::new(render_state.adapter.get_info().backend, wake_page),
         })
@@ -204,10 +207,19 @@ impl eframe::App for ViewerApp {
             ctx.request_repaint_after(wait);
         }
         self.controller.refresh_probe();
-        let (mut actions, slot_targets) = egui::Panel::left("controls")
-            .default_size(290.0)
-            .show(ui, |ui| panel::show(ui, &mut self.controller, self.view.render_error()))
-            .inner;
+        let fullscreen = self.controller.lessons.fullscreen;
+        if fullscreen != self.fullscreen {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Fullscreen(fullscreen));
+            self.fullscreen = fullscreen;
+        }
+        let (mut actions, slot_targets) = if self.controller.lessons.panel_hidden {
+            (vec![], vec![])
+        } else {
+            egui::Panel::left("controls")
+                .default_size(290.0)
+                .show(ui, |ui| panel::show(ui, &mut self.controller, self.view.render_error()))
+                .inner
+        };
         self.slot_targets = slot_targets;
         let central = egui::CentralPanel::no_frame().show(ui, |ui| self.view.show(ui, &self.controller));
         #[cfg(target_arch = "wasm32")]

@@ -33,6 +33,10 @@ pub struct LessonsForm {
     pub current: Option<usize>,
     /// Whether the caption card shows over the view.
     pub card: bool,
+    /// Presenting: the control panel hidden (H), so the view and the card fill the window.
+    pub panel_hidden: bool,
+    /// Presenting: the window full-screen (F11).
+    pub fullscreen: bool,
     /// The current lesson's number.
     pub measurement: Option<Measurement>,
     /// Whether opening a lesson measures its number (off in tests: no second adapter).
@@ -47,7 +51,17 @@ impl LessonsForm {
             Ok(all) => (all, None),
             Err(e) => (vec![], Some(e.to_string())),
         };
-        LessonsForm { catalogue, error, current: None, card: false, measurement: None, measure_numbers, results: None }
+        LessonsForm {
+            catalogue,
+            error,
+            current: None,
+            card: false,
+            panel_hidden: false,
+            fullscreen: false,
+            measurement: None,
+            measure_numbers,
+            results: None,
+        }
     }
 
     /// The lesson shown, if any.

@@ -331,6 +331,8 @@ impl Controller {
                 }
             }
             Action::ShowLessonCard(on) => self.lessons.card = on && self.lessons.current.is_some(),
+            Action::TogglePanel => self.lessons.panel_hidden = !self.lessons.panel_hidden,
+            Action::ToggleFullscreen => self.lessons.fullscreen = !self.lessons.fullscreen,
         }
     }
 

@@ -1,5 +1,6 @@
 //! Lessons in the viewer: opening one shows its whole state and scene, Page Down / Page Up
-//! step through the course within its ends, and the state stays interactive.
+//! step through the course within its ends, the state stays interactive, and presenting hides
+//! the panel and fills the screen.
 
 use bumpview::lessons::catalogue;
 use bumpview::scene::teaching::TeachingScene;
@@ -46,4 +47,14 @@ fn page_down_and_up_step_through_the_course_within_its_ends() {
     settle(&mut controller);
     let last = &controller.lessons.catalogue[count - 1];
     assert_eq!(controller.state.frame_params(), last.apply(controller.scene()).unwrap().frame_params());
+}
+
+#[test]
+fn presenting_hides_the_panel_and_fills_the_screen_and_the_same_keys_undo_it() {
+    let mut controller = controller();
+    assert!(!controller.lessons.panel_hidden && !controller.lessons.fullscreen);
+    controller.apply([Action::TogglePanel, Action::ToggleFullscreen]);
+    assert!(controller.lessons.panel_hidden && controller.lessons.fullscreen);
+    controller.apply([Action::TogglePanel, Action::ToggleFullscreen]);
+    assert!(!controller.lessons.panel_hidden && !controller.lessons.fullscreen);
 }

@@ -32,4 +32,10 @@ pub fn show(ui: &mut egui::Ui, lessons: &LessonsForm, actions: &mut Vec<Action>)
             actions.push(Action::ShowLessonCard(card));
         }
     });
+    ui.horizontal(|ui| {
+        if ui.button("Present").on_hover_text("hide this panel (H) and go full-screen (F11)").clicked() {
+            actions.extend([Action::TogglePanel, Action::ToggleFullscreen]);
+        }
+        ui.weak("H hides the panel, F11 full-screen");
+    });
 }

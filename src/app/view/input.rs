@@ -17,7 +17,8 @@ const STRENGTH_STEP: f32 = 0.1;
 
 /// The shortcuts pressed this frame: B bump, `[`/`]` strength, 1/2/3 bump × colour, bump
 /// only, colour only, W wireframe, G T/B/N glyphs, S split view, L light orbit, V view, R camera reset, F12 screenshot,
-/// Page Down / Page Up the next / previous lesson. None while a text field has keyboard focus.
+/// Page Down / Page Up the next / previous lesson, H the panel, F11 full-screen. None while a
+/// text field has keyboard focus.
 pub fn keyboard(ctx: &egui::Context) -> Vec<Action> {
     if ctx.text_edit_focused() {
         return Vec::new();
@@ -55,6 +56,8 @@ fn key_action(key: Key, repeat: bool) -> Option<Action> {
         Key::G => Command::ToggleGlyphs,
         Key::S => Command::ToggleSplit,
         Key::F12 => return Some(Action::Screenshot),
+        Key::F11 => return Some(Action::ToggleFullscreen),
+        Key::H => return Some(Action::TogglePanel),
         Key::PageDown => return Some(Action::StepLesson(1)),
         Key::PageUp => return Some(Action::StepLesson(-1)),
         _ => return None,
@@ -126,5 +129,13 @@ mod tests {
         assert_eq!(key_action(Key::PageDown, false), Some(Action::StepLesson(1)));
         assert_eq!(key_action(Key::PageUp, false), Some(Action::StepLesson(-1)));
         assert_eq!(key_action(Key::PageDown, true), None);
+    }
+
+    /// Presenting: F11 full-screen, H hides the panel; a held key toggles once.
+    #[test]
+    fn presenting_keys_toggle_full_screen_and_the_panel() {
+        assert_eq!(key_action(Key::F11, false), Some(Action::ToggleFullscreen));
+        assert_eq!(key_action(Key::H, false), Some(Action::TogglePanel));
+        assert_eq!(key_action(Key::F11, true), None);
     }
 }
