@@ -1,11 +1,23 @@
 //! The current lesson's caption card over the 3D view: its title, caption and claim with the
-//! number measured for it, and a button that hides the card.
+//! number measured for it, and a button that hides the card; while the lesson's scene is
+//! prepared, a veil over the previous picture instead.
 
 use crate::app::action::Action;
 use crate::app::controller::{LessonsForm, Measurement};
 
 /// The card's width, points (narrower on a narrow view).
 const CARD_WIDTH: f32 = 420.0;
+
+/// While the current lesson's scene is prepared (`busy` names the stage), the picture in
+/// `view` is still the previous one's: it is veiled and the lesson's title and the stage shown
+/// instead of the card, so no card stands over another lesson's picture.
+pub(super) fn show_preparing(painter: &egui::Painter, lessons: &LessonsForm, view: egui::Rect, busy: &str) {
+    let Some(lesson) = lessons.lesson() else { return };
+    painter.rect_filled(view, 0.0, egui::Color32::from_black_alpha(200));
+    let text = format!("{}\n\npreparing: {busy}", lesson.title);
+    let colour = painter.ctx().global_style().visuals.strong_text_color();
+    painter.text(view.center(), egui::Align2::CENTER_CENTER, text, egui::FontId::proportional(22.0), colour);
+}
 
 /// Draws the card in the bottom-left corner of `view` while it is on; the hide button's action.
 pub(super) fn show(ui: &mut egui::Ui, lessons: &LessonsForm, view: egui::Rect) -> Option<Action> {

@@ -113,7 +113,14 @@ impl View {
         if state.shading.view == ViewMode::Difference {
             legend::difference(ui.painter(), rect, state.shading.difference_range_deg);
         }
-        let mut actions: Vec<Action> = lesson_card::show(ui, &controller.lessons, rect).into_iter().collect();
+        let mut actions: Vec<Action> = match controller.busy().filter(|_| controller.lessons.card) {
+            // The lesson's scene is still on its way: the picture is the previous one's.
+            Some(busy) => {
+                lesson_card::show_preparing(ui.painter(), &controller.lessons, rect, &busy);
+                Vec::new()
+            }
+            None => lesson_card::show(ui, &controller.lessons, rect).into_iter().collect(),
+        };
         if state.split.enabled {
             if let Some(divider) = self.split_divider(ui, &response, rect, controller) {
                 actions.push(divider);
