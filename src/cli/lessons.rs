@@ -27,6 +27,7 @@ pub struct SlidesArgs {
     #[arg(long)]
     out: PathBuf,
     /// Slide size in pixels (16:9 suits the layout), 480x270 to 7680x4320.
+    /// The default is `lessons::slide::DEFAULT_SLIDE_SIZE`, the size the viewer's card measures at.
     #[arg(long, value_parser = args::parse_size, default_value = "1920x1080")]
     size: [u32; 2],
     /// Only these built-in lessons, in this order (names as `bumpview lessons` lists them).
@@ -139,4 +140,21 @@ fn lesson_inputs(chosen: &[Lesson], lesson_files: &[PathBuf]) -> Vec<PathBuf> {
 fn outputs(out: &Path, chosen: &[Lesson]) -> Vec<PathBuf> {
     let slides = chosen.iter().enumerate().map(|(i, l)| out.join(slide_file(i + 1, l)));
     slides.chain(["slides.pdf", "index.md"].map(|name| out.join(name))).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    /// `slides` without `--size` draws the slides the viewer's card measures its number on.
+    #[test]
+    fn the_default_slide_size_is_the_one_the_card_measures_at() {
+        #[derive(Parser)]
+        struct Slides {
+            #[command(flatten)]
+            args: super::SlidesArgs,
+        }
+        let parsed = Slides::parse_from(["slides", "--out", "deck"]);
+        assert_eq!(parsed.args.size, bumpview::lessons::slide::DEFAULT_SLIDE_SIZE);
+    }
 }

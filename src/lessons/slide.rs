@@ -17,6 +17,9 @@ const MAX_COLUMNS: usize = 4;
 /// Line height as a multiple of the font size.
 const LEADING: f32 = 1.3;
 
+/// The size of `bumpview slides`'s slides unless `--size` says otherwise, pixels.
+pub const DEFAULT_SLIDE_SIZE: [u32; 2] = [1920, 1080];
+
 /// Where things go on a slide of a given size; every length in pixels, scaled with the height.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SlideLayout {

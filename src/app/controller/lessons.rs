@@ -1,18 +1,17 @@
 //! Lessons in the viewer: the catalogue, the lesson shown and its caption card. Opening a
 //! lesson shows its whole state as loading a preset does ([`Controller::show_preset`]); the
 //! number on the card is measured off the UI thread, on a headless adapter of its own, as
-//! `bumpview slides` measures it.
+//! `bumpview slides` measures it, at the default slide's picture size: the card and the slide
+//! show one number.
 
 use std::sync::mpsc;
 
 use bumpview::lessons::measure::{SceneCache, measure};
+use bumpview::lessons::slide::{DEFAULT_SLIDE_SIZE, SlideLayout};
 use bumpview::lessons::{self, Lesson};
 use bumpview::render::{Gpu, Renderer};
 
 use super::Controller;
-
-/// The size the card's number is measured at (the lessons test's).
-const MEASURE_SIZE: [u32; 2] = [320, 180];
 
 /// What the lesson's number is on the card.
 #[derive(Debug, Clone, PartialEq)]
@@ -103,7 +102,8 @@ impl LessonsForm {
             let measured = Gpu::headless().map_err(|e| e.to_string()).and_then(|gpu| {
                 let mut renderer = Renderer::from_gpu(&gpu);
                 let mut scenes = SceneCache::default();
-                measure(&mut renderer, &mut scenes, &lesson, MEASURE_SIZE, false).map_err(|e| e.to_string())
+                let size = SlideLayout::new(DEFAULT_SLIDE_SIZE).picture_size(&lesson);
+                measure(&mut renderer, &mut scenes, &lesson, size, false).map_err(|e| e.to_string())
             });
             let result = measured.map_or_else(Measurement::Failed, |m| Measurement::Done(m.changed_percent));
             // The viewer may have closed or moved on: nothing to tell then.
