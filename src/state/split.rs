@@ -208,6 +208,20 @@ impl SplitView {
         })
     }
 
+    /// Whether `command` changes only what this split view sets per half (bump with a bump
+    /// split, the view with a view split, the strength, the shading mode): the halves then draw
+    /// as before, so the viewer says why instead.
+    pub fn overrides(&self, command: Command) -> bool {
+        self.enabled
+            && matches!(
+                (self.difference, command),
+                (SplitDifference::Bump, Command::ToggleBump | Command::SetBump(_))
+                    | (SplitDifference::View, Command::CycleView | Command::SetView(_))
+                    | (SplitDifference::Strength, Command::StepStrength(_) | Command::SetStrength(_))
+                    | (SplitDifference::Mode, Command::SetShadingMode(_))
+            )
+    }
+
     /// The on-screen labels of the left and right halves.
     pub fn labels(&self) -> [String; 2] {
         std::array::from_fn(|i| match self.difference {

@@ -279,6 +279,11 @@ impl Controller {
     fn apply_one(&mut self, action: Action) {
         match action {
             Action::Viewer(command) => {
+                if self.state.split.overrides(command) {
+                    let [left, right] = self.state.split.labels();
+                    let why = format!("the split view sets this per half ({left} │ {right}): S turns the split off");
+                    self.files.status = Some(Status::Done(why));
+                }
                 self.state.apply(command);
                 if let Command::SetKernel(kernel) = command {
                     self.rebuild_builtin(kernel);

@@ -58,3 +58,22 @@ fn presenting_hides_the_panel_and_fills_the_screen_and_the_same_keys_undo_it() {
     controller.apply([Action::TogglePanel, Action::ToggleFullscreen]);
     assert!(!controller.lessons.panel_hidden && !controller.lessons.fullscreen);
 }
+
+/// In a bump-split lesson B changes neither half: the viewer says why instead of doing
+/// nothing visibly; with the split off, B toggles bump as ever and says nothing.
+#[test]
+fn a_key_the_split_overrides_says_why() {
+    let mut controller = controller();
+    controller.lessons.measure_numbers = false;
+    let index = controller.lessons.catalogue.iter().position(|l| l.name == "bump-off-on").unwrap();
+    controller.apply([Action::OpenLesson(index)]);
+    settle(&mut controller);
+    controller.apply([Action::Viewer(Command::ToggleBump)]);
+    let status = format!("{:?}", controller.files.status);
+    assert!(status.contains("sets this per half (bump off │ bump on)"), "{status}");
+    controller.apply([Action::Viewer(Command::SetSplit(false))]);
+    controller.files.status = None;
+    let bump = controller.state.shading.bump_enabled;
+    controller.apply([Action::Viewer(Command::ToggleBump)]);
+    assert!(controller.files.status.is_none() && controller.state.shading.bump_enabled != bump);
+}
