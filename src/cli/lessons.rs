@@ -26,8 +26,8 @@ pub struct SlidesArgs {
     /// The folder to write into (made if missing): NN-NAME.png per slide, slides.pdf, index.md.
     #[arg(long)]
     out: PathBuf,
-    /// Slide size in pixels (16:9 suits the layout), 480x270 to 7680x4320.
-    /// The default is `lessons::slide::DEFAULT_SLIDE_SIZE`, the size the viewer's card measures at.
+    /// Slide size in pixels (16:9 suits the layout), 480x270 to 7680x4320; the default is the
+    /// size the viewer's lesson card measures its number at.
     #[arg(long, value_parser = args::parse_size, default_value = "1920x1080")]
     size: [u32; 2],
     /// Only these built-in lessons, in this order (names as `bumpview lessons` lists them).
