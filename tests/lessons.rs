@@ -90,8 +90,8 @@ fn the_course_is_complete_and_every_exception_explains_itself() {
 }
 
 /// `bumpview slides` writes a PNG per lesson, a PDF whose every page poppler's `pdftoppm`
-/// renders and whose embedded images (`pdfimages`) are the slides exactly, an index, and keeps
-/// existing files without `--force`.
+/// renders, whose embedded images (`pdfimages`) are the slides exactly and whose titles and
+/// captions `pdftotext` reads, an index, and keeps existing files without `--force`.
 #[test]
 fn slides_make_pngs_a_pdf_that_renders_and_an_index() {
     let dir = std::env::temp_dir().join(format!("bumpview-slides-{}", std::process::id()));
@@ -132,6 +132,14 @@ fn slides_make_pngs_a_pdf_that_renders_and_an_index() {
         let embedded = image::open(dir.join(embedded)).unwrap().to_rgb8();
         assert!(embedded == slide, "{page}: the embedded image is the slide, pixel for pixel");
     }
+    // The titles and captions are text a reader finds and copies (poppler's pdftotext).
+    poppler("pdftotext", &[], "slides.txt");
+    let text = std::fs::read_to_string(dir.join("slides.txt")).unwrap();
+    let all = bumpview::lessons::catalogue().unwrap();
+    let cg_wall = all.iter().find(|l| l.name == "cg-wall").unwrap();
+    assert!(text.contains(&cg_wall.title), "{text}");
+    let first_words: String = cg_wall.caption.split_whitespace().take(6).collect::<Vec<_>>().join(" ");
+    assert!(text.split_whitespace().collect::<Vec<_>>().join(" ").contains(&first_words), "{text}");
     let again = slides(false);
     assert_eq!(again.status.code(), Some(2), "an existing output is kept without --force");
     assert!(slides(true).status.success());

@@ -91,7 +91,7 @@ pub fn slides(args: &SlidesArgs) -> Result<(), Failure> {
         let file = slide_file(i + 1, lesson);
         write_png_atomically(&slide, &args.out.join(&file))?;
         println!("{file}: {}", lesson.claim_with(measured.changed_percent));
-        pages.push(PdfPage::new(&slide));
+        pages.push(PdfPage::new(&slide, &lesson.title, &lesson.caption));
         entries.push(DeckEntry { file, lesson: lesson.clone(), changed_percent: measured.changed_percent });
     }
     let write = |name: &str, bytes: &[u8]| {
