@@ -8,7 +8,7 @@ use bumpview::lessons::deck::{DeckEntry, index_markdown, slide_file};
 use bumpview::lessons::files::load_dir;
 use bumpview::lessons::measure::{SceneCache, measure};
 use bumpview::lessons::pdf::{PdfPage, slides_pdf};
-use bumpview::lessons::slide::SlideLayout;
+use bumpview::lessons::slide::{SlideLayout, SlideTheme};
 use bumpview::lessons::{self, Lesson};
 use bumpview::render::capture::write_png_atomically;
 use bumpview::render::{Gpu, Renderer};
@@ -41,6 +41,9 @@ pub struct SlidesArgs {
     /// Every lesson file (*.toml) in this folder, in the order of their names.
     #[arg(long, value_name = "DIR")]
     lessons_dir: Option<PathBuf>,
+    /// The slides' colours: dark (a darkened room) or light (a lit one).
+    #[arg(long, value_parser = args::named::<SlideTheme>(), default_value = "dark")]
+    theme: SlideTheme,
     /// Replace files that exist; without it an existing output is kept and nothing is drawn.
     #[arg(long)]
     force: bool,
@@ -81,7 +84,7 @@ pub fn slides(args: &SlidesArgs) -> Result<(), Failure> {
     let gpu = Gpu::headless()?;
     let mut renderer = Renderer::from_gpu(&gpu);
     let mut scenes = SceneCache::default();
-    let layout = SlideLayout::new(args.size);
+    let layout = SlideLayout::new(args.size).with_theme(args.theme);
     let (mut entries, mut pages) = (vec![], vec![]);
     for (i, lesson) in chosen.iter().enumerate() {
         let size = layout.picture_size(lesson);

@@ -1,5 +1,6 @@
 //! A lesson as a slide: the title, the picture(s) with their labels, the caption wrapped to the
-//! slide's width and the claim with the number measured in this run, on a dark background.
+//! slide's width and the claim with the number measured in this run, on a dark background or,
+//! for lit rooms, a light one ([`SlideTheme`]).
 
 use image::{Rgba, RgbaImage};
 
@@ -8,10 +9,41 @@ use super::measure::Measured;
 use crate::render::annotate;
 use crate::render::text::{self, text_width, wrap_paragraph};
 
-const BACKGROUND: [u8; 3] = [24, 26, 30];
-const TEXT: [u8; 3] = [232, 232, 228];
-const MUTED: [u8; 3] = [150, 154, 160];
-const ACCENT: [u8; 3] = [255, 196, 84];
+/// The slide's colours: dark for a darkened room, light for a lit one (the pictures are the
+/// same; the divider stays white, as the viewer draws it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "kebab-case")]
+pub enum SlideTheme {
+    #[default]
+    Dark,
+    Light,
+}
+
+/// The colours of a theme: background, text, muted text (labels, page number), the claim.
+struct Palette {
+    background: [u8; 3],
+    text: [u8; 3],
+    muted: [u8; 3],
+    accent: [u8; 3],
+}
+
+impl SlideTheme {
+    fn palette(self) -> Palette {
+        match self {
+            SlideTheme::Dark => Palette {
+                background: [24, 26, 30],
+                text: [232, 232, 228],
+                muted: [150, 154, 160],
+                accent: [255, 196, 84],
+            },
+            // WCAG contrast against the background, as the dark theme's: text 16.7:1 (14.2),
+            // labels 6.4:1 (6.2), the claim's orange darkened to 5.1:1.
+            SlideTheme::Light => {
+                Palette { background: [250, 250, 247], text: [24, 26, 30], muted: [88, 92, 99], accent: [168, 84, 0] }
+            }
+        }
+    }
+}
 /// The most tiles side by side in one row; more go into further rows.
 const MAX_COLUMNS: usize = 4;
 /// Line height as a multiple of the font size.
@@ -24,6 +56,8 @@ pub const DEFAULT_SLIDE_SIZE: [u32; 2] = [1920, 1080];
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SlideLayout {
     pub size: [u32; 2],
+    /// The colours ([`SlideTheme::Dark`] unless [`Self::with_theme`] says otherwise).
+    theme: SlideTheme,
     margin: f32,
     title_px: f32,
     body_px: f32,
@@ -44,12 +78,18 @@ impl SlideLayout {
         let h = size[1] as f32;
         SlideLayout {
             size,
+            theme: SlideTheme::default(),
             margin: h * 0.04,
             title_px: h * 0.05,
             body_px: h * 0.028,
             label_px: h * 0.024,
             gap: h * 0.015,
         }
+    }
+
+    /// This layout in `theme`'s colours.
+    pub fn with_theme(self, theme: SlideTheme) -> SlideLayout {
+        SlideLayout { theme, ..self }
     }
 
     /// The width text may take: the slide less its margins.
@@ -117,14 +157,15 @@ impl SlideLayout {
     /// drew at [`Self::picture_size`].
     pub fn compose(&self, lesson: &Lesson, measured: &Measured, index: usize, total: usize) -> RgbaImage {
         let [width, height] = self.size;
-        let [r, g, b] = BACKGROUND;
+        let colours = self.theme.palette();
+        let [r, g, b] = colours.background;
         let mut slide = RgbaImage::from_pixel(width, height, Rgba([r, g, b, 255]));
         let m = self.margin;
         let title_baseline = m + self.title_px;
-        draw_text(&mut slide, &lesson.title, m, title_baseline, self.title_px, TEXT);
+        draw_text(&mut slide, &lesson.title, m, title_baseline, self.title_px, colours.text);
         let page = format!("{index} / {total}");
         let page_x = width as f32 - m - text_width(&page, self.label_px);
-        draw_text(&mut slide, &page, page_x, m + self.label_px, self.label_px, MUTED);
+        draw_text(&mut slide, &page, page_x, m + self.label_px, self.label_px, colours.muted);
         let places = self.places(lesson);
         let pictures: Vec<&RgbaImage> = match &measured.split {
             Some(split) if lesson.split => vec![split],
@@ -149,22 +190,22 @@ impl SlideLayout {
             for (side, (from, to)) in lesson.sides.iter().zip(halves) {
                 let centre = place.x as f32 + place.size[0] as f32 * (from + to) / 2.0;
                 let x = centre - text_width(&side.label, self.label_px) / 2.0;
-                draw_text(&mut slide, &side.label, x, label_baseline(place), self.label_px, MUTED);
+                draw_text(&mut slide, &side.label, x, label_baseline(place), self.label_px, colours.muted);
             }
         } else {
             for (place, side) in places.iter().zip(&lesson.sides) {
                 let label = fit(&side.label, self.label_px, place.size[0] as f32);
                 let x = place.x as f32 + (place.size[0] as f32 - text_width(&label, self.label_px)) / 2.0;
-                draw_text(&mut slide, &label, x, label_baseline(place), self.label_px, MUTED);
+                draw_text(&mut slide, &label, x, label_baseline(place), self.label_px, colours.muted);
             }
         }
         let mut baseline = labels_bottom + self.label_px * LEADING * 1.4 + self.body_px * 1.2;
         for line in self.caption_lines(lesson) {
-            draw_text(&mut slide, &line, m, baseline, self.body_px, TEXT);
+            draw_text(&mut slide, &line, m, baseline, self.body_px, colours.text);
             baseline += self.body_px * LEADING;
         }
         let claim = fit(&lesson.claim_with(measured.changed_percent), self.body_px, self.text_width());
-        draw_text(&mut slide, &claim, m, baseline + self.body_px * 0.4, self.body_px, ACCENT);
+        draw_text(&mut slide, &claim, m, baseline + self.body_px * 0.4, self.body_px, colours.accent);
         slide
     }
 }
@@ -208,6 +249,29 @@ mod tests {
                     assert!(place.size[1] as f32 > size[1] as f32 * 0.2, "{}: {:?}", lesson.name, place.size);
                 }
             }
+        }
+    }
+
+    /// The light theme draws the same slide on a light background with dark text; the
+    /// pictures are the same pixels.
+    #[test]
+    fn the_light_theme_inverts_the_page_not_the_pictures() {
+        let lesson = catalogue().unwrap().into_iter().find(|l| l.name == "cg-wall").unwrap();
+        let dark = SlideLayout::new([960, 540]);
+        let size = dark.picture_size(&lesson);
+        let picture = RgbaImage::from_pixel(size[0], size[1], Rgba([90, 140, 200, 255]));
+        let measured =
+            Measured { sides: vec![picture.clone(); lesson.sides.len()], split: None, changed_percent: 12.0 };
+        let slides =
+            [SlideTheme::Dark, SlideTheme::Light].map(|theme| dark.with_theme(theme).compose(&lesson, &measured, 1, 1));
+        let place = &dark.places(&lesson)[0];
+        for (slide, theme) in slides.iter().zip([SlideTheme::Dark, SlideTheme::Light]) {
+            let colours = theme.palette();
+            assert_eq!(slide.get_pixel(1, 1).0[..3], colours.background, "{theme:?}");
+            assert_eq!(slide.get_pixel(place.x + 4, place.y + 4), picture.get_pixel(0, 0), "{theme:?}");
+            let title_row = (dark.margin + dark.title_px * 0.7) as u32;
+            let inked = (0..slide.width()).filter(|&x| slide.get_pixel(x, title_row).0[..3] == colours.text).count();
+            assert!(inked > 0, "{theme:?}: the title drawn in the theme's text colour");
         }
     }
 }
