@@ -4,6 +4,7 @@
 
 use bumpview::frame::{BumpSource, DetailBlend, LegacyLook, LightingSpace, Mistake, Parallax, ShadingMode, ViewMode};
 use bumpview::height::{Border, Kernel};
+use bumpview::lessons::slide::SlideTheme;
 use bumpview::names::Named;
 use bumpview::scene::{GreenAxis, LightKind, NormalLayout, ShadingModel, SpecularMode};
 use bumpview::state::SplitDifference;
@@ -27,6 +28,7 @@ fn every_enum_keeps_its_names_in_order() {
     assert_eq!(ViewMode::names(), views);
     assert_eq!(ShadingMode::names(), ["bump-colour", "bump-only", "colour-only"]);
     assert_eq!(BumpSource::names(), ["normal-map", "height-in-shader"]);
+    assert_eq!(SlideTheme::names(), ["dark", "light"]);
     let differences = [
         "bump",
         "view",
