@@ -122,8 +122,9 @@ fn verdicts_on_the_labelled_set() {
             share(band_right, band.len())
         );
     }
-    // Measured: all 62 decided verdicts right; 31 of 36 DirectX maps warned, the other five
-    // (WaterBottle crops) undetermined for mixed tiles, never wrong.
+    // Measured: all 62 decided verdicts right, the weakest at 0.997 (2 between 0.99 and 0.999,
+    // 60 above); 31 of 36 DirectX maps warned, the other five (WaterBottle crops) undetermined
+    // for mixed tiles, never wrong.
     assert!(share(right_count, decided.len()) >= 97.0, "right of decided: {right_count} of {}", decided.len());
     assert!(warned >= 31, "warned: {warned} of {}", directx.len());
     assert!(decided.len() >= 62, "decided: {} of {}", decided.len(), cases.len());

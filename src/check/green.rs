@@ -10,6 +10,14 @@
 //! blurred by a 3×3 binomial first, which removes a 2-texel pattern and halves the derivatives
 //! of a 4-texel one, so content at the Nyquist limit carries little.
 //!
+//! Each tile votes in octaves: the slopes, halved in size again and again (`[1 3 3 1]/8` per
+//! axis), vote at every octave whose texels a tile spans at least [`MIN_SIDE`] of. A filter
+//! commutes with the derivatives, so a height field's slopes are curl-free in every octave, and
+//! each octave is a test of its own. Pooled as energies, the finest octave would win: the
+//! derivatives weigh a feature by its frequency squared, and that is where printed detail,
+//! grain and compression live. So the tile's vote is its octaves' votes averaged by their
+//! weights, and the tile weighs as its best-evidenced octave.
+//!
 //! No tile weighs more than 1: its weight rises from 0 at [`WEIGHT_FLOOR`] to 1 at
 //! [`WEIGHT_FULL`] of mean `|ab|`, so a strong fine pattern on a few tiles is outvoted by the
 //! rest of the map. The map's score is the weighted mean vote `m`; its standard error counts
@@ -145,27 +153,25 @@ pub fn green_evidence(normals: &[Vec3], width: u32, height: u32) -> GreenEvidenc
         return undetermined(vec![], Undetermined::TooFewTexels);
     }
     let (w, h) = (width as usize, height as usize);
-    let slopes = blurred_slopes(normals, w, h);
-    let mut sums = vec![TileSums::default(); (columns * rows) as usize];
+    let mut level = (blurred_slopes(normals, w, h), w, h);
+    let mut octaves: Vec<Vec<TileVote>> = Vec::new();
     let (mut mixed_total, mut pure_total) = (0.0f64, 0.0f64);
-    for y in 1..h - 1 {
-        for x in 1..w - 1 {
-            let at = |x: usize, y: usize| slopes[y * w + x];
-            // y_up runs towards smaller rows.
-            let a = ((at(x, y - 1)[0] - at(x, y + 1)[0]) * 0.5) as f64;
-            let b = ((at(x + 1, y)[1] - at(x - 1, y)[1]) * 0.5) as f64;
-            let dp_dx = ((at(x + 1, y)[0] - at(x - 1, y)[0]) * 0.5) as f64;
-            let dq_dy = ((at(x, y - 1)[1] - at(x, y + 1)[1]) * 0.5) as f64;
-            let s = &mut sums[(y / tile as usize) * columns as usize + x / tile as usize];
-            s.cross += a * b;
-            s.mixed += a * a + b * b;
-            s.magnitude += (a * b).abs();
-            s.texels += 1.0;
-            mixed_total += a * a + b * b;
-            pure_total += dp_dx * dp_dx + dq_dy * dq_dy;
+    // An octave counts while a tile spans at least MIN_SIDE of its texels across.
+    for octave in 0.. {
+        let (slopes, lw, lh) = &level;
+        if tile >> octave < MIN_SIDE || *lw < 3 || *lh < 3 {
+            break;
         }
+        let mut sums = vec![TileSums::default(); (columns * rows) as usize];
+        let (mixed, pure) = add_octave(&mut sums, (slopes, *lw, *lh), 1 << octave, tile as usize, columns as usize);
+        if octave == 0 {
+            (mixed_total, pure_total) = (mixed, pure);
+        }
+        octaves.push(sums.iter().map(tile_vote).collect());
+        level = halved(slopes, *lw, *lh);
     }
-    let tiles: Vec<TileVote> = sums.iter().map(tile_vote).collect();
+    let tiles: Vec<TileVote> =
+        (0..(columns * rows) as usize).map(|i| octaves_vote(octaves.iter().map(|o| o[i]))).collect();
     let total_weight: f32 = tiles.iter().map(|t| t.weight).sum();
     if total_weight < MIN_EVIDENCE {
         let texels = ((w - 2) * (h - 2)) as f64;
@@ -175,6 +181,67 @@ pub fn green_evidence(normals: &[Vec3], width: u32, height: u32) -> GreenEvidenc
     }
     let verdict = verdict(&tiles);
     GreenEvidence { tile_size: tile, columns, rows, tiles, verdict }
+}
+
+/// Adds one octave's mixed derivatives to the tiles' sums: `slopes` is `w × h`, each texel
+/// `scale` map texels across. Returns the octave's `Σ(a² + b²)` and `Σ((∂p/∂x)² + (∂q/∂y)²)`.
+fn add_octave(
+    sums: &mut [TileSums],
+    (slopes, w, h): (&[[f32; 2]], usize, usize),
+    scale: usize,
+    tile: usize,
+    columns: usize,
+) -> (f64, f64) {
+    let (mut mixed_total, mut pure_total) = (0.0f64, 0.0f64);
+    for y in 1..h - 1 {
+        for x in 1..w - 1 {
+            let at = |x: usize, y: usize| slopes[y * w + x];
+            // y_up runs towards smaller rows.
+            let a = ((at(x, y - 1)[0] - at(x, y + 1)[0]) * 0.5) as f64;
+            let b = ((at(x + 1, y)[1] - at(x - 1, y)[1]) * 0.5) as f64;
+            let dp_dx = ((at(x + 1, y)[0] - at(x - 1, y)[0]) * 0.5) as f64;
+            let dq_dy = ((at(x, y - 1)[1] - at(x, y + 1)[1]) * 0.5) as f64;
+            let s = &mut sums[(y * scale / tile) * columns + x * scale / tile];
+            s.cross += a * b;
+            s.mixed += a * a + b * b;
+            s.magnitude += (a * b).abs();
+            s.texels += 1.0;
+            mixed_total += a * a + b * b;
+            pure_total += dp_dx * dp_dx + dq_dy * dq_dy;
+        }
+    }
+    (mixed_total, pure_total)
+}
+
+/// The slopes at half the size, filtered by `[1 3 3 1]/8` along each axis (edges clamped),
+/// which passes nothing at the finer octave's Nyquist limit.
+fn halved(slopes: &[[f32; 2]], w: usize, h: usize) -> (Vec<[f32; 2]>, usize, usize) {
+    const TAPS: [f32; 4] = [0.125, 0.375, 0.375, 0.125];
+    let (hw, hh) = (w / 2, h / 2);
+    let mut out = vec![[0.0; 2]; hw * hh];
+    for y in 0..hh {
+        for x in 0..hw {
+            for (j, ty) in TAPS.iter().enumerate() {
+                let sy = (2 * y + j).saturating_sub(1).min(h - 1);
+                for (i, tx) in TAPS.iter().enumerate() {
+                    let s = slopes[sy * w + (2 * x + i).saturating_sub(1).min(w - 1)];
+                    (0..2).for_each(|k| out[y * hw + x][k] += ty * tx * s[k]);
+                }
+            }
+        }
+    }
+    (out, hw, hh)
+}
+
+/// A tile's vote over its octaves: their votes' mean weighted by each octave's weight, so every
+/// octave with full evidence has an equal say; the tile weighs as its best-evidenced octave.
+fn octaves_vote(octaves: impl Iterator<Item = TileVote> + Clone) -> TileVote {
+    let weight: f32 = octaves.clone().map(|o| o.weight).sum();
+    if weight <= 0.0 {
+        return TileVote { vote: 0.0, weight: 0.0 };
+    }
+    let vote = octaves.clone().map(|o| o.weight * o.vote).sum::<f32>() / weight;
+    TileVote { vote, weight: octaves.map(|o| o.weight).fold(0.0, f32::max) }
 }
 
 /// A tile's vote from its sums: `2·Σab / Σ(a² + b²)` (= `(E_dx − E_gl) / (E_dx + E_gl)`),
@@ -255,6 +322,24 @@ mod tests {
             }
         }
         assert_eq!(green_evidence(&normals, 64, 64).verdict.unwrap().0, GreenConvention::OpenGl);
+    }
+
+    /// Bumps of period 32 under fine printed stripes of period 5 along the diagonal: both
+    /// slopes shifted alike, which a DirectX groove would also give. Read at the finest octave
+    /// alone the stripes outvote the bumps (DirectX, confidence above 0.99); with each octave
+    /// an equal say the bumps carry the map.
+    #[test]
+    fn fine_printed_stripes_do_not_outvote_the_relief() {
+        let stripes = |x: f32, y: f32| {
+            let (p, q) = bumps(x / 2.0, y / 2.0);
+            let g = 0.3 * (std::f32::consts::TAU * (x - y) / 5.0).cos();
+            (p + g, q + g)
+        };
+        let normals = normals_of(128, 128, stripes);
+        let (convention, confidence) = green_evidence(&normals, 128, 128).verdict.unwrap();
+        assert_eq!(convention, GreenConvention::OpenGl, "{confidence}");
+        let flipped: Vec<Vec3> = normals.iter().map(|n| Vec3::new(n.x, -n.y, n.z)).collect();
+        assert_eq!(green_evidence(&flipped, 128, 128).verdict.unwrap().0, GreenConvention::DirectX);
     }
 
     #[test]
