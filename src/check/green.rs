@@ -108,30 +108,38 @@ pub fn tile_size(width: u32, height: u32) -> u32 {
     (width.min(height) / 4).clamp(MIN_SIDE, 32)
 }
 
-/// The OpenGL slopes `(p, q)` of unit normals `normals` (`width × height`, rows from the top),
-/// clamped to ±[`MAX_SLOPE`], blurred by a 3×3 binomial (edges clamped).
-fn blurred_slopes(normals: &[Vec3], width: usize, height: usize) -> Vec<[f32; 2]> {
-    let slope = |n: &Vec3| {
+/// The OpenGL slopes `(p, q)` of the unit normals `normal_at(i)` of texel `i` (`width ×
+/// height`, rows from the top), clamped to ±[`MAX_SLOPE`], blurred by a 3×3 binomial (edges
+/// clamped). The field is the only full-size buffer: 8 bytes a texel, blurred in place with
+/// a row or two of scratch.
+fn blurred_slopes(normal_at: impl Fn(usize) -> Vec3, width: usize, height: usize) -> Vec<[f32; 2]> {
+    let slope = |n: Vec3| {
         let z = n.z.max(1.0 / MAX_SLOPE);
         [(-n.x / z).clamp(-MAX_SLOPE, MAX_SLOPE), (-n.y / z).clamp(-MAX_SLOPE, MAX_SLOPE)]
     };
-    let raw: Vec<[f32; 2]> = normals.iter().map(slope).collect();
-    let blur = |field: &[[f32; 2]], step: (usize, usize)| -> Vec<[f32; 2]> {
-        let mut out = vec![[0.0; 2]; field.len()];
-        for y in 0..height {
-            for x in 0..width {
-                let at = |dx: isize| {
-                    let sx = (x as isize + dx * step.0 as isize).clamp(0, width as isize - 1) as usize;
-                    let sy = (y as isize + dx * step.1 as isize).clamp(0, height as isize - 1) as usize;
-                    field[sy * width + sx]
-                };
-                let (l, c, r) = (at(-1), at(0), at(1));
-                out[y * width + x] = [0, 1].map(|k| 0.25 * l[k] + 0.5 * c[k] + 0.25 * r[k]);
-            }
+    let mut field: Vec<[f32; 2]> = (0..width * height).map(|i| slope(normal_at(i))).collect();
+    let blend = |l: [f32; 2], c: [f32; 2], r: [f32; 2]| [0, 1].map(|k| 0.25 * l[k] + 0.5 * c[k] + 0.25 * r[k]);
+    // Along x, row by row from a copy of the row.
+    let mut row = vec![[0.0f32; 2]; width];
+    for y in 0..height {
+        row.copy_from_slice(&field[y * width..(y + 1) * width]);
+        for x in 0..width {
+            field[y * width + x] = blend(row[x.saturating_sub(1)], row[x], row[(x + 1).min(width - 1)]);
         }
-        out
-    };
-    blur(&blur(&raw, (1, 0)), (0, 1))
+    }
+    // Along y, top to bottom: the row above as it was before its own blur, the row below not
+    // yet blurred.
+    let mut above = field[..width].to_vec();
+    for y in 0..height {
+        row.copy_from_slice(&field[y * width..(y + 1) * width]);
+        let below = (y + 1).min(height - 1) * width;
+        for x in 0..width {
+            let under = if y + 1 < height { field[below + x] } else { row[x] };
+            field[y * width + x] = blend(above[x], row[x], under);
+        }
+        above.copy_from_slice(&row);
+    }
+    field
 }
 
 /// Per-tile sums of one map.
@@ -146,6 +154,12 @@ struct TileSums {
 
 /// The tiles' votes and the verdict for unit normals `normals` of a `width × height` map.
 pub fn green_evidence(normals: &[Vec3], width: u32, height: u32) -> GreenEvidence {
+    green_evidence_of(|i| normals[i], width, height)
+}
+
+/// [`green_evidence`] of the unit normal `normal_at(i)` of each texel `i`, read as needed
+/// (a map's decoded normals are never held: 12 bytes a texel).
+pub fn green_evidence_of(normal_at: impl Fn(usize) -> Vec3, width: u32, height: u32) -> GreenEvidence {
     let tile = tile_size(width, height);
     let (columns, rows) = (width.div_ceil(tile), height.div_ceil(tile));
     let undetermined = |tiles, reason| GreenEvidence { tile_size: tile, columns, rows, tiles, verdict: Err(reason) };
@@ -153,7 +167,7 @@ pub fn green_evidence(normals: &[Vec3], width: u32, height: u32) -> GreenEvidenc
         return undetermined(vec![], Undetermined::TooFewTexels);
     }
     let (w, h) = (width as usize, height as usize);
-    let mut level = (blurred_slopes(normals, w, h), w, h);
+    let mut level = (blurred_slopes(normal_at, w, h), w, h);
     let mut octaves: Vec<Vec<TileVote>> = Vec::new();
     let (mut mixed_total, mut pure_total) = (0.0f64, 0.0f64);
     // An octave counts while a tile spans at least MIN_SIDE of its texels across.

@@ -4,7 +4,7 @@
 
 use glam::{Vec3, Vec4};
 
-use super::green::{GreenConvention, GreenEvidence, Undetermined, green_evidence};
+use super::green::{GreenConvention, GreenEvidence, Undetermined, green_evidence_of};
 use crate::scene::{NormalLayout, TextureImage};
 use crate::shading::{NormalTexel, unpack_normal};
 
@@ -60,18 +60,22 @@ pub const OBJECT_SPACE_Z: f32 = 0.3;
 
 /// Whether unit normals spread over the sphere rather than around +Z: at least
 /// [`OBJECT_SPACE_SHARE`] of them have `z < ` [`OBJECT_SPACE_Z`].
-pub fn looks_object_space(normals: &[Vec3]) -> bool {
-    let low = normals.iter().filter(|n| n.z < OBJECT_SPACE_Z).count();
-    low as f32 >= OBJECT_SPACE_SHARE * normals.len().max(1) as f32
+pub fn looks_object_space(normals: impl ExactSizeIterator<Item = Vec3>) -> bool {
+    let count = normals.len();
+    let low = normals.filter(|n| n.z < OBJECT_SPACE_Z).count();
+    low as f32 >= OBJECT_SPACE_SHARE * count.max(1) as f32
+}
+
+/// The unit vector of one RGBA texel `t` read in `layout` (X-Ray without its correction).
+fn decoded_normal(t: &[u8], layout: NormalLayout) -> Vec3 {
+    let texel =
+        NormalTexel { rgba: Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32) / 255.0, correction: None };
+    unpack_normal(texel, layout).try_normalize().unwrap_or(Vec3::Z)
 }
 
 /// The unit vectors of `image`'s texels read in `layout` (X-Ray without its correction).
 pub fn decoded_normals(image: &TextureImage, layout: NormalLayout) -> Vec<Vec3> {
-    let texel = |t: &[u8]| NormalTexel {
-        rgba: Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32) / 255.0,
-        correction: None,
-    };
-    image.rgba.chunks_exact(4).map(|t| unpack_normal(texel(t), layout).try_normalize().unwrap_or(Vec3::Z)).collect()
+    image.rgba.chunks_exact(4).map(|t| decoded_normal(t, layout)).collect()
 }
 
 /// Checks `image` as a normal map read in `layout`; the RGB statistics (length, `z < 0`,
@@ -96,9 +100,9 @@ pub fn check_normal_map(image: &TextureImage, layout: NormalLayout) -> NormalMap
     }
     let suggested_layout = suggested_layout(constant, image.rgba.len() / 4);
     let read_layout = if layout == NormalLayout::Rgb { suggested_layout } else { layout };
-    let normals = decoded_normals(image, read_layout);
-    let looks_object_space = looks_object_space(&normals);
-    let green = green_evidence(&normals, image.width, image.height);
+    let looks_object_space = looks_object_space(image.rgba.chunks_exact(4).map(|t| decoded_normal(t, read_layout)));
+    let normal_at = |i: usize| decoded_normal(&image.rgba[4 * i..4 * i + 4], read_layout);
+    let green = green_evidence_of(normal_at, image.width, image.height);
     let convention = green.verdict.ok().filter(|_| !looks_object_space);
     NormalMapFindings {
         non_unit_share: non_unit as f32 / texels,
