@@ -71,7 +71,7 @@ pub(super) fn lit(
     let shininess = shading.shininess.unwrap_or(material.shininess).max(1.0);
     let metal_rough = sample.metallic_roughness.unwrap_or(Vec3::ONE);
     let roughness =
-        (lighting.shading_model == ShadingModel::MetallicRoughness).then(|| material.roughness * metal_rough.y);
+        (lighting.shading_model == ShadingModel::MetallicRoughness).then_some(material.roughness * metal_rough.y);
     let mip = MipValues::new(mip, surface.texel, (surface.strength, shading.bump_enabled), shininess, roughness);
     let eye = frame.camera.eye();
     let albedo = sample.base_color.unwrap_or(Vec3::ONE) * material.base_color_factor.truncate();

@@ -312,10 +312,9 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
     let rock = study.specimens.iter().filter(|s| s.name == "Rock058");
     let reliefs = std::iter::once(uv_error::Relief::wall())
         .chain(rock.filter_map(|s| uv_error::Relief::of_specimen("Rock058", s)));
-    let (uv_rows, uv_charts, uv_chart_files) =
-        uv_chart::study_and_charts(reliefs, &study.rows, &plan.parallax.layers, plan.uv_grid, angle)?;
-    chart_files.extend(uv_chart_files);
-    let uv_section = uv_page::markdown(&uv_rows, &study.rows, plan.uv_grid, &uv_charts);
+    let uv = uv_chart::study_and_charts(reliefs, &study.rows, &plan.parallax.layers, plan.uv_grid, angle)?;
+    chart_files.extend(uv.files);
+    let uv_section = uv_page::markdown(&uv.rows, &study.rows, plan.uv_grid, &uv.captions);
     let (mip, mip_adapter, mip_notes) = mip_filter_study(&plan.mip, progress);
     let mip_section = mip_page::markdown(&mip, &plan.mip, &mip_adapter, &mip_notes);
     let (detail_rows, detail_timing, detail_notes) = detail_page::study(&plan.detail);
@@ -325,7 +324,7 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
         (MARKDOWN.to_owned(), sections.join("\n").into_bytes()),
         (CSV.to_owned(), csv::render(&rows, &orders).into_bytes()),
         (PARALLAX_CSV.to_owned(), parallax_page::csv(&study.rows).into_bytes()),
-        (UV_CSV.to_owned(), csv::uv_rows(&uv_rows, &study.rows).into_bytes()),
+        (UV_CSV.to_owned(), csv::uv_rows(&uv.rows, &study.rows).into_bytes()),
         (TANGENT_CHART.to_owned(), tangent_png),
         (KERNEL_CHART.to_owned(), kernel_png),
         (mip_page::CSV.to_owned(), mip_page::csv(&mip.rows).into_bytes()),

@@ -13,6 +13,14 @@ use crate::frame::Parallax;
 /// Mean errors below this many texels (0 face-on) are drawn at it.
 pub const TEXEL_FLOOR: f64 = 1e-3;
 
+/// What [`study_and_charts`] made: the rows, the charts as (caption, file name) for the page
+/// and as (file name, PNG bytes) to write.
+pub struct UvStudy {
+    pub rows: Vec<UvError>,
+    pub captions: Vec<(String, String)>,
+    pub files: Vec<(String, Vec<u8>)>,
+}
+
 /// The UV-error study over `reliefs` at [`uv_error::report_angles`] with the study's layer
 /// counts on an `n`×`n` grid of rays: its rows, its charts as (caption, file name) for the page,
 /// and their (file name, PNG bytes) to write. `angle` (degrees) is the view the chart of mean
@@ -23,7 +31,7 @@ pub fn study_and_charts(
     layers: &[u32],
     n: u32,
     angle: f32,
-) -> Result<(Vec<UvError>, Vec<(String, String)>, Vec<(String, Vec<u8>)>), ChartError> {
+) -> Result<UvStudy, ChartError> {
     let mut rows = vec![];
     let mut captions = vec![];
     let mut files = vec![];
@@ -39,7 +47,7 @@ pub fn study_and_charts(
         captions.push((format!("{}: mean UV error against the view angle", relief.name), name.clone()));
         files.push((name, angle_chart(&rows, relief.name, layers)?));
     }
-    Ok((rows, captions, files))
+    Ok(UvStudy { rows, captions, files })
 }
 
 /// The file of [`ms_chart`] for `specimen` at `angle_deg`.
