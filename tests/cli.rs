@@ -330,3 +330,30 @@ fn parallax_flags_draw_save_and_caption_the_technique() {
     assert_eq!(stderr_lines(&output).len(), 1);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// What the renderer could not do as asked is said on stderr, one line each: a mesh without
+/// texture coordinates drawn without the normal map given for it.
+#[test]
+fn render_says_what_it_drew_otherwise_than_asked() {
+    let dir = std::env::temp_dir().join(format!("bumpview-cli-notices-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("flat.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n").unwrap();
+    image::RgbaImage::from_pixel(4, 4, image::Rgba([128, 128, 255, 255])).save(dir.join("n.png")).unwrap();
+    let (obj, normal, out) = (dir.join("flat.obj"), dir.join("n.png"), dir.join("out.png"));
+    let output = bumpview(&[
+        "render",
+        obj.to_str().unwrap(),
+        "--normal",
+        normal.to_str().unwrap(),
+        "--size",
+        "64x48",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let lines = stderr_lines(&output);
+    let notices: Vec<&String> = lines.iter().filter(|l| l.starts_with("bumpview: notice: ")).collect();
+    assert_eq!(notices.len(), 1, "{lines:?}");
+    assert!(notices[0].contains("has no texture coordinates: drawn without its bump map"), "{lines:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -221,6 +221,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     };
     renderer.set_scene_uploads(&scene, &uploads);
     report_displacement(&renderer);
+    report_notices(&renderer, &scene);
     let options = capture.options(DEFAULT_RENDER_SIZE);
     let params = state.frame_params();
     let image = if let Some(grid) = grid {
@@ -255,6 +256,16 @@ fn report_displacement(renderer: &Renderer) {
     }
 }
 
+/// Tells stderr what the renderer could not do as asked (a texture downscaled or drawn without,
+/// LEAN past its size, geometry the device refused), one line each; the load's warnings, which
+/// the renderer repeats, were printed when the model was read.
+fn report_notices(renderer: &Renderer, scene: &bumpview::scene::Scene) {
+    let warnings: Vec<String> = scene.warnings.iter().map(ToString::to_string).collect();
+    for notice in renderer.notices().iter().filter(|n| !warnings.contains(n)) {
+        eprintln!("bumpview: notice: {}", escape_controls(notice));
+    }
+}
+
 /// `--frames`: times `frames` frames of the picture at `size` (full quality, or as the viewer
 /// draws them while dragging) against the adapter's floor and prints the line.
 fn time(
@@ -268,6 +279,7 @@ fn time(
     let mut renderer = Renderer::from_gpu(&gpu);
     renderer.set_scene_uploads(scene, &state.scene_uploads());
     report_displacement(&renderer);
+    report_notices(&renderer, scene);
     let params = state.frame_params();
     let split = state.split_frame();
     let mut picture =

@@ -215,6 +215,7 @@ impl PreparedScene {
                 }
             })
             .collect();
+        notices.extend(lean_refusals(&scene, &instances, options));
         notices.extend(missing_uv_notices(&scene));
         let mut tangent_frames_generated = 0;
         let meshes = scene
@@ -341,21 +342,58 @@ impl PreparedScene {
     }
 }
 
+/// The most texels a normal map drawn with LEAN may have (4096²): its moments take 8 bytes a
+/// texel with their mips (170 MiB here, 682 MiB at 8192²), held once on the CPU and once by
+/// the GPU; a larger map is drawn with Toksvig's widening instead, with a notice.
+pub const MAX_LEAN_TEXELS: u64 = 1 << 24;
+
 /// The mip filter an instance of `variant` whose bump texture is `bump` is drawn with:
 /// `chosen` where it applies, else [`MipFilter::RenormalizedBox`] (today's mips, no widening).
 /// Only normal maps (tangent- or object-space) are filtered; the methods that read the
 /// averaged normal's length or LEAN's moments need an RGB map ([`TextureKind::NormalMap`]:
 /// packed layouts average channel by channel); LEAN's slopes are tangent-space ones, so it
-/// applies to tangent-space normal maps only.
+/// applies to tangent-space normal maps only, of at most [`MAX_LEAN_TEXELS`] (Toksvig's
+/// widening past that).
 pub fn mip_filter_of(chosen: MipFilter, variant: Variant, bump: Option<&TextureImage>) -> MipFilter {
     let normal_map = matches!(variant, Variant::NormalMapped | Variant::ObjectSpace);
     let rgb = bump.is_some_and(|t| t.kind == TextureKind::NormalMap);
     match chosen {
         _ if !normal_map || bump.is_none() => MipFilter::RenormalizedBox,
         MipFilter::Lean if !rgb || variant != Variant::NormalMapped => MipFilter::RenormalizedBox,
+        MipFilter::Lean if bump.is_some_and(|t| too_large_for_lean(t)) => MipFilter::Toksvig,
         MipFilter::Toksvig | MipFilter::Vmf if !rgb => MipFilter::RenormalizedBox,
         _ => chosen,
     }
+}
+
+/// Whether `map` has more than [`MAX_LEAN_TEXELS`] texels.
+fn too_large_for_lean(map: &TextureImage) -> bool {
+    u64::from(map.width) * u64::from(map.height) > MAX_LEAN_TEXELS
+}
+
+/// The notice for each normal map drawn with Toksvig's widening where LEAN was chosen because
+/// it is larger than LEAN may be ([`MAX_LEAN_TEXELS`]), once per map.
+fn lean_refusals(scene: &Scene, instances: &[PreparedInstance], options: &SceneOptions) -> Vec<String> {
+    let mut refused: Vec<usize> = instances
+        .iter()
+        .filter(|i| options.mip_filter_of(i.material).reads_moments() && !i.mip_filter.reads_moments())
+        .filter_map(|i| i.textures.bump.filter(|&t| too_large_for_lean(&scene.textures[t])))
+        .collect();
+    refused.sort_unstable();
+    refused.dedup();
+    refused
+        .into_iter()
+        .map(|t| {
+            let map = &scene.textures[t];
+            format!(
+                "normal map {:?} ({}x{}): LEAN's moments would take {} MiB (LEAN is drawn up to 4096x4096 texels): drawn with toksvig instead",
+                map.name,
+                map.width,
+                map.height,
+                u64::from(map.width) * u64::from(map.height) * 8 * 4 / 3 >> 20
+            )
+        })
+        .collect()
 }
 
 /// The variant an instance is drawn with: by its [`BumpKind`]; without a bump, with the

@@ -82,3 +82,23 @@ fn non_finite_vertex_data_is_repaired_with_a_notice() {
     assert!(drawn.normals.iter().all(|n| n.is_finite()) && drawn.uvs.iter().all(|uv| uv.is_finite()));
     assert!(prepared.notices.iter().any(|n| n.contains("NaN or infinite data")), "{:?}", prepared.notices);
 }
+
+#[test]
+fn lean_is_drawn_up_to_its_size_limit_and_toksvig_past_it_with_a_notice() {
+    let mut scene = teaching_scene();
+    let map = scene.materials[0].normal_map.as_ref().unwrap().texture;
+    let lean = SceneOptions { mip_filter: MipFilter::Lean, ..Default::default() };
+    let prepared = PreparedScene::new(&scene, &lean);
+    assert!(prepared.instances.iter().any(|i| i.mip_filter == MipFilter::Lean));
+    assert!(prepared.notices.iter().all(|n| !n.contains("LEAN")));
+    // Only the size is read to decide: a header's worth of a 8192² map.
+    let huge = TextureImage { width: 8192, height: 8192, rgba: vec![], ..(*scene.textures[map]).clone() };
+    scene.textures[map] = huge.into();
+    let prepared = PreparedScene::new(&scene, &lean);
+    let drawn: Vec<MipFilter> =
+        prepared.instances.iter().filter(|i| i.textures.bump == Some(map)).map(|i| i.mip_filter).collect();
+    assert!(!drawn.is_empty() && drawn.iter().all(|&f| f == MipFilter::Toksvig), "{drawn:?}");
+    let refusals: Vec<&String> = prepared.notices.iter().filter(|n| n.contains("LEAN's moments")).collect();
+    assert_eq!(refusals.len(), 1, "one notice per map: {:?}", prepared.notices);
+    assert!(refusals[0].contains("8192x8192") && refusals[0].contains("682 MiB"), "{}", refusals[0]);
+}
