@@ -360,7 +360,7 @@ pub fn mip_filter_of(chosen: MipFilter, variant: Variant, bump: Option<&TextureI
     match chosen {
         _ if !normal_map || bump.is_none() => MipFilter::RenormalizedBox,
         MipFilter::Lean if !rgb || variant != Variant::NormalMapped => MipFilter::RenormalizedBox,
-        MipFilter::Lean if bump.is_some_and(|t| too_large_for_lean(t)) => MipFilter::Toksvig,
+        MipFilter::Lean if bump.is_some_and(too_large_for_lean) => MipFilter::Toksvig,
         MipFilter::Toksvig | MipFilter::Vmf if !rgb => MipFilter::RenormalizedBox,
         _ => chosen,
     }
@@ -390,7 +390,7 @@ fn lean_refusals(scene: &Scene, instances: &[PreparedInstance], options: &SceneO
                 map.name,
                 map.width,
                 map.height,
-                u64::from(map.width) * u64::from(map.height) * 8 * 4 / 3 >> 20
+                (u64::from(map.width) * u64::from(map.height) * 8 * 4 / 3) >> 20
             )
         })
         .collect()
