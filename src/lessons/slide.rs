@@ -102,10 +102,17 @@ impl SlideLayout {
         wrap_paragraph(&lesson.caption, self.body_px, self.text_width())
     }
 
-    /// The pictures' area: below the title, above the labels, caption and claim.
+    /// The claim's lines with the number `percent`, each at most [`Self::text_width`] wide
+    /// (a long claim wraps rather than being cut).
+    pub fn claim_lines(&self, lesson: &Lesson, percent: f32) -> Vec<String> {
+        wrap_paragraph(&lesson.claim_with(percent), self.body_px, self.text_width())
+    }
+
+    /// The pictures' area: below the title, above the labels, caption and claim (laid out for
+    /// the widest number, 100.0 %).
     fn picture_area(&self, lesson: &Lesson) -> [f32; 4] {
         let top = self.margin + self.title_px * 1.6;
-        let lines = self.caption_lines(lesson).len() + 1;
+        let lines = self.caption_lines(lesson).len() + self.claim_lines(lesson, 100.0).len();
         let bottom_block = self.body_px * LEADING * lines as f32 + self.body_px * 0.8 + self.margin;
         let labels = self.label_px * LEADING * 1.4;
         let bottom = self.size[1] as f32 - bottom_block - labels;
@@ -204,14 +211,15 @@ impl SlideLayout {
             draw_text(&mut slide, &line, m, baseline, self.body_px, colours.text);
             baseline += self.body_px * LEADING;
         }
-        let claim = fit(&lesson.claim_with(measured.changed_percent), self.body_px, self.text_width());
-        draw_text(&mut slide, &claim, m, baseline + self.body_px * 0.4, self.body_px, colours.accent);
+        for line in self.claim_lines(lesson, measured.changed_percent) {
+            draw_text(&mut slide, &line, m, baseline + self.body_px * 0.4, self.body_px, colours.accent);
+            baseline += self.body_px * LEADING;
+        }
         slide
     }
 }
 
-/// `text`, cut with an ellipsis when it is wider than `width` at `px` (labels and the claim
-/// are one line).
+/// `text`, cut with an ellipsis when it is wider than `width` at `px` (labels are one line).
 fn fit(text: &str, px: f32, width: f32) -> String {
     if text_width(text, px) <= width {
         return text.to_owned();
@@ -234,16 +242,20 @@ mod tests {
     use super::*;
     use crate::lessons::catalogue;
 
-    /// Every caption fits the slide at the sizes slides are made at, and the pictures fit
-    /// between the title and the caption.
+    /// Every caption and claim fits the slide whole at the sizes slides are made at, 16:9 and
+    /// 4:3, and the pictures fit between the title and the caption.
     #[test]
-    fn captions_and_pictures_fit_every_slide() {
-        for size in [[1920, 1080], [960, 540], [1280, 720]] {
+    fn captions_claims_and_pictures_fit_every_slide() {
+        for size in [[1920, 1080], [960, 540], [1280, 720], [1440, 1080], [1024, 768]] {
             let layout = SlideLayout::new(size);
             for lesson in catalogue().unwrap() {
                 let lines = layout.caption_lines(&lesson);
                 assert!(lines.iter().all(|l| text_width(l, layout.body_px) <= layout.text_width()), "{}", lesson.name);
                 assert_eq!(lines.join(" "), lesson.caption.split_whitespace().collect::<Vec<_>>().join(" "));
+                let claim = layout.claim_lines(&lesson, 100.0);
+                assert!(claim.iter().all(|l| text_width(l, layout.body_px) <= layout.text_width()), "{}", lesson.name);
+                let whole = lesson.claim_with(100.0).split_whitespace().collect::<Vec<_>>().join(" ");
+                assert_eq!(claim.join(" "), whole, "{}: the claim whole, not cut", lesson.name);
                 for place in layout.places(&lesson) {
                     assert!(place.x + place.size[0] <= size[0] && place.y + place.size[1] < size[1], "{}", lesson.name);
                     assert!(place.size[1] as f32 > size[1] as f32 * 0.2, "{}: {:?}", lesson.name, place.size);
