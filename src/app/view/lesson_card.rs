@@ -45,7 +45,8 @@ pub(super) fn show(ui: &mut egui::Ui, lessons: &LessonsForm, view: egui::Rect) -
                     ui.colored_label(ui.visuals().warn_fg_color, number);
                 }
                 let position = lessons.current.map_or(0, |i| i + 1);
-                ui.weak(format!("lesson {position} of {} · Page Down / Page Up", lessons.catalogue.len()));
+                let panel = if lessons.panel_hidden { "H shows the panel" } else { "H hides the panel" };
+                ui.weak(format!("lesson {position} of {} · Page Down / Page Up · {panel}", lessons.catalogue.len()));
             });
         });
     hide.then_some(Action::ShowLessonCard(false))
