@@ -21,6 +21,7 @@ pub mod files;
 pub mod measure;
 pub mod pdf;
 pub mod slide;
+pub mod visibility;
 
 use serde::Deserialize;
 
