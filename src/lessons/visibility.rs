@@ -91,8 +91,14 @@ pub fn picture_percent(picture: &RgbaImage) -> f32 {
         *counts.entry(p.0).or_insert(0usize) += 1;
     }
     let Some((&common, _)) = counts.iter().max_by_key(|&(_, &n)| n) else { return 0.0 };
-    let common = image::RgbaImage::from_pixel(picture.width(), picture.height(), image::Rgba(common));
-    visible_percent(picture, &common)
+    let common_lab = lab([common[0], common[1], common[2]]);
+    let seen = picture
+        .pixels()
+        .filter(|p| {
+            p.0 != common && delta_e_2000(lab([p.0[0], p.0[1], p.0[2]]), common_lab) >= f64::from(VISIBLE_DELTA_E)
+        })
+        .count();
+    100.0 * seen as f32 / (picture.width() * picture.height()) as f32
 }
 
 #[cfg(test)]
