@@ -10,9 +10,9 @@ use crate::height::Kernel;
 use crate::load::SceneFiles;
 use crate::render::Renderer;
 use crate::render::capture::{CaptureOptions, render_capture, render_capture_split};
-use crate::scene::Scene;
-use crate::state::Command;
+use crate::scene::{Lights, OrbitCamera, Scene};
 use crate::state::preset::{Preset, PresetSceneError};
+use crate::state::{Command, ViewerState};
 
 /// Why a lesson could not be drawn.
 #[derive(Debug, thiserror::Error)]
@@ -78,17 +78,61 @@ pub fn measure(
     let sides = lesson
         .sides
         .iter()
-        .map(|side| draw(renderer, scenes, lesson, side, size, false))
+        .map(|side| draw(renderer, scenes, lesson, side, size, false, None))
         .collect::<Result<Vec<_>, _>>()?;
     let split = match lesson.sides.first() {
-        Some(side) if lesson.split && split_picture => Some(draw(renderer, scenes, lesson, side, size, true)?),
+        Some(side) if lesson.split && split_picture => Some(draw(renderer, scenes, lesson, side, size, true, None)?),
         _ => None,
     };
     let changed_percent = sides.windows(2).map(|pair| changed_percent(&pair[0], &pair[1])).fold(100.0, f32::min);
     Ok(Measured { sides, split, changed_percent })
 }
 
-/// One side's picture; with `whole_split`, the preset's split picture instead of one half.
+/// The viewer's camera and lights now, laid over a lesson's sides so that a grid shown live
+/// turns and is lit as one picture ([`draw_sides_live`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LiveLook {
+    pub camera: OrbitCamera,
+    pub lights: Lights,
+}
+
+/// Every side of `lesson` drawn at `size` pixels as [`measure`] draws them, with the viewer's
+/// `look` laid over each: a side that views or lights the scene as the lesson opens in the
+/// viewer ([`Lesson::viewer_preset`]) follows the viewer's camera or lights, one that sets
+/// its own (a tile of other lights) keeps them.
+pub fn draw_sides_live(
+    renderer: &mut Renderer,
+    scenes: &mut SceneCache,
+    lesson: &Lesson,
+    size: [u32; 2],
+    look: &LiveLook,
+) -> Result<Vec<RgbaImage>, LessonRenderError> {
+    let opened = side_state(scenes, lesson, lesson.viewer_preset())?.1;
+    let overlay = |state: &mut ViewerState| {
+        if state.camera == opened.camera {
+            state.camera = look.camera;
+        }
+        if state.lights == opened.lights {
+            state.lights = look.lights;
+        }
+    };
+    lesson.sides.iter().map(|side| draw(renderer, scenes, lesson, side, size, false, Some(&overlay))).collect()
+}
+
+/// The index of `preset`'s scene in `scenes` and the viewer state it sets on it.
+fn side_state(
+    scenes: &mut SceneCache,
+    lesson: &Lesson,
+    preset: &Preset,
+) -> Result<(usize, ViewerState), LessonRenderError> {
+    let scene_error = |e| LessonRenderError::Scene(lesson.name.to_owned(), e);
+    let index = scenes.index(preset).map_err(scene_error)?;
+    let state = preset.to_state(&scenes.scenes[index].1).map_err(|e| scene_error(e.into()))?;
+    Ok((index, state))
+}
+
+/// One side's picture; with `whole_split`, the preset's split picture instead of one half;
+/// `overlay` changes the side's state before it is drawn.
 fn draw(
     renderer: &mut Renderer,
     scenes: &mut SceneCache,
@@ -96,11 +140,13 @@ fn draw(
     side: &Side,
     size: [u32; 2],
     whole_split: bool,
+    overlay: Option<&dyn Fn(&mut ViewerState)>,
 ) -> Result<RgbaImage, LessonRenderError> {
-    let scene_error = |e| LessonRenderError::Scene(lesson.name.to_owned(), e);
     let render_error = |e| LessonRenderError::Render(lesson.name.to_owned(), e);
-    let index = scenes.index(&side.preset).map_err(scene_error)?;
-    let mut state = side.preset.to_state(&scenes.scenes[index].1).map_err(|e| scene_error(e.into()))?;
+    let (index, mut state) = side_state(scenes, lesson, &side.preset)?;
+    if let Some(overlay) = overlay {
+        overlay(&mut state);
+    }
     match (side.half, whole_split) {
         (_, true) => {}
         // The whole picture of one half: the divider at the far edge.

@@ -18,6 +18,7 @@
 
 pub mod deck;
 pub mod files;
+pub mod grid;
 pub mod measure;
 pub mod pdf;
 pub mod slide;

@@ -136,3 +136,20 @@ pub enum Command {
     /// and the right half's displacement level (clamped to 1..=[`MAX_DISPLACEMENT_LEVEL`](crate::frame::MAX_DISPLACEMENT_LEVEL)).
     SetSplitDisplacement(Parallax, u32),
 }
+
+impl Command {
+    /// Whether the command moves only the camera or changes only the lights (what a lesson's
+    /// grid shown live follows, [`crate::lessons::measure::LiveLook`]).
+    pub fn moves_camera_or_lights(&self) -> bool {
+        use Command::*;
+        match self {
+            OrbitCamera { .. } | Zoom(_) | PanCamera { .. } | ResetCamera | PointCamera { .. } => true,
+            SetLightPosition(_) | DragLight { .. } | SetLightOrbit(_) | ToggleLightOrbit | Tick(_) => true,
+            Lighting(light) => !matches!(
+                light,
+                LightCommand::SetSpecular(_) | LightCommand::SetShininess(_) | LightCommand::SetLightingSpace(_)
+            ),
+            _ => false,
+        }
+    }
+}

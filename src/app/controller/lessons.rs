@@ -2,16 +2,21 @@
 //! lesson shows its whole state as loading a preset does ([`Controller::show_preset`]); the
 //! number on the card is measured off the UI thread, on a headless adapter of its own, as
 //! `bumpview slides` measures it, at the default slide's picture size: the card and the slide
-//! show one number.
+//! show one number. A grid lesson shows as its grid, every tile drawn live
+//! ([`super::lesson_grid`]), until a change other than the camera's or the lights' leaves the
+//! view to its last tile.
 
 use std::sync::mpsc;
 
-use bumpview::lessons::measure::{SceneCache, measure};
+use bumpview::lessons::measure::{LiveLook, SceneCache, measure};
 use bumpview::lessons::slide::{DEFAULT_SLIDE_SIZE, SlideLayout};
 use bumpview::lessons::{self, Lesson};
 use bumpview::render::{Gpu, Renderer};
+use bumpview::state::Command;
 
 use super::Controller;
+use super::lesson_grid::{LessonGrid, TilesKey};
+use crate::app::files::Status;
 
 /// What the lesson's number is on the card.
 #[derive(Debug, Clone, PartialEq)]
@@ -38,14 +43,19 @@ pub struct LessonsForm {
     pub fullscreen: bool,
     /// The current lesson's number.
     pub measurement: Option<Measurement>,
-    /// Whether opening a lesson measures its number (off in tests: no second adapter).
-    pub(super) measure_numbers: bool,
+    /// Whether a worker with an adapter of its own measures a lesson's number and draws a
+    /// grid lesson's tiles (not in a browser: no threads there; off in tests).
+    pub(super) second_adapter: bool,
+    /// Whether the view shows the current grid lesson's tiles rather than its last tile.
+    pub grid_shown: bool,
+    /// The current grid lesson's tiles.
+    pub grid: LessonGrid,
     results: Option<mpsc::Receiver<(usize, Measurement)>>,
 }
 
 impl LessonsForm {
-    /// The catalogue read; numbers measured when `measure_numbers`.
-    pub(super) fn new(measure_numbers: bool) -> LessonsForm {
+    /// The catalogue read; numbers measured when `second_adapter`.
+    pub(super) fn new(second_adapter: bool) -> LessonsForm {
         let (catalogue, error) = match lessons::catalogue() {
             Ok(all) => (all, None),
             Err(e) => (vec![], Some(e.to_string())),
@@ -58,7 +68,9 @@ impl LessonsForm {
             panel_hidden: false,
             fullscreen: false,
             measurement: None,
-            measure_numbers,
+            second_adapter,
+            grid_shown: false,
+            grid: LessonGrid::default(),
             results: None,
         }
     }
@@ -78,9 +90,15 @@ impl LessonsForm {
         })
     }
 
-    /// Takes in a finished measurement of the current lesson; whether one arrived.
+    /// The lesson whose tiles the view shows as a grid, if any.
+    pub fn grid_lesson(&self) -> Option<&Lesson> {
+        self.lesson().filter(|lesson| self.grid_shown && !lesson.split)
+    }
+
+    /// Takes in a finished measurement of the current lesson and tiles drawn; whether either arrived.
     pub fn poll(&mut self) -> bool {
-        let Some(arrived) = self.results.as_ref().and_then(|r| r.try_recv().ok()) else { return false };
+        let tiles = self.grid.poll();
+        let Some(arrived) = self.results.as_ref().and_then(|r| r.try_recv().ok()) else { return tiles };
         if Some(arrived.0) == self.current {
             self.measurement = Some(arrived.1);
             self.results = None;
@@ -90,7 +108,7 @@ impl LessonsForm {
 
     /// Starts measuring lesson `index` on a worker thread; `wake` is called when it is done.
     fn start_measuring(&mut self, index: usize, wake: impl Fn() + Send + 'static) {
-        if !self.measure_numbers {
+        if !self.second_adapter {
             self.measurement = None;
             return;
         }
@@ -115,15 +133,37 @@ impl LessonsForm {
 }
 
 impl Controller {
+    /// Asks for the current grid lesson's tiles at `size` pixels each, with the camera and
+    /// lights of the view now (nothing when they are drawn or on their way already).
+    pub fn ask_grid_tiles(&mut self, size: [u32; 2]) {
+        let wake = self.waker();
+        let lessons = &mut self.lessons;
+        let Some(lesson) = lessons.current.filter(|_| lessons.grid_lesson().is_some()) else { return };
+        let look = LiveLook { camera: self.state.camera, lights: self.state.lights };
+        lessons.grid.ask(&lessons.catalogue[lesson], TilesKey { lesson, look, size }, wake);
+    }
+
+    /// Leaves a grid lesson's tiles for the live view of its last tile when `command` changes
+    /// more than the camera and the lights (which the tiles follow), saying so.
+    pub(super) fn leave_grid_for(&mut self, command: Command) {
+        if command.moves_camera_or_lights() {
+            return;
+        }
+        let Some(lesson) = self.lessons.grid_lesson() else { return };
+        let last = lesson.sides.last().map_or("", |side| side.label.as_str());
+        let why = format!(
+            "the view left the lesson's grid for its last tile ({last}), live; the lesson list shows the grid again"
+        );
+        self.files.status = Some(Status::Done(why));
+        self.lessons.grid_shown = false;
+    }
+
     /// Adds a lesson file's lesson to the course and shows its card and number; the viewer
     /// already shows its state (it started from [`Lesson::viewer_preset`]).
     pub(super) fn show_lesson_file(&mut self, lesson: Lesson) {
         self.lessons.catalogue.push(lesson);
         let index = self.lessons.catalogue.len() - 1;
-        self.lessons.current = Some(index);
-        self.lessons.card = true;
-        let wake = self.waker();
-        self.lessons.start_measuring(index, wake);
+        self.show_lesson_at(index);
     }
 
     /// Shows lesson `index`: its whole state (and its scene, loaded in the background when it
@@ -134,13 +174,19 @@ impl Controller {
         let name = lesson.name.clone();
         match self.show_preset(&preset, format!("opened the scene of lesson {name}")) {
             Ok(()) => {
-                self.lessons.current = Some(index);
-                self.lessons.card = true;
+                self.show_lesson_at(index);
                 self.preset.message = Some(Ok(format!("lesson {name}")));
-                let wake = self.waker();
-                self.lessons.start_measuring(index, wake);
             }
             Err(e) => self.preset.message = Some(Err(format!("lesson {name}: {e}"))),
         }
+    }
+
+    /// Makes lesson `index` the current one: its card, its grid and its number.
+    fn show_lesson_at(&mut self, index: usize) {
+        self.lessons.current = Some(index);
+        self.lessons.card = true;
+        self.lessons.grid_shown = self.lessons.second_adapter;
+        let wake = self.waker();
+        self.lessons.start_measuring(index, wake);
     }
 }

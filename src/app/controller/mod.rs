@@ -6,6 +6,7 @@
 
 mod exports;
 mod facts;
+mod lesson_grid;
 mod lessons;
 mod presets;
 mod scene_change;
@@ -38,6 +39,7 @@ use bumpview::state::preset::CapturePreset;
 use bumpview::state::{Command, ViewerState};
 pub use exports::ScreenshotForm;
 pub use facts::SceneFacts;
+pub use lesson_grid::Tiles;
 pub use lessons::{LessonsForm, Measurement};
 pub use presets::PresetForm;
 #[cfg(not(target_arch = "wasm32"))]
@@ -144,7 +146,7 @@ impl Controller {
         let mut controller = Self::with_build(start, renderer, wake, Arc::new(SceneFiles::build));
         // A lesson's number is measured on a worker thread with its own adapter; a page has
         // neither threads nor a blocking read-back, so the web build's card shows the claim alone.
-        controller.lessons.measure_numbers = cfg!(not(target_arch = "wasm32"));
+        controller.lessons.second_adapter = cfg!(not(target_arch = "wasm32"));
         if let Some(lesson) = lesson {
             controller.show_lesson_file(lesson);
         }
@@ -277,6 +279,14 @@ impl Controller {
     }
 
     fn apply_one(&mut self, action: Action) {
+        match &action {
+            Action::Viewer(command) => self.leave_grid_for(*command),
+            // Other files: the lesson's tiles would no longer be what the view is about.
+            Action::Open { .. } | Action::LoadPreset(_) | Action::DialogClosed { path: Some(_), .. } => {
+                self.lessons.grid_shown = false;
+            }
+            _ => {}
+        }
         match action {
             Action::Viewer(command) => {
                 if self.state.split.overrides(command) {

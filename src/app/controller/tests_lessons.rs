@@ -12,7 +12,7 @@ use crate::app::action::Action;
 #[test]
 fn a_lesson_shows_its_whole_state_and_scene_and_stays_interactive() {
     let mut controller = controller();
-    controller.lessons.measure_numbers = false;
+    controller.lessons.second_adapter = false;
     let all = catalogue().unwrap();
     let index = all.iter().position(|l| l.name == "mistake-handedness").unwrap();
     controller.apply([Action::OpenLesson(index)]);
@@ -34,7 +34,7 @@ fn a_lesson_shows_its_whole_state_and_scene_and_stays_interactive() {
 #[test]
 fn page_down_and_up_step_through_the_course_within_its_ends() {
     let mut controller = controller();
-    controller.lessons.measure_numbers = false;
+    controller.lessons.second_adapter = false;
     let count = controller.lessons.catalogue.len();
     controller.apply([Action::StepLesson(1)]);
     assert_eq!(controller.lessons.current, Some(0), "the first lesson when none is shown");
@@ -64,7 +64,7 @@ fn presenting_hides_the_panel_and_fills_the_screen_and_the_same_keys_undo_it() {
 #[test]
 fn a_key_the_split_overrides_says_why() {
     let mut controller = controller();
-    controller.lessons.measure_numbers = false;
+    controller.lessons.second_adapter = false;
     let index = controller.lessons.catalogue.iter().position(|l| l.name == "bump-off-on").unwrap();
     controller.apply([Action::OpenLesson(index)]);
     settle(&mut controller);

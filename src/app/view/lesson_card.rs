@@ -19,9 +19,10 @@ pub(super) fn show_preparing(painter: &egui::Painter, lessons: &LessonsForm, vie
     painter.text(view.center(), egui::Align2::CENTER_CENTER, text, egui::FontId::proportional(22.0), colour);
 }
 
-/// Draws the card in the bottom-left corner of `view` while it is on; the hide button's action.
-pub(super) fn show(ui: &mut egui::Ui, lessons: &LessonsForm, view: egui::Rect) -> Option<Action> {
-    let lesson = lessons.lesson().filter(|_| lessons.card)?;
+/// Draws the card in the bottom-left corner of `view` while it is on; the hide button's
+/// action and the height in points the card takes from the bottom of `view` (0 without one).
+pub(super) fn show(ui: &mut egui::Ui, lessons: &LessonsForm, view: egui::Rect) -> (Option<Action>, f32) {
+    let Some(lesson) = lessons.lesson().filter(|_| lessons.card) else { return (None, 0.0) };
     let number = match &lessons.measurement {
         Some(Measurement::Done(percent)) => lesson.claim_with(*percent),
         Some(Measurement::Running) => "measuring…".to_owned(),
@@ -30,7 +31,7 @@ pub(super) fn show(ui: &mut egui::Ui, lessons: &LessonsForm, view: egui::Rect) -
     };
     let width = CARD_WIDTH.min(view.width() - 24.0).max(120.0);
     let mut hide = false;
-    egui::Area::new(egui::Id::unique("lesson card"))
+    let card = egui::Area::new(egui::Id::unique("lesson card"))
         .fixed_pos(view.left_bottom() + egui::vec2(12.0, -12.0))
         .pivot(egui::Align2::LEFT_BOTTOM)
         .show(ui.ctx(), |ui| {
@@ -49,5 +50,5 @@ pub(super) fn show(ui: &mut egui::Ui, lessons: &LessonsForm, view: egui::Rect) -
                 ui.weak(format!("lesson {position} of {} · Page Down / Page Up · {panel}", lessons.catalogue.len()));
             });
         });
-    hide.then_some(Action::ShowLessonCard(false))
+    (hide.then_some(Action::ShowLessonCard(false)), view.bottom() - card.response.rect.top())
 }

@@ -2,11 +2,12 @@
 //! picture would change; smaller than the view while interactive frames are drawn at a lower
 //! render scale) and egui shows as an image stretched over the view, with what goes over it — the split
 //! view's divider and labels (dragged with the mouse), the Difference view's legend, the
-//! lesson's caption card ([`lesson_card`]), the probe's marker and readout ([`probe_overlay`]) — and the mouse gestures on it ([`input`]).
+//! lesson's caption card ([`lesson_card`]), a grid lesson's tiles in its place ([`lesson_grid`]), the probe's marker and readout ([`probe_overlay`]) — and the mouse gestures on it ([`input`]).
 
 pub mod input;
 mod legend;
 mod lesson_card;
+mod lesson_grid;
 pub mod probe_overlay;
 
 use bumpview::frame::{Msaa, SplitFrame, ViewMode};
@@ -52,6 +53,9 @@ pub struct View {
     dragging_divider: bool,
     /// Why the last draw failed.
     render_error: Option<String>,
+    /// A grid lesson's tiles, and the size in pixels they were last laid out at.
+    grid: lesson_grid::GridView,
+    grid_tile_size: Option<[u32; 2]>,
     /// The sRGB copy, made on first use (only where the adapter needs it).
     srgb_copy: Option<std::sync::Arc<SrgbCopy>>,
 }
@@ -66,6 +70,8 @@ impl View {
             drawn: None,
             dragging_divider: false,
             render_error: None,
+            grid: lesson_grid::GridView::default(),
+            grid_tile_size: None,
             srgb_copy: None,
         }
     }
@@ -89,6 +95,10 @@ impl View {
         };
         self.size = Some(size);
         // The texture's size is decided when it is drawn ([`Self::draw`]); the id stays.
+        if let Some(lesson) = controller.lessons.grid_lesson() {
+            return self.show_grid(ui, &response, rect, size, controller, lesson);
+        }
+        self.grid_tile_size = None;
         let id = match &self.texture {
             Some(texture) => texture.id,
             None => self.ensure_texture(size),
@@ -119,7 +129,7 @@ impl View {
                 lesson_card::show_preparing(ui.painter(), &controller.lessons, rect, &busy);
                 Vec::new()
             }
-            None => lesson_card::show(ui, &controller.lessons, rect).into_iter().collect(),
+            None => lesson_card::show(ui, &controller.lessons, rect).0.into_iter().collect(),
         };
         if state.split.enabled {
             if let Some(divider) = self.split_divider(ui, &response, rect, controller) {
@@ -133,6 +143,25 @@ impl View {
         actions.extend(input::viewport(&response, ui.ctx(), size));
         actions.extend(input::probe_click(ui.ctx(), rect, size));
         actions
+    }
+
+    /// Shows grid `lesson`'s tiles filling `rect` (the view, `size` pixels) above its card, and
+    /// returns what the mouse did: the camera and light gestures, which the tiles follow.
+    fn show_grid(
+        &mut self,
+        ui: &mut egui::Ui,
+        response: &egui::Response,
+        rect: egui::Rect,
+        size: [u32; 2],
+        controller: &Controller,
+        lesson: &bumpview::lessons::Lesson,
+    ) -> Vec<Action> {
+        let (card, card_height) = lesson_card::show(ui, &controller.lessons, rect);
+        let area = egui::Rect::from_min_max(rect.min, egui::pos2(rect.max.x, rect.max.y - card_height));
+        let current = controller.lessons.current.unwrap_or_default();
+        let tiles = controller.lessons.grid.shown();
+        self.grid_tile_size = Some(self.grid.show(ui, area, lesson, current, tiles));
+        card.into_iter().chain(input::viewport(response, ui.ctx(), size)).collect()
     }
 
     /// Draws the split view's divider and labels over the view at `rect`; a drag that began
@@ -237,6 +266,14 @@ impl View {
     /// first scene is uploaded). Returns whether it drew an interactive frame: then a
     /// full-quality one is owed once input stops.
     pub fn draw(&mut self, controller: &mut Controller, active: bool) -> bool {
+        if controller.lessons.grid_lesson().is_some() {
+            // The grid's tiles are drawn by the lesson's worker, not into the view texture.
+            if let Some(size) = self.grid_tile_size {
+                controller.ask_grid_tiles(size);
+            }
+            self.tracker.invalidate();
+            return false;
+        }
         let Some(size) = self.size.filter(|_| controller.renderer().prepared(false).is_some()) else { return false };
         let quality = controller.frame_quality(active);
         let render_size = quality.render_size(size);
