@@ -1,6 +1,7 @@
 //! The viewer driven by its command line for scripts, tests and screenshots: `--probe X,Y`
 //! pins the probe once the view has a size, `--exit-after N [--capture-window PATH]` closes
-//! after N presented frames of the scene (frames while its scene job runs do not count),
+//! after N presented frames of the scene (frames while its scene job runs, or a lesson's number
+//! or grid tiles are on their way, do not count),
 //! optionally saving a screenshot of the whole window first.
 
 use std::cell::RefCell;

@@ -239,7 +239,8 @@ impl eframe::App for ViewerApp {
         if self.view.draw(&mut self.controller, active) {
             ctx.request_repaint_after(INTERACTIVE_RECHECK);
         }
-        let settled = self.controller.busy().is_none();
+        // The scene asked for, and a lesson's number and grid tiles, are all drawn.
+        let settled = self.controller.busy().is_none() && !self.controller.lessons.pending();
         self.automation.on_frame(&ctx, self.controller.renderer().device(), settled);
         #[cfg(target_arch = "wasm32")]
         self.page.on_frame(settled);

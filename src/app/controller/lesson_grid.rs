@@ -40,8 +40,22 @@ pub struct LessonGrid {
 }
 
 struct Worker {
-    requests: mpsc::Sender<(Lesson, TilesKey)>,
+    /// `None` only while dropped.
+    requests: Option<mpsc::Sender<(Lesson, TilesKey)>>,
     results: mpsc::Receiver<(TilesKey, Result<Vec<RgbaImage>, String>)>,
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+impl Drop for Worker {
+    /// Ends the thread (after the tiles it is drawing) and waits for it, so that its adapter
+    /// is gone before the process exits (a Vulkan driver torn down under a running thread
+    /// may crash).
+    fn drop(&mut self) {
+        self.requests = None;
+        if let Some(thread) = self.thread.take() {
+            let _ = thread.join();
+        }
+    }
 }
 
 impl LessonGrid {
@@ -51,6 +65,11 @@ impl LessonGrid {
         self.shown.as_ref()
     }
 
+    /// Whether tiles are asked for and not yet here.
+    pub fn pending(&self) -> bool {
+        self.asked.as_ref().is_some_and(|asked| self.shown.as_ref().is_none_or(|t| t.key != *asked))
+    }
+
     /// Asks for `lesson`'s tiles of `key` unless they were the last asked; the worker starts on
     /// first use and calls `wake` when tiles arrive.
     pub fn ask(&mut self, lesson: &Lesson, key: TilesKey, wake: impl Fn() + Send + 'static) {
@@ -58,7 +77,7 @@ impl LessonGrid {
             return;
         }
         let worker = self.worker.get_or_insert_with(|| Worker::start(wake));
-        if worker.requests.send((lesson.clone(), key.clone())).is_ok() {
+        if worker.requests.as_ref().is_some_and(|r| r.send((lesson.clone(), key.clone())).is_ok()) {
             self.asked = Some(key);
         }
     }
@@ -77,7 +96,7 @@ impl Worker {
     fn start(wake: impl Fn() + Send + 'static) -> Worker {
         let (requests, inbox) = mpsc::channel::<(Lesson, TilesKey)>();
         let (outbox, results) = mpsc::channel();
-        std::thread::spawn(move || {
+        let thread = std::thread::spawn(move || {
             let mut drawer = Gpu::headless().map(|gpu| (Renderer::from_gpu(&gpu), SceneCache::default(), None));
             // Blocks for a request, then skips to the newest one queued behind it.
             while let Ok(first) = inbox.recv() {
@@ -99,6 +118,6 @@ impl Worker {
                 wake();
             }
         });
-        Worker { requests, results }
+        Worker { requests: Some(requests), results, thread: Some(thread) }
     }
 }

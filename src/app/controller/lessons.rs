@@ -90,6 +90,11 @@ impl LessonsForm {
         })
     }
 
+    /// Whether the current lesson's number or grid tiles are still on their way.
+    pub fn pending(&self) -> bool {
+        self.measurement == Some(Measurement::Running) || (self.grid_lesson().is_some() && self.grid.pending())
+    }
+
     /// The lesson whose tiles the view shows as a grid, if any.
     pub fn grid_lesson(&self) -> Option<&Lesson> {
         self.lesson().filter(|lesson| self.grid_shown && !lesson.split)
@@ -100,6 +105,10 @@ impl LessonsForm {
         let tiles = self.grid.poll();
         let Some(arrived) = self.results.as_ref().and_then(|r| r.try_recv().ok()) else { return tiles };
         if Some(arrived.0) == self.current {
+            // The card's claim, also on stderr for a presenter's terminal and for scripts.
+            if let (Measurement::Done(percent), Some(lesson)) = (&arrived.1, self.lesson()) {
+                eprintln!("bumpview: lesson {}: {}", lesson.name, lesson.claim_with(*percent));
+            }
             self.measurement = Some(arrived.1);
             self.results = None;
         }

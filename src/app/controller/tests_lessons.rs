@@ -1,13 +1,19 @@
 //! Lessons in the viewer: opening one shows its whole state and scene, Page Down / Page Up
 //! step through the course within its ends, the state stays interactive, and presenting hides
-//! the panel and fills the screen.
+//! the panel and fills the screen, and a grid lesson shows as its grid.
+
+use std::time::Duration;
 
 use bumpview::lessons::catalogue;
+use bumpview::lessons::measure::{SceneCache, measure};
+use bumpview::render::{Gpu, Renderer};
 use bumpview::scene::teaching::TeachingScene;
 use bumpview::state::Command;
+use web_time::Instant;
 
 use super::tests::{controller, settle};
 use crate::app::action::Action;
+use crate::app::controller::{Controller, Measurement};
 
 #[test]
 fn a_lesson_shows_its_whole_state_and_scene_and_stays_interactive() {
@@ -76,4 +82,55 @@ fn a_key_the_split_overrides_says_why() {
     let bump = controller.state.shading.bump_enabled;
     controller.apply([Action::Viewer(Command::ToggleBump)]);
     assert!(controller.files.status.is_none() && controller.state.shading.bump_enabled != bump);
+}
+
+/// Waits (120 s at most) for the grid's worker to deliver tiles after `serial`.
+fn tiles_after(controller: &mut Controller, serial: u64) -> Vec<image::RgbaImage> {
+    let started = Instant::now();
+    loop {
+        controller.poll_background(Instant::now());
+        if let Some(tiles) = controller.lessons.grid.shown().filter(|t| t.serial > serial) {
+            return tiles.pictures.clone().unwrap_or_else(|e| panic!("{e}"));
+        }
+        assert!(started.elapsed() < Duration::from_secs(120), "no tiles arrived");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+/// A grid lesson shows as its grid: each tile the picture the slide draws (two tangent
+/// methods: two scenes), turning with the view's camera; B leaves the grid for the last tile and
+/// says so.
+#[test]
+fn a_grid_lesson_shows_the_slides_tiles_follows_the_camera_and_b_leaves_it() {
+    let mut controller = controller();
+    let index = controller.lessons.catalogue.iter().position(|l| l.name == "tangent-methods").unwrap();
+    controller.apply([Action::OpenLesson(index)]);
+    settle(&mut controller);
+    assert!(controller.lessons.grid_lesson().is_some(), "a grid lesson opens as its grid");
+    let size = [160, 90];
+    controller.ask_grid_tiles(size);
+    let tiles = tiles_after(&mut controller, 0);
+    let lesson = controller.lessons.catalogue[index].clone();
+    let gpu = Gpu::headless().unwrap();
+    let slide = measure(&mut Renderer::from_gpu(&gpu), &mut SceneCache::default(), &lesson, size, false).unwrap();
+    assert_eq!(tiles.len(), 2);
+    assert!(tiles == slide.sides, "the tiles are the slide's pictures at the lesson's own view");
+
+    controller.apply([Action::Viewer(Command::OrbitCamera { d_yaw: 0.4, d_pitch: 0.1 })]);
+    assert!(controller.lessons.grid_lesson().is_some(), "the camera keeps the grid");
+    controller.ask_grid_tiles(size);
+    let turned = tiles_after(&mut controller, 1);
+    assert!(turned.iter().zip(&tiles).all(|(a, b)| a != b), "every tile turns with the camera");
+
+    controller.apply([Action::Viewer(Command::ToggleBump)]);
+    assert!(controller.lessons.grid_lesson().is_none(), "B leaves the grid for the live view");
+    let status = format!("{:?}", controller.files.status);
+    assert!(status.contains("left the lesson's grid for its last tile (MikkTSpace)"), "{status}");
+    // The card's measurement runs on an adapter of its own: let it end before the process does.
+    let started = Instant::now();
+    while controller.lessons.measurement == Some(Measurement::Running) {
+        assert!(started.elapsed() < Duration::from_secs(120), "the measurement did not end");
+        controller.poll_background(Instant::now());
+        std::thread::sleep(Duration::from_millis(20));
+    }
 }
