@@ -29,6 +29,8 @@ pub enum FileKind {
     MaterialLibrary,
     /// A preset (TOML).
     Preset,
+    /// A file of the web build that `slides --html` copies beside the deck.
+    WebBuild,
 }
 
 impl FileKind {
@@ -36,9 +38,11 @@ impl FileKind {
     /// any model or texture this tool can draw (a 16384² RGBA8 BMP, the largest image a bake
     /// takes, is 1 GiB; a GLB states its length in 32 bits). Material libraries: 16 MiB (text
     /// naming a few textures per material). Presets: 1 MiB (the viewer writes about 2 KiB).
+    /// Web build files: 256 MiB (its wasm is about 12 MiB).
     pub const fn cap(self) -> u64 {
         match self {
             FileKind::Mesh | FileKind::Buffer | FileKind::Image => 1024 * MIB,
+            FileKind::WebBuild => 256 * MIB,
             FileKind::MaterialLibrary => 16 * MIB,
             FileKind::Preset => MIB,
         }
@@ -52,6 +56,7 @@ impl FileKind {
             FileKind::Image => "image",
             FileKind::MaterialLibrary => "material library",
             FileKind::Preset => "preset",
+            FileKind::WebBuild => "web build",
         }
     }
 }

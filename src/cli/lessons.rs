@@ -5,11 +5,13 @@ use std::path::{Path, PathBuf};
 
 use bumpview::atomic::{check_outputs, write_bytes_atomically};
 use bumpview::lessons::deck::{DeckEntry, index_markdown, slide_file};
+use bumpview::lessons::deck_html::{WEB_FOLDER, deck_html};
 use bumpview::lessons::files::load_dir;
 use bumpview::lessons::measure::{SceneCache, measure};
 use bumpview::lessons::pdf::{PdfPage, slides_pdf};
 use bumpview::lessons::slide::{SlideLayout, SlideTheme};
 use bumpview::lessons::{self, Lesson};
+use bumpview::read::{FileKind, read_file};
 use bumpview::render::capture::write_png_atomically;
 use bumpview::render::{Gpu, Renderer};
 
@@ -44,6 +46,13 @@ pub struct SlidesArgs {
     /// The slides' colours: dark (a darkened room) or light (a lit one).
     #[arg(long, value_parser = args::named::<SlideTheme>(), default_value = "dark")]
     theme: SlideTheme,
+    /// Also write index.html, a page of the slides where each built-in lesson's slide opens
+    /// it live in the web build, copied into DIR/web (serve DIR as it is).
+    #[arg(long)]
+    html: bool,
+    /// The web build `--html` copies (what scripts/build-web.sh makes).
+    #[arg(long, value_name = "DIR", default_value = "web/dist", requires = "html")]
+    web_build: PathBuf,
     /// Replace files that exist; without it an existing output is kept and nothing is drawn.
     #[arg(long)]
     force: bool,
@@ -73,7 +82,12 @@ pub fn slides(args: &SlidesArgs) -> Result<(), Failure> {
         return Err(Failure::BadArguments(format!("--size {w}x{h}: slides are {range} pixels")));
     }
     let chosen = chosen(args)?;
-    let outputs = outputs(&args.out, &chosen);
+    let web_files = if args.html { web_build_files(&args.web_build)? } else { vec![] };
+    let mut outputs = outputs(&args.out, &chosen);
+    if args.html {
+        outputs.push(args.out.join("index.html"));
+        outputs.extend(web_files.iter().map(|(name, _)| args.out.join(WEB_FOLDER).join(name)));
+    }
     let paths: Vec<&Path> = outputs.iter().map(PathBuf::as_path).collect();
     let inputs = lesson_inputs(&chosen, &args.lesson_files);
     let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
@@ -104,13 +118,56 @@ pub fn slides(args: &SlidesArgs) -> Result<(), Failure> {
     };
     write("slides.pdf", &slides_pdf(&pages))?;
     write("index.md", index_markdown(&entries, args.size).as_bytes())?;
+    if args.html {
+        let built_in = lessons::catalogue().map_err(|e| Failure::Failed(e.to_string()))?;
+        write("index.html", deck_html(&entries, |lesson| built_in.contains(lesson)).as_bytes())?;
+        copy_web_build(&web_files, &args.out.join(WEB_FOLDER))?;
+    }
     println!(
-        "wrote {} slides, slides.pdf and index.md to {} in {:.1} s ({})",
+        "wrote {} slides, slides.pdf, index.md{} to {} in {:.1} s ({})",
         entries.len(),
+        if args.html { ", index.html and the web build" } else { "" },
         args.out.display(),
         started.elapsed().as_secs_f32(),
         gpu.adapter_name()
     );
+    Ok(())
+}
+
+/// The files of the web build in `folder` (name and path; its top level, where
+/// scripts/build-web.sh puts the page, its script and its wasm), which must hold the page.
+fn web_build_files(folder: &Path) -> Result<Vec<(String, PathBuf)>, Failure> {
+    let missing = || {
+        Failure::BadArguments(format!(
+            "--html copies the web build, and {} holds none (index.html): make it with scripts/build-web.sh, \
+             or name it with --web-build DIR",
+            folder.display()
+        ))
+    };
+    let entries = std::fs::read_dir(folder).map_err(|_| missing())?;
+    let mut files: Vec<(String, PathBuf)> = entries
+        .filter_map(Result::ok)
+        .filter(|e| e.file_type().is_ok_and(|t| t.is_file()))
+        .map(|e| (e.file_name().to_string_lossy().into_owned(), e.path()))
+        .collect();
+    files.sort();
+    if !files.iter().any(|(name, _)| name == "index.html") {
+        return Err(missing());
+    }
+    Ok(files)
+}
+
+/// Copies the web build's `files` into `folder` (made if missing), each written atomically.
+fn copy_web_build(files: &[(String, PathBuf)], folder: &Path) -> Result<(), Failure> {
+    std::fs::create_dir_all(folder)
+        .map_err(|e| Failure::Failed(format!("could not make {}: {e}", folder.display())))?;
+    for (name, path) in files {
+        let bytes = read_file(path, FileKind::WebBuild)
+            .map_err(|e| Failure::Failed(format!("could not read {}: {e}", path.display())))?;
+        let to = folder.join(name);
+        write_bytes_atomically(&to, &bytes)
+            .map_err(|e| Failure::Failed(format!("could not write {}: {e}", to.display())))?;
+    }
     Ok(())
 }
 

@@ -17,6 +17,7 @@
 //! ([`measure`]).
 
 pub mod deck;
+pub mod deck_html;
 pub mod files;
 pub mod grid;
 pub mod measure;
