@@ -8,7 +8,9 @@ Serves web/dist/ (scripts/build-web.sh) on 127.0.0.1 and, once on WebGL2 and onc
 - the 3D view equals `bumpview render` of the same state (the default preset at the view's size)
   within the tolerance below, and so does a page whose address carries a preset
   (`#preset=[shading] view = "tangent"`) against `bumpview render --view tangent`;
-  a page whose address carries a lesson (`#lesson=over-tilt`) opens with its state;
+  a page whose address carries a lesson (`#lesson=over-tilt`) opens with its state, and the
+  slide deck's page (`bumpview slides --html`, served as written) opens it from its slide's link
+  with the same picture;
 - pressing B (bump off) changes the picture, a drag in the view changes it, and a .glb dropped on
   the page is opened and changes it;
 - no error reached the console.
@@ -203,14 +205,20 @@ class DevTools:
 
 # --- the page ------------------------------------------------------------------------------
 
-def serve():
-    """A static server of web/dist/ plus the test's .glb on 127.0.0.1; returns its port."""
+def serve(deck):
+    """A static server of web/dist/, the test's .glb and the folder `deck` under /deck/ on
+    127.0.0.1; returns its port."""
     class Handler(http.server.SimpleHTTPRequestHandler):
         def __init__(self, *args, **kwargs):
             super().__init__(*args, directory=DIST, **kwargs)
 
         def translate_path(self, path):
-            return GLB if path.startswith("/test-model.glb") else super().translate_path(path)
+            if path.startswith("/test-model.glb"):
+                return GLB
+            if path.startswith("/deck/"):
+                relative = urllib.parse.unquote(path.split("?", 1)[0].split("#", 1)[0])[len("/deck/"):]
+                return os.path.join(deck, *[part for part in relative.split("/") if part not in ("", "..")])
+            return super().translate_path(path)
 
         def log_message(self, *args):
             pass
@@ -397,6 +405,18 @@ def run_backend(chromium, backend, port, out, results):
         lesson = view_shot(page, lesson_view, os.path.join(out, f"{backend}-lesson.png"))
         mean = difference(built_in, lesson)[0] if lesson[:2] == built_in[:2] else float("inf")
         changed(results, page, f"{backend}: a lesson in the address", mean)
+
+        # The deck's page links the slide to the same lesson, live in the web build beside it.
+        page.send("Page.navigate", url=f"http://127.0.0.1:{port}/deck/index.html")
+        page.evaluate("new Promise(r => setTimeout(r, 500))")
+        href = page.evaluate("document.querySelector('figure a').href")
+        page.send("Page.navigate", url=f"{href}&backend={backend}")
+        data = wait_ready(page)
+        linked = view_shot(page, [round(float(v)) for v in data["view"].split(",")],
+                           os.path.join(out, f"{backend}-deck-link.png"))
+        mean, largest = difference(lesson, linked) if linked[:2] == lesson[:2] else (float("inf"), 255)
+        results.check(f"{backend}: the deck's slide opens its lesson live ({href.split('/deck/', 1)[-1]})",
+                      mean <= MEAN_TOLERANCE, f"mean {mean:.3f} steps from the lesson's own address, max {largest}")
     finally:
         process.terminate()
         try:
@@ -428,7 +448,11 @@ def main():
                   f"budget {WASM_GZIP_BUDGET / 2**20:.0f} MiB)")
     out = keep or tempfile.mkdtemp(prefix="bumpview-web-")
     os.makedirs(out, exist_ok=True)
-    port = serve()
+    binary = os.environ.get("BUMPVIEW_BIN", os.path.join(ROOT, "target", "debug", "bumpview"))
+    deck = os.path.join(out, "deck")
+    subprocess.run([binary, "slides", "--force", "--size", "480x270", "--lessons", "over-tilt", "--html",
+                    "--web-build", DIST, "--out", deck], check=True, stdout=subprocess.DEVNULL)
+    port = serve(deck)
     try:
         for backend in BACKENDS:
             try:
