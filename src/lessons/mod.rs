@@ -69,6 +69,7 @@ const FILES: &[(&str, &str)] = &[
     ("self-shadowing", include_str!("../../assets/lessons/self-shadowing.toml")),
     ("silhouettes", include_str!("../../assets/lessons/silhouettes.toml")),
     ("over-tilt", include_str!("../../assets/lessons/over-tilt.toml")),
+    ("mip-distance", include_str!("../../assets/lessons/mip-distance.toml")),
     ("clearcoat", include_str!("../../assets/lessons/clearcoat.toml")),
     ("detail-blend", include_str!("../../assets/lessons/detail-blend.toml")),
 ];
