@@ -110,6 +110,7 @@ pub fn slides(args: &SlidesArgs) -> Result<(), Failure> {
         println!("{file}: {}", lesson.claim_with(measured.changed_percent));
         pages.push(PdfPage::new(&slide, &lesson.title, &lesson.caption));
         entries.push(DeckEntry { file, lesson: lesson.clone(), changed_percent: measured.changed_percent });
+        scenes.keep_only(&chosen[i + 1..]);
     }
     let write = |name: &str, bytes: &[u8]| {
         let path = args.out.join(name);

@@ -44,6 +44,22 @@ impl SceneCache {
         Ok(self.scenes.len() - 1)
     }
 
+    /// Drops every scene that none of `lessons` is drawn on (a deck drawn in order keeps only
+    /// what its later slides need; the renderer keeps what it has uploaded).
+    pub fn keep_only<'a>(&mut self, lessons: impl IntoIterator<Item = &'a Lesson>) {
+        let wanted: Vec<(SceneFiles, Kernel)> = lessons
+            .into_iter()
+            .flat_map(|lesson| &lesson.sides)
+            .filter_map(|side| Some((side.preset.files.clone(), side.preset.kernel().ok()?)))
+            .collect();
+        let before = self.scenes.len();
+        self.scenes.retain(|(key, _)| wanted.contains(key));
+        if self.scenes.len() != before {
+            // The indices moved: the next draw uploads again.
+            self.uploaded = None;
+        }
+    }
+
     /// Gives `renderer` scene `index` with `uploads`, unless it has them already.
     fn upload(&mut self, renderer: &mut Renderer, index: usize, uploads: SceneUploads) {
         let wanted = Some((index, uploads));
@@ -180,6 +196,24 @@ pub fn changed_percent(a: &RgbaImage, b: &RgbaImage) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A deck drawn in order keeps the scenes its later slides are drawn on, no others.
+    #[test]
+    fn the_cache_keeps_only_the_scenes_of_the_lessons_named() {
+        let all = crate::lessons::catalogue().unwrap();
+        let lesson = |name: &str| all.iter().find(|l| l.name == name).unwrap();
+        let (wall, mirrored) = (lesson("cg-wall"), lesson("mistake-handedness"));
+        let mut cache = SceneCache::default();
+        for side in wall.sides.iter().chain(&mirrored.sides) {
+            cache.index(&side.preset).unwrap();
+        }
+        assert_eq!(cache.scenes.len(), 2, "the bricks and the mirrored wall");
+        cache.keep_only([mirrored]);
+        assert_eq!(cache.scenes.len(), 1);
+        assert_eq!(cache.index(&mirrored.sides[0].preset).unwrap(), 0, "kept, not made again");
+        cache.keep_only([]);
+        assert!(cache.scenes.is_empty());
+    }
 
     #[test]
     fn a_pixel_changes_at_four_steps_of_one_channel() {
