@@ -5,6 +5,7 @@
 
 use std::path::PathBuf;
 
+use bumpview::lessons::files::LessonWords;
 use bumpview::load::TextureSlot;
 use bumpview::state::Command;
 
@@ -45,6 +46,9 @@ pub enum Action {
     StepLesson(i32),
     /// Show or hide the current lesson's caption card.
     ShowLessonCard(bool),
+    /// Write the current state's split view as a lesson file at `path` with these words, and
+    /// show it as a lesson.
+    SaveLesson { path: PathBuf, words: LessonWords },
     /// Hide or show the control panel (H), so the 3D view and the card fill the window.
     TogglePanel,
     /// Make the window full-screen or windowed again (F11).

@@ -8,6 +8,7 @@
 
 use std::sync::mpsc;
 
+use bumpview::lessons::files::{LessonWords, lesson_file_text};
 use bumpview::lessons::measure::{LiveLook, SceneCache, measure};
 use bumpview::lessons::slide::{DEFAULT_SLIDE_SIZE, SlideLayout};
 use bumpview::lessons::{self, Lesson};
@@ -50,6 +51,10 @@ pub struct LessonsForm {
     pub grid_shown: bool,
     /// The current grid lesson's tiles.
     pub grid: LessonGrid,
+    /// The "Save as lesson" form: its words, its file, and what the last save did.
+    pub draft: LessonWords,
+    pub draft_path: String,
+    pub draft_message: Option<Result<String, String>>,
     results: Option<mpsc::Receiver<(usize, Measurement)>>,
 }
 
@@ -71,6 +76,12 @@ impl LessonsForm {
             second_adapter,
             grid_shown: false,
             grid: LessonGrid::default(),
+            draft: LessonWords {
+                claim: "The change shows on {changed} of the picture.".into(),
+                ..LessonWords::default()
+            },
+            draft_path: String::new(),
+            draft_message: None,
             results: None,
         }
     }
@@ -165,6 +176,32 @@ impl Controller {
         );
         self.files.status = Some(Status::Done(why));
         self.lessons.grid_shown = false;
+    }
+
+    /// Writes the current state's split view as a lesson file at `path` with `words` (its
+    /// files relative to the lesson's folder) and shows it as a lesson, its number measured;
+    /// says where, or why not (one line).
+    #[cfg(not(target_arch = "wasm32"))]
+    pub(super) fn save_lesson(&mut self, path: &std::path::Path, words: &LessonWords) -> Result<String, String> {
+        let folder = path.parent().unwrap_or(std::path::Path::new(""));
+        let labels = self.state.split.labels();
+        let text = lesson_file_text(words, &self.current_preset(), &labels, folder).map_err(|e| e.message)?;
+        bumpview::atomic::write_bytes_atomically(path, text.as_bytes())
+            .map_err(|e| format!("could not write {}: {e}", path.display()))?;
+        let lesson = Lesson::load(path).map_err(|e| e.to_string())?;
+        self.show_lesson_file(lesson);
+        Ok(format!("saved {} and opened it as a lesson", path.display()))
+    }
+
+    /// Offers the lesson file as a download named as `path`'s file; says which, or why not.
+    #[cfg(target_arch = "wasm32")]
+    pub(super) fn save_lesson(&mut self, path: &std::path::Path, words: &LessonWords) -> Result<String, String> {
+        let name = path.file_name().map_or("lesson.toml".into(), |n| n.to_string_lossy().into_owned());
+        let labels = self.state.split.labels();
+        let text = lesson_file_text(words, &self.current_preset(), &labels, std::path::Path::new(""))
+            .map_err(|e| e.message)?;
+        crate::app::browser::download(&name, "application/toml", text.as_bytes())?;
+        Ok(format!("downloaded {name}"))
     }
 
     /// Adds a lesson file's lesson to the course and shows its card and number; the viewer

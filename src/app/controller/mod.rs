@@ -346,6 +346,9 @@ impl Controller {
                 }
             }
             Action::ShowLessonCard(on) => self.lessons.card = on && self.lessons.current.is_some(),
+            Action::SaveLesson { path, words } => {
+                self.lessons.draft_message = Some(self.save_lesson(&path, &words));
+            }
             Action::TogglePanel => self.lessons.panel_hidden = !self.lessons.panel_hidden,
             Action::ToggleFullscreen => self.lessons.fullscreen = !self.lessons.fullscreen,
         }

@@ -1,14 +1,16 @@
 //! Lessons in the viewer: opening one shows its whole state and scene, Page Down / Page Up
 //! step through the course within its ends, the state stays interactive, and presenting hides
-//! the panel and fills the screen, and a grid lesson shows as its grid.
+//! the panel and fills the screen, a grid lesson shows as its grid, and the split view saves as a
+//! lesson.
 
 use std::time::Duration;
 
-use bumpview::lessons::catalogue;
+use bumpview::lessons::files::LessonWords;
 use bumpview::lessons::measure::{SceneCache, measure};
+use bumpview::lessons::{Lesson, catalogue};
 use bumpview::render::{Gpu, Renderer};
 use bumpview::scene::teaching::TeachingScene;
-use bumpview::state::Command;
+use bumpview::state::{Command, SplitDifference};
 use web_time::Instant;
 
 use super::tests::{controller, settle};
@@ -133,4 +135,35 @@ fn a_grid_lesson_shows_the_slides_tiles_follows_the_camera_and_b_leaves_it() {
         controller.poll_background(Instant::now());
         std::thread::sleep(Duration::from_millis(20));
     }
+}
+
+/// "Save as lesson" writes the split view as a lesson file that reads back as the same
+/// comparison and opens it as a lesson; without a split view it says why and writes nothing.
+#[test]
+fn save_as_lesson_writes_the_split_view_and_opens_it() {
+    let mut controller = controller();
+    controller.lessons.second_adapter = false;
+    let dir = std::env::temp_dir().join(format!("bumpview-save-lesson-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("my-strengths.toml");
+    let words = LessonWords { title: "Strength".into(), caption: "Half and double.".into(), claim: "{changed}".into() };
+    controller.apply([Action::Viewer(Command::SetSplit(false))]);
+    controller.apply([Action::SaveLesson { path: path.clone(), words: words.clone() }]);
+    let message = format!("{:?}", controller.lessons.draft_message);
+    assert!(message.contains("turn the split view on") && !path.exists(), "{message}");
+
+    let count = controller.lessons.catalogue.len();
+    controller.apply([
+        Action::Viewer(Command::SetSplitDifference(SplitDifference::Strength)),
+        Action::Viewer(Command::SetSplitStrengths([0.5, 2.0])),
+        Action::Viewer(Command::SetSplit(true)),
+        Action::SaveLesson { path: path.clone(), words },
+    ]);
+    assert!(matches!(controller.lessons.draft_message, Some(Ok(_))), "{:?}", controller.lessons.draft_message);
+    let saved = Lesson::load(&path).unwrap();
+    assert_eq!(controller.lessons.catalogue.len(), count + 1);
+    assert_eq!(controller.lessons.lesson(), Some(&saved), "shown as the current lesson");
+    assert_eq!(saved.title, "Strength");
+    assert_eq!(saved.apply(controller.scene()).unwrap().frame_params(), controller.state.frame_params());
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -39,7 +39,7 @@ pub fn show(
     ui.separator();
     let mut slot_targets = Vec::new();
     egui::ScrollArea::vertical().show(ui, |ui| {
-        section(ui, "Lessons", false, |ui| lessons::show(ui, &controller.lessons, &mut actions));
+        section(ui, "Lessons", false, |ui| lessons::show(ui, &mut controller.lessons, &mut actions));
         section(ui, "Files and texture slots", false, |ui| {
             slot_targets = files::show(ui, controller, &mut actions);
         });
