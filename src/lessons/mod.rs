@@ -10,6 +10,8 @@
 //! - the comparison: either the preset's split view (`[preset.split] enabled = true`; its two
 //!   halves are the sides, labelled by `labels`), or `[[tiles]]`, each a `label` and a
 //!   `preset` table laid over the lesson's (a grid of N settings, side by side);
+//! - optionally `uv_error_angle_deg`: the claim may then say `{uv_error}`, each side's mean
+//!   parallax UV error in texels against the exact intersection at that angle ([`uv_claim`]);
 //! - optionally `min_changed` (percent) with `why_fewer`: a lesson whose point shows on fewer
 //!   than [`MIN_CHANGED_PERCENT`] of the pixels says why and how many it holds.
 //!
@@ -23,6 +25,7 @@ pub mod grid;
 pub mod measure;
 pub mod pdf;
 pub mod slide;
+pub mod uv_claim;
 pub mod visibility;
 
 use serde::Deserialize;
@@ -65,6 +68,7 @@ const FILES: &[(&str, &str)] = &[
     ("emboss", include_str!("../../assets/lessons/emboss.toml")),
     ("xray-packing", include_str!("../../assets/lessons/xray-packing.toml")),
     ("parallax-family", include_str!("../../assets/lessons/parallax-family.toml")),
+    ("parallax-uv-error", include_str!("../../assets/lessons/parallax-uv-error.toml")),
     ("relaxed-cone", include_str!("../../assets/lessons/relaxed-cone.toml")),
     ("self-shadowing", include_str!("../../assets/lessons/self-shadowing.toml")),
     ("silhouettes", include_str!("../../assets/lessons/silhouettes.toml")),
@@ -102,6 +106,9 @@ pub struct Lesson {
     pub sides: Vec<Side>,
     /// Whether the sides are the halves of the preset's split view (else a grid).
     pub split: bool,
+    /// The angle, degrees from the wall's normal, at which a claim's `{uv_error}` is measured
+    /// ([`uv_claim`]).
+    pub uv_error_angle_deg: Option<f32>,
 }
 
 /// The file as written.
@@ -114,6 +121,7 @@ struct LessonFile {
     min_changed: Option<f32>,
     why_fewer: Option<String>,
     labels: Option<[String; 2]>,
+    uv_error_angle_deg: Option<f32>,
     preset: toml::Table,
     #[serde(default)]
     tiles: Vec<TileFile>,
@@ -194,7 +202,7 @@ impl Lesson {
             return Err(fail("the claim says {changed} where the measured number goes".into()));
         }
         let sides = sides.into_iter().map(|(label, preset, half)| Side { label, preset, half }).collect();
-        Ok(Lesson {
+        let lesson = Lesson {
             name: name.to_owned(),
             title: file.title,
             caption: file.caption,
@@ -204,7 +212,10 @@ impl Lesson {
             preset,
             sides,
             split: split && file.tiles.is_empty(),
-        })
+            uv_error_angle_deg: file.uv_error_angle_deg,
+        };
+        uv_claim::check(&lesson).map_err(fail)?;
+        Ok(lesson)
     }
 
     /// The preset the viewer shows: the split view itself, or a grid's last tile (the
@@ -219,9 +230,14 @@ impl Lesson {
         self.viewer_preset().to_state(scene)
     }
 
-    /// The claim with the measured percentage in it.
+    /// The claim with the measured percentage in it, and each side's UV error where it says
+    /// `{uv_error}` ([`uv_claim`]).
     pub fn claim_with(&self, changed_percent: f32) -> String {
-        self.claim.replace("{changed}", &format!("{changed_percent:.1} %"))
+        let claim = self.claim.replace("{changed}", &format!("{changed_percent:.1} %"));
+        match self.uv_error_angle_deg {
+            Some(angle) => claim.replace("{uv_error}", &uv_claim::uv_error_text(self, angle)),
+            None => claim,
+        }
     }
 }
 

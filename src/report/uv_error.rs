@@ -19,7 +19,7 @@ use glam::{DVec2, Vec2, Vec3};
 use super::exact_hit::{ExactHit, bilinear, exact_hit};
 use super::parallax::{Specimen, cases, settings};
 use crate::chain::parallax::{ConeTexel, MarchInputs, march};
-use crate::frame::Parallax;
+use crate::frame::{Parallax, ParallaxSettings};
 use crate::height::HeightField;
 use crate::height::cone::{decode_cone_ratio, encode_cone_ratio, relaxed_cone_ratios};
 use crate::scene::bricks::brick_height_field;
@@ -55,8 +55,14 @@ impl Relief {
     /// The built-in wall's bricks at their own depth, stored with 16 bits a sample as its
     /// height texture is ([`crate::texture::encode_height`]).
     pub fn wall() -> Relief {
+        Relief::wall_with_cones(true)
+    }
+
+    /// [`Self::wall`], its cone map made only `with_cones` (else the heights stand in: the
+    /// techniques that do not read cones never look).
+    pub fn wall_with_cones(with_cones: bool) -> Relief {
         let field = brick_height_field(BRICK_TILE_M).quantized(16);
-        let cones = cone_channel(&field);
+        let cones = if with_cones { cone_channel(&field) } else { field.clone() };
         Relief { name: "wall", bricks: true, depth_m: field.range_m, field, cones, tile_m: BRICK_TILE_M }
     }
 
@@ -162,15 +168,10 @@ pub fn uv_error(
     (technique, layers): (Parallax, Option<u32>),
 ) -> UvError {
     let parallax = settings(technique, layers);
-    let height = |uv: Vec2| bilinear(&relief.field, uv.as_dvec2()) as f32;
-    let cone = |uv: Vec2| ConeTexel {
-        height: height(uv),
-        ratio: decode_cone_ratio(bilinear(&relief.cones, uv.as_dvec2()) as f32),
-    };
+    let reads = reads(relief, points, angle_deg, &parallax);
     let mut errors = Vec::with_capacity(points.len());
     let mut wrong = 0usize;
-    for (&uv, hit) in points.iter().zip(hits) {
-        let read = march(&parallax, &relief.inputs(uv, angle_deg), height, cone).uv.as_dvec2();
+    for (read, hit) in reads.zip(hits) {
         errors.push(((read - hit.uv) * relief.texels()).length());
         wrong += usize::from(relief.bricks && relief.crosses_region(hit.uv, read));
     }
@@ -187,6 +188,33 @@ pub fn uv_error(
         max: errors.last().copied().unwrap_or(0.0),
         wrong_brick: relief.bricks.then_some(wrong as f64 / n as f64),
     }
+}
+
+/// The UV `parallax` reads at each of `points` seen from `angle_deg`.
+fn reads<'a>(
+    relief: &'a Relief,
+    points: &'a [Vec2],
+    angle_deg: f32,
+    parallax: &'a ParallaxSettings,
+) -> impl Iterator<Item = DVec2> + 'a {
+    let height = |uv: Vec2| bilinear(&relief.field, uv.as_dvec2()) as f32;
+    let cone = move |uv: Vec2| ConeTexel {
+        height: height(uv),
+        ratio: decode_cone_ratio(bilinear(&relief.cones, uv.as_dvec2()) as f32),
+    };
+    points.iter().map(move |&uv| march(parallax, &relief.inputs(uv, angle_deg), height, cone).uv.as_dvec2())
+}
+
+/// [`uv_error`]'s mean, texels, for any settings (a search's own layer range and refinement
+/// steps) over an `n × n` grid of `relief` seen from `angle_deg`.
+pub fn mean_uv_error(relief: &Relief, angle_deg: f32, parallax: &ParallaxSettings, n: u32) -> f64 {
+    let points = grid(n);
+    let hits = points.iter().map(|&uv| relief.exact(uv, angle_deg));
+    let total: f64 = reads(relief, &points, angle_deg, parallax)
+        .zip(hits)
+        .map(|(read, hit)| ((read - hit.uv) * relief.texels()).length())
+        .sum();
+    total / points.len().max(1) as f64
 }
 
 /// Every technique but off (each search at each of `layers`) at each of `angles_deg`, over an

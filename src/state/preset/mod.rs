@@ -23,6 +23,7 @@ use std::path::Path;
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
+use crate::frame::ShadingSettings;
 use crate::height::Kernel;
 use crate::load::SceneFiles;
 use crate::names::{Named, parse_or_auto};
@@ -137,6 +138,16 @@ impl Preset {
     /// preset's kernel when there is no mesh).
     pub fn build_scene(&self) -> Result<Scene, PresetSceneError> {
         Ok(self.files.build(self.kernel()?)?)
+    }
+
+    /// The shading a picture of this preset is drawn with, checked, without a scene: the whole
+    /// picture's (`half` `None`, as with the split view off) or a split half's.
+    pub fn shading_of(&self, half: Option<usize>) -> Result<ShadingSettings, PresetError> {
+        let settings = self.settings()?;
+        Ok(match half {
+            None => settings.shading,
+            Some(i) => settings.split.shading(&settings.shading)[i.min(1)],
+        })
     }
 
     /// The preset as TOML, with a comment line on top.
