@@ -178,8 +178,16 @@ fn verdict(cells: &[Cell]) -> Result<(GreenConvention, f32), Undetermined> {
         return Err(Undetermined::MixedTiles);
     }
     let mean = cells.iter().map(|c| weight(c) * c.vote).sum::<f32>() / total;
+    let octaves = cells.iter().map(|c| c.octave + 1).max().unwrap_or(0);
+    let mut octave_means = vec![(0.0f32, 0.0f32); octaves];
+    for c in cells {
+        let m = &mut octave_means[c.octave];
+        (m.0, m.1) = (m.0 + weight(c) * c.vote, m.1 + weight(c));
+    }
+    let octave_mean = |c: &Cell| octave_means[c.octave].0 / octave_means[c.octave].1.max(f32::MIN_POSITIVE);
     let own = |c: &Cell| VOTE_SPREAD * (1.0 - c.quality);
-    let spread: f32 = cells.iter().map(|c| weight(c).powi(2) * ((c.vote - mean).powi(2) + own(c).powi(2))).sum();
+    let spread: f32 =
+        cells.iter().map(|c| weight(c).powi(2) * ((c.vote - octave_mean(c)).powi(2) + own(c).powi(2))).sum();
     let standard_error = spread.sqrt() / total;
     let confidence = if standard_error > 0.0 { normal_cdf(mean.abs() / standard_error) } else { 1.0 };
     let convention = if mean >= 0.0 { GreenConvention::OpenGl } else { GreenConvention::DirectX };
@@ -259,6 +267,37 @@ mod tests {
         let (convention, confidence) = green_evidence(&normals, 128, 128).verdict.unwrap();
         assert_eq!(convention, GreenConvention::OpenGl, "{confidence}");
         let flipped: Vec<Vec3> = normals.iter().map(|n| Vec3::new(n.x, -n.y, n.z)).collect();
+        assert_eq!(green_evidence(&flipped, 128, 128).verdict.unwrap().0, GreenConvention::DirectX);
+    }
+
+    /// Blobs of radius 3 texels with random signs, printed into both slopes alike (as a
+    /// darkening of red and green): no gradient under either reading.
+    fn printed_blobs(size: u32) -> impl Fn(f32, f32) -> f32 {
+        let mut seed = 7u32;
+        let mut next = move || {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (seed >> 8) as f32 / (1 << 24) as f32
+        };
+        let blobs: Vec<(f32, f32, f32)> =
+            (0..size * size / 24).map(|_| (next() * size as f32, next() * size as f32, next() - 0.5)).collect();
+        move |x, y| blobs.iter().map(|&(bx, by, s)| s * (-((x - bx).powi(2) + (y - by).powi(2)) / 9.0).exp()).sum()
+    }
+
+    /// Printed detail is no gradient under either reading, so it carries no evidence: alone it
+    /// decides nothing, and over weaker coarse relief the relief decides the map.
+    #[test]
+    fn printed_detail_is_no_evidence_and_does_not_hide_the_relief() {
+        let printed = printed_blobs(128);
+        let alone = normals_of(128, 128, |x, y| (0.4 * printed(x, y), 0.4 * printed(x, y)));
+        assert_eq!(green_evidence(&alone, 128, 128).verdict, Err(Undetermined::MixedTiles));
+        let over_relief = normals_of(128, 128, |x, y| {
+            let (p, q) = bumps(x / 4.0, y / 4.0);
+            let g = 0.4 * printed(x, y);
+            (0.25 * p + g, 0.25 * q + g)
+        });
+        let (convention, confidence) = green_evidence(&over_relief, 128, 128).verdict.unwrap();
+        assert_eq!(convention, GreenConvention::OpenGl, "{confidence}");
+        let flipped: Vec<Vec3> = over_relief.iter().map(|n| Vec3::new(n.x, -n.y, n.z)).collect();
         assert_eq!(green_evidence(&flipped, 128, 128).verdict.unwrap().0, GreenConvention::DirectX);
     }
 

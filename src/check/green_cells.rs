@@ -4,8 +4,7 @@
 //!
 //! Slopes are `p = −n.x/n.z`, `q = −n.y/n.z` (OpenGL reading, `y_up` towards the top row), in
 //! height per map texel; `a = ∂p/∂y_up`, `b = ∂q/∂x` are per texel of their octave. The
-//! residual of the
-//! OpenGL reading is `a − b`, of the DirectX reading `a + b`.
+//! residual of the OpenGL reading is `a − b`, of the DirectX reading `a + b`.
 
 use glam::Vec3;
 
