@@ -301,6 +301,23 @@ mod tests {
         assert_eq!(green_evidence(&flipped, 128, 128).verdict.unwrap().0, GreenConvention::DirectX);
     }
 
+    /// Gentle relief (period 64 texels, slopes within ±0.005: under one 8-bit level) stored in
+    /// 8 bits. Against a floor of 10× octave 0's rounding noise at every octave it is too flat;
+    /// the rounding noise falls to about a quarter an octave, and the coarse octaves hear it.
+    #[test]
+    fn gentle_coarse_relief_is_heard_above_each_octaves_rounding_noise() {
+        let rounded = |n: Vec3| (((n + 1.0) * 127.5).round() / 127.5 - 1.0).normalize();
+        let gentle = normals_of(192, 192, |x, y| {
+            let (p, q) = bumps(x / 4.0, y / 4.0);
+            (0.01 * p, 0.01 * q)
+        });
+        let stored: Vec<Vec3> = gentle.into_iter().map(rounded).collect();
+        let (convention, confidence) = green_evidence(&stored, 192, 192).verdict.unwrap();
+        assert_eq!(convention, GreenConvention::OpenGl, "{confidence}");
+        let flipped: Vec<Vec3> = stored.iter().map(|n| Vec3::new(n.x, -n.y, n.z)).collect();
+        assert_eq!(green_evidence(&flipped, 192, 192).verdict.unwrap().0, GreenConvention::DirectX);
+    }
+
     #[test]
     fn maps_without_evidence_say_why() {
         let flat = vec![Vec3::Z; 64 * 64];
