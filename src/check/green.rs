@@ -1,32 +1,37 @@
-//! Which way a tangent-space normal map's green points, from tiles that each cast a bounded
+//! Which way a tangent-space normal map's green points, from cells that each cast a bounded
 //! vote.
 //!
 //! A normal map is the gradient of a height field: with decoded `n`, the slopes are
 //! `p = ∂h/∂x = −n.x/n.z` and `q = ∂h/∂y_up = −n.y/n.z` (OpenGL reading, `y_up` towards the
 //! top row), and a gradient field has zero curl, `a − b = 0` with `a = ∂p/∂y_up` and
 //! `b = ∂q/∂x`. Read with the wrong green, `q` changes sign and the residual becomes `a + b`.
-//! Per tile the energies `E_gl = Σ(a − b)²` and `E_dx = Σ(a + b)²` differ by `4·Σab`, so the
-//! tile votes `v = (E_dx − E_gl) / (E_dx + E_gl)` in −1..1 (positive: OpenGL). The slopes are
-//! blurred by a 3×3 binomial first, which removes a 2-texel pattern and halves the derivatives
-//! of a 4-texel one, so content at the Nyquist limit carries little.
+//! Per cell the energies `E_gl = Σ(a − b)²` and `E_dx = Σ(a + b)²` differ by `4·Σab`, so the
+//! cell votes `v = (E_dx − E_gl) / (E_dx + E_gl)` in −1..1 (positive: OpenGL).
 //!
-//! Each tile votes in octaves: the slopes, halved in size again and again (`[1 3 3 1]/8` per
-//! axis), vote at every octave whose texels a tile spans at least [`MIN_SIDE`] of. A filter
-//! commutes with the derivatives, so a height field's slopes are curl-free in every octave, and
-//! each octave is a test of its own. Pooled as energies, the finest octave would win: the
-//! derivatives weigh a feature by its frequency squared, and that is where printed detail,
-//! grain and compression live. So the tile's vote is its octaves' votes averaged by their
-//! weights, and the tile weighs as its best-evidenced octave.
+//! The slopes vote in octaves ([`super::green_cells`]): halved in size again and again, each
+//! octave cut into cells of at least [`MIN_SIDE`] of its texels and a tile, down to the last
+//! octave [`MIN_SIDE`] texels across. A filter commutes with the derivatives, so relief is
+//! curl-free in every octave, and coarse relief gets a say of its own however fine the detail
+//! printed over it. A cell weighs
 //!
-//! No tile weighs more than 1: its weight rises from 0 at [`WEIGHT_FLOOR`] to 1 at
-//! [`WEIGHT_FULL`] of mean `|ab|`, so a strong fine pattern on a few tiles is outvoted by the
-//! rest of the map. The map's score is the weighted mean vote `m`; its standard error counts
-//! both the spread between tiles and [`VOTE_SPREAD`], the spread one tile's vote has on its
-//! own, `se² = (Σw²(v − m)² + σ²·Σw²) / (Σw)²`. With a flat prior on the map's true mean
-//! vote, the chance that its sign is the one measured is `Φ(|m| / se)`: that is the reported
+//! * its strength: from 0 at [`WEIGHT_FLOOR`] to 1 at [`WEIGHT_FULL`] of mean `|ab|`, both
+//!   scaled to what 8-bit quantisation leaves at its octave;
+//! * its quality `Q` in 0..1: how much of its slope derivatives a height field explains under
+//!   the better reading. Noise, and detail printed into both slopes alike, is no gradient under
+//!   either reading: both residuals are large, `Q` near 0, and it carries little evidence;
+//! * its area in tiles, so each octave covers the map once and a cell weighs as its share of it.
+//!
+//! The map's score is the weighted mean vote `m`. Only a cell's part that is no height field
+//! can pull its vote, so its own spread is `σ·(1 − Q)` with σ = [`VOTE_SPREAD`], and the
+//! standard error counts that and the spread between cells,
+//! `se² = Σw²((v − m)² + σ²(1 − Q)²) / (Σw)²`. With a flat prior on the map's true mean vote,
+//! the chance that its sign is the one measured is `Φ(|m| / se)`: that is the reported
 //! confidence. Below [`DECIDED_CONFIDENCE`] the convention is undetermined, with its reason.
 
 use glam::Vec3;
+
+pub use super::green_cells::MIN_SIDE;
+use super::green_cells::{Cell, octave_cells, quantisation_level};
 
 /// Which way green points.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -47,8 +52,8 @@ pub enum Undetermined {
     /// The relief bends along one image axis only (ribs along x or y): the mixed derivatives
     /// the test compares are zero under both readings.
     OneDirectional,
-    /// There is evidence, but the tiles disagree: the confidence stays below
-    /// [`DECIDED_CONFIDENCE`].
+    /// There is evidence, but the cells disagree, or what bends is no height field under
+    /// either reading: the confidence stays below [`DECIDED_CONFIDENCE`].
     MixedTiles,
 }
 
@@ -64,17 +69,18 @@ impl Undetermined {
     }
 }
 
-/// One tile's vote: `vote` in −1..1 (positive: OpenGL), `weight` in 0..1.
+/// One tile's vote as the cells over it cast it: `vote` in −1..1 (positive: OpenGL),
+/// `weight` in 0..1 (evidence per unit of area).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TileVote {
     pub vote: f32,
     pub weight: f32,
 }
 
-/// The tiles' votes over a map, row by row from the top.
+/// The votes over a map's tiles, row by row from the top, and the verdict.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GreenEvidence {
-    /// Texels per tile side.
+    /// Texels per tile side; the last row and column of tiles take the map's remainder.
     pub tile_size: u32,
     pub columns: u32,
     pub rows: u32,
@@ -83,14 +89,13 @@ pub struct GreenEvidence {
     pub verdict: Result<(GreenConvention, f32), Undetermined>,
 }
 
-/// Fewest texels across and down the test needs.
-pub const MIN_SIDE: u32 = 8;
-/// Mean `|ab|` per texel, (slope per texel)², at which a tile starts to count: 10× what the
-/// 8-bit quantisation of a flat map leaves after the blur (about 2·10⁻⁷).
+/// Mean `|ab|` per texel, (slope per texel)², at which an octave-0 cell starts to count: 10×
+/// what the 8-bit quantisation of a flat map leaves after the blur (about 2·10⁻⁷). Coarser
+/// octaves scale it by their quantisation noise ([`quantisation_level`]).
 pub const WEIGHT_FLOOR: f32 = 2e-6;
-/// Mean `|ab|` at which a tile counts fully (weight 1): 100× the quantisation's level.
+/// Mean `|ab|` at which an octave-0 cell counts fully: 100× the quantisation's level.
 pub const WEIGHT_FULL: f32 = 2e-5;
-/// The spread σ one tile's vote has on its own, whatever its neighbours say.
+/// The spread σ a cell's vote has on its own where none of it is a height field.
 pub const VOTE_SPREAD: f32 = 0.5;
 /// Total weight below which a map has too little evidence: one full tile.
 pub const MIN_EVIDENCE: f32 = 1.0;
@@ -100,59 +105,12 @@ pub const DECIDED_CONFIDENCE: f32 = 0.9;
 /// one axis.
 const ONE_DIRECTIONAL_SHARE: f32 = 0.01;
 
-/// Slopes steeper than this (about 84°) are clamped.
-const MAX_SLOPE: f32 = 10.0;
-
 /// The tile side for a `width × height` map: a quarter of the shorter side, 8 to 32 texels.
 pub fn tile_size(width: u32, height: u32) -> u32 {
     (width.min(height) / 4).clamp(MIN_SIDE, 32)
 }
 
-/// The OpenGL slopes `(p, q)` of the unit normals `normal_at(i)` of texel `i` (`width ×
-/// height`, rows from the top), clamped to ±[`MAX_SLOPE`], blurred by a 3×3 binomial (edges
-/// clamped). The field is the only full-size buffer: 8 bytes a texel, blurred in place with
-/// a row or two of scratch.
-fn blurred_slopes(normal_at: impl Fn(usize) -> Vec3, width: usize, height: usize) -> Vec<[f32; 2]> {
-    let slope = |n: Vec3| {
-        let z = n.z.max(1.0 / MAX_SLOPE);
-        [(-n.x / z).clamp(-MAX_SLOPE, MAX_SLOPE), (-n.y / z).clamp(-MAX_SLOPE, MAX_SLOPE)]
-    };
-    let mut field: Vec<[f32; 2]> = (0..width * height).map(|i| slope(normal_at(i))).collect();
-    let blend = |l: [f32; 2], c: [f32; 2], r: [f32; 2]| [0, 1].map(|k| 0.25 * l[k] + 0.5 * c[k] + 0.25 * r[k]);
-    // Along x, row by row from a copy of the row.
-    let mut row = vec![[0.0f32; 2]; width];
-    for y in 0..height {
-        row.copy_from_slice(&field[y * width..(y + 1) * width]);
-        for x in 0..width {
-            field[y * width + x] = blend(row[x.saturating_sub(1)], row[x], row[(x + 1).min(width - 1)]);
-        }
-    }
-    // Along y, top to bottom: the row above as it was before its own blur, the row below not
-    // yet blurred.
-    let mut above = field[..width].to_vec();
-    for y in 0..height {
-        row.copy_from_slice(&field[y * width..(y + 1) * width]);
-        let below = (y + 1).min(height - 1) * width;
-        for x in 0..width {
-            let under = if y + 1 < height { field[below + x] } else { row[x] };
-            field[y * width + x] = blend(above[x], row[x], under);
-        }
-        above.copy_from_slice(&row);
-    }
-    field
-}
-
-/// Per-tile sums of one map.
-#[derive(Default, Clone, Copy)]
-struct TileSums {
-    /// Σab, Σ(a² + b²), Σ|ab|, texels.
-    cross: f64,
-    mixed: f64,
-    magnitude: f64,
-    texels: f64,
-}
-
-/// The tiles' votes and the verdict for unit normals `normals` of a `width × height` map.
+/// The votes and the verdict for unit normals `normals` of a `width × height` map.
 pub fn green_evidence(normals: &[Vec3], width: u32, height: u32) -> GreenEvidence {
     green_evidence_of(|i| normals[i], width, height)
 }
@@ -161,121 +119,77 @@ pub fn green_evidence(normals: &[Vec3], width: u32, height: u32) -> GreenEvidenc
 /// (a map's decoded normals are never held: 12 bytes a texel).
 pub fn green_evidence_of(normal_at: impl Fn(usize) -> Vec3, width: u32, height: u32) -> GreenEvidence {
     let tile = tile_size(width, height);
-    let (columns, rows) = (width.div_ceil(tile), height.div_ceil(tile));
-    let undetermined = |tiles, reason| GreenEvidence { tile_size: tile, columns, rows, tiles, verdict: Err(reason) };
+    let (columns, rows) = ((width / tile).max(1), (height / tile).max(1));
+    let evidence = |tiles, verdict| GreenEvidence { tile_size: tile, columns, rows, tiles, verdict };
     if width < MIN_SIDE || height < MIN_SIDE {
-        return undetermined(vec![], Undetermined::TooFewTexels);
+        return evidence(vec![], Err(Undetermined::TooFewTexels));
     }
-    let (w, h) = (width as usize, height as usize);
-    let mut level = (blurred_slopes(normal_at, w, h), w, h);
-    let mut octaves: Vec<Vec<TileVote>> = Vec::new();
-    let (mut mixed_total, mut pure_total) = (0.0f64, 0.0f64);
-    // An octave counts while a tile spans at least MIN_SIDE of its texels across.
-    for octave in 0.. {
-        let (slopes, lw, lh) = &level;
-        if tile >> octave < MIN_SIDE || *lw < 3 || *lh < 3 {
-            break;
-        }
-        let mut sums = vec![TileSums::default(); (columns * rows) as usize];
-        let (mixed, pure) = add_octave(&mut sums, (slopes, *lw, *lh), 1 << octave, tile as usize, columns as usize);
-        if octave == 0 {
-            (mixed_total, pure_total) = (mixed, pure);
-        }
-        octaves.push(sums.iter().map(tile_vote).collect());
-        level = halved(slopes, *lw, *lh);
-    }
-    let tiles: Vec<TileVote> =
-        (0..(columns * rows) as usize).map(|i| octaves_vote(octaves.iter().map(|o| o[i]))).collect();
-    let total_weight: f32 = tiles.iter().map(|t| t.weight).sum();
-    if total_weight < MIN_EVIDENCE {
-        let texels = ((w - 2) * (h - 2)) as f64;
+    let (cells, mixed_total, pure_total) = octave_cells(normal_at, width, height, tile);
+    let tiles = tile_votes(&cells, columns, rows);
+    // The best octave's strength alone, in tiles: does anything bend?
+    let octaves = cells.iter().map(|c| c.octave + 1).max().unwrap_or(0);
+    let bending = (0..octaves)
+        .map(|k| cells.iter().filter(|c| c.octave == k).map(|c| strength_weight(c) * c.area).sum::<f32>())
+        .fold(0.0, f32::max);
+    if bending < MIN_EVIDENCE {
+        let texels = ((width - 2) * (height - 2)) as f64;
         let bends = (pure_total / texels) as f32 > 4.0 * WEIGHT_FULL;
         let one_way = bends && mixed_total < ONE_DIRECTIONAL_SHARE as f64 * pure_total;
-        return undetermined(tiles, if one_way { Undetermined::OneDirectional } else { Undetermined::TooFlat });
+        return evidence(tiles, Err(if one_way { Undetermined::OneDirectional } else { Undetermined::TooFlat }));
     }
-    let verdict = verdict(&tiles);
-    GreenEvidence { tile_size: tile, columns, rows, tiles, verdict }
+    evidence(tiles, verdict(&cells))
 }
 
-/// Adds one octave's mixed derivatives to the tiles' sums: `slopes` is `w × h`, each texel
-/// `scale` map texels across. Returns the octave's `Σ(a² + b²)` and `Σ((∂p/∂x)² + (∂q/∂y)²)`.
-fn add_octave(
-    sums: &mut [TileSums],
-    (slopes, w, h): (&[[f32; 2]], usize, usize),
-    scale: usize,
-    tile: usize,
-    columns: usize,
-) -> (f64, f64) {
-    let (mut mixed_total, mut pure_total) = (0.0f64, 0.0f64);
-    for y in 1..h - 1 {
-        for x in 1..w - 1 {
-            let at = |x: usize, y: usize| slopes[y * w + x];
-            // y_up runs towards smaller rows.
-            let a = ((at(x, y - 1)[0] - at(x, y + 1)[0]) * 0.5) as f64;
-            let b = ((at(x + 1, y)[1] - at(x - 1, y)[1]) * 0.5) as f64;
-            let dp_dx = ((at(x + 1, y)[0] - at(x - 1, y)[0]) * 0.5) as f64;
-            let dq_dy = ((at(x, y - 1)[1] - at(x, y + 1)[1]) * 0.5) as f64;
-            let s = &mut sums[(y * scale / tile) * columns + x * scale / tile];
-            s.cross += a * b;
-            s.mixed += a * a + b * b;
-            s.magnitude += (a * b).abs();
-            s.texels += 1.0;
-            mixed_total += a * a + b * b;
-            pure_total += dp_dx * dp_dx + dq_dy * dq_dy;
-        }
-    }
-    (mixed_total, pure_total)
+/// A cell's strength weight in 0..1: its mean `|ab|` between [`WEIGHT_FLOOR`] and
+/// [`WEIGHT_FULL`], both scaled to its octave's quantisation noise.
+fn strength_weight(cell: &Cell) -> f32 {
+    let level = quantisation_level(cell.octave);
+    ((cell.strength - WEIGHT_FLOOR * level) / ((WEIGHT_FULL - WEIGHT_FLOOR) * level)).clamp(0.0, 1.0)
 }
 
-/// The slopes at half the size, filtered by `[1 3 3 1]/8` along each axis (edges clamped),
-/// which passes nothing at the finer octave's Nyquist limit.
-fn halved(slopes: &[[f32; 2]], w: usize, h: usize) -> (Vec<[f32; 2]>, usize, usize) {
-    const TAPS: [f32; 4] = [0.125, 0.375, 0.375, 0.125];
-    let (hw, hh) = (w / 2, h / 2);
-    let mut out = vec![[0.0; 2]; hw * hh];
-    for y in 0..hh {
-        for x in 0..hw {
-            for (j, ty) in TAPS.iter().enumerate() {
-                let sy = (2 * y + j).saturating_sub(1).min(h - 1);
-                for (i, tx) in TAPS.iter().enumerate() {
-                    let s = slopes[sy * w + (2 * x + i).saturating_sub(1).min(w - 1)];
-                    (0..2).for_each(|k| out[y * hw + x][k] += ty * tx * s[k]);
-                }
+/// A cell's weight in the verdict: strength × quality × area in tiles.
+fn weight(cell: &Cell) -> f32 {
+    strength_weight(cell) * cell.quality * cell.area
+}
+
+/// Each tile's vote for the picture: the votes of the cells over it, weighted by their
+/// strength × quality; its weight the largest of those.
+fn tile_votes(cells: &[Cell], columns: u32, rows: u32) -> Vec<TileVote> {
+    let mut sums = vec![(0.0f32, 0.0f32, 0.0f32); (columns * rows) as usize];
+    for cell in cells {
+        let [c0, r0, cs, rs] = cell.tiles;
+        let w = strength_weight(cell) * cell.quality;
+        for row in r0..(r0 + rs).min(rows) {
+            for column in c0..(c0 + cs).min(columns) {
+                let s = &mut sums[(row * columns + column) as usize];
+                (s.0, s.1, s.2) = (s.0 + w * cell.vote, s.1 + w, s.2.max(w));
             }
         }
     }
-    (out, hw, hh)
-}
-
-/// A tile's vote over its octaves: their votes' mean weighted by each octave's weight, so every
-/// octave with full evidence has an equal say; the tile weighs as its best-evidenced octave.
-fn octaves_vote(octaves: impl Iterator<Item = TileVote> + Clone) -> TileVote {
-    let weight: f32 = octaves.clone().map(|o| o.weight).sum();
-    if weight <= 0.0 {
-        return TileVote { vote: 0.0, weight: 0.0 };
-    }
-    let vote = octaves.clone().map(|o| o.weight * o.vote).sum::<f32>() / weight;
-    TileVote { vote, weight: octaves.map(|o| o.weight).fold(0.0, f32::max) }
-}
-
-/// A tile's vote from its sums: `2·Σab / Σ(a² + b²)` (= `(E_dx − E_gl) / (E_dx + E_gl)`),
-/// weighted by its mean `|ab|` between [`WEIGHT_FLOOR`] and [`WEIGHT_FULL`].
-fn tile_vote(s: &TileSums) -> TileVote {
-    if s.texels == 0.0 || s.mixed <= 0.0 {
-        return TileVote { vote: 0.0, weight: 0.0 };
-    }
-    let strength = (s.magnitude / s.texels) as f32;
-    let weight = ((strength - WEIGHT_FLOOR) / (WEIGHT_FULL - WEIGHT_FLOOR)).clamp(0.0, 1.0);
-    TileVote { vote: (2.0 * s.cross / s.mixed).clamp(-1.0, 1.0) as f32, weight }
+    sums.iter()
+        .map(|&(vote, total, best)| TileVote { vote: if total > 0.0 { vote / total } else { 0.0 }, weight: best })
+        .collect()
 }
 
 /// The weighted mean vote, its standard error and the confidence `Φ(|m| / se)`.
-fn verdict(tiles: &[TileVote]) -> Result<(GreenConvention, f32), Undetermined> {
-    let total: f32 = tiles.iter().map(|t| t.weight).sum();
-    let mean = tiles.iter().map(|t| t.weight * t.vote).sum::<f32>() / total;
-    let spread: f32 = tiles.iter().map(|t| t.weight * t.weight * ((t.vote - mean).powi(2) + VOTE_SPREAD.powi(2))).sum();
+fn verdict(cells: &[Cell]) -> Result<(GreenConvention, f32), Undetermined> {
+    let total: f32 = cells.iter().map(weight).sum();
+    if total < MIN_EVIDENCE {
+        return Err(Undetermined::MixedTiles);
+    }
+    let mean = cells.iter().map(|c| weight(c) * c.vote).sum::<f32>() / total;
+    let octaves = cells.iter().map(|c| c.octave + 1).max().unwrap_or(0);
+    let mut octave_means = vec![(0.0f32, 0.0f32); octaves];
+    for c in cells {
+        let m = &mut octave_means[c.octave];
+        (m.0, m.1) = (m.0 + weight(c) * c.vote, m.1 + weight(c));
+    }
+    let octave_mean = |c: &Cell| octave_means[c.octave].0 / octave_means[c.octave].1.max(f32::MIN_POSITIVE);
+    let own = |c: &Cell| VOTE_SPREAD * (1.0 - c.quality);
+    let spread: f32 =
+        cells.iter().map(|c| weight(c).powi(2) * ((c.vote - octave_mean(c)).powi(2) + own(c).powi(2))).sum();
     let standard_error = spread.sqrt() / total;
-    let confidence = normal_cdf(mean.abs() / standard_error);
+    let confidence = if standard_error > 0.0 { normal_cdf(mean.abs() / standard_error) } else { 1.0 };
     let convention = if mean >= 0.0 { GreenConvention::OpenGl } else { GreenConvention::DirectX };
     if confidence < DECIDED_CONFIDENCE {
         return Err(Undetermined::MixedTiles);
@@ -354,6 +268,54 @@ mod tests {
         assert_eq!(convention, GreenConvention::OpenGl, "{confidence}");
         let flipped: Vec<Vec3> = normals.iter().map(|n| Vec3::new(n.x, -n.y, n.z)).collect();
         assert_eq!(green_evidence(&flipped, 128, 128).verdict.unwrap().0, GreenConvention::DirectX);
+    }
+
+    /// Blobs of radius 3 texels with random signs, printed into both slopes alike (as a
+    /// darkening of red and green): no gradient under either reading.
+    fn printed_blobs(size: u32) -> impl Fn(f32, f32) -> f32 {
+        let mut seed = 7u32;
+        let mut next = move || {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (seed >> 8) as f32 / (1 << 24) as f32
+        };
+        let blobs: Vec<(f32, f32, f32)> =
+            (0..size * size / 24).map(|_| (next() * size as f32, next() * size as f32, next() - 0.5)).collect();
+        move |x, y| blobs.iter().map(|&(bx, by, s)| s * (-((x - bx).powi(2) + (y - by).powi(2)) / 9.0).exp()).sum()
+    }
+
+    /// Printed detail is no gradient under either reading, so it carries no evidence: alone it
+    /// decides nothing, and over weaker coarse relief the relief decides the map.
+    #[test]
+    fn printed_detail_is_no_evidence_and_does_not_hide_the_relief() {
+        let printed = printed_blobs(128);
+        let alone = normals_of(128, 128, |x, y| (0.4 * printed(x, y), 0.4 * printed(x, y)));
+        assert_eq!(green_evidence(&alone, 128, 128).verdict, Err(Undetermined::MixedTiles));
+        let over_relief = normals_of(128, 128, |x, y| {
+            let (p, q) = bumps(x / 4.0, y / 4.0);
+            let g = 0.4 * printed(x, y);
+            (0.25 * p + g, 0.25 * q + g)
+        });
+        let (convention, confidence) = green_evidence(&over_relief, 128, 128).verdict.unwrap();
+        assert_eq!(convention, GreenConvention::OpenGl, "{confidence}");
+        let flipped: Vec<Vec3> = over_relief.iter().map(|n| Vec3::new(n.x, -n.y, n.z)).collect();
+        assert_eq!(green_evidence(&flipped, 128, 128).verdict.unwrap().0, GreenConvention::DirectX);
+    }
+
+    /// Gentle relief (period 64 texels, slopes within ±0.005: under one 8-bit level) stored in
+    /// 8 bits. Against a floor of 10× octave 0's rounding noise at every octave it is too flat;
+    /// the rounding noise falls to about a quarter an octave, and the coarse octaves hear it.
+    #[test]
+    fn gentle_coarse_relief_is_heard_above_each_octaves_rounding_noise() {
+        let rounded = |n: Vec3| (((n + 1.0) * 127.5).round() / 127.5 - 1.0).normalize();
+        let gentle = normals_of(192, 192, |x, y| {
+            let (p, q) = bumps(x / 4.0, y / 4.0);
+            (0.01 * p, 0.01 * q)
+        });
+        let stored: Vec<Vec3> = gentle.into_iter().map(rounded).collect();
+        let (convention, confidence) = green_evidence(&stored, 192, 192).verdict.unwrap();
+        assert_eq!(convention, GreenConvention::OpenGl, "{confidence}");
+        let flipped: Vec<Vec3> = stored.iter().map(|n| Vec3::new(n.x, -n.y, n.z)).collect();
+        assert_eq!(green_evidence(&flipped, 192, 192).verdict.unwrap().0, GreenConvention::DirectX);
     }
 
     #[test]

@@ -5,6 +5,7 @@
 //! much its averaged normals shorten per mip level ([`mip_shortening`]).
 
 pub mod green;
+pub mod green_cells;
 pub mod maps;
 pub mod mip_shortening;
 pub mod normal_map;

@@ -22,13 +22,14 @@ pub fn votes_picture(normals: &[Vec3], width: u32, height: u32, evidence: &Green
     RgbaImage::from_fn(width, height, |x, y| {
         let n = normals.get((y * width + x) as usize).copied().unwrap_or(Vec3::Z);
         let grey = 255.0 * (0.25 + 0.75 * n.dot(light).max(0.0));
-        let index = (y / tile) * evidence.columns + x / tile;
+        let index =
+            (y / tile).min(evidence.rows.max(1) - 1) * evidence.columns + (x / tile).min(evidence.columns.max(1) - 1);
         let Some(vote) = evidence.tiles.get(index as usize) else {
             return image::Rgba([grey as u8, grey as u8, grey as u8, 255]);
         };
         let tint = if vote.vote >= 0.0 { OPENGL_TINT } else { DIRECTX_TINT };
         let cover = MAX_TINT * (vote.weight * vote.vote.abs()).sqrt();
-        let edge = x % tile == 0 || y % tile == 0;
+        let edge = (x % tile == 0 && x / tile < evidence.columns) || (y % tile == 0 && y / tile < evidence.rows);
         let rgb = tint.map(|t| {
             let c = grey + cover * (t - grey);
             (if edge { 0.6 * c } else { c }).round() as u8
