@@ -11,13 +11,18 @@
 //!   halves are the sides, labelled by `labels`), or `[[tiles]]`, each a `label` and a
 //!   `preset` table laid over the lesson's (a grid of N settings, side by side);
 //! - optionally `min_changed` (percent) with `why_fewer`: a lesson whose point shows on fewer
-//!   than [`MIN_CHANGED_PERCENT`] of the pixels says why and how many it holds.
+//!   than [`MIN_CHANGED_PERCENT`] of the pixels says why and how many it holds;
+//! - optionally `inset = { zoom = N }` (N from 2 to 8): a point small by nature is shown
+//!   magnified as well, the window where the sides differ most drawn N times larger from each
+//!   side ([`inset`]).
 //!
 //! The sides "differ" at a pixel when some channel differs by at least [`CHANGED_STEP`] of 255
 //! ([`measure`]).
 
 pub mod deck;
 pub mod files;
+pub mod inset;
+pub mod keys;
 pub mod measure;
 pub mod pdf;
 pub mod slide;
@@ -99,6 +104,8 @@ pub struct Lesson {
     pub sides: Vec<Side>,
     /// Whether the sides are the halves of the preset's split view (else a grid).
     pub split: bool,
+    /// The inset's magnification, for a lesson that shows one ([`inset`]).
+    pub inset: Option<u32>,
 }
 
 /// The file as written.
@@ -111,9 +118,17 @@ struct LessonFile {
     min_changed: Option<f32>,
     why_fewer: Option<String>,
     labels: Option<[String; 2]>,
+    inset: Option<InsetFile>,
     preset: toml::Table,
     #[serde(default)]
     tiles: Vec<TileFile>,
+}
+
+/// `inset = { zoom = N }`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct InsetFile {
+    zoom: u32,
 }
 
 #[derive(Deserialize)]
@@ -190,6 +205,13 @@ impl Lesson {
         if !file.claim.contains("{changed}") {
             return Err(fail("the claim says {changed} where the measured number goes".into()));
         }
+        let inset = match file.inset {
+            Some(InsetFile { zoom }) if !inset::ZOOMS.contains(&zoom) => {
+                let [low, high] = [inset::ZOOMS.start(), inset::ZOOMS.end()];
+                return Err(fail(format!("inset.zoom = {zoom}: a magnification from {low} to {high}")));
+            }
+            inset_file => inset_file.map(|i| i.zoom),
+        };
         let sides = sides.into_iter().map(|(label, preset, half)| Side { label, preset, half }).collect();
         Ok(Lesson {
             name: name.to_owned(),
@@ -201,6 +223,7 @@ impl Lesson {
             preset,
             sides,
             split: split && file.tiles.is_empty(),
+            inset,
         })
     }
 
@@ -307,6 +330,11 @@ mod tests {
             format!("{base}[preset.shading]\nstrenght = 1.0\n[[tiles]]\nlabel = \"a\"\n[[tiles]]\nlabel = \"b\"\n");
         assert!(Lesson::parse("x", &unknown).unwrap_err().message.contains("strenght"));
         assert!(select(&["no-such".into()]).unwrap_err().message.contains("cg-wall"));
+        let labelled = format!("labels = [\"a\", \"b\"]\n{split}");
+        let zoomed = |zoom: &str| Lesson::parse("x", &format!("inset = {{ zoom = {zoom} }}\n{labelled}"));
+        assert_eq!(zoomed("4").unwrap().inset, Some(4));
+        assert!(zoomed("1").unwrap_err().message.contains("inset.zoom = 1"));
+        assert!(zoomed("\"big\"").is_err());
     }
 
     #[test]
