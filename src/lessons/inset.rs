@@ -77,8 +77,8 @@ fn summed_visible(a: &RgbaImage, b: &RgbaImage) -> Vec<u32> {
         let mut row = 0;
         for x in 0..width {
             let (p, q) = (a.get_pixel(x, y).0, b.get_pixel(x, y).0);
-            let seen = p != q
-                && delta_e_2000(lab([p[0], p[1], p[2]]), lab([q[0], q[1], q[2]])) >= f64::from(VISIBLE_DELTA_E);
+            let seen =
+                p != q && delta_e_2000(lab([p[0], p[1], p[2]]), lab([q[0], q[1], q[2]])) >= f64::from(VISIBLE_DELTA_E);
             row += u32::from(seen);
             let i = (y as usize + 1) * stride + x as usize + 1;
             table[i] = table[i - stride] + row;

@@ -33,7 +33,11 @@ pub fn side_view(side: &Side) -> ViewMode {
 pub fn is_direction_view(view: ViewMode) -> bool {
     matches!(
         view,
-        ViewMode::Tangent | ViewMode::Bitangent | ViewMode::Normal | ViewMode::ShadingNormal | ViewMode::ClearcoatNormal
+        ViewMode::Tangent
+            | ViewMode::Bitangent
+            | ViewMode::Normal
+            | ViewMode::ShadingNormal
+            | ViewMode::ClearcoatNormal
     )
 }
 

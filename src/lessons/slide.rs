@@ -325,7 +325,8 @@ mod tests {
     use crate::lessons::catalogue;
 
     /// Every caption and claim fits the slide whole at the sizes slides are made at, 16:9 and
-    /// 4:3, and the pictures fit between the title and the caption.
+    /// 4:3: each line within the width, the last claim line above the slide's bottom edge; and
+    /// the pictures and insets fit between the title and the caption.
     #[test]
     fn captions_claims_and_pictures_fit_every_slide() {
         for size in [[1920, 1080], [960, 540], [1280, 720], [1440, 1080], [1024, 768]] {
@@ -344,6 +345,15 @@ mod tests {
                     assert!(place.x + place.size[0] <= size[0] && place.y + place.size[1] < size[1], "{}", lesson.name);
                     assert!(place.size[1] as f32 > size[1] as f32 * 0.2, "{}: {:?}", lesson.name, place.size);
                 }
+                // The last claim line's baseline as `compose` sets it, with room for descenders.
+                let pictures_bottom = pictures.iter().chain(&insets).map(|p| p.y + p.size[1]).max().unwrap() as f32;
+                let text_lines = (lines.len() + claim.len() - 1) as f32;
+                let last = pictures_bottom
+                    + layout.label_px * LEADING * 1.4
+                    + layout.body_px * 1.2
+                    + layout.body_px * LEADING * text_lines
+                    + layout.body_px * 0.4;
+                assert!(last + layout.body_px * 0.3 <= size[1] as f32, "{} at {size:?}: {last}", lesson.name);
             }
         }
     }
@@ -356,8 +366,12 @@ mod tests {
         let dark = SlideLayout::new([960, 540]);
         let size = dark.picture_size(&lesson);
         let picture = RgbaImage::from_pixel(size[0], size[1], Rgba([90, 140, 200, 255]));
-        let measured =
-            Measured { sides: vec![picture.clone(); lesson.sides.len()], split: None, changed_percent: 12.0, inset: None };
+        let measured = Measured {
+            sides: vec![picture.clone(); lesson.sides.len()],
+            split: None,
+            changed_percent: 12.0,
+            inset: None,
+        };
         let slides =
             [SlideTheme::Dark, SlideTheme::Light].map(|theme| dark.with_theme(theme).compose(&lesson, &measured, 1, 1));
         let place = &dark.places(&lesson).0[0];
