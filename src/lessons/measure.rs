@@ -3,6 +3,7 @@
 
 use image::RgbaImage;
 
+use super::inset::{self, Inset};
 use super::{CHANGED_STEP, Lesson, Side};
 use crate::error::RenderError;
 use crate::frame::SceneUploads;
@@ -79,11 +80,14 @@ pub struct Measured {
     pub split: Option<RgbaImage>,
     /// The smallest share of changed pixels between neighbouring sides, percent.
     pub changed_percent: f32,
+    /// For a lesson with an inset: the window where the sides differ most, magnified.
+    pub inset: Option<Inset>,
 }
 
 /// Draws every side of `lesson` at `size` pixels (4× MSAA, no supersampling, as `render`)
 /// and measures [`changed_percent`] between neighbouring sides; with `split_picture`, a split
-/// lesson's split picture as well.
+/// lesson's split picture as well; for a lesson with an inset, each side magnified
+/// ([`inset`]).
 pub fn measure(
     renderer: &mut Renderer,
     scenes: &mut SceneCache,
@@ -101,7 +105,20 @@ pub fn measure(
         _ => None,
     };
     let changed_percent = sides.windows(2).map(|pair| changed_percent(&pair[0], &pair[1])).fold(100.0, f32::min);
-    Ok(Measured { sides, split, changed_percent })
+    let inset = match lesson.inset {
+        Some(zoom) => {
+            let shown = inset::inset_size(lesson, size);
+            let window = inset::most_different_window(&sides, inset::window_size(shown, zoom, size));
+            let factor = inset::drawn_factor(size, zoom);
+            let magnified = lesson.sides.iter().map(|side| {
+                let picture = draw(renderer, scenes, lesson, side, size.map(|c| c * factor), false, None)?;
+                Ok(inset::cut(&picture, window, factor, shown))
+            });
+            Some(Inset { window, sides: magnified.collect::<Result<_, LessonRenderError>>()? })
+        }
+        None => None,
+    };
+    Ok(Measured { sides, split, changed_percent, inset })
 }
 
 /// The viewer's camera and lights now, laid over a lesson's sides so that a grid shown live

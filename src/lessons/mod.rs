@@ -13,7 +13,10 @@
 //! - optionally `uv_error_angle_deg`: the claim may then say `{uv_error}`, each side's mean
 //!   parallax UV error in texels against the exact intersection at that angle ([`uv_claim`]);
 //! - optionally `min_changed` (percent) with `why_fewer`: a lesson whose point shows on fewer
-//!   than [`MIN_CHANGED_PERCENT`] of the pixels says why and how many it holds.
+//!   than [`MIN_CHANGED_PERCENT`] of the pixels says why and how many it holds;
+//! - optionally `inset = { zoom = N }` (N from 2 to 8): a point small by nature is shown
+//!   magnified as well, the window where the sides differ most drawn N times larger from each
+//!   side ([`inset`]).
 //!
 //! The sides "differ" at a pixel when some channel differs by at least [`CHANGED_STEP`] of 255
 //! ([`measure`]).
@@ -22,6 +25,8 @@ pub mod deck;
 pub mod deck_html;
 pub mod files;
 pub mod grid;
+pub mod inset;
+pub mod keys;
 pub mod measure;
 pub mod pdf;
 pub mod slide;
@@ -109,6 +114,8 @@ pub struct Lesson {
     /// The angle, degrees from the wall's normal, at which a claim's `{uv_error}` is measured
     /// ([`uv_claim`]).
     pub uv_error_angle_deg: Option<f32>,
+    /// The inset's magnification, for a lesson that shows one ([`inset`]).
+    pub inset: Option<u32>,
 }
 
 /// The file as written.
@@ -122,9 +129,17 @@ struct LessonFile {
     why_fewer: Option<String>,
     labels: Option<[String; 2]>,
     uv_error_angle_deg: Option<f32>,
+    inset: Option<InsetFile>,
     preset: toml::Table,
     #[serde(default)]
     tiles: Vec<TileFile>,
+}
+
+/// `inset = { zoom = N }`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct InsetFile {
+    zoom: u32,
 }
 
 #[derive(Deserialize)]
@@ -201,6 +216,13 @@ impl Lesson {
         if !file.claim.contains("{changed}") {
             return Err(fail("the claim says {changed} where the measured number goes".into()));
         }
+        let inset = match file.inset {
+            Some(InsetFile { zoom }) if !inset::ZOOMS.contains(&zoom) => {
+                let [low, high] = [inset::ZOOMS.start(), inset::ZOOMS.end()];
+                return Err(fail(format!("inset.zoom = {zoom}: a magnification from {low} to {high}")));
+            }
+            inset_file => inset_file.map(|i| i.zoom),
+        };
         let sides = sides.into_iter().map(|(label, preset, half)| Side { label, preset, half }).collect();
         let lesson = Lesson {
             name: name.to_owned(),
@@ -213,6 +235,7 @@ impl Lesson {
             sides,
             split: split && file.tiles.is_empty(),
             uv_error_angle_deg: file.uv_error_angle_deg,
+            inset,
         };
         uv_claim::check(&lesson).map_err(fail)?;
         Ok(lesson)
@@ -326,6 +349,11 @@ mod tests {
             format!("{base}[preset.shading]\nstrenght = 1.0\n[[tiles]]\nlabel = \"a\"\n[[tiles]]\nlabel = \"b\"\n");
         assert!(Lesson::parse("x", &unknown).unwrap_err().message.contains("strenght"));
         assert!(select(&["no-such".into()]).unwrap_err().message.contains("cg-wall"));
+        let labelled = format!("labels = [\"a\", \"b\"]\n{split}");
+        let zoomed = |zoom: &str| Lesson::parse("x", &format!("inset = {{ zoom = {zoom} }}\n{labelled}"));
+        assert_eq!(zoomed("4").unwrap().inset, Some(4));
+        assert!(zoomed("1").unwrap_err().message.contains("inset.zoom = 1"));
+        assert!(zoomed("\"big\"").is_err());
     }
 
     #[test]

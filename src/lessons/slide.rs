@@ -5,6 +5,8 @@
 use image::{Rgba, RgbaImage};
 
 use super::Lesson;
+use super::inset::{Inset, inset_size};
+use super::keys;
 use super::measure::Measured;
 use crate::render::annotate;
 use crate::render::text::{self, text_width, wrap_paragraph};
@@ -119,15 +121,27 @@ impl SlideLayout {
         [self.margin, top, self.text_width(), (bottom - top).max(1.0)]
     }
 
-    /// Each picture's place: one 16:9 picture for a split, else one per side in the rows of at
-    /// most [`MAX_COLUMNS`] that make them largest, centred.
-    fn places(&self, lesson: &Lesson) -> Vec<Placed> {
+    /// Each picture's place and each inset's: one 16:9 picture for a split (with its two
+    /// insets, half its size, stacked beside it), else one per side in the rows of at most
+    /// [`MAX_COLUMNS`] that make them largest (with an inset under each), centred.
+    fn places(&self, lesson: &Lesson) -> (Vec<Placed>, Vec<Placed>) {
         let [x0, y0, width, height] = self.picture_area(lesson);
+        if lesson.split && lesson.inset.is_some() {
+            let w = ((width - self.gap) / 1.5).min((height - self.gap) * 16.0 / 9.0).floor().max(16.0);
+            let main = [w as u32, (w * 9.0 / 16.0).round() as u32];
+            let [iw, ih] = inset_size(lesson, main);
+            let left = (x0 + (width - w - self.gap - iw as f32) / 2.0).round() as u32;
+            let top = (y0 + ((height - main[1] as f32 - self.gap) / 2.0).max(0.0)).round() as u32;
+            let column = left + main[0] + self.gap.round() as u32;
+            let insets = [top, top + ih + self.gap.round() as u32].map(|y| Placed { x: column, y, size: [iw, ih] });
+            return (vec![Placed { x: left, y: top, size: main }], insets.to_vec());
+        }
         let count = if lesson.split { 1 } else { lesson.sides.len() };
+        let blocks = if lesson.inset.is_some() { 2 } else { 1 };
         let label_row = self.label_px * LEADING * 1.4;
         // The tile width with `columns` columns: limited by the width and by the height.
         let tile_width = |columns: usize| {
-            let rows = count.div_ceil(columns);
+            let rows = count.div_ceil(columns) * blocks;
             let by_width = (width - self.gap * (columns - 1) as f32) / columns as f32;
             let by_height = ((height - label_row * (rows - 1) as f32) / rows as f32) * 16.0 / 9.0;
             by_width.min(by_height).floor().max(16.0)
@@ -143,21 +157,24 @@ impl SlideLayout {
         let row_width = w * columns as f32 + self.gap * (columns - 1) as f32;
         let left = x0 + (width - row_width) / 2.0;
         // The pictures (and the text under them) centred in the height they leave free.
-        let used = h * rows as f32 + label_row * (rows - 1) as f32;
+        let used = h * (rows * blocks) as f32 + label_row * (rows * blocks - 1) as f32;
         let y0 = y0 + ((height - used) / 2.0).max(0.0);
-        (0..count)
+        let mut places: Vec<Placed> = (0..count * blocks)
             .map(|i| {
-                let (column, row) = ((i % columns) as f32, (i / columns) as f32);
+                let (block, i) = (i / count, i % count);
+                let (column, row) = ((i % columns) as f32, (block * rows + i / columns) as f32);
                 let x = left + column * (w + self.gap);
                 let y = y0 + row * (h + label_row);
                 Placed { x: x.round() as u32, y: y.round() as u32, size: [w as u32, h as u32] }
             })
-            .collect()
+            .collect();
+        let insets = places.split_off(count);
+        (places, insets)
     }
 
     /// The size every side of `lesson` is drawn at on this slide.
     pub fn picture_size(&self, lesson: &Lesson) -> [u32; 2] {
-        self.places(lesson)[0].size
+        self.places(lesson).0[0].size
     }
 
     /// The slide of `lesson` (number `index` of `total`, from 1) with the pictures `measured`
@@ -173,7 +190,7 @@ impl SlideLayout {
         let page = format!("{index} / {total}");
         let page_x = width as f32 - m - text_width(&page, self.label_px);
         draw_text(&mut slide, &page, page_x, m + self.label_px, self.label_px, colours.muted);
-        let places = self.places(lesson);
+        let (places, inset_places) = self.places(lesson);
         let pictures: Vec<&RgbaImage> = match &measured.split {
             Some(split) if lesson.split => vec![split],
             _ => measured.sides.iter().collect(),
@@ -181,6 +198,9 @@ impl SlideLayout {
         let mut labels_bottom = 0.0f32;
         for (place, picture) in places.iter().zip(pictures) {
             image::imageops::replace(&mut slide, picture, place.x.into(), place.y.into());
+            labels_bottom = labels_bottom.max((place.y + place.size[1]) as f32);
+        }
+        for place in &inset_places {
             labels_bottom = labels_bottom.max((place.y + place.size[1]) as f32);
         }
         let label_baseline = |place: &Placed| (place.y + place.size[1]) as f32 + self.label_px * 1.2;
@@ -206,6 +226,13 @@ impl SlideLayout {
                 draw_text(&mut slide, &label, x, label_baseline(place), self.label_px, colours.muted);
             }
         }
+        let rects = |places: &[Placed]| places.iter().map(|p| [p.x, p.y, p.size[0], p.size[1]]).collect::<Vec<_>>();
+        let areas = side_areas(lesson, &rects(&places));
+        keys::draw(&mut slide, lesson, &areas, self.label_px);
+        if let (Some(inset), Some(zoom)) = (&measured.inset, lesson.inset) {
+            let shown = InsetSlide { inset, zoom, places: &rects(&places), insets: &rects(&inset_places) };
+            self.draw_insets(&mut slide, lesson, &shown);
+        }
         let mut baseline = labels_bottom + self.label_px * LEADING * 1.4 + self.body_px * 1.2;
         for line in self.caption_lines(lesson) {
             draw_text(&mut slide, &line, m, baseline, self.body_px, colours.text);
@@ -216,6 +243,61 @@ impl SlideLayout {
             baseline += self.body_px * LEADING;
         }
         slide
+    }
+}
+
+/// A lesson's inset as the slide shows it: the rectangles (`[x, y, width, height]`) of the
+/// pictures the window is framed on and of the magnified pictures.
+struct InsetSlide<'a> {
+    inset: &'a Inset,
+    zoom: u32,
+    places: &'a [[u32; 4]],
+    insets: &'a [[u32; 4]],
+}
+
+impl SlideLayout {
+    /// The magnified pictures with their labels (inside, top left), a frame around each and
+    /// one around the window on each picture they come from, in the theme's accent colour.
+    fn draw_insets(&self, slide: &mut RgbaImage, lesson: &Lesson, shown: &InsetSlide) {
+        let accent = self.theme.palette().accent;
+        let line = (self.size[1] as f32 / 270.0).round().max(1.0) as u32;
+        let [wx, wy, ww, wh] = shown.inset.window;
+        for &[x, y, _, _] in shown.places {
+            frame(slide, [x + wx, y + wy, ww, wh], line, accent);
+        }
+        let px = self.label_px;
+        for ((&place, picture), side) in shown.insets.iter().zip(&shown.inset.sides).zip(&lesson.sides) {
+            let [x, y, w, _] = place;
+            image::imageops::replace(slide, picture, x.into(), y.into());
+            frame(slide, place, line, accent);
+            let label = fit(&format!("{} ×{}", side.label, shown.zoom), px, w as f32 - px);
+            let pad = px * 0.3;
+            let (x, y) = (x as f32 + pad, y as f32 + pad);
+            let backing = [x, y, x + text_width(&label, px) + 2.0 * pad, y + px * 1.3];
+            text::fill(slide, backing.map(|v| v.round() as i64), [0, 0, 0], 170.0 / 255.0);
+            draw_text(slide, &label, x + pad, y + px * 1.0, px, [255, 255, 255]);
+        }
+    }
+}
+
+/// Where each side of `lesson` shows on the slide (`[x, y, width, height]`): a split's halves
+/// of its one picture, else each side's own picture of `places`.
+fn side_areas(lesson: &Lesson, places: &[[u32; 4]]) -> Vec<[u32; 4]> {
+    if !lesson.split {
+        return places.to_vec();
+    }
+    let [x, y, w, h] = places[0];
+    let column = (w as f32 * lesson.preset.split.divider.clamp(0.0, 1.0)).round() as u32;
+    vec![[x, y, column, h], [x + column, y, w - column, h]]
+}
+
+/// A frame `line` pixels wide just outside `[x, y, width, height]`.
+fn frame(slide: &mut RgbaImage, [x, y, w, h]: [u32; 4], line: u32, color: [u8; 3]) {
+    let [x0, y0] = [x, y].map(|c| i64::from(c) - i64::from(line));
+    let [x1, y1] = [i64::from(x + w) + i64::from(line), i64::from(y + h) + i64::from(line)];
+    let (l, r, t, b) = (i64::from(x), i64::from(x + w), i64::from(y), i64::from(y + h));
+    for bar in [[x0, y0, x1, t], [x0, b, x1, y1], [x0, t, l, b], [r, t, x1, b]] {
+        text::fill(slide, bar, color, 1.0);
     }
 }
 
@@ -243,7 +325,8 @@ mod tests {
     use crate::lessons::catalogue;
 
     /// Every caption and claim fits the slide whole at the sizes slides are made at, 16:9 and
-    /// 4:3, and the pictures fit between the title and the caption.
+    /// 4:3: each line within the width, the last claim line above the slide's bottom edge; and
+    /// the pictures and insets fit between the title and the caption.
     #[test]
     fn captions_claims_and_pictures_fit_every_slide() {
         for size in [[1920, 1080], [960, 540], [1280, 720], [1440, 1080], [1024, 768]] {
@@ -256,10 +339,21 @@ mod tests {
                 assert!(claim.iter().all(|l| text_width(l, layout.body_px) <= layout.text_width()), "{}", lesson.name);
                 let whole = lesson.claim_with(100.0).split_whitespace().collect::<Vec<_>>().join(" ");
                 assert_eq!(claim.join(" "), whole, "{}: the claim whole, not cut", lesson.name);
-                for place in layout.places(&lesson) {
+                let (pictures, insets) = layout.places(&lesson);
+                assert_eq!(insets.len(), if lesson.inset.is_some() { lesson.sides.len() } else { 0 });
+                for place in pictures.iter().chain(&insets) {
                     assert!(place.x + place.size[0] <= size[0] && place.y + place.size[1] < size[1], "{}", lesson.name);
                     assert!(place.size[1] as f32 > size[1] as f32 * 0.2, "{}: {:?}", lesson.name, place.size);
                 }
+                // The last claim line's baseline as `compose` sets it, with room for descenders.
+                let pictures_bottom = pictures.iter().chain(&insets).map(|p| p.y + p.size[1]).max().unwrap() as f32;
+                let text_lines = (lines.len() + claim.len() - 1) as f32;
+                let last = pictures_bottom
+                    + layout.label_px * LEADING * 1.4
+                    + layout.body_px * 1.2
+                    + layout.body_px * LEADING * text_lines
+                    + layout.body_px * 0.4;
+                assert!(last + layout.body_px * 0.3 <= size[1] as f32, "{} at {size:?}: {last}", lesson.name);
             }
         }
     }
@@ -272,11 +366,15 @@ mod tests {
         let dark = SlideLayout::new([960, 540]);
         let size = dark.picture_size(&lesson);
         let picture = RgbaImage::from_pixel(size[0], size[1], Rgba([90, 140, 200, 255]));
-        let measured =
-            Measured { sides: vec![picture.clone(); lesson.sides.len()], split: None, changed_percent: 12.0 };
+        let measured = Measured {
+            sides: vec![picture.clone(); lesson.sides.len()],
+            split: None,
+            changed_percent: 12.0,
+            inset: None,
+        };
         let slides =
             [SlideTheme::Dark, SlideTheme::Light].map(|theme| dark.with_theme(theme).compose(&lesson, &measured, 1, 1));
-        let place = &dark.places(&lesson)[0];
+        let place = &dark.places(&lesson).0[0];
         for (slide, theme) in slides.iter().zip([SlideTheme::Dark, SlideTheme::Light]) {
             let colours = theme.palette();
             assert_eq!(slide.get_pixel(1, 1).0[..3], colours.background, "{theme:?}");

@@ -132,7 +132,8 @@ impl LessonsForm {
             self.measurement = None;
             return;
         }
-        let lesson = self.catalogue[index].clone();
+        // The card's number is the whole pictures' share: the magnified inset is left undrawn.
+        let lesson = Lesson { inset: None, ..self.catalogue[index].clone() };
         let (sender, receiver) = mpsc::channel();
         self.results = Some(receiver);
         self.measurement = Some(Measurement::Running);
