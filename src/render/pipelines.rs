@@ -36,6 +36,10 @@ pub enum Pass {
         /// The parallax technique (the `PARALLAX` constant); [`Parallax::Off`] for instances
         /// without a height map bound for it.
         parallax: Parallax,
+        /// Whether the searches' soft self-shadows are on (the `PARALLAX_SHADOWS` constant);
+        /// off, their code is left out, which saves a height sample and a loop per light on
+        /// lavapipe, where a branch on the strength uniform would run for every pixel.
+        parallax_shadows: bool,
         /// The classic mistake drawn (the `MISTAKE` constant).
         mistake: Mistake,
         /// The legacy look of a lit view (the `LEGACY` constant); off in the other views.
@@ -321,6 +325,7 @@ fn mesh_constants(pass: Pass, encodes_srgb: (&'static str, f64)) -> Vec<(&'stati
         view,
         lighting,
         parallax,
+        parallax_shadows,
         mistake,
         legacy,
         lighting_space,
@@ -337,6 +342,9 @@ fn mesh_constants(pass: Pass, encodes_srgb: (&'static str, f64)) -> Vec<(&'stati
     constants.extend(lighting.map(|model| ("SHADING_MODEL", f64::from(model.shader_index()))));
     if parallax.shifts() {
         constants.push(("PARALLAX", f64::from(parallax.shader_index())));
+        if !parallax_shadows {
+            constants.push(("PARALLAX_SHADOWS", 0.0));
+        }
     }
     if mistake != Mistake::None {
         constants.push(("MISTAKE", f64::from(mistake.shader_index())));
