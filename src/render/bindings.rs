@@ -157,7 +157,8 @@ mod tests {
     use crate::render::uniforms::{
         DEPTH_MAP, HAS_BUMP_CORRECTION, HAS_CLEARCOAT, HAS_CLEARCOAT_NORMAL, HAS_CLEARCOAT_ROUGHNESS_TEXTURE,
         HAS_CLEARCOAT_TEXTURE, HAS_DETAIL, HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS,
-        HAS_OCCLUSION_TEXTURE, HAS_PARALLAX_HEIGHT, PARALLAX_CLAMP_U, PARALLAX_CLAMP_V,
+        HAS_OCCLUSION_TEXTURE, HAS_PARALLAX_HEIGHT, OCCLUSION_IN_METALLIC_ROUGHNESS, PARALLAX_CLAMP_U,
+        PARALLAX_CLAMP_V,
     };
     use crate::scene::{NormalConvention, ShadingModel, SpecularMode};
     use crate::texture::MipFilter;
@@ -267,6 +268,7 @@ mod tests {
             expected.insert(constant_name("MIP_", filter.name()), filter.shader_index());
         }
         expected.insert("HAS_DETAIL".into(), HAS_DETAIL);
+        expected.insert("OCCLUSION_IN_METALLIC_ROUGHNESS".into(), OCCLUSION_IN_METALLIC_ROUGHNESS);
         for method in crate::frame::DetailBlend::all() {
             expected.insert(constant_name("DETAIL_", method.name()), method.shader_index());
         }
