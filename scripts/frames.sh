@@ -12,13 +12,17 @@
 #                                          glTF models missing there print a "missing" row
 # Runs on the Vulkan adapter wgpu picks (WGPU_BACKEND=vulkan for lavapipe).
 set -euo pipefail
+# Paths given in the environment are taken from where the script was started.
+absolute() { [ -z "$1" ] || realpath -m "$1"; }
+bin=$(absolute "${BUMPVIEW_BIN:-}")
+assets=$(absolute "${BUMPVIEW_TEST_ASSETS:-}")
 cd "$(dirname "$0")/.."
 frames=${1:-30}
-bin=${BUMPVIEW_BIN:-${CARGO_TARGET_DIR:-target}/release/bumpview}
-if [ ! -x "$bin" ]; then
-    cargo build --release --bin bumpview
+if [ -z "$bin" ]; then
+    bin=${CARGO_TARGET_DIR:-target}/release/bumpview
+    [ -x "$bin" ] || cargo build --release --bin bumpview
 fi
-assets=${BUMPVIEW_TEST_ASSETS:-../shared/assets}
+assets=${assets:-../shared/assets}
 
 declare -A ratio_of
 # Times one scene: row NAME KEY [ARGS...]; prints a Markdown row, keeps the ratio under KEY.
