@@ -11,6 +11,9 @@
 // The technique the pipeline draws: Parallax::shader_index(), one of the PARALLAX_ constants
 // below (0 is off). A pipeline constant, so a pipeline compiles only its own march.
 override PARALLAX: u32 = 0u;
+// Whether the searches cast soft self-shadows (ParallaxSettings::shadows_on): off, the pipeline
+// compiles no shadow code (lavapipe would run it for every pixel, strength 0 or not).
+override PARALLAX_SHADOWS: bool = true;
 
 const PARALLAX_OFFSET: u32 = 1u;
 const PARALLAX_OFFSET_LIMITED: u32 = 2u;
@@ -203,7 +206,7 @@ fn parallax_relaxed_cone(ray: ParallaxRay, layers: u32) -> f32 {
 // chain::parallax::light_in_tangent_space and soft_shadow: the light towards unit direction
 // `l` arrives times this at the pixel (1 without a search, shadows off, or a light below).
 fn parallax_light_visibility(l: vec3<f32>) -> f32 {
-    if PARALLAX < PARALLAX_STEEP || parallax_hit.marched == 0u {
+    if !PARALLAX_SHADOWS || PARALLAX < PARALLAX_STEEP || parallax_hit.marched == 0u {
         return 1.0;
     }
     let hit = parallax_hit;

@@ -66,7 +66,14 @@ fn lit_color(in: VertexOutput, n_geo: vec3<f32>, n_shading: vec3<f32>, n_coat: v
     // Without an occlusion texture the factor is exactly 1.
     var occlusion = 1.0;
     if has(HAS_OCCLUSION_TEXTURE) {
-        occlusion += object.occlusion_strength * (textureSample(occlusion_texture, detail_sampler, in.uv).r - 1.0);
+        // A packed occlusion-roughness-metallic map is read once: the same texture, sampler and
+        // UV give the same red. Tested on the constant alone (the pipeline's features are the
+        // material's), so the pipeline compiles only one of the two reads.
+        var occluded = metal_rough.r;
+        if (MATERIAL_FEATURES & OCCLUSION_IN_METALLIC_ROUGHNESS) == 0u {
+            occluded = textureSample(occlusion_texture, detail_sampler, in.uv).r;
+        }
+        occlusion += object.occlusion_strength * (occluded - 1.0);
     }
     var coat = vec2<f32>(0.0); // factor, roughness; 0: no coat
     if has(HAS_CLEARCOAT) {

@@ -153,11 +153,12 @@ mod tests {
     use crate::frame::{LegacyLook, LegacySettings, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Mistake, Parallax};
     use crate::frame::{LightingSpace, ShadingMode, ViewMode};
     use crate::names::Named;
-    use crate::render::shaders::{MARKER, MESH, MESH_LEAN};
+    use crate::render::shaders::{MARKER, MESH, MESH_LEAN, MESH_LEAN_PER_VERTEX};
     use crate::render::uniforms::{
         DEPTH_MAP, HAS_BUMP_CORRECTION, HAS_CLEARCOAT, HAS_CLEARCOAT_NORMAL, HAS_CLEARCOAT_ROUGHNESS_TEXTURE,
         HAS_CLEARCOAT_TEXTURE, HAS_DETAIL, HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS,
-        HAS_OCCLUSION_TEXTURE, HAS_PARALLAX_HEIGHT, PARALLAX_CLAMP_U, PARALLAX_CLAMP_V,
+        HAS_OCCLUSION_TEXTURE, HAS_PARALLAX_HEIGHT, OCCLUSION_IN_METALLIC_ROUGHNESS, PARALLAX_CLAMP_U,
+        PARALLAX_CLAMP_V,
     };
     use crate::scene::{NormalConvention, ShadingModel, SpecularMode};
     use crate::texture::MipFilter;
@@ -199,6 +200,7 @@ mod tests {
         assert_eq!(mesh, expected, "the mesh pass against render::bindings");
         expected.extend(LEAN_GROUP.iter().map(|s| (s.wgsl_name.to_owned(), (2, s.binding))));
         assert_eq!(wgsl_bindings(&module(&MESH_LEAN)), expected, "LEAN's mesh pass against render::bindings");
+        assert_eq!(wgsl_bindings(&module(&MESH_LEAN_PER_VERTEX)), expected, "LEAN's per-vertex mesh pass");
         let marker = wgsl_bindings(&module(&MARKER));
         let expected = BTreeMap::from([
             (FRAME.wgsl_name.to_owned(), (0, FRAME.binding)),
@@ -261,11 +263,12 @@ mod tests {
         for mode in SpecularMode::all().iter().copied().filter(|&m| m != SpecularMode::default()) {
             expected.insert(constant_name("SPECULAR_", mode.name()), mode.shader_index());
         }
-        // The mip filters the shader switches on (LEAN has its own module, MESH_LEAN).
+        // The mip filters the shader switches on (LEAN has its own modules, MESH_LEAN and MESH_LEAN_PER_VERTEX).
         for filter in [MipFilter::Toksvig, MipFilter::Vmf, MipFilter::GeometricSpecularAa] {
             expected.insert(constant_name("MIP_", filter.name()), filter.shader_index());
         }
         expected.insert("HAS_DETAIL".into(), HAS_DETAIL);
+        expected.insert("OCCLUSION_IN_METALLIC_ROUGHNESS".into(), OCCLUSION_IN_METALLIC_ROUGHNESS);
         for method in crate::frame::DetailBlend::all() {
             expected.insert(constant_name("DETAIL_", method.name()), method.shader_index());
         }

@@ -36,6 +36,10 @@ pub enum Pass {
         /// The parallax technique (the `PARALLAX` constant); [`Parallax::Off`] for instances
         /// without a height map bound for it.
         parallax: Parallax,
+        /// Whether the searches' soft self-shadows are on (the `PARALLAX_SHADOWS` constant);
+        /// off, their code is left out, which saves a height sample and a loop per light on
+        /// lavapipe, where a branch on the strength uniform would run for every pixel.
+        parallax_shadows: bool,
         /// The classic mistake drawn (the `MISTAKE` constant).
         mistake: Mistake,
         /// The legacy look of a lit view (the `LEGACY` constant); off in the other views.
@@ -53,7 +57,8 @@ pub enum Pass {
         /// shaders/mip_filter.wgsl); [`MipFilter::RenormalizedBox`] (no widening) outside the
         /// lit views and for the methods that do not widen ([`MipFilter::widens`]). LEAN, in
         /// every view (its normal is the mean slope's), has its own module
-        /// ([`shaders::MESH_LEAN`]) and its texture in group 2 ([`Layouts::lean`]).
+        /// ([`shaders::MESH_LEAN`], [`shaders::MESH_LEAN_PER_VERTEX`]) and its texture in
+        /// group 2 ([`Layouts::lean`]).
         mip_filter: MipFilter,
         /// How the detail normal map is blended (the `DETAIL_BLEND` constant,
         /// shaders/detail.wgsl); the default where the material has no detail map.
@@ -164,24 +169,27 @@ const GLYPH: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
     attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 3 => Float32x4, 5 => Float32x3],
 };
 
-/// The mesh pass's module for a pipeline: the one with the per-vertex light direction and half
-/// vector between its stages ([`shaders::MESH_PER_VERTEX`]) only where the legacy looks or the
-/// per-vertex mistakes read them. llvmpipe sets up and interpolates every vertex output, read
-/// or not; with the two in every pipeline a 4× MSAA frame of the built-in scene cost 1.86–2.04×
-/// the floor, without them 1.73–1.80× (`render --frames 30`, same machine and load).
-fn mesh_module(legacy: LegacySettings, mistake: Mistake) -> Wgsl {
-    if legacy.look != LegacyLook::Off || mistake.reads_per_vertex_vectors() {
-        shaders::MESH_PER_VERTEX
-    } else {
-        shaders::MESH
+/// The mesh pass's module for a pipeline: LEAN's (its texture bound) for LEAN, and the one
+/// with the per-vertex light direction and half vector between its stages
+/// ([`shaders::MESH_PER_VERTEX`], [`shaders::MESH_LEAN_PER_VERTEX`]) only where the legacy looks
+/// or the per-vertex mistakes read them. llvmpipe sets up and interpolates every vertex output,
+/// read or not; with the two in every pipeline a 4× MSAA frame of the built-in scene cost
+/// 1.86–2.04× the floor, without them 1.73–1.80× (`render --frames 30`, same machine and load),
+/// and LEAN's 2.25–2.37× with them, 2.14–2.27× without.
+fn mesh_module(legacy: LegacySettings, mistake: Mistake, mip_filter: MipFilter) -> Wgsl {
+    let per_vertex = legacy.look != LegacyLook::Off || mistake.reads_per_vertex_vectors();
+    match (mip_filter == MipFilter::Lean, per_vertex) {
+        (true, true) => shaders::MESH_LEAN_PER_VERTEX,
+        (true, false) => shaders::MESH_LEAN,
+        (false, true) => shaders::MESH_PER_VERTEX,
+        (false, false) => shaders::MESH,
     }
 }
 
 /// The module a pass's pipelines are made from.
 fn module_of(pass: Pass) -> Wgsl {
     match pass {
-        Pass::Mesh { mip_filter: MipFilter::Lean, .. } => shaders::MESH_LEAN,
-        Pass::Mesh { legacy, mistake, .. } => mesh_module(legacy, mistake),
+        Pass::Mesh { legacy, mistake, mip_filter, .. } => mesh_module(legacy, mistake, mip_filter),
         Pass::Difference { .. } => shaders::DIFFERENCE,
         Pass::Wireframe { .. } => shaders::WIREFRAME,
         Pass::Glyphs { .. } => shaders::GLYPHS,
@@ -321,6 +329,7 @@ fn mesh_constants(pass: Pass, encodes_srgb: (&'static str, f64)) -> Vec<(&'stati
         view,
         lighting,
         parallax,
+        parallax_shadows,
         mistake,
         legacy,
         lighting_space,
@@ -337,6 +346,9 @@ fn mesh_constants(pass: Pass, encodes_srgb: (&'static str, f64)) -> Vec<(&'stati
     constants.extend(lighting.map(|model| ("SHADING_MODEL", f64::from(model.shader_index()))));
     if parallax.shifts() {
         constants.push(("PARALLAX", f64::from(parallax.shader_index())));
+        if !parallax_shadows {
+            constants.push(("PARALLAX_SHADOWS", 0.0));
+        }
     }
     if mistake != Mistake::None {
         constants.push(("MISTAKE", f64::from(mistake.shader_index())));

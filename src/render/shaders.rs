@@ -3,8 +3,8 @@
 //! time. The mesh pass is assembled twice, once per stage interface: its entry points are
 //! written once over `Varyings`, which `mesh_varyings.wgsl` makes the plain `VertexOutput` and
 //! `mesh_varyings_per_vertex.wgsl` the same plus the per-vertex light direction and half
-//! vector ([`MESH_PER_VERTEX`]); and a third time for LEAN's pipelines, with LEAN's texture
-//! bound ([`MESH_LEAN`]).
+//! vector ([`MESH_PER_VERTEX`]); and twice more for LEAN's pipelines, with LEAN's texture
+//! bound ([`MESH_LEAN`], [`MESH_LEAN_PER_VERTEX`]).
 
 /// One shader module: its label and its files (name, text) in order.
 #[derive(Debug, Clone, Copy)]
@@ -71,10 +71,12 @@ pub const MESH: Wgsl = Wgsl { label: "mesh", files: mesh_files!("mesh_varyings.w
 /// legacy looks and the per-vertex mistakes.
 pub const MESH_PER_VERTEX: Wgsl =
     Wgsl { label: "mesh (per-vertex vectors)", files: mesh_files!("mesh_varyings_per_vertex.wgsl") };
-/// The mesh pass of LEAN's pipelines: LEAN's texture bound in group 2 (lean.wgsl), with the
-/// per-vertex vectors (so one module serves every view, legacy look and mistake).
-pub const MESH_LEAN: Wgsl =
-    Wgsl { label: "mesh (LEAN)", files: mesh_files!("mesh_varyings_per_vertex.wgsl", "lean.wgsl") };
+/// The mesh pass of LEAN's pipelines: LEAN's texture bound in group 2 (lean.wgsl).
+pub const MESH_LEAN: Wgsl = Wgsl { label: "mesh (LEAN)", files: mesh_files!("mesh_varyings.wgsl", "lean.wgsl") };
+/// LEAN's mesh pass with the per-vertex vectors, for the legacy looks and the per-vertex
+/// mistakes.
+pub const MESH_LEAN_PER_VERTEX: Wgsl =
+    Wgsl { label: "mesh (LEAN, per-vertex vectors)", files: mesh_files!("mesh_varyings_per_vertex.wgsl", "lean.wgsl") };
 /// The Difference view of a mesh with frames against its reference frames.
 pub const DIFFERENCE: Wgsl =
     Wgsl { label: "difference", files: &[FRAME, MESH_COMMON[0], MESH_COMMON[1], wgsl_file!("difference.wgsl")] };
@@ -90,10 +92,11 @@ pub const MARKER: Wgsl = Wgsl { label: "marker", files: &[FRAME, wgsl_file!("mar
 pub const FLOOR: Wgsl = Wgsl { label: "floor", files: &[wgsl_file!("floor.wgsl")] };
 
 /// Every module, with the entry points the pipelines name in it.
-pub const ALL: [(Wgsl, &[&str]); 8] = [
+pub const ALL: [(Wgsl, &[&str]); 9] = [
     (MESH, &MESH_ENTRY_POINTS),
     (MESH_PER_VERTEX, &MESH_ENTRY_POINTS),
     (MESH_LEAN, &MESH_ENTRY_POINTS),
+    (MESH_LEAN_PER_VERTEX, &MESH_ENTRY_POINTS),
     (DIFFERENCE, &["vs_difference", "fs_difference"]),
     (WIREFRAME, &["vs_wireframe", "fs_wireframe"]),
     (GLYPHS, &["vs_glyph", "fs_glyph"]),
@@ -159,6 +162,7 @@ mod tests {
             "MIP_FILTER",
             "MISTAKE",
             "PARALLAX",
+            "PARALLAX_SHADOWS",
             "SHADING_MODEL",
             "TARGET_ENCODES_SRGB",
             "VIEW",
@@ -166,6 +170,7 @@ mod tests {
         assert_eq!(overrides(&MESH), expected.iter().map(|s| s.to_string()).collect());
         assert_eq!(overrides(&MESH_PER_VERTEX), overrides(&MESH));
         assert_eq!(overrides(&MESH_LEAN), overrides(&MESH));
+        assert_eq!(overrides(&MESH_LEAN_PER_VERTEX), overrides(&MESH));
         for wgsl in [DIFFERENCE, WIREFRAME, GLYPHS] {
             assert_eq!(overrides(&wgsl), BTreeSet::from(["TARGET_ENCODES_SRGB".to_string()]), "{}", wgsl.label);
         }

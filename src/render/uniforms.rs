@@ -157,6 +157,9 @@ pub(crate) const HAS_OCCLUSION_TEXTURE: u32 = 16384;
 pub(crate) const HAS_BUMP_CORRECTION: u32 = 1 << 17;
 /// Bit of `flags`: binding 14 holds the material's detail normal map (shaders/detail.wgsl).
 pub(crate) const HAS_DETAIL: u32 = 1 << 18;
+/// Bit of `flags`: the occlusion texture is the metallic-roughness texture (glTF's packed
+/// occlusion-roughness-metallic maps), so its red comes from the metallic-roughness sample.
+pub(crate) const OCCLUSION_IN_METALLIC_ROUGHNESS: u32 = 1 << 19;
 
 /// The bits of `flags` that say which optional textures and lobes a material has: the mesh
 /// pipelines are specialised to them ([`super::pipelines::Pass::Mesh`]'s `features`, the
@@ -171,7 +174,8 @@ pub(crate) const MATERIAL_FEATURES: u32 = HAS_METALLIC_ROUGHNESS
     | HAS_CLEARCOAT_ROUGHNESS_TEXTURE
     | HAS_CLEARCOAT_NORMAL
     | HAS_BUMP_CORRECTION
-    | HAS_DETAIL;
+    | HAS_DETAIL
+    | OCCLUSION_IN_METALLIC_ROUGHNESS;
 
 impl ObjectUniform {
     /// Normals go through the inverse-transpose of the model matrix; tangent `w` is
@@ -195,6 +199,10 @@ impl ObjectUniform {
                 | if material.height_map.as_ref().is_some_and(|h| h.depth) { DEPTH_MAP } else { 0 }
                 | if material.metallic_roughness_texture.is_some() { HAS_METALLIC_ROUGHNESS } else { 0 }
                 | bit(slots.occlusion.is_some(), HAS_OCCLUSION_TEXTURE)
+                | bit(
+                    slots.occlusion.is_some() && slots.occlusion == slots.metallic_roughness,
+                    OCCLUSION_IN_METALLIC_ROUGHNESS,
+                )
                 | if material.gloss_texture.is_some() { HAS_GLOSS } else { 0 }
                 | bit(slots.emissive.is_some(), HAS_EMISSIVE_TEXTURE)
                 | bit(coat.is_some(), HAS_CLEARCOAT)

@@ -53,6 +53,7 @@ fn drawn_pass(instance: &GpuInstance, scene: &GpuScene, shading: &ShadingSetting
     let surface = shading.surface_lighting(instance.shading_model, variant == Variant::NormalMapped);
     let lighting = shading.view.is_lit().then_some(surface.shading_model);
     let parallax = if instance.parallax_height { shading.parallax.technique } else { Parallax::default() };
+    let parallax_shadows = parallax.shifts() && shading.parallax.shadows_on();
     let legacy = if shading.view.is_lit() { shading.legacy } else { LegacySettings::default() };
     let (view, mistake) = (shading.view, shading.mistake);
     let lighting_space = if lighting.is_some() { surface.lighting_space } else { LightingSpace::World };
@@ -72,6 +73,7 @@ fn drawn_pass(instance: &GpuInstance, scene: &GpuScene, shading: &ShadingSetting
         view,
         lighting,
         parallax,
+        parallax_shadows,
         mistake,
         legacy,
         lighting_space,
