@@ -34,7 +34,7 @@ pub struct PictureArgs {
     /// values below (docs/parallax.md cites each one's paper) [default: off].
     #[arg(long, value_parser = args::named::<Parallax>())]
     parallax: Option<Parallax>,
-    /// The searches' layers MIN,MAX (1 to 256 each; MAX face-on, MIN at grazing views)
+    /// The searches' layers MIN,MAX (1 to 256 each; MIN face-on, MAX at grazing views, as Tatarchuk varies them)
     /// [default: 8,32].
     #[arg(long, value_name = "MIN,MAX", value_parser = args::parse_layers)]
     parallax_layers: Option<[u32; 2]>,

@@ -37,7 +37,7 @@ pub(super) fn show(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Act
     if technique.marches() {
         let (mut min, mut max) = (settings.layers_min, settings.layers_max);
         let layers = 1..=MAX_PARALLAX_LAYERS;
-        let hint = "layers of the linear search: max face-on, min at grazing views";
+        let hint = "layers of the linear search: min face-on, max at grazing views";
         let changed =
             ui.add(egui::Slider::new(&mut min, layers.clone()).logarithmic(true).text("min layers")).changed()
                 | ui.add(egui::Slider::new(&mut max, layers).logarithmic(true).text("max layers"))
