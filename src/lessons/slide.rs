@@ -5,6 +5,7 @@
 use image::{Rgba, RgbaImage};
 
 use super::Lesson;
+use super::grid::tile_cells;
 use super::inset::{Inset, inset_size};
 use super::keys;
 use super::measure::Measured;
@@ -139,34 +140,10 @@ impl SlideLayout {
         let count = if lesson.split { 1 } else { lesson.sides.len() };
         let blocks = if lesson.inset.is_some() { 2 } else { 1 };
         let label_row = self.label_px * LEADING * 1.4;
-        // The tile width with `columns` columns: limited by the width and by the height.
-        let tile_width = |columns: usize| {
-            let rows = count.div_ceil(columns) * blocks;
-            let by_width = (width - self.gap * (columns - 1) as f32) / columns as f32;
-            let by_height = ((height - label_row * (rows - 1) as f32) / rows as f32) * 16.0 / 9.0;
-            by_width.min(by_height).floor().max(16.0)
-        };
-        // The largest tiles; of equally large ones, the grid with the fewest empty cells.
-        let empty = |columns: usize| columns * count.div_ceil(columns) - count;
-        let columns = (1..=count.min(MAX_COLUMNS))
-            .max_by(|&a, &b| tile_width(a).total_cmp(&tile_width(b)).then(empty(b).cmp(&empty(a))))
-            .unwrap_or(1);
-        let rows = count.div_ceil(columns);
-        let w = tile_width(columns);
-        let h = (w * 9.0 / 16.0).round();
-        let row_width = w * columns as f32 + self.gap * (columns - 1) as f32;
-        let left = x0 + (width - row_width) / 2.0;
-        // The pictures (and the text under them) centred in the height they leave free.
-        let used = h * (rows * blocks) as f32 + label_row * (rows * blocks - 1) as f32;
-        let y0 = y0 + ((height - used) / 2.0).max(0.0);
-        let mut places: Vec<Placed> = (0..count * blocks)
-            .map(|i| {
-                let (block, i) = (i / count, i % count);
-                let (column, row) = ((i % columns) as f32, (block * rows + i / columns) as f32);
-                let x = left + column * (w + self.gap);
-                let y = y0 + row * (h + label_row);
-                Placed { x: x.round() as u32, y: y.round() as u32, size: [w as u32, h as u32] }
-            })
+        let area = [x0, y0, width, height];
+        let mut places: Vec<Placed> = tile_cells(count, area, self.gap, label_row, MAX_COLUMNS, blocks)
+            .into_iter()
+            .map(|[x, y, w, h]| Placed { x: x as u32, y: y as u32, size: [w as u32, h as u32] })
             .collect();
         let insets = places.split_off(count);
         (places, insets)

@@ -37,6 +37,7 @@ impl GridView {
             GAP,
             GAP,
             MAX_COLUMNS,
+            1,
         );
         let painter = ui.painter();
         let tiles = tiles.filter(|t| t.key.lesson == current);
