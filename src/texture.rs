@@ -1,7 +1,12 @@
 //! CPU images with their colour space, and their mip chains (a normal map's by its
 //! [`MipFilter`]).
 
+mod basis;
+mod blocks;
+pub mod compressed;
+mod dds;
 pub mod decode;
+mod ktx2;
 mod lean;
 mod mip_filter;
 mod normal_mips;

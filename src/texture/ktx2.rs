@@ -1,0 +1,127 @@
+//! KTX2 files: the container parsed by the `ktx2` crate, the top level of the first layer (or
+//! cube face) decoded to RGBA8. Read directly: BC1–BC5 and BC7 ([`super::blocks`]), R8G8B8A8,
+//! R8G8 and R8. Supercompression: Zstandard (`ruzstd`, pure Rust) and zlib (`flate2`).
+//! UASTC (`KHR_texture_basisu`) is transcoded by Binomial's transcoder ([`super::basis`]),
+//! which is native only: the browser build names the file and says it cannot. ETC1S
+//! (BasisLZ supercompression) is refused in one line.
+
+use std::io::Read;
+
+use ktx2::{ColorModel, Format, SupercompressionScheme};
+
+use super::blocks::{Block, decode_level};
+use super::compressed::{Decoded, Stored, StoredChannels, no_memory};
+
+/// The DFD channel id of a two-channel UASTC file (`KHR_DF_CHANNEL_UASTC_RG`).
+const UASTC_RG: u8 = 6;
+
+/// How the texels of a KTX2 file are stored.
+enum Layout {
+    Blocks(Block),
+    /// Bytes per texel and the red, green, blue and alpha masks of a little-endian word.
+    Masks {
+        bits: u32,
+        masks: [u32; 4],
+    },
+    Uastc,
+}
+
+/// Decodes a KTX2 file's top level once `admit(width, height)` accepts its size.
+pub fn decode(bytes: &[u8], admit: impl FnOnce(u32, u32) -> Result<(), String>) -> Result<Decoded, String> {
+    let reader = ktx2::Reader::new(bytes).map_err(|e| format!("not a readable KTX2 file: {e}"))?;
+    let header = reader.header();
+    let (width, height) = (header.pixel_width, header.pixel_height.max(1));
+    if header.pixel_depth > 1 {
+        return Err("3D KTX2 textures are not supported".to_owned());
+    }
+    let scheme = header.supercompression_scheme;
+    let (layout, name, channels) = layout(&reader, header.format, scheme)?;
+    let packed = match scheme {
+        None => String::new(),
+        Some(SupercompressionScheme::Zstandard) => " (Zstandard)".to_owned(),
+        Some(SupercompressionScheme::ZLIB) => " (zlib)".to_owned(),
+        Some(other) => return Err(format!("KTX2 supercompression {other:?} is not supported")),
+    };
+    let stored = Stored { format: format!("{name} KTX2{packed}"), channels };
+    admit(width, height)?;
+    let needed = match layout {
+        Layout::Blocks(block) => block.level_bytes(width, height),
+        Layout::Uastc => width.div_ceil(4) as u64 * height.div_ceil(4) as u64 * 16,
+        Layout::Masks { bits, .. } => width as u64 * height as u64 * (bits as u64 / 8),
+    };
+    let level = reader.levels().next().ok_or("the KTX2 file has no mip level")?;
+    let data = unpacked(level.data, scheme, needed)?;
+    if (data.len() as u64) < needed {
+        return Err(format!(
+            "the KTX2 top level holds {} of the {needed} bytes its {width}x{height} texels need (truncated)",
+            data.len()
+        ));
+    }
+    let rgba = match layout {
+        Layout::Blocks(block) => decode_level(block, &data, width, height),
+        Layout::Masks { bits, masks } => super::dds::decode_masked(&data, width, height, bits, masks),
+        Layout::Uastc => super::basis::transcode_uastc(&data, width, height)?,
+    };
+    let rgba = rgba.ok_or_else(|| no_memory(width, height))?;
+    Ok(Decoded { width, height, rgba, stored })
+}
+
+/// The layout of a KTX2 file, its format's name and what it says about the channels.
+fn layout(
+    reader: &ktx2::Reader<&[u8]>,
+    format: Option<Format>,
+    scheme: Option<SupercompressionScheme>,
+) -> Result<(Layout, String, StoredChannels), String> {
+    let block = |b: Block, channels| Ok((Layout::Blocks(b), b.name().to_owned(), channels));
+    let masked = |bits, masks, name: &str, channels| Ok((Layout::Masks { bits, masks }, name.to_owned(), channels));
+    let colour = StoredChannels::ColourBlock;
+    match format {
+        Some(Format::BC1_RGB_UNORM_BLOCK | Format::BC1_RGB_SRGB_BLOCK) => block(Block::Bc1, colour),
+        Some(Format::BC1_RGBA_UNORM_BLOCK | Format::BC1_RGBA_SRGB_BLOCK) => block(Block::Bc1, colour),
+        Some(Format::BC2_UNORM_BLOCK | Format::BC2_SRGB_BLOCK) => block(Block::Bc2, colour),
+        Some(Format::BC3_UNORM_BLOCK | Format::BC3_SRGB_BLOCK) => block(Block::Bc3, colour),
+        Some(Format::BC4_UNORM_BLOCK) => block(Block::Bc4, StoredChannels::Plain),
+        Some(Format::BC5_UNORM_BLOCK) => block(Block::Bc5, StoredChannels::Rg),
+        Some(Format::BC7_UNORM_BLOCK | Format::BC7_SRGB_BLOCK) => block(Block::Bc7, StoredChannels::Rgba),
+        Some(Format::R8G8B8A8_UNORM | Format::R8G8B8A8_SRGB) => {
+            masked(32, [0xff, 0xff00, 0xff_0000, 0xff00_0000], "R8G8B8A8", StoredChannels::Plain)
+        }
+        Some(Format::R8G8_UNORM) => masked(16, [0xff, 0xff00, 0, 0], "R8G8", StoredChannels::Rg),
+        Some(Format::R8_UNORM) => masked(8, [0xff, 0, 0, 0], "R8", StoredChannels::Plain),
+        Some(other) => Err(format!("KTX2 format {other:?} is not supported (BCn, R8G8B8A8, R8G8, R8, UASTC)")),
+        None => {
+            let dfd = reader.basic_dfd().ok_or("the KTX2 file has no basic data format descriptor")?;
+            match dfd.color_model {
+                Some(ColorModel::UASTC) => {
+                    let rg = dfd.sample_information.first().is_some_and(|s| s.channel_type == UASTC_RG);
+                    let channels = if rg { StoredChannels::Rg } else { StoredChannels::Rgba };
+                    Ok((Layout::Uastc, "UASTC".to_owned(), channels))
+                }
+                Some(ColorModel::ETC1S) if scheme == Some(SupercompressionScheme::BasisLZ) => {
+                    Err("ETC1S (BasisLZ) KTX2 textures are not transcoded by this build; UASTC ones are".to_owned())
+                }
+                model => Err(format!("KTX2 colour model {model:?} without a format is not supported")),
+            }
+        }
+    }
+}
+
+/// The top level's bytes, unpacked by `scheme`: at most `needed` bytes are inflated, so a
+/// stream that claims more stops there.
+fn unpacked(data: &[u8], scheme: Option<SupercompressionScheme>, needed: u64) -> Result<Vec<u8>, String> {
+    let needed = usize::try_from(needed).map_err(|_| "the KTX2 level is too large".to_owned())?;
+    let mut out = Vec::new();
+    out.try_reserve_exact(needed).map_err(|_| format!("no memory for the {needed} bytes of the KTX2 level"))?;
+    let read = match scheme {
+        None => return Ok(data.to_vec()),
+        Some(SupercompressionScheme::Zstandard) => {
+            let mut source = data;
+            let decoder = ruzstd::decoding::StreamingDecoder::new(&mut source)
+                .map_err(|e| format!("the KTX2 level's Zstandard stream does not decode: {e}"))?;
+            decoder.take(needed as u64).read_to_end(&mut out)
+        }
+        Some(_) => flate2::read::ZlibDecoder::new(data).take(needed as u64).read_to_end(&mut out),
+    };
+    read.map_err(|e| format!("the KTX2 level's supercompressed data does not decode: {e}"))?;
+    Ok(out)
+}
