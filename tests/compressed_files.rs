@@ -8,7 +8,7 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use bumpview::check::check_normal_maps;
-use bumpview::load::{SceneFiles, replace_textures, texture_scene};
+use bumpview::load::{SceneFiles, load_scene, replace_textures, texture_scene};
 use bumpview::names::Named;
 use bumpview::render::capture::render_image;
 use bumpview::scene::{NormalLayout, Scene};
@@ -41,6 +41,7 @@ fn make_fixtures() {
         .encode(rgb.as_raw(), SIDE, SIDE, image::ExtendedColorType::Rgb8)
         .unwrap();
     std::fs::write(folder.join("brick_normal.webp"), webp).unwrap();
+    write_quads(&folder);
     for (name, format) in [
         ("brick_normal_bc5.dds", CompressedFormat::DdsBc5),
         ("brick_normal_bc7.dds", CompressedFormat::DdsBc7),
@@ -48,6 +49,56 @@ fn make_fixtures() {
     ] {
         std::fs::write(folder.join(name), encode(small.as_raw(), SIDE, SIDE, format).unwrap()).unwrap();
     }
+}
+
+/// A 2 m square facing +Z (positions, normals, UVs, two triangles) in `quad.bin`, and three
+/// glTF files drawing it with the brick normal map: as PNG, as KTX2 through
+/// `KHR_texture_basisu` (required, no fallback) and as WebP through `EXT_texture_webp` (used,
+/// with the PNG as fallback `source`).
+fn write_quads(folder: &Path) {
+    let mut bin = Vec::new();
+    let floats: [f32; 32] = [
+        -1., -1., 0., 1., -1., 0., 1., 1., 0., -1., 1., 0., // positions
+        0., 0., 1., 0., 0., 1., 0., 0., 1., 0., 0., 1., // normals
+        0., 1., 1., 1., 1., 0., 0., 0., // UVs
+    ];
+    floats.iter().for_each(|f| bin.extend(f.to_le_bytes()));
+    [0u16, 1, 2, 0, 2, 3].iter().for_each(|i| bin.extend(i.to_le_bytes()));
+    std::fs::write(folder.join("quad.bin"), &bin).unwrap();
+    let gltf = |texture: &str, images: &str, required: &str, used: &str| {
+        format!(
+            r#"{{"asset":{{"version":"2.0"}},{required}"extensionsUsed":[{used}],
+"buffers":[{{"uri":"quad.bin","byteLength":140}}],
+"bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":128}},{{"buffer":0,"byteOffset":128,"byteLength":12}}],
+"accessors":[
+ {{"bufferView":0,"byteOffset":0,"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]}},
+ {{"bufferView":0,"byteOffset":48,"componentType":5126,"count":4,"type":"VEC3"}},
+ {{"bufferView":0,"byteOffset":96,"componentType":5126,"count":4,"type":"VEC2"}},
+ {{"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}}],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":0,"NORMAL":1,"TEXCOORD_0":2}},"indices":3,"material":0}}]}}],
+"materials":[{{"pbrMetallicRoughness":{{"metallicFactor":0,"roughnessFactor":0.4}},"normalTexture":{{"index":0}}}}],
+"textures":[{texture}],
+"images":[{images}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0}}
+"#
+        )
+    };
+    let png = r#"{"uri":"brick_normal.png"}"#;
+    std::fs::write(folder.join("quad_png.gltf"), gltf(r#"{"source":0}"#, png, "", "")).unwrap();
+    let basisu = gltf(
+        r#"{"extensions":{"KHR_texture_basisu":{"source":0}}}"#,
+        r#"{"uri":"brick_normal_uastc.ktx2","mimeType":"image/ktx2"}"#,
+        r#""extensionsRequired":["KHR_texture_basisu"],"#,
+        r#""KHR_texture_basisu""#,
+    );
+    std::fs::write(folder.join("quad_basisu.gltf"), basisu).unwrap();
+    let webp = gltf(
+        r#"{"source":1,"extensions":{"EXT_texture_webp":{"source":0}}}"#,
+        &format!(r#"{{"uri":"brick_normal.webp","mimeType":"image/webp"}},{png}"#),
+        "",
+        r#""EXT_texture_webp""#,
+    );
+    std::fs::write(folder.join("quad_webp.gltf"), webp).unwrap();
 }
 
 /// The built-in scene with `normal` as every material's normal map.
@@ -102,4 +153,31 @@ fn compressed_normal_maps_draw_like_the_png_and_check_reads_their_layout() {
         assert_eq!(found.layout, layout, "{name}");
         assert!(found.layout_reason.starts_with(reason), "{name}: {}", found.layout_reason);
     }
+}
+
+/// A glTF model drawn at its opening view, without load warnings.
+fn drawn_model(renderer: &mut bumpview::render::Renderer, path: &Path, size: [u32; 2]) -> image::RgbaImage {
+    let scene = load_scene(path).unwrap_or_else(|e| panic!("{e}"));
+    assert!(scene.warnings.is_empty(), "{}: {:?}", path.display(), scene.warnings);
+    renderer.set_scene(&scene, Default::default());
+    render_image(renderer, size, &default_params(&scene)).unwrap()
+}
+
+/// KTX2 through `KHR_texture_basisu` (required) and WebP through `EXT_texture_webp` draw the
+/// quad as its PNG-textured twin does (measured: RMSE 0.635 for UASTC, seen closer than on
+/// the built-in scene; 0 for lossless WebP), and `check` names the KTX2 format.
+#[test]
+fn gltf_textures_by_basisu_and_webp_draw_like_png() {
+    let size = [480, 480];
+    let folder = fixtures();
+    let mut renderer = renderer_for(&scene());
+    let reference = drawn_model(&mut renderer, &folder.join("quad_png.gltf"), size);
+    for (name, bound) in [("quad_basisu.gltf", 1.0), ("quad_webp.gltf", 0.0)] {
+        let picture = drawn_model(&mut renderer, &folder.join(name), size);
+        let distance = rmse(&reference, &picture);
+        println!("{name}: RMSE {distance:.3} against quad_png.gltf");
+        assert!(distance <= bound, "{name}: RMSE {distance:.3} over {bound}");
+    }
+    let checked = check_normal_maps(&load_scene(&folder.join("quad_basisu.gltf")).unwrap());
+    assert!(checked[0].layout_reason.starts_with("UASTC KTX2 (Zstandard)"), "{}", checked[0].layout_reason);
 }

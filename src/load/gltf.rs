@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 use glam::{Mat4, Vec3, Vec4};
 
 use super::budget::{Budget, INDEX_BYTES, VERTEX_BYTES};
-use super::gltf_document::parse;
+use super::gltf_document::{parse, texture_image};
 use super::gltf_mesh::{PrimitiveKey, UvChoice, primitive_mesh};
 use super::image::{decode_texture_stored, texel_room};
 use super::uri::{NOT_PORTABLE_NOTE, UriTarget, read_uri, resolve_uri};
@@ -298,11 +298,11 @@ impl Loader<'_> {
     /// (with a [`LoadWarning`]) when the image file cannot be read or decoded. An image the
     /// document describes wrongly (no uri or mimeType, outside its buffer) is an error.
     fn texture(&mut self, texture: gltf::Texture, kind: TextureKind) -> Result<Option<usize>, LoadError> {
-        let image = texture.source().index();
+        let image = texture_image(self.document, &texture).map_err(|problem| LoadError::new(self.path, problem))?;
         if let Some(&index) = self.textures.get(&(image, kind)) {
             return Ok(index);
         }
-        let index = match self.decode(texture, kind)? {
+        let index = match self.decode(image, kind)? {
             Ok((decoded, stored)) => {
                 self.scene.textures.push(decoded.into());
                 let index = self.scene.textures.len() - 1;
@@ -323,15 +323,15 @@ impl Loader<'_> {
         Ok(index)
     }
 
-    /// A glTF texture's image, read and decoded as `kind` (inner `Err`: the image cannot be
+    /// Image `image` of the document, read and decoded as `kind` (inner `Err`: the image cannot be
     /// read or decoded); an image file is remembered in [`Scene::files`], readable or not, so
     /// that hot reload picks it up once it is fixed.
     fn decode(
         &mut self,
-        texture: gltf::Texture,
+        image: usize,
         kind: TextureKind,
     ) -> Result<Result<(TextureImage, Option<Stored>), LoadError>, LoadError> {
-        let image = texture.source();
+        let image = self.document.images().nth(image).expect("texture_image checks the index");
         // gltf's `Image::source` unwraps the uri, or the mimeType of a bufferView image, and
         // validation does not always catch their absence (found by tests/fuzz.rs).
         let json = &self.document.as_json().images[image.index()];

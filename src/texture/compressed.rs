@@ -83,7 +83,7 @@ pub fn decode_container(
     admit: impl FnOnce(&Header) -> Result<(), String>,
 ) -> Result<Decoded, String> {
     let admit_rgba = |width: u32, height: u32| -> Result<(), String> {
-        let decoded_bytes = width as u64 * height as u64 * 4;
+        let decoded_bytes = (width as u64 * height as u64).saturating_mul(4);
         admit(&Header { width, height, decoded_bytes, color: image::ColorType::Rgba8 })?;
         if decoded_bytes > max_bytes {
             let mib = decoded_bytes.div_ceil(1 << 20);

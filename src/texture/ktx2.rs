@@ -28,6 +28,9 @@ enum Layout {
 
 /// Decodes a KTX2 file's top level once `admit(width, height)` accepts its size.
 pub fn decode(bytes: &[u8], admit: impl FnOnce(u32, u32) -> Result<(), String>) -> Result<Decoded, String> {
+    if has_overflowing_block_dimension(bytes) {
+        return Err("not a readable KTX2 file: a data format descriptor gives a texel block side of 256".to_owned());
+    }
     let reader = ktx2::Reader::new(bytes).map_err(|e| format!("not a readable KTX2 file: {e}"))?;
     let header = reader.header();
     let (width, height) = (header.pixel_width, header.pixel_height.max(1));
@@ -107,21 +110,42 @@ fn layout(
 }
 
 /// The top level's bytes, unpacked by `scheme`: at most `needed` bytes are inflated, so a
-/// stream that claims more stops there.
+/// stream that claims more stops there, and the output grows with what the stream really
+/// holds (nothing is reserved from a size the file states).
 fn unpacked(data: &[u8], scheme: Option<SupercompressionScheme>, needed: u64) -> Result<Vec<u8>, String> {
-    let needed = usize::try_from(needed).map_err(|_| "the KTX2 level is too large".to_owned())?;
     let mut out = Vec::new();
-    out.try_reserve_exact(needed).map_err(|_| format!("no memory for the {needed} bytes of the KTX2 level"))?;
     let read = match scheme {
         None => return Ok(data.to_vec()),
         Some(SupercompressionScheme::Zstandard) => {
             let mut source = data;
             let decoder = ruzstd::decoding::StreamingDecoder::new(&mut source)
                 .map_err(|e| format!("the KTX2 level's Zstandard stream does not decode: {e}"))?;
-            decoder.take(needed as u64).read_to_end(&mut out)
+            decoder.take(needed).read_to_end(&mut out)
         }
-        Some(_) => flate2::read::ZlibDecoder::new(data).take(needed as u64).read_to_end(&mut out),
+        Some(_) => flate2::read::ZlibDecoder::new(data).take(needed).read_to_end(&mut out),
     };
     read.map_err(|e| format!("the KTX2 level's supercompressed data does not decode: {e}"))?;
     Ok(out)
+}
+
+/// Whether a basic block of the data format descriptor gives a texel block dimension byte of
+/// 255 (a side of 256): `ktx2` 0.5 adds 1 to it as a `u8` and panics, so such a file is refused
+/// before it is parsed. Walks the blocks as `ktx2` does (header word, version, size).
+fn has_overflowing_block_dimension(bytes: &[u8]) -> bool {
+    let word = |at: usize| bytes.get(at..at + 4).map(|b| u32::from_le_bytes(b.try_into().expect("4 bytes")));
+    let (Some(offset), Some(length)) = (word(48), word(52)) else { return false };
+    let end = (offset as usize).saturating_add(length as usize).min(bytes.len());
+    let mut at = offset as usize + 4;
+    while at.saturating_add(8) <= end {
+        let basic = word(at) == Some(0);
+        if basic && bytes.get(at + 12..at + 16).is_some_and(|d| d.contains(&255)) {
+            return true;
+        }
+        let size = bytes.get(at + 6..at + 8).map_or(0, |b| u16::from_le_bytes([b[0], b[1]]) as usize);
+        if size == 0 {
+            break;
+        }
+        at += size;
+    }
+    false
 }
