@@ -99,6 +99,73 @@ proptest! {
     }
 }
 
+/// The meshopt grid with its compressed buffer's bytes and its extension objects' numbers
+/// mutated, loaded as the command line does: a scene or one line naming a file.
+fn load_mutated_grid(bin: &[u8], json: &str, case: usize) -> Result<(), TestCaseError> {
+    let dir = std::env::temp_dir().join(format!("bumpview-fuzz-meshopt-{}-{case}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("grid_meshopt.bin"), bin).unwrap();
+    std::fs::write(dir.join("grid_meshopt.gltf"), json).unwrap();
+    let (_, png) = fixture("brick_normal.png");
+    std::fs::write(dir.join("brick_normal.png"), png).unwrap();
+    let loaded = bumpview::load::load_model(&dir.join("grid_meshopt.gltf"), false);
+    let _ = std::fs::remove_dir_all(&dir);
+    if let Err(e) = loaded {
+        let message = e.to_string();
+        prop_assert!(!message.contains('\n'), "{}", message);
+        prop_assert!(!e.path.as_os_str().is_empty(), "{}", message);
+    }
+    Ok(())
+}
+
+/// Hostile values for the extension's numbers and names.
+const VALUES: &[&str] = &[
+    "0",
+    "1",
+    "3",
+    "4",
+    "7",
+    "8",
+    "256",
+    "-1",
+    "4294967296",
+    "\"NONE\"",
+    "\"OCTAHEDRAL\"",
+    "\"QUATERNION\"",
+    "\"EXPONENTIAL\"",
+    "\"TRIANGLES\"",
+    "\"INDICES\"",
+    "null",
+];
+
+proptest! {
+    #![proptest_config(common::fuzz_config())]
+
+    /// `EXT_meshopt_compression`: byte mutations of the compressed buffer, and one of the
+    /// extension's fields (`byteOffset`, `byteLength`, `byteStride`, `count`, `mode`, `filter`,
+    /// the fallback's `byteLength`) set to a hostile value.
+    #[test]
+    fn mutated_meshopt_models_load_or_refuse_in_one_line(
+        mutations in prop::collection::vec(mutation(8), 0..4),
+        field in 0usize..40,
+        value in prop::sample::select(VALUES),
+    ) {
+        let (_, mut bin) = fixture("grid_meshopt.bin");
+        mutations.iter().for_each(|m| mutate(&mut bin, m));
+        let (_, json) = fixture("grid_meshopt.gltf");
+        let json = String::from_utf8(json).unwrap();
+        let keys = ["\"byteOffset\":", "\"byteLength\":", "\"byteStride\":", "\"count\":", "\"mode\":", "\"filter\":"];
+        let mut slots: Vec<(usize, &str)> =
+            keys.iter().flat_map(|k| json.match_indices(k).map(|(at, k)| (at, k)).collect::<Vec<_>>()).collect();
+        slots.sort();
+        let (at, key) = slots[field % slots.len()];
+        let start = at + key.len();
+        let end = start + json[start..].find([',', '}']).unwrap();
+        let json = format!("{}{value}{}", &json[..start], &json[end..]);
+        load_mutated_grid(&bin, &json, field)?;
+    }
+}
+
 /// Headers claiming the largest sides over files of a few hundred bytes are refused before any
 /// texel is allocated, naming the file.
 #[test]

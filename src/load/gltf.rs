@@ -40,6 +40,9 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
     let buffers = document
         .buffers()
         .map(|buffer| {
+            if super::meshopt::is_fallback(&buffer) {
+                return Ok((Vec::new(), path.to_owned())); // made by `decompress_views`
+            }
             let (data, source) = match buffer.source() {
                 gltf::buffer::Source::Bin => {
                     let blob = blob.clone().ok_or_else(|| {
@@ -77,6 +80,8 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
         meshes: HashMap::new(),
         stored: HashMap::new(),
     };
+    let (buffers, budget) = (&mut loader.buffers, &mut loader.budget);
+    super::meshopt::decompress_views(&document, buffers, budget).map_err(|problem| LoadError::new(path, problem))?;
     loader.walk_nodes()?;
     Ok(loader.scene)
 }

@@ -6,7 +6,7 @@ use std::path::Path;
 use crate::error::LoadError;
 
 /// Extensions a file may list in `extensionsRequired`.
-const SUPPORTED_REQUIRED: [&str; 7] = [
+const SUPPORTED_REQUIRED: [&str; 8] = [
     "KHR_texture_transform",
     "KHR_mesh_quantization",
     "KHR_draco_mesh_compression",
@@ -14,6 +14,7 @@ const SUPPORTED_REQUIRED: [&str; 7] = [
     "KHR_materials_emissive_strength",
     "KHR_texture_basisu",
     "EXT_texture_webp",
+    super::meshopt::EXTENSION,
 ];
 
 /// Extensions that give a texture its image in place of its `source` (KTX2 and WebP images,
