@@ -22,7 +22,8 @@ fn fixtures() -> PathBuf {
 const SIDE: u32 = 256;
 
 /// Writes the fixtures: the built-in brick normal map resized to [`SIDE`]² (triangle filter)
-/// as PNG (the reference), lossless WebP, DDS BC5 and BC7 and KTX2 UASTC. Run with
+/// as PNG (the reference), lossless WebP, DDS BC1, DXT5nm, BC5 and BC7 and KTX2 UASTC; the
+/// quads and grids of [`write_quads`] and [`write_grids`]. Run with
 /// `cargo test --test compressed_files -- --ignored make_fixtures`.
 #[test]
 #[ignore]
@@ -44,6 +45,8 @@ fn make_fixtures() {
     write_quads(&folder);
     write_grids(&folder);
     for (name, format) in [
+        ("brick_normal_bc1.dds", CompressedFormat::DdsBc1),
+        ("brick_normal_dxt5nm.dds", CompressedFormat::DdsDxt5nm),
         ("brick_normal_bc5.dds", CompressedFormat::DdsBc5),
         ("brick_normal_bc7.dds", CompressedFormat::DdsBc7),
         ("brick_normal_uastc.ktx2", CompressedFormat::Ktx2Uastc),
@@ -226,9 +229,11 @@ fn rmse(a: &image::RgbaImage, b: &image::RgbaImage) -> f64 {
 
 /// Each fixture, the layout `check` must read it with, the start of its reason, and the RMSE
 /// bound of its picture against the PNG's (0..255; docs/compressed.md has the measurements).
-const CASES: [(&str, NormalLayout, &str, f64); 4] = [
+const CASES: [(&str, NormalLayout, &str, f64); 6] = [
     ("brick_normal.webp", NormalLayout::Rgb, "as loaded", 0.0),
     ("brick_normal_bc5.dds", NormalLayout::Rg, "BC5 DDS: two channels", 1.0),
+    ("brick_normal_dxt5nm.dds", NormalLayout::Ag, "BC3 DDS: DXT5nm", 1.0),
+    ("brick_normal_bc1.dds", NormalLayout::Rgb, "BC1 DDS: three channels in a block format made for colour", 1.5),
     ("brick_normal_bc7.dds", NormalLayout::Rgb, "BC7 DDS: three or four channels", 0.5),
     ("brick_normal_uastc.ktx2", NormalLayout::Rgb, "UASTC KTX2 (Zstandard): three or four", 0.5),
 ];
@@ -260,6 +265,8 @@ fn compressed_normal_maps_draw_like_the_png_and_check_reads_their_layout() {
         println!("{name}: layout {} ({})", found.layout.name(), found.layout_reason);
         assert_eq!(found.layout, layout, "{name}");
         assert!(found.layout_reason.starts_with(reason), "{name}: {}", found.layout_reason);
+        let warned = found.warnings().iter().any(|w| w.contains("block format made for colour"));
+        assert_eq!(warned, name.contains("bc1"), "{name}: {:?}", found.warnings());
     }
 }
 

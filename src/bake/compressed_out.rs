@@ -1,5 +1,5 @@
-//! Writing RGBA8 images as GPU texture files (native builds only): DDS with BC5 or BC7 blocks
-//! from Intel's ISPC texture compressor (`intel_tex_2`), and KTX2 with UASTC blocks from
+//! Writing RGBA8 images as GPU texture files (native builds only): DDS with BC1, BC3 (DXT5nm),
+//! BC5 or BC7 blocks from Intel's ISPC texture compressor (`intel_tex_2`), and KTX2 with UASTC blocks from
 //! Binomial's Basis Universal encoder (`basis-universal`), Zstandard-supercompressed
 //! (`ruzstd`). One level each (viewers make the mips). Sides must be multiples of 4.
 
@@ -8,6 +8,10 @@ use ddsfile::{AlphaMode, D3D10ResourceDimension, Dds, DxgiFormat, NewDxgiParams}
 /// A GPU texture file format the bake writes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum CompressedFormat {
+    /// DDS, BC1 (DXT1): RGB in 4 bits a texel, the block format made for colour.
+    DdsBc1,
+    /// DDS, BC3 as DXT5nm: x in alpha, y in green (red 255, blue 0), flagged `DDPF_NORMAL`.
+    DdsDxt5nm,
     /// DDS, BC5: red and green only (a two-channel normal map: x, y).
     DdsBc5,
     /// DDS, BC7 (RGBA).
@@ -25,6 +29,15 @@ pub fn encode(rgba: &[u8], width: u32, height: u32, format: CompressedFormat) ->
         return Err("the image holds fewer texels than its size".to_owned());
     }
     match format {
+        CompressedFormat::DdsBc1 => {
+            let surface = intel_tex_2::RgbaSurface { data: rgba, width, height, stride: width * 4 };
+            dds(intel_tex_2::bc1::compress_blocks(&surface), width, height, DxgiFormat::BC1_UNorm)
+        }
+        CompressedFormat::DdsDxt5nm => {
+            let swizzled: Vec<u8> = rgba.chunks_exact(4).flat_map(|t| [255, t[1], 0, t[0]]).collect();
+            let surface = intel_tex_2::RgbaSurface { data: &swizzled, width, height, stride: width * 4 };
+            dxt5nm(intel_tex_2::bc3::compress_blocks(&surface), width, height)
+        }
         CompressedFormat::DdsBc5 => {
             let rg: Vec<u8> = rgba.chunks_exact(4).flat_map(|t| [t[0], t[1]]).collect();
             let surface = intel_tex_2::RgSurface { data: &rg, width, height, stride: width * 2 };
@@ -57,6 +70,25 @@ fn dds(blocks: Vec<u8>, width: u32, height: u32, format: DxgiFormat) -> Result<V
     dds.data = blocks;
     let mut bytes = Vec::new();
     dds.write(&mut bytes).map_err(|e| format!("cannot write the DDS file: {e}"))?;
+    Ok(bytes)
+}
+
+/// A legacy-header DDS file of BC3 `blocks` with the `DXT5` code and the pixel format flag
+/// `DDPF_NORMAL` (`0x80000000`, byte 80 on) that marks DXT5nm.
+fn dxt5nm(blocks: Vec<u8>, width: u32, height: u32) -> Result<Vec<u8>, String> {
+    let params = ddsfile::NewD3dParams {
+        height,
+        width,
+        depth: None,
+        format: ddsfile::D3DFormat::DXT5,
+        mipmap_levels: Some(1),
+        caps2: None,
+    };
+    let mut dds = Dds::new_d3d(params).map_err(|e| format!("cannot make the DDS header: {e}"))?;
+    dds.data = blocks;
+    let mut bytes = Vec::new();
+    dds.write(&mut bytes).map_err(|e| format!("cannot write the DDS file: {e}"))?;
+    bytes[83] |= 0x80;
     Ok(bytes)
 }
 
