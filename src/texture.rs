@@ -10,6 +10,7 @@ mod ktx2;
 mod lean;
 mod mip_filter;
 mod normal_mips;
+mod stored;
 
 pub use lean::{LeanLevel, LeanTexels, MIN_LEAN_NZ, half_bits, half_value, round_to_half, slopes};
 pub use mip_filter::MipFilter;

@@ -5,8 +5,10 @@
 
 use ddsfile::{AlphaMode, D3D10ResourceDimension, Dds, DxgiFormat, NewDxgiParams};
 
-/// A GPU texture file format the bake writes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// A GPU texture file format the bake writes; named `dds-bc1`, `dds-dxt5nm`, `dds-bc5`,
+/// `dds-bc7`, `ktx2-uastc` (`bake --format`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, strum::IntoStaticStr, strum::VariantArray)]
+#[strum(serialize_all = "kebab-case")]
 pub enum CompressedFormat {
     /// DDS, BC1 (DXT1): RGB in 4 bits a texel, the block format made for colour.
     DdsBc1,
@@ -18,6 +20,16 @@ pub enum CompressedFormat {
     DdsBc7,
     /// KTX2, UASTC 4×4 (RGBA), Zstandard supercompression.
     Ktx2Uastc,
+}
+
+impl CompressedFormat {
+    /// The file extension of the format's files.
+    pub fn extension(self) -> &'static str {
+        match self {
+            CompressedFormat::Ktx2Uastc => "ktx2",
+            _ => "dds",
+        }
+    }
 }
 
 /// Encodes a `width`×`height` RGBA8 image (rows top to bottom) as `format`'s file bytes.

@@ -1,4 +1,5 @@
-//! BCn (S3TC / RGTC / BPTC) 4×4 blocks → RGBA8, decoded on the CPU by `bcdec_rs` (a pure-Rust
+//! Texel layouts → RGBA8: BCn (S3TC / RGTC / BPTC) 4×4 blocks, and uncompressed texels read
+//! through channel masks ([`decode_masked`]). Blocks are decoded on the CPU by `bcdec_rs` (a pure-Rust
 //! port of bcdec; it builds for the browser too). DDS and KTX2 files hand their top level here.
 //!
 //! Channels of the decoded texels: BC1/BC2/BC3/BC7 as stored; BC4 grey (its one channel in red,
@@ -96,6 +97,41 @@ fn decode_block(block: Block, bytes: &[u8], texels: &mut [u8; 64]) {
             }
         }
     }
+}
+
+/// Texels of `bits` bits (little-endian) read through `masks` (red, green, blue, alpha), each
+/// channel scaled to 0..255: a red-only layout is grey (red in red, green and blue), an absent
+/// colour channel 0 and an absent alpha 255. `None`: too little data or no memory.
+pub fn decode_masked(data: &[u8], width: u32, height: u32, bits: u32, masks: [u32; 4]) -> Option<Vec<u8>> {
+    let texel_bytes = bits as usize / 8;
+    let pitch = width as usize * texel_bytes;
+    let data = data.get(..pitch.checked_mul(height as usize)?)?;
+    let mut rgba = Vec::new();
+    rgba.try_reserve_exact((width as usize).checked_mul(height as usize)?.checked_mul(4)?).ok()?;
+    let grey = masks[1] == 0 && masks[2] == 0;
+    for texel in data.chunks_exact(texel_bytes) {
+        let mut word = [0u8; 4];
+        word[..texel_bytes].copy_from_slice(texel);
+        let value = u32::from_le_bytes(word);
+        let [r, g, b, a] = masks.map(|mask| channel(value, mask));
+        let r = r.unwrap_or(0);
+        match grey {
+            true => rgba.extend([r, r, r, a.unwrap_or(255)]),
+            false => rgba.extend([r, g.unwrap_or(0), b.unwrap_or(0), a.unwrap_or(255)]),
+        }
+    }
+    Some(rgba)
+}
+
+/// The bits of `value` under `mask` scaled to 0..255 (rounded); `None` for an empty mask.
+fn channel(value: u32, mask: u32) -> Option<u8> {
+    if mask == 0 {
+        return None;
+    }
+    let shift = mask.trailing_zeros();
+    let top = (mask >> shift) as u64;
+    let bits = ((value & mask) >> shift) as u64;
+    Some(((bits * 255 + top / 2) / top) as u8)
 }
 
 #[cfg(test)]

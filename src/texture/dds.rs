@@ -6,8 +6,8 @@
 //! A BC3 file is DXT5nm (x in alpha, y in green) when its pixel format carries the
 //! `DDPF_NORMAL` flag (`0x80000000`, written by NVIDIA's tools) or the `RXGB` code.
 
-use super::blocks::{Block, decode_level};
-use super::compressed::{Decoded, Stored, StoredChannels, no_memory};
+use super::blocks::{Block, decode_level, decode_masked};
+use super::stored::{Decoded, Stored, StoredChannels, no_memory};
 use ddsfile::DxgiFormat;
 
 /// Bytes before the texels: the magic and the 124-byte header (a `DX10` header adds 20).
@@ -115,39 +115,4 @@ fn dxgi_layout(format: DxgiFormat) -> Result<(Layout, Stored), String> {
         F::R8_Typeless | F::R8_UNorm => masked(8, [0xff, 0, 0, 0], "R8", StoredChannels::Plain),
         other => Err(format!("DXGI format {other:?} is not supported (BC1-BC5, BC7, 8-bit RGBA, RG, R)")),
     }
-}
-
-/// Texels of `bits` bits (little-endian) read through `masks` (red, green, blue, alpha), each
-/// channel scaled to 0..255: a red-only layout is grey (red in red, green and blue), an absent
-/// colour channel 0 and an absent alpha 255. `None`: too little data or no memory.
-pub(super) fn decode_masked(data: &[u8], width: u32, height: u32, bits: u32, masks: [u32; 4]) -> Option<Vec<u8>> {
-    let texel_bytes = bits as usize / 8;
-    let pitch = width as usize * texel_bytes;
-    let data = data.get(..pitch.checked_mul(height as usize)?)?;
-    let mut rgba = Vec::new();
-    rgba.try_reserve_exact((width as usize).checked_mul(height as usize)?.checked_mul(4)?).ok()?;
-    let grey = masks[1] == 0 && masks[2] == 0;
-    for texel in data.chunks_exact(texel_bytes) {
-        let mut word = [0u8; 4];
-        word[..texel_bytes].copy_from_slice(texel);
-        let value = u32::from_le_bytes(word);
-        let [r, g, b, a] = masks.map(|mask| channel(value, mask));
-        let r = r.unwrap_or(0);
-        match grey {
-            true => rgba.extend([r, r, r, a.unwrap_or(255)]),
-            false => rgba.extend([r, g.unwrap_or(0), b.unwrap_or(0), a.unwrap_or(255)]),
-        }
-    }
-    Some(rgba)
-}
-
-/// The bits of `value` under `mask` scaled to 0..255 (rounded); `None` for an empty mask.
-fn channel(value: u32, mask: u32) -> Option<u8> {
-    if mask == 0 {
-        return None;
-    }
-    let shift = mask.trailing_zeros();
-    let top = (mask >> shift) as u64;
-    let bits = ((value & mask) >> shift) as u64;
-    Some(((bits * 255 + top / 2) / top) as u8)
 }

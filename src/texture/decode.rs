@@ -52,7 +52,19 @@ pub fn decode_image(
     admit: impl FnOnce(&Header) -> Result<(), String>,
 ) -> Result<(DynamicImage, Option<Stored>), String> {
     if let Some(container) = Container::sniff(bytes) {
-        let decoded = decode_container(container, bytes, max_bytes, admit)?;
+        let admit_rgba = |width: u32, height: u32| -> Result<(), String> {
+            let decoded_bytes = (width as u64 * height as u64).saturating_mul(4);
+            admit(&Header { width, height, decoded_bytes, color: ColorType::Rgba8 })?;
+            if decoded_bytes > max_bytes {
+                let mib = decoded_bytes.div_ceil(1 << 20);
+                return Err(format!(
+                    "{width}x{height} texels decode to {mib} MiB, over the {} MiB an image may take",
+                    max_bytes >> 20
+                ));
+            }
+            Ok(())
+        };
+        let decoded = decode_container(container, bytes, admit_rgba)?;
         let image = RgbaImage::from_raw(decoded.width, decoded.height, decoded.rgba).expect("width · height · 4 bytes");
         return Ok((DynamicImage::ImageRgba8(image), Some(decoded.stored)));
     }

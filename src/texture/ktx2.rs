@@ -9,8 +9,8 @@ use std::io::Read;
 
 use ktx2::{ColorModel, Format, SupercompressionScheme};
 
-use super::blocks::{Block, decode_level};
-use super::compressed::{Decoded, Stored, StoredChannels, no_memory};
+use super::blocks::{Block, decode_level, decode_masked};
+use super::stored::{Decoded, Stored, StoredChannels, no_memory};
 
 /// The DFD channel id of a two-channel UASTC file (`KHR_DF_CHANNEL_UASTC_RG`).
 const UASTC_RG: u8 = 6;
@@ -62,7 +62,7 @@ pub fn decode(bytes: &[u8], admit: impl FnOnce(u32, u32) -> Result<(), String>) 
     }
     let rgba = match layout {
         Layout::Blocks(block) => decode_level(block, &data, width, height),
-        Layout::Masks { bits, masks } => super::dds::decode_masked(&data, width, height, bits, masks),
+        Layout::Masks { bits, masks } => decode_masked(&data, width, height, bits, masks),
         Layout::Uastc => super::basis::transcode_uastc(&data, width, height)?,
     };
     let rgba = rgba.ok_or_else(|| no_memory(width, height))?;
