@@ -108,9 +108,12 @@ fn write_quads(folder: &Path) {
 /// Cells per side of the waved grid of [`write_grids`].
 const CELLS: usize = 24;
 
+/// Positions, normals, UVs and triangle corners of a mesh.
+type Streams = (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<[f32; 2]>, Vec<u32>);
+
 /// The grid: 2 m square, z = 0.05·sin(πx)·sin(πy) m, its analytic unit normals, UVs (v down)
 /// and two triangles a cell.
-fn grid() -> (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<[f32; 2]>, Vec<u32>) {
+fn grid() -> Streams {
     use std::f32::consts::PI;
     let (mut positions, mut normals, mut uvs, mut indices) = (vec![], vec![], vec![], vec![]);
     for j in 0..=CELLS {

@@ -156,7 +156,7 @@ proptest! {
         let json = String::from_utf8(json).unwrap();
         let keys = ["\"byteOffset\":", "\"byteLength\":", "\"byteStride\":", "\"count\":", "\"mode\":", "\"filter\":"];
         let mut slots: Vec<(usize, &str)> =
-            keys.iter().flat_map(|k| json.match_indices(k).map(|(at, k)| (at, k)).collect::<Vec<_>>()).collect();
+            keys.iter().flat_map(|k| json.match_indices(k).collect::<Vec<_>>()).collect();
         slots.sort();
         let (at, key) = slots[field % slots.len()];
         let start = at + key.len();

@@ -34,7 +34,7 @@ impl CompressedFormat {
 
 /// Encodes a `width`×`height` RGBA8 image (rows top to bottom) as `format`'s file bytes.
 pub fn encode(rgba: &[u8], width: u32, height: u32, format: CompressedFormat) -> Result<Vec<u8>, String> {
-    if width % 4 != 0 || height % 4 != 0 || width == 0 || height == 0 {
+    if !width.is_multiple_of(4) || !height.is_multiple_of(4) || width == 0 || height == 0 {
         return Err(format!("{width}x{height}: block-compressed files need sides that are multiples of 4"));
     }
     if rgba.len() as u64 != width as u64 * height as u64 * 4 {

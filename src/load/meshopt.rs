@@ -99,11 +99,11 @@ fn decode(c: &Compressed, source: &[u8], target: &mut [u8]) -> Result<(), String
     use meshopt::ffi;
     let (count, stride) = (c.count, c.stride);
     let valid = match (c.mode.as_str(), c.filter.as_str()) {
-        ("ATTRIBUTES", "NONE") => stride % 4 == 0 && stride <= 256,
+        ("ATTRIBUTES", "NONE") => stride.is_multiple_of(4) && stride <= 256,
         ("ATTRIBUTES", "OCTAHEDRAL") => stride == 4 || stride == 8,
         ("ATTRIBUTES", "QUATERNION") => stride == 8,
-        ("ATTRIBUTES", "EXPONENTIAL") => stride % 4 == 0 && stride <= 256,
-        ("TRIANGLES", "NONE") => (stride == 2 || stride == 4) && count % 3 == 0,
+        ("ATTRIBUTES", "EXPONENTIAL") => stride.is_multiple_of(4) && stride <= 256,
+        ("TRIANGLES", "NONE") => (stride == 2 || stride == 4) && count.is_multiple_of(3),
         ("INDICES", "NONE") => stride == 2 || stride == 4,
         _ => false,
     };
@@ -137,6 +137,9 @@ fn decode(c: &Compressed, source: &[u8], target: &mut [u8]) -> Result<(), String
 
 /// The browser build has no meshoptimizer.
 #[cfg(target_arch = "wasm32")]
-fn decode(_: &Compressed, _: &[u8], _: &mut [u8]) -> Result<(), String> {
-    Err(format!("{EXTENSION} needs the native build (meshoptimizer is not in the browser build)"))
+fn decode(c: &Compressed, _: &[u8], _: &mut [u8]) -> Result<(), String> {
+    Err(format!(
+        "{EXTENSION} needs the native build to decode its {} views (filter {}): meshoptimizer is not in the browser build",
+        c.mode, c.filter
+    ))
 }
