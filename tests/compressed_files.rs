@@ -50,6 +50,7 @@ fn make_fixtures() {
         ("brick_normal_bc5.dds", CompressedFormat::DdsBc5),
         ("brick_normal_bc7.dds", CompressedFormat::DdsBc7),
         ("brick_normal_uastc.ktx2", CompressedFormat::Ktx2Uastc),
+        ("brick_normal_etc1s.ktx2", CompressedFormat::Ktx2Etc1s),
     ] {
         std::fs::write(folder.join(name), encode(small.as_raw(), SIDE, SIDE, format).unwrap()).unwrap();
     }
@@ -271,6 +272,32 @@ fn compressed_normal_maps_draw_like_the_png_and_check_reads_their_layout() {
         let warned = found.warnings().iter().any(|w| w.contains("block format made for colour"));
         assert_eq!(warned, name.contains("bc1"), "{name}: {:?}", found.warnings());
     }
+}
+
+/// ETC1S (BasisLZ) KTX2: drawn within RMSE 2.0 of the PNG with the `etc1s` feature (measured
+/// 1.563), refused in one line naming the file without it.
+#[test]
+fn etc1s_normal_maps_draw_with_the_feature_and_are_refused_without() {
+    let path = fixtures().join("brick_normal_etc1s.ktx2");
+    if !cfg!(feature = "etc1s") {
+        let files = SceneFiles { normal: Some(path.clone()), ..Default::default() };
+        let error = replace_textures(&mut scene(), &files).unwrap_err().to_string();
+        assert!(error.contains("brick_normal_etc1s.ktx2") && error.contains("etc1s"), "{error}");
+        assert!(!error.contains('\n'), "{error}");
+        return;
+    }
+    let size = [640, 360];
+    let reference_scene = with_normal_map(&fixtures().join("brick_normal.png"));
+    let mut renderer = renderer_for(&reference_scene);
+    let reference = render_image(&mut renderer, size, &default_params(&reference_scene)).unwrap();
+    let scene = with_normal_map(&path);
+    renderer.set_scene(&scene, Default::default());
+    let distance = rmse(&reference, &render_image(&mut renderer, size, &default_params(&scene)).unwrap());
+    println!("brick_normal_etc1s.ktx2: RMSE {distance:.3} against the PNG");
+    assert!(distance <= 2.0, "RMSE {distance:.3}");
+    let found = &check_normal_maps(&texture_scene(&path).unwrap())[0];
+    assert!(found.layout_reason.starts_with("ETC1S KTX2 (BasisLZ): three channels"), "{}", found.layout_reason);
+    assert!(found.warnings().iter().any(|w| w.contains("block format made for colour")));
 }
 
 /// A glTF model drawn at its opening view, without load warnings.

@@ -15,6 +15,8 @@ pub mod compressed_out;
 pub mod cone;
 pub mod detail;
 pub mod image_io;
+#[cfg(not(target_arch = "wasm32"))]
+mod ktx2_out;
 pub mod mips;
 pub mod to_height;
 

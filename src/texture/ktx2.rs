@@ -1,9 +1,10 @@
 //! KTX2 files: the container parsed by the `ktx2` crate, the top level of the first layer (or
 //! cube face) decoded to RGBA8. Read directly: BC1–BC5 and BC7 ([`super::blocks`]), R8G8B8A8,
 //! R8G8 and R8. Supercompression: Zstandard (`ruzstd`, pure Rust) and zlib (`flate2`).
-//! UASTC (`KHR_texture_basisu`) is transcoded by Binomial's transcoder ([`super::basis`]),
-//! which is native only: the browser build names the file and says it cannot. ETC1S
-//! (BasisLZ supercompression) is refused in one line.
+//! UASTC and ETC1S with BasisLZ (`KHR_texture_basisu`) are transcoded by Binomial's transcoder
+//! ([`super::basis`]), which is native only: the browser build names the file and says it
+//! cannot. ETC1S is read only with the `etc1s` feature (Cargo.toml says why). A Basis file that keeps x in red, green and blue and y in alpha (ETC1S channels RRR
+//! and GGG, UASTC RRRG: how Basis stores normal maps) is handed on as x in red, y in green.
 
 use std::io::Read;
 
@@ -12,8 +13,11 @@ use ktx2::{ColorModel, Format, SupercompressionScheme};
 use super::blocks::{Block, decode_level, decode_masked};
 use super::stored::{Decoded, Stored, StoredChannels, no_memory};
 
-/// The DFD channel id of a two-channel UASTC file (`KHR_DF_CHANNEL_UASTC_RG`).
+/// DFD channel ids of two-channel Basis files: UASTC RRRG and RG, ETC1S RRR and GGG.
+const UASTC_RRRG: u8 = 5;
 const UASTC_RG: u8 = 6;
+const ETC1S_RRR: u8 = 3;
+const ETC1S_GGG: u8 = 4;
 
 /// How the texels of a KTX2 file are stored.
 enum Layout {
@@ -23,7 +27,10 @@ enum Layout {
         bits: u32,
         masks: [u32; 4],
     },
-    Uastc,
+    /// UASTC blocks; `true`: x in red, green and blue, y in alpha.
+    Uastc(bool),
+    /// ETC1S with BasisLZ; `true`: x in the RGB slice, y in the alpha slice.
+    Etc1s(bool),
 }
 
 /// Decodes a KTX2 file's top level once `admit(width, height)` accepts its size.
@@ -43,30 +50,66 @@ pub fn decode(bytes: &[u8], admit: impl FnOnce(u32, u32) -> Result<(), String>) 
         None => String::new(),
         Some(SupercompressionScheme::Zstandard) => " (Zstandard)".to_owned(),
         Some(SupercompressionScheme::ZLIB) => " (zlib)".to_owned(),
+        Some(SupercompressionScheme::BasisLZ) => " (BasisLZ)".to_owned(),
         Some(other) => return Err(format!("KTX2 supercompression {other:?} is not supported")),
     };
     let stored = Stored { format: format!("{name} KTX2{packed}"), channels };
     admit(width, height)?;
-    let needed = match layout {
-        Layout::Blocks(block) => block.level_bytes(width, height),
-        Layout::Uastc => width.div_ceil(4) as u64 * height.div_ceil(4) as u64 * 16,
-        Layout::Masks { bits, .. } => width as u64 * height as u64 * (bits as u64 / 8),
-    };
     let level = reader.levels().next().ok_or("the KTX2 file has no mip level")?;
-    let data = unpacked(level.data, scheme, needed)?;
+    let rgba = match layout {
+        Layout::Etc1s(swizzle) => {
+            let images = header.level_count.max(1) as usize * header.layer_count.max(1) as usize;
+            let images = images * header.face_count.max(1) as usize;
+            let global = reader.supercompression_global_data();
+            let rgba = super::basis::transcode_etc1s(global, level.data, width, height, images)?;
+            Some(if swizzle { alpha_to_green(rgba) } else { rgba })
+        }
+        _ => decode_level_data(&layout, level.data, scheme, width, height)?,
+    };
+    let rgba = rgba.ok_or_else(|| no_memory(width, height))?;
+    Ok(Decoded { width, height, rgba, stored })
+}
+
+/// The texels of a level that is not BasisLZ: unpacked by `scheme`, checked against the bytes
+/// `width`×`height` texels need, decoded (`Ok(None)`: no memory).
+fn decode_level_data(
+    layout: &Layout,
+    data: &[u8],
+    scheme: Option<SupercompressionScheme>,
+    width: u32,
+    height: u32,
+) -> Result<Option<Vec<u8>>, String> {
+    let needed = match *layout {
+        Layout::Blocks(block) => block.level_bytes(width, height),
+        Layout::Masks { bits, .. } => width as u64 * height as u64 * (bits as u64 / 8),
+        Layout::Uastc(_) => width.div_ceil(4) as u64 * height.div_ceil(4) as u64 * 16,
+        Layout::Etc1s(_) => return Err("an ETC1S level is BasisLZ-supercompressed".to_owned()),
+    };
+    let data = unpacked(data, scheme, needed)?;
     if (data.len() as u64) < needed {
         return Err(format!(
             "the KTX2 top level holds {} of the {needed} bytes its {width}x{height} texels need (truncated)",
             data.len()
         ));
     }
-    let rgba = match layout {
+    Ok(match *layout {
         Layout::Blocks(block) => decode_level(block, &data, width, height),
         Layout::Masks { bits, masks } => decode_masked(&data, width, height, bits, masks),
-        Layout::Uastc => super::basis::transcode_uastc(&data, width, height)?,
-    };
-    let rgba = rgba.ok_or_else(|| no_memory(width, height))?;
-    Ok(Decoded { width, height, rgba, stored })
+        Layout::Uastc(swizzle) => {
+            let rgba = super::basis::transcode_uastc(&data, width, height)?;
+            rgba.map(|rgba| if swizzle { alpha_to_green(rgba) } else { rgba })
+        }
+        Layout::Etc1s(_) => None,
+    })
+}
+
+/// A two-channel Basis layout (x in red, green and blue, y in alpha) as x in red, y in green,
+/// blue 0, alpha 255.
+fn alpha_to_green(mut rgba: Vec<u8>) -> Vec<u8> {
+    for texel in rgba.chunks_exact_mut(4) {
+        texel.copy_from_slice(&[texel[0], texel[3], 0, 255]);
+    }
+    rgba
 }
 
 /// The layout of a KTX2 file, its format's name and what it says about the channels.
@@ -96,12 +139,22 @@ fn layout(
             let dfd = reader.basic_dfd().ok_or("the KTX2 file has no basic data format descriptor")?;
             match dfd.color_model {
                 Some(ColorModel::UASTC) => {
-                    let rg = dfd.sample_information.first().is_some_and(|s| s.channel_type == UASTC_RG);
-                    let channels = if rg { StoredChannels::Rg } else { StoredChannels::Rgba };
-                    Ok((Layout::Uastc, "UASTC".to_owned(), channels))
+                    let channel = dfd.sample_information.first().map(|s| s.channel_type);
+                    let rrrg = channel == Some(UASTC_RRRG);
+                    let two = rrrg || channel == Some(UASTC_RG);
+                    let channels = if two { StoredChannels::Rg } else { StoredChannels::Rgba };
+                    Ok((Layout::Uastc(rrrg), "UASTC".to_owned(), channels))
+                }
+                Some(ColorModel::ETC1S) if !cfg!(feature = "etc1s") => {
+                    Err("ETC1S (BasisLZ) KTX2 textures are not read by this build (the `etc1s` feature: \
+                     Binomial's transcoder aborts on corrupt ETC1S data); UASTC ones are"
+                        .to_owned())
                 }
                 Some(ColorModel::ETC1S) if scheme == Some(SupercompressionScheme::BasisLZ) => {
-                    Err("ETC1S (BasisLZ) KTX2 textures are not transcoded by this build; UASTC ones are".to_owned())
+                    let ids: Vec<u8> = dfd.sample_information.iter().map(|s| s.channel_type).collect();
+                    let two = ids == [ETC1S_RRR, ETC1S_GGG];
+                    let channels = if two { StoredChannels::Rg } else { StoredChannels::ColourBlock };
+                    Ok((Layout::Etc1s(two), "ETC1S".to_owned(), channels))
                 }
                 model => Err(format!("KTX2 colour model {model:?} without a format is not supported")),
             }
