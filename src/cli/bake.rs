@@ -124,8 +124,9 @@ pub struct BakeArgs {
     ])]
     cone_map: bool,
     /// Write the input image as a GPU texture file instead of baking: dds-bc5 (a two-channel
-    /// normal map: red, green), dds-dxt5nm (x in alpha, y in green), dds-bc1, dds-bc7 or
-    /// ktx2-uastc (Basis Universal UASTC, Zstandard). Its texels are taken as they are.
+    /// normal map: red, green), dds-dxt5nm (x in alpha, y in green), dds-bc1, dds-bc7,
+    /// ktx2-uastc (Basis Universal UASTC, Zstandard) or ktx2-etc1s (BasisLZ). Its texels are
+    /// taken as they are.
     #[arg(long, value_name = "FORMAT", value_parser = args::named::<CompressedFormat>(), conflicts_with_all = [
         "to_height", "kernel", "spectral", "height_range", "texel_size", "texture_width", "strength",
         "border", "normal_convention", "bits", "height_in_alpha", "two_channel", "mips", "detail", "cone_map",

@@ -1,4 +1,4 @@
-//! `bumpview bake IMAGE --format dds-bc5|dds-bc7|dds-bc1|dds-dxt5nm|ktx2-uastc --out FILE|DIR`:
+//! `bumpview bake IMAGE --format dds-bc5|dds-bc7|dds-bc1|dds-dxt5nm|ktx2-uastc|ktx2-etc1s --out FILE|DIR`:
 //! the image (any format the loader reads) written as a GPU texture file, one level
 //! ([`bumpview::bake::compressed_out`]). Its RGBA texels are taken as they are (no colour
 //! conversion): a normal map stays a normal map.
