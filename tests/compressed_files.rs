@@ -353,3 +353,22 @@ fn a_meshopt_compressed_model_draws_like_its_plain_twin() {
     println!("grid_meshopt.gltf: RMSE {distance:.3} against grid_plain.gltf");
     assert!(distance <= 0.25, "RMSE {distance:.3}");
 }
+
+/// `bake --format` writes the committed fixtures again, byte for byte, from the PNG.
+#[test]
+fn bake_format_writes_the_fixtures_again() {
+    let dir = std::env::temp_dir().join(format!("bumpview-bake-format-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (format, fixture) in [("dds-bc5", "brick_normal_bc5.dds"), ("ktx2-uastc", "brick_normal_uastc.ktx2")] {
+        let out = dir.join(fixture);
+        let status = std::process::Command::new(env!("CARGO_BIN_EXE_bumpview"))
+            .args(["bake", "--format", format, "--force", "--out"])
+            .arg(&out)
+            .arg(fixtures().join("brick_normal.png"))
+            .status()
+            .unwrap();
+        assert!(status.success(), "{format}");
+        assert!(std::fs::read(&out).unwrap() == std::fs::read(fixtures().join(fixture)).unwrap(), "{format}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
