@@ -116,3 +116,51 @@ fn dxgi_layout(format: DxgiFormat) -> Result<(Layout, Stored), String> {
         other => Err(format!("DXGI format {other:?} is not supported (BC1-BC5, BC7, 8-bit RGBA, RG, R)")),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ddsfile::{AlphaMode, D3D10ResourceDimension, D3DFormat, NewD3dParams, NewDxgiParams};
+
+    fn written(mut dds: ddsfile::Dds, texels: &[u8]) -> Vec<u8> {
+        dds.data = texels.to_vec();
+        let mut bytes = Vec::new();
+        dds.write(&mut bytes).unwrap();
+        bytes
+    }
+
+    #[test]
+    fn uncompressed_layouts_decode_through_their_masks_and_r8g8_is_two_channels() {
+        let params = NewDxgiParams {
+            height: 1,
+            width: 2,
+            depth: None,
+            format: DxgiFormat::R8G8_UNorm,
+            mipmap_levels: Some(1),
+            array_layers: None,
+            caps2: None,
+            is_cubemap: false,
+            resource_dimension: D3D10ResourceDimension::Texture2D,
+            alpha_mode: AlphaMode::Unknown,
+        };
+        let rg = written(ddsfile::Dds::new_dxgi(params).unwrap(), &[10, 20, 30, 40]);
+        let decoded = decode(&rg, |_, _| Ok(())).unwrap();
+        assert_eq!(decoded.rgba, [10, 20, 0, 255, 30, 40, 0, 255]);
+        assert_eq!((decoded.stored.format.as_str(), decoded.stored.channels), ("R8G8 DDS", StoredChannels::Rg));
+        // Legacy A8R8G8B8: bytes B, G, R, A in memory.
+        let params = NewD3dParams {
+            height: 1,
+            width: 1,
+            depth: None,
+            format: D3DFormat::A8R8G8B8,
+            mipmap_levels: None,
+            caps2: None,
+        };
+        let bgra = written(ddsfile::Dds::new_d3d(params).unwrap(), &[1, 2, 3, 4]);
+        let decoded = decode(&bgra, |_, _| Ok(())).unwrap();
+        assert_eq!(decoded.rgba, [3, 2, 1, 4]);
+        // Cut short: one line that says so.
+        let error = decode(&rg[..rg.len() - 1], |_, _| Ok(())).unwrap_err();
+        assert!(error.contains("truncated"), "{error}");
+    }
+}
