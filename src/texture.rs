@@ -1,10 +1,16 @@
 //! CPU images with their colour space, and their mip chains (a normal map's by its
 //! [`MipFilter`]).
 
+mod basis;
+mod blocks;
+pub mod compressed;
+mod dds;
 pub mod decode;
+mod ktx2;
 mod lean;
 mod mip_filter;
 mod normal_mips;
+mod stored;
 
 pub use lean::{LeanLevel, LeanTexels, MIN_LEAN_NZ, half_bits, half_value, round_to_half, slopes};
 pub use mip_filter::MipFilter;

@@ -15,7 +15,7 @@ use std::sync::mpsc;
 use image::{DynamicImage, ImageFormat};
 
 use super::BakeError;
-use crate::texture::decode::decode_admitted;
+use crate::texture::decode::decode_image;
 
 /// The largest side, in texels, the bake reads: a 16384² 16-bit height map is 512 MiB and its
 /// normal map 1.5 GiB. Larger headers are refused before their pixels are allocated.
@@ -24,7 +24,7 @@ pub const MAX_SIDE: u32 = 16384;
 /// The smallest side: a kernel needs neighbours to take a difference.
 pub const MIN_SIDE: u32 = 2;
 
-/// Decodes the image file `path` (PNG, JPEG, TGA or BMP; TGA by extension), refusing sizes
+/// Decodes the image file `path` (PNG, JPEG, TGA, BMP, WebP, DDS or KTX2; TGA by extension), refusing sizes
 /// outside [`MIN_SIDE`]..=[`MAX_SIDE`] from the header.
 pub fn read_image(path: &Path) -> Result<DynamicImage, BakeError> {
     read_image_admitted(path, |_| Ok(()))
@@ -50,10 +50,7 @@ pub fn read_image_admitted(
 ) -> Result<DynamicImage, BakeError> {
     let bytes = crate::read::read_file(path, crate::read::FileKind::Image)
         .map_err(|e| BakeError::new(path, format!("cannot read: {e}")))?;
-    let format = image::guess_format(&bytes)
-        .ok()
-        .or_else(|| ImageFormat::from_path(path).ok().filter(|&f| f == ImageFormat::Tga))
-        .ok_or_else(|| BakeError::new(path, "not an image (expected PNG, JPEG, TGA or BMP data)"))?;
+    let tga_by_name = ImageFormat::from_path(path).ok() == Some(ImageFormat::Tga);
     let mut refused = None;
     let admit_header = |h: &crate::texture::decode::Header| {
         let stated = Header {
@@ -71,9 +68,9 @@ pub fn read_image_admitted(
         })
     };
     // No cap of the decoder's own: the sides and `admit` (the bake's --max-memory) bound it.
-    let decoded = decode_admitted(&bytes, format, u64::MAX, admit_header);
+    let decoded = decode_image(&bytes, tga_by_name, u64::MAX, admit_header);
     match (decoded, refused) {
-        (Ok(image), _) => Ok(image),
+        (Ok((image, _)), _) => Ok(image),
         // The caller's own error, as it made it.
         (Err(_), Some(refused)) => Err(refused),
         (Err(problem), None) => Err(BakeError::new(path, problem)),

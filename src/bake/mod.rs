@@ -10,9 +10,13 @@
 //! written atomically ([`crate::atomic`]); many files are baked in parallel ([`bake_all`]),
 //! except backward, where one solve already uses every core and memory is budgeted per file.
 
+#[cfg(not(target_arch = "wasm32"))]
+pub mod compressed_out;
 pub mod cone;
 pub mod detail;
 pub mod image_io;
+#[cfg(not(target_arch = "wasm32"))]
+mod ktx2_out;
 pub mod mips;
 pub mod to_height;
 

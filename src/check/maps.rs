@@ -12,7 +12,8 @@ use super::mip_shortening::{self, LevelShortening, first_over_sharp, mip_shorten
 use super::normal_map::{NormalMapFindings, check_normal_map, decoded_normals, layout_evidence};
 use super::votes_picture::votes_picture;
 use crate::names::Named;
-use crate::scene::{Material, NormalLayout, NormalMap, Scene};
+use crate::scene::{Material, NormalLayout, NormalMap, Scene, stored_layout};
+use crate::texture::compressed::{Stored, StoredChannels};
 
 /// The slot of a material a normal map sits in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -53,6 +54,8 @@ pub struct MapFindings {
     /// The channel layout the map is drawn with (the material's, as loaded), and why.
     pub layout: NormalLayout,
     pub layout_reason: String,
+    /// What the texture file's format says about its channels (DDS, KTX2).
+    pub stored: Option<Stored>,
     /// The material's Blinn-Phong exponent (metallic-roughness: Beckmann's `2/α² − 2`).
     pub shininess: f32,
     /// Per mip level, how short the averaged normals get ([`mip_shortening`]); empty unless
@@ -81,8 +84,17 @@ pub fn check_normal_maps(scene: &Scene) -> Vec<MapFindings> {
                     format!("X-Ray pair: {:?} with the correction {:?} beside it", texture.name, correction.name)
                 }
                 (NormalLayout::Xray, None) => format!("X-Ray bump {:?} without a bump# correction", texture.name),
-                (layout, _) if layout == findings.suggested_layout => format!("as loaded, and {evidence}"),
-                _ => format!("as loaded, although {evidence}"),
+                (layout, _) => {
+                    let texels = match layout == findings.suggested_layout {
+                        true => format!("as loaded, and {evidence}"),
+                        false => format!("as loaded, although {evidence}"),
+                    };
+                    match map.stored.as_ref() {
+                        Some(stored) if stored_layout(stored) == Some(layout) => stored.reason(),
+                        Some(stored) if stored_layout(stored).is_none() => format!("{}; {texels}", stored.reason()),
+                        _ => texels,
+                    }
+                }
             };
             let shininess = material_exponent(material);
             let mips = if layout == NormalLayout::Rgb && slot == NormalSlot::Base {
@@ -98,6 +110,7 @@ pub fn check_normal_maps(scene: &Scene) -> Vec<MapFindings> {
                 findings,
                 layout,
                 layout_reason,
+                stored: map.stored.clone(),
                 shininess,
                 mips,
             });
@@ -143,6 +156,13 @@ impl MapFindings {
         }
         if let Some((GreenConvention::DirectX, confidence)) = f.convention {
             warnings.push(format!("{name}: green looks DirectX (−Y), confidence {confidence:.2}"));
+        }
+        if let Some(stored) = self.stored.as_ref().filter(|s| s.channels == StoredChannels::ColourBlock) {
+            warnings.push(format!(
+                "{name}: stored as {} (three channels in a block format made for colour): z takes bits from x and y; \
+                 BC5 or two-channel UASTC keep x and y only and rebuild z",
+                stored.format
+            ));
         }
         // The texel statistics read red, green, blue as x, y, z.
         if self.layout != NormalLayout::Rgb {

@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 use bumpview::atomic::check_outputs;
 use bumpview::error::escape_controls;
 
+use bumpview::bake::compressed_out::CompressedFormat;
 use bumpview::bake::mips::{level_path, mip_levels, write_levels};
 use bumpview::bake::{BakeOptions, Direction, TexelSize, Units, bake_all, plan_outputs};
 use bumpview::frame::DetailBlend;
@@ -122,6 +123,15 @@ pub struct BakeArgs {
         "border", "normal_convention", "bits", "height_in_alpha", "two_channel", "mips", "detail",
     ])]
     cone_map: bool,
+    /// Write the input image as a GPU texture file instead of baking: dds-bc5 (a two-channel
+    /// normal map: red, green), dds-dxt5nm (x in alpha, y in green), dds-bc1, dds-bc7,
+    /// ktx2-uastc (Basis Universal UASTC, Zstandard) or ktx2-etc1s (BasisLZ). Its texels are
+    /// taken as they are.
+    #[arg(long, value_name = "FORMAT", value_parser = args::named::<CompressedFormat>(), conflicts_with_all = [
+        "to_height", "kernel", "spectral", "height_range", "texel_size", "texture_width", "strength",
+        "border", "normal_convention", "bits", "height_in_alpha", "two_channel", "mips", "detail", "cone_map",
+    ])]
+    format: Option<CompressedFormat>,
     /// Replace outputs that exist (without it, an existing output is kept and nothing is
     /// baked). An input is never written over, even with --force.
     #[arg(long)]
@@ -169,6 +179,9 @@ impl BakeArgs {
 pub fn run(args: &BakeArgs) -> Result<(), Failure> {
     if let Some(filter) = args.mips {
         return run_mips(args, filter);
+    }
+    if let Some(format) = args.format {
+        return super::bake_compressed::run(&args.inputs, &args.out, format, args.force);
     }
     if args.cone_map {
         return super::bake_cone::run(&args.inputs, &args.out, args.depth_map, args.force);

@@ -5,6 +5,7 @@
 
 pub mod args;
 mod bake;
+mod bake_compressed;
 mod bake_cone;
 mod bake_detail;
 mod check;

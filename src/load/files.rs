@@ -7,13 +7,14 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::image::load_scene_texture;
+use super::image::{load_scene_texture, load_scene_texture_stored};
 use super::load_scene;
 use crate::error::LoadError;
 use crate::height::Kernel;
 use crate::scene::material::TEXTURE_SPAN_M;
 use crate::scene::teaching::TeachingScene;
 use crate::scene::{DetailBlend, DetailMap, HeightMap, NormalMap, Scene, TextureImage, TextureKind};
+use crate::texture::compressed::Stored;
 
 /// Metres the full range of a height map from a file spans (times an MTL `-bm`).
 pub const HEIGHT_RANGE_M: f32 = 0.01;
@@ -221,19 +222,28 @@ pub fn replace_textures(scene: &mut Scene, files: &SceneFiles) -> Result<(), Loa
         let heights = load_scene_texture(scene, path, TextureKind::Height)?;
         add_height_map(scene, &every, heights, 1.0);
     }
-    let mut each = |path: &Option<PathBuf>, kind, set: fn(&mut crate::scene::Material, usize)| {
+    let each = |scene: &mut Scene, path: &Option<PathBuf>, kind, set: fn(&mut crate::scene::Material, usize)| {
         if let Some(path) = path {
-            let texture = load_scene_texture(scene, path, kind)?;
+            let (texture, stored) = load_scene_texture_stored(scene, path, kind)?;
             scene.textures.push(texture.into());
             let texture = scene.textures.len() - 1;
             scene.materials.iter_mut().for_each(|m| set(m, texture));
+            return Ok::<Option<Stored>, LoadError>(stored);
         }
-        Ok::<(), LoadError>(())
+        Ok(None)
     };
-    each(&files.color, TextureKind::Color, |m, t| m.base_color_texture = Some(t))?;
-    each(&files.normal, TextureKind::NormalMap, |m, t| m.normal_map = Some(NormalMap::new(t, 1.0)))?;
-    each(&files.gloss, TextureKind::Data, |m, t| m.gloss_texture = Some(t))?;
-    each(&files.detail, TextureKind::NormalMap, |m, t| m.detail_map = Some(DetailMap::new(t, DetailBlend::default())))?;
+    each(scene, &files.color, TextureKind::Color, |m, t| m.base_color_texture = Some(t))?;
+    let stored =
+        each(scene, &files.normal, TextureKind::NormalMap, |m, t| m.normal_map = Some(NormalMap::new(t, 1.0)))?;
+    if stored.is_some() {
+        for map in scene.materials.iter_mut().filter_map(|m| m.normal_map.as_mut()) {
+            *map = map.clone().with_stored(stored.as_ref());
+        }
+    }
+    each(scene, &files.gloss, TextureKind::Data, |m, t| m.gloss_texture = Some(t))?;
+    each(scene, &files.detail, TextureKind::NormalMap, |m, t| {
+        m.detail_map = Some(DetailMap::new(t, DetailBlend::default()))
+    })?;
     Ok(())
 }
 
@@ -259,7 +269,7 @@ pub fn is_image_path(path: &Path) -> bool {
 }
 
 /// Image extensions this build decodes ([`super::image::load_texture`]).
-const IMAGE_EXTENSIONS: [&str; 5] = ["png", "jpg", "jpeg", "tga", "bmp"];
+const IMAGE_EXTENSIONS: [&str; 8] = ["png", "jpg", "jpeg", "tga", "bmp", "webp", "dds", "ktx2"];
 
 /// X-Ray's (S.T.A.L.K.E.R.) normal-map pair beside a colour texture `NAME.*`: the files
 /// `NAME_bump.*` and, where it exists, `NAME_bump#.*` in the same folder (any extension this

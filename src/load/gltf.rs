@@ -15,9 +15,9 @@ use std::path::{Path, PathBuf};
 use glam::{Mat4, Vec3, Vec4};
 
 use super::budget::{Budget, INDEX_BYTES, VERTEX_BYTES};
-use super::gltf_document::parse;
+use super::gltf_document::{parse, texture_image};
 use super::gltf_mesh::{PrimitiveKey, UvChoice, primitive_mesh};
-use super::image::{decode_texture_within, texel_room};
+use super::image::{decode_texture_stored, texel_room};
 use super::uri::{NOT_PORTABLE_NOTE, UriTarget, read_uri, resolve_uri};
 use crate::error::{LoadError, LoadWarning};
 use crate::read::FileKind;
@@ -26,6 +26,7 @@ use crate::scene::{
     Wrap,
 };
 use crate::shading::pbr::roughness_exponent;
+use crate::texture::compressed::Stored;
 
 /// Blinn-Phong exponents a glTF roughness maps to.
 const SHININESS: std::ops::RangeInclusive<f32> = 1.0..=1024.0;
@@ -39,6 +40,9 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
     let buffers = document
         .buffers()
         .map(|buffer| {
+            if super::meshopt::is_fallback(&buffer) {
+                return Ok((Vec::new(), path.to_owned())); // made by `decompress_views`
+            }
             let (data, source) = match buffer.source() {
                 gltf::buffer::Source::Bin => {
                     let blob = blob.clone().ok_or_else(|| {
@@ -74,7 +78,10 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
         textures: HashMap::new(),
         materials: HashMap::new(),
         meshes: HashMap::new(),
+        stored: HashMap::new(),
     };
+    let (buffers, budget) = (&mut loader.buffers, &mut loader.budget);
+    super::meshopt::decompress_views(&document, buffers, budget).map_err(|problem| LoadError::new(path, problem))?;
     loader.walk_nodes()?;
     Ok(loader.scene)
 }
@@ -95,6 +102,8 @@ struct Loader<'a> {
     meshes: HashMap<PrimitiveKey, Option<usize>>,
     /// What the meshes may still allocate.
     budget: Budget,
+    /// Scene texture index → what its DDS or KTX2 file's format says about the channels.
+    stored: HashMap<usize, Stored>,
 }
 
 impl Loader<'_> {
@@ -190,7 +199,8 @@ impl Loader<'_> {
         };
         let normal_map = match material.normal_texture() {
             Some(normal) => {
-                self.texture(normal.texture(), TextureKind::NormalMap)?.map(|t| NormalMap::new(t, normal.scale()))
+                let texture = self.texture(normal.texture(), TextureKind::NormalMap)?;
+                texture.map(|t| NormalMap::new(t, normal.scale()).with_stored(self.stored.get(&t)))
             }
             None => None,
         };
@@ -274,6 +284,10 @@ impl Loader<'_> {
         let roughness_texture = slot(self, "clearcoatRoughnessTexture", TextureKind::Data)?.map(|(t, _)| t);
         let normal_map =
             slot(self, "clearcoatNormalTexture", TextureKind::NormalMap)?.map(|(t, scale)| NormalMap::new(t, scale));
+        let normal_map = normal_map.map(|map| {
+            let stored = self.stored.get(&map.texture);
+            map.with_stored(stored)
+        });
         let layer_uv = layer_uv.unwrap_or(glam::Mat3::IDENTITY);
         Ok(Clearcoat {
             factor: number("clearcoatFactor", 0.0).clamp(0.0, 1.0),
@@ -289,14 +303,18 @@ impl Loader<'_> {
     /// (with a [`LoadWarning`]) when the image file cannot be read or decoded. An image the
     /// document describes wrongly (no uri or mimeType, outside its buffer) is an error.
     fn texture(&mut self, texture: gltf::Texture, kind: TextureKind) -> Result<Option<usize>, LoadError> {
-        let image = texture.source().index();
+        let image = texture_image(self.document, &texture).map_err(|problem| LoadError::new(self.path, problem))?;
         if let Some(&index) = self.textures.get(&(image, kind)) {
             return Ok(index);
         }
-        let index = match self.decode(texture, kind)? {
-            Ok(decoded) => {
+        let index = match self.decode(image, kind)? {
+            Ok((decoded, stored)) => {
                 self.scene.textures.push(decoded.into());
-                Some(self.scene.textures.len() - 1)
+                let index = self.scene.textures.len() - 1;
+                if let Some(stored) = stored {
+                    self.stored.insert(index, stored);
+                }
+                Some(index)
             }
             Err(unreadable) => {
                 let warning = LoadWarning::UnreadableTexture { file: unreadable.path, problem: unreadable.problem };
@@ -310,15 +328,15 @@ impl Loader<'_> {
         Ok(index)
     }
 
-    /// A glTF texture's image, read and decoded as `kind` (inner `Err`: the image cannot be
+    /// Image `image` of the document, read and decoded as `kind` (inner `Err`: the image cannot be
     /// read or decoded); an image file is remembered in [`Scene::files`], readable or not, so
     /// that hot reload picks it up once it is fixed.
     fn decode(
         &mut self,
-        texture: gltf::Texture,
+        image: usize,
         kind: TextureKind,
-    ) -> Result<Result<TextureImage, LoadError>, LoadError> {
-        let image = texture.source();
+    ) -> Result<Result<(TextureImage, Option<Stored>), LoadError>, LoadError> {
+        let image = self.document.images().nth(image).expect("texture_image checks the index");
         // gltf's `Image::source` unwraps the uri, or the mimeType of a bufferView image, and
         // validation does not always catch their absence (found by tests/fuzz.rs).
         let json = &self.document.as_json().images[image.index()];
@@ -358,7 +376,7 @@ impl Loader<'_> {
             Ok(room) => room,
             Err(problem) => return Ok(Err(LoadError::new(&file, problem))),
         };
-        Ok(decode_texture_within(&bytes, &file, kind, room))
+        Ok(decode_texture_stored(&bytes, &file, kind, room))
     }
 }
 

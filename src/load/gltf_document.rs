@@ -6,13 +6,42 @@ use std::path::Path;
 use crate::error::LoadError;
 
 /// Extensions a file may list in `extensionsRequired`.
-const SUPPORTED_REQUIRED: [&str; 5] = [
+const SUPPORTED_REQUIRED: [&str; 8] = [
     "KHR_texture_transform",
     "KHR_mesh_quantization",
     "KHR_draco_mesh_compression",
     "KHR_materials_clearcoat",
     "KHR_materials_emissive_strength",
+    "KHR_texture_basisu",
+    "EXT_texture_webp",
+    super::meshopt::EXTENSION,
 ];
+
+/// Extensions that give a texture its image in place of its `source` (KTX2 and WebP images,
+/// both decoded here), the first found preferred.
+const IMAGE_SOURCE_EXTENSIONS: [&str; 2] = ["KHR_texture_basisu", "EXT_texture_webp"];
+
+/// The image a texture reads: an extension's `source` ([`IMAGE_SOURCE_EXTENSIONS`]), else its
+/// own; an error when that image does not exist.
+pub(super) fn texture_image(document: &gltf::Document, texture: &gltf::Texture) -> Result<usize, String> {
+    let from_extension =
+        IMAGE_SOURCE_EXTENSIONS.iter().find_map(|name| texture.extension_value(name)?.get("source")?.as_u64());
+    let index = match from_extension {
+        Some(index) => usize::try_from(index).unwrap_or(usize::MAX),
+        None => document.as_json().textures[texture.index()].source.value(),
+    };
+    let images = document.images().len();
+    if index >= images {
+        return Err(format!("texture {} names no image among the {images} there are", texture.index()));
+    }
+    Ok(index)
+}
+
+/// Whether texture `index` of `root` takes its image from an extension.
+fn source_by_extension(root: &gltf::json::Root, index: usize) -> bool {
+    let extensions = root.textures.get(index).and_then(|t| t.extensions.as_ref());
+    extensions.is_some_and(|e| IMAGE_SOURCE_EXTENSIONS.iter().any(|name| e.others.contains_key(*name)))
+}
 
 /// Parses and validates the JSON (or GLB container) and checks `extensionsRequired`.
 pub(super) fn parse(bytes: &[u8], path: &Path) -> Result<(gltf::Document, Option<Vec<u8>>), LoadError> {
@@ -63,9 +92,14 @@ pub(super) fn parse(bytes: &[u8], path: &Path) -> Result<(gltf::Document, Option
                 let extension = at.starts_with("extensionsRequired[").then(|| at.rsplit('"').nth(1)).flatten();
                 let accessor = at.strip_prefix("accessors[").and_then(|rest| rest.strip_suffix("].bufferView"));
                 let accessor = accessor.and_then(|i| i.parse::<usize>().ok());
+                let texture = at.strip_prefix("textures[").and_then(|rest| rest.strip_suffix("].source"));
+                let texture = texture.and_then(|i| i.parse::<usize>().ok());
                 match error {
                     gltf::json::validation::Error::Unsupported => {
                         extension.is_some_and(|e| SUPPORTED_REQUIRED.contains(&e))
+                    }
+                    gltf::json::validation::Error::Missing if texture.is_some() => {
+                        texture.is_some_and(|t| source_by_extension(&root, t))
                     }
                     gltf::json::validation::Error::Missing => accessor.is_some_and(|a| draco_accessors.contains(&a)),
                     _ => false,

@@ -1,6 +1,8 @@
-//! Image files → [`TextureImage`]: PNG, JPEG, TGA and BMP; 8 or 16 bits per channel; grey,
-//! grey + alpha, RGB or RGBA. Colour and normal maps become RGBA8 (grey replicated to RGB,
-//! 16 bits rounded to 8); height maps keep 16 bits through [`encode_height`].
+//! Image files → [`TextureImage`]: PNG, JPEG, TGA, BMP and WebP (8 or 16 bits per channel;
+//! grey, grey + alpha, RGB or RGBA), and DDS and KTX2 decoded to RGBA8
+//! ([`crate::texture::compressed`], with what their format says about the channels). Colour
+//! and normal maps become RGBA8 (grey replicated to RGB, 16 bits rounded to 8); height maps
+//! keep 16 bits through [`encode_height`].
 //!
 //! Sizes are checked from the header before any pixel is decoded: a side of at most
 //! [`MAX_SIDE`], at most [`MAX_TEXELS`] texels per texture, and, for the textures of one
@@ -13,10 +15,8 @@ use image::{DynamicImage, ImageFormat};
 
 use crate::error::LoadError;
 use crate::scene::{Scene, TextureImage, TextureKind, encode_height};
-use crate::texture::decode::{MAX_DECODE_BYTES, decode_admitted};
-
-/// The formats this build decodes (the `image` crate features in Cargo.toml).
-const FORMATS: [ImageFormat; 4] = [ImageFormat::Png, ImageFormat::Jpeg, ImageFormat::Tga, ImageFormat::Bmp];
+use crate::texture::compressed::Stored;
+use crate::texture::decode::{MAX_DECODE_BYTES, decode_image};
 
 /// The largest side of a texture, texels: the largest 2D texture most GPUs take (wgpu's
 /// `max_texture_dimension_2d` on desktop Vulkan) and the bake's largest input.
@@ -41,9 +41,18 @@ pub fn load_texture(path: &Path, kind: TextureKind) -> Result<TextureImage, Load
 /// [`load_texture`] for a texture that joins `scene`: within what the scene's textures leave
 /// of [`MAX_SCENE_TEXELS`] and [`MAX_TEXTURES`].
 pub fn load_scene_texture(scene: &Scene, path: &Path, kind: TextureKind) -> Result<TextureImage, LoadError> {
+    load_scene_texture_stored(scene, path, kind).map(|(texture, _)| texture)
+}
+
+/// [`load_scene_texture`] with what a DDS or KTX2 file's format says about its channels.
+pub fn load_scene_texture_stored(
+    scene: &Scene,
+    path: &Path,
+    kind: TextureKind,
+) -> Result<(TextureImage, Option<Stored>), LoadError> {
     let room = texel_room(scene).map_err(|problem| LoadError::new(path, problem))?;
     let bytes = super::read_file(path, crate::read::FileKind::Image, "image")?;
-    decode_texture_within(&bytes, path, kind, room)
+    decode_texture_stored(&bytes, path, kind, room)
 }
 
 /// The texels a further texture of `scene` may have (at most [`MAX_TEXELS`]), or why there is
@@ -71,13 +80,17 @@ pub fn decode_texture_within(
     kind: TextureKind,
     room: u64,
 ) -> Result<TextureImage, LoadError> {
-    let by_extension = ImageFormat::from_path(path).ok().filter(|&f| f == ImageFormat::Tga);
-    let format = image::guess_format(bytes).ok().or(by_extension);
-    let format = match format {
-        Some(f) if FORMATS.contains(&f) => f,
-        Some(f) => return Err(LoadError::new(path, format!("{f:?} images are not supported (PNG, JPEG, TGA, BMP)"))),
-        None => return Err(LoadError::new(path, "not an image (expected PNG, JPEG, TGA or BMP data)")),
-    };
+    decode_texture_stored(bytes, path, kind, room).map(|(texture, _)| texture)
+}
+
+/// [`decode_texture_within`] with what a DDS or KTX2 file's format says about its channels.
+pub fn decode_texture_stored(
+    bytes: &[u8],
+    path: &Path,
+    kind: TextureKind,
+    room: u64,
+) -> Result<(TextureImage, Option<Stored>), LoadError> {
+    let tga_by_name = ImageFormat::from_path(path).ok() == Some(ImageFormat::Tga);
     let admit = |header: &crate::texture::decode::Header| {
         let (width, height) = (header.width, header.height);
         if width == 0 || height == 0 {
@@ -102,10 +115,11 @@ pub fn decode_texture_within(
         }
         Ok(())
     };
-    let image =
-        decode_admitted(bytes, format, MAX_DECODE_BYTES, admit).map_err(|problem| LoadError::new(path, problem))?;
-    to_texture(image, path.to_string_lossy().into_owned(), kind)
-        .ok_or_else(|| LoadError::new(path, "no memory for the decoded texture"))
+    let (image, stored) =
+        decode_image(bytes, tga_by_name, MAX_DECODE_BYTES, admit).map_err(|problem| LoadError::new(path, problem))?;
+    let texture = to_texture(image, path.to_string_lossy().into_owned(), kind)
+        .ok_or_else(|| LoadError::new(path, "no memory for the decoded texture"))?;
+    Ok((texture, stored))
 }
 
 /// Converts a decoded image to the texture layout of `kind` (`None`: the system refused the

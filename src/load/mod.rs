@@ -14,6 +14,7 @@ mod gltf_document;
 mod gltf_mesh;
 pub mod image;
 mod mesh_ops;
+mod meshopt;
 mod mtl;
 pub mod obj;
 mod uri;

@@ -5,6 +5,7 @@ use glam::{Vec3, Vec4};
 
 use super::{TextureImage, decode_height};
 use crate::height::{Border, HeightField, Kernel};
+use crate::texture::compressed::{Stored, StoredChannels};
 
 /// Metres one UV unit spans for a texture from a file (files carry no unit; the built-in
 /// bricks use the same, [`super::builtin::BRICK_TILE_M`]).
@@ -138,23 +139,48 @@ pub struct NormalMap {
     /// X-Ray's `bump#` texture (linear: RGB the compression-error correction, A the height),
     /// read only in the [`NormalLayout::Xray`] layout.
     pub correction: Option<usize>,
+    /// What the texture file's format says about its channels (DDS, KTX2); `None` for other
+    /// images. [`NormalMap::with_stored`] takes the layout from it.
+    pub stored: Option<Stored>,
 }
 
 impl NormalMap {
     /// A tangent-space OpenGL-convention RGB normal map with `scale`.
     pub fn new(texture: usize, scale: f32) -> NormalMap {
-        NormalMap { texture, scale, convention: NormalConvention::default(), correction: None }
+        NormalMap { texture, scale, convention: NormalConvention::default(), correction: None, stored: None }
+    }
+
+    /// The map read in the layout its file's format states: RG for two channels (BC5, R8G8,
+    /// two-channel UASTC), AG for DXT5nm; other formats keep the layout as it is.
+    pub fn with_stored(mut self, stored: Option<&Stored>) -> NormalMap {
+        if let Some(stored) = stored {
+            if let Some(layout) = stored_layout(stored) {
+                self.convention.layout = layout;
+            }
+            self.stored = Some(stored.clone());
+        }
+        self
     }
 
     /// An X-Ray pair: `bump` (normal in A, B, G; gloss in R) and the optional `bump#`.
     pub fn xray(bump: usize, correction: Option<usize>) -> NormalMap {
         let convention = NormalConvention { layout: NormalLayout::Xray, ..Default::default() };
-        NormalMap { texture: bump, scale: 1.0, convention, correction }
+        NormalMap { texture: bump, scale: 1.0, convention, correction, stored: None }
     }
 
     /// The `bump#` texture where the layout reads it.
     pub fn correction_in_use(&self) -> Option<usize> {
         self.correction.filter(|_| self.convention.layout == NormalLayout::Xray)
+    }
+}
+
+/// The layout a file's format states for a normal map: RG for two channels, AG for DXT5nm,
+/// `None` for formats that keep three or four channels.
+pub fn stored_layout(stored: &Stored) -> Option<NormalLayout> {
+    match stored.channels {
+        StoredChannels::Rg => Some(NormalLayout::Rg),
+        StoredChannels::Ag => Some(NormalLayout::Ag),
+        StoredChannels::ColourBlock | StoredChannels::Rgba | StoredChannels::Plain => None,
     }
 }
 

@@ -20,7 +20,7 @@ pub use detail::{DEFAULT_DETAIL_TILING, DetailBlend, DetailMap, sine_pair_normal
 pub use light::{Attenuation, Light, LightKind, Lights, LightsError, MAX_LIGHTS, SpecularMode};
 pub use material::{
     Clearcoat, GreenAxis, HeightMap, Material, NormalConvention, NormalLayout, NormalMap, NormalSpace, Occlusion,
-    SamplerWrap, ShadingModel, Wrap,
+    SamplerWrap, ShadingModel, Wrap, stored_layout,
 };
 pub use overrides::{MaterialOverrides, PerMaterialOverrides};
 // Images are plain data below scene and height (see [`crate::texture`]); scenes hold them.

@@ -2,10 +2,23 @@
 //! size (each consumer has its own limits), and only then are pixels allocated, with the
 //! decoder's own allocations capped by the caller (textures: [`MAX_DECODE_BYTES`]). A JPEG whose entropy-coded data
 //! ends before its end-of-image marker is refused rather than decoded as a grey remainder.
+//!
+//! [`decode_image`] is the one entry point of the loader, the command line's texture flags,
+//! dropped files and the bake: PNG, JPEG, TGA, BMP and WebP through `image`, DDS and KTX2
+//! through [`super::compressed`].
 
 use std::io::Cursor;
 
-use image::{ColorType, DynamicImage, ImageDecoder, ImageFormat, ImageReader, Limits};
+use image::{ColorType, DynamicImage, ImageDecoder, ImageFormat, ImageReader, Limits, RgbaImage};
+
+use super::compressed::{Container, Stored, decode_container};
+
+/// The formats `image` decodes in this build (its features in Cargo.toml).
+pub const IMAGE_FORMATS: [ImageFormat; 5] =
+    [ImageFormat::Png, ImageFormat::Jpeg, ImageFormat::Tga, ImageFormat::Bmp, ImageFormat::WebP];
+
+/// The one line for bytes that are none of the formats read here.
+pub const NOT_AN_IMAGE: &str = "not an image (expected PNG, JPEG, TGA, BMP, WebP, DDS or KTX2 data)";
 
 /// The most bytes a texture's decoder may allocate for its pixels: 1 GiB, the image file cap
 /// (`crate::read::FileKind::Image`). The bake admits its inputs by its own `--max-memory`.
@@ -26,6 +39,42 @@ impl Header {
     pub fn texels(&self) -> u64 {
         self.width as u64 * self.height as u64
     }
+}
+
+/// Decodes image file bytes of any format read here once `admit` accepts the header, with
+/// what a DDS or KTX2 file's format says about its channels (`None` for other formats). The
+/// format comes from the bytes' signature; only TGA, which has none, from `tga_by_name` (the
+/// file is named `*.tga`). The error is one line.
+pub fn decode_image(
+    bytes: &[u8],
+    tga_by_name: bool,
+    max_bytes: u64,
+    admit: impl FnOnce(&Header) -> Result<(), String>,
+) -> Result<(DynamicImage, Option<Stored>), String> {
+    if let Some(container) = Container::sniff(bytes) {
+        let admit_rgba = |width: u32, height: u32| -> Result<(), String> {
+            let decoded_bytes = (width as u64 * height as u64).saturating_mul(4);
+            admit(&Header { width, height, decoded_bytes, color: ColorType::Rgba8 })?;
+            if decoded_bytes > max_bytes {
+                let mib = decoded_bytes.div_ceil(1 << 20);
+                return Err(format!(
+                    "{width}x{height} texels decode to {mib} MiB, over the {} MiB an image may take",
+                    max_bytes >> 20
+                ));
+            }
+            Ok(())
+        };
+        let decoded = decode_container(container, bytes, admit_rgba)?;
+        let image = RgbaImage::from_raw(decoded.width, decoded.height, decoded.rgba).expect("width · height · 4 bytes");
+        return Ok((DynamicImage::ImageRgba8(image), Some(decoded.stored)));
+    }
+    let format = image::guess_format(bytes).ok().or(tga_by_name.then_some(ImageFormat::Tga));
+    let format = match format {
+        Some(f) if IMAGE_FORMATS.contains(&f) => f,
+        Some(f) => return Err(format!("{f:?} images are not supported (PNG, JPEG, TGA, BMP, WebP, DDS, KTX2)")),
+        None => return Err(NOT_AN_IMAGE.to_owned()),
+    };
+    Ok((decode_admitted(bytes, format, max_bytes, admit)?, None))
 }
 
 /// Decodes `bytes` as `format` once `admit` accepts the header: `admit`'s message is returned

@@ -1,0 +1,166 @@
+//! DDS files (DirectDraw Surface): the container parsed by `ddsfile`, the top level of the
+//! first layer (or cube face) decoded to RGBA8: BC1–BC5 and BC7 blocks ([`super::blocks`]),
+//! and uncompressed layouts of 8 to 32 bits a texel read through their channel masks
+//! (legacy headers) or their DXGI format (`DX10` headers).
+//!
+//! A BC3 file is DXT5nm (x in alpha, y in green) when its pixel format carries the
+//! `DDPF_NORMAL` flag (`0x80000000`, written by NVIDIA's tools) or the `RXGB` code.
+
+use super::blocks::{Block, decode_level, decode_masked};
+use super::stored::{Decoded, Stored, StoredChannels, no_memory};
+use ddsfile::DxgiFormat;
+
+/// Bytes before the texels: the magic and the 124-byte header (a `DX10` header adds 20).
+const HEADER_BYTES: usize = 128;
+
+/// The pixel format flag NVIDIA's tools set on a normal map (DXT5nm when the code is DXT5).
+const DDPF_NORMAL: u32 = 0x8000_0000;
+
+/// How the texels of a DDS file are stored.
+enum Layout {
+    Blocks(Block),
+    /// Bits per texel and the red, green, blue and alpha masks (0: absent).
+    Masks {
+        bits: u32,
+        masks: [u32; 4],
+    },
+}
+
+/// Decodes a DDS file's top level once `admit(width, height)` accepts its size.
+pub fn decode(bytes: &[u8], admit: impl FnOnce(u32, u32) -> Result<(), String>) -> Result<Decoded, String> {
+    if bytes.len() < HEADER_BYTES {
+        return Err(format!("the DDS header needs {HEADER_BYTES} bytes but the file has {} (truncated)", bytes.len()));
+    }
+    let dds = ddsfile::Dds::read(bytes).map_err(|e| format!("not a readable DDS file: {e}"))?;
+    let (width, height) = (dds.header.width, dds.header.height);
+    if dds.header.depth.is_some_and(|d| d > 1) {
+        return Err("3D (volume) DDS textures are not supported".to_owned());
+    }
+    let flags = u32::from_le_bytes(bytes[80..84].try_into().expect("4 bytes"));
+    let (layout, stored) = layout(&dds, flags)?;
+    admit(width, height)?;
+    let data = dds.data.as_slice();
+    let needed = match layout {
+        Layout::Blocks(block) => block.level_bytes(width, height),
+        Layout::Masks { bits, .. } => (width as u64 * bits as u64).div_ceil(8) * height as u64,
+    };
+    if (data.len() as u64) < needed {
+        return Err(format!(
+            "the DDS texels end after {} of the {needed} bytes its {width}x{height} top level needs (truncated)",
+            data.len()
+        ));
+    }
+    let rgba = match layout {
+        Layout::Blocks(block) => decode_level(block, data, width, height),
+        Layout::Masks { bits, masks } => decode_masked(data, width, height, bits, masks),
+    };
+    let rgba = rgba.ok_or_else(|| no_memory(width, height))?;
+    Ok(Decoded { width, height, rgba, stored })
+}
+
+/// The texel layout of `dds` and what it says about the channels; `flags` are the pixel
+/// format's raw flags.
+fn layout(dds: &ddsfile::Dds, flags: u32) -> Result<(Layout, Stored), String> {
+    let stored = |format: &str, channels| Stored { format: format!("{format} DDS"), channels };
+    let block = |b: Block, channels| Ok((Layout::Blocks(b), stored(b.name(), channels)));
+    let spf = &dds.header.spf;
+    let fourcc = spf.fourcc.as_ref().map(|f| f.0.to_le_bytes());
+    match (&dds.header10, fourcc.as_ref()) {
+        (Some(h10), _) => dxgi_layout(h10.dxgi_format),
+        (None, Some(b"DXT1")) => block(Block::Bc1, StoredChannels::ColourBlock),
+        (None, Some(b"DXT2" | b"DXT3")) => block(Block::Bc2, StoredChannels::ColourBlock),
+        (None, Some(b"RXGB")) => block(Block::Bc3, StoredChannels::Ag),
+        (None, Some(b"DXT4" | b"DXT5")) if flags & DDPF_NORMAL != 0 => block(Block::Bc3, StoredChannels::Ag),
+        (None, Some(b"DXT4" | b"DXT5")) => block(Block::Bc3, StoredChannels::ColourBlock),
+        (None, Some(b"ATI1" | b"BC4U")) => block(Block::Bc4, StoredChannels::Plain),
+        (None, Some(b"ATI2" | b"BC5U")) => block(Block::Bc5, StoredChannels::Rg),
+        (None, Some(code)) => Err(format!("DDS code {:?} is not supported", String::from_utf8_lossy(code))),
+        (None, None) => {
+            let bits = spf.rgb_bit_count.unwrap_or(0);
+            let masks = [spf.r_bit_mask, spf.g_bit_mask, spf.b_bit_mask, spf.a_bit_mask].map(|m| m.unwrap_or(0));
+            if ![8, 16, 24, 32].contains(&bits) || masks.iter().all(|&m| m == 0) {
+                return Err(format!("the DDS pixel format ({bits} bits, masks {masks:08x?}) is not supported"));
+            }
+            let two = masks[0] != 0 && masks[1] != 0 && masks[2] == 0 && masks[3] == 0;
+            let channels = if two { StoredChannels::Rg } else { StoredChannels::Plain };
+            Ok((Layout::Masks { bits, masks }, stored(&format!("uncompressed {bits}-bit"), channels)))
+        }
+    }
+}
+
+/// The layout of a `DX10` header's DXGI format.
+fn dxgi_layout(format: DxgiFormat) -> Result<(Layout, Stored), String> {
+    use DxgiFormat as F;
+    let masked = |bits, masks, name: &str, channels| {
+        Ok((Layout::Masks { bits, masks }, Stored { format: format!("{name} DDS"), channels }))
+    };
+    let block = |b: Block, channels| Ok((Layout::Blocks(b), Stored { format: format!("{} DDS", b.name()), channels }));
+    match format {
+        F::BC1_Typeless | F::BC1_UNorm | F::BC1_UNorm_sRGB => block(Block::Bc1, StoredChannels::ColourBlock),
+        F::BC2_Typeless | F::BC2_UNorm | F::BC2_UNorm_sRGB => block(Block::Bc2, StoredChannels::ColourBlock),
+        F::BC3_Typeless | F::BC3_UNorm | F::BC3_UNorm_sRGB => block(Block::Bc3, StoredChannels::ColourBlock),
+        F::BC4_Typeless | F::BC4_UNorm => block(Block::Bc4, StoredChannels::Plain),
+        F::BC5_Typeless | F::BC5_UNorm => block(Block::Bc5, StoredChannels::Rg),
+        F::BC7_Typeless | F::BC7_UNorm | F::BC7_UNorm_sRGB => block(Block::Bc7, StoredChannels::Rgba),
+        F::R8G8B8A8_Typeless | F::R8G8B8A8_UNorm | F::R8G8B8A8_UNorm_sRGB => {
+            masked(32, [0xff, 0xff00, 0xff_0000, 0xff00_0000], "R8G8B8A8", StoredChannels::Plain)
+        }
+        F::B8G8R8A8_Typeless | F::B8G8R8A8_UNorm | F::B8G8R8A8_UNorm_sRGB => {
+            masked(32, [0xff_0000, 0xff00, 0xff, 0xff00_0000], "B8G8R8A8", StoredChannels::Plain)
+        }
+        F::B8G8R8X8_Typeless | F::B8G8R8X8_UNorm | F::B8G8R8X8_UNorm_sRGB => {
+            masked(32, [0xff_0000, 0xff00, 0xff, 0], "B8G8R8X8", StoredChannels::Plain)
+        }
+        F::R8G8_Typeless | F::R8G8_UNorm => masked(16, [0xff, 0xff00, 0, 0], "R8G8", StoredChannels::Rg),
+        F::R8_Typeless | F::R8_UNorm => masked(8, [0xff, 0, 0, 0], "R8", StoredChannels::Plain),
+        other => Err(format!("DXGI format {other:?} is not supported (BC1-BC5, BC7, 8-bit RGBA, RG, R)")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ddsfile::{AlphaMode, D3D10ResourceDimension, D3DFormat, NewD3dParams, NewDxgiParams};
+
+    fn written(mut dds: ddsfile::Dds, texels: &[u8]) -> Vec<u8> {
+        dds.data = texels.to_vec();
+        let mut bytes = Vec::new();
+        dds.write(&mut bytes).unwrap();
+        bytes
+    }
+
+    #[test]
+    fn uncompressed_layouts_decode_through_their_masks_and_r8g8_is_two_channels() {
+        let params = NewDxgiParams {
+            height: 1,
+            width: 2,
+            depth: None,
+            format: DxgiFormat::R8G8_UNorm,
+            mipmap_levels: Some(1),
+            array_layers: None,
+            caps2: None,
+            is_cubemap: false,
+            resource_dimension: D3D10ResourceDimension::Texture2D,
+            alpha_mode: AlphaMode::Unknown,
+        };
+        let rg = written(ddsfile::Dds::new_dxgi(params).unwrap(), &[10, 20, 30, 40]);
+        let decoded = decode(&rg, |_, _| Ok(())).unwrap();
+        assert_eq!(decoded.rgba, [10, 20, 0, 255, 30, 40, 0, 255]);
+        assert_eq!((decoded.stored.format.as_str(), decoded.stored.channels), ("R8G8 DDS", StoredChannels::Rg));
+        // Legacy A8R8G8B8: bytes B, G, R, A in memory.
+        let params = NewD3dParams {
+            height: 1,
+            width: 1,
+            depth: None,
+            format: D3DFormat::A8R8G8B8,
+            mipmap_levels: None,
+            caps2: None,
+        };
+        let bgra = written(ddsfile::Dds::new_d3d(params).unwrap(), &[1, 2, 3, 4]);
+        let decoded = decode(&bgra, |_, _| Ok(())).unwrap();
+        assert_eq!(decoded.rgba, [3, 2, 1, 4]);
+        // Cut short: one line that says so.
+        let error = decode(&rg[..rg.len() - 1], |_, _| Ok(())).unwrap_err();
+        assert!(error.contains("truncated"), "{error}");
+    }
+}
