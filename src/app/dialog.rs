@@ -10,7 +10,7 @@ use bumpview::load::TextureSlot;
 /// Mesh files the dialog offers.
 const MESH_FILTER: [&str; 3] = ["gltf", "glb", "obj"];
 /// Texture files the dialog offers.
-const IMAGE_FILTER: [&str; 5] = ["png", "jpg", "jpeg", "tga", "bmp"];
+const IMAGE_FILTER: [&str; 8] = ["png", "jpg", "jpeg", "tga", "bmp", "webp", "dds", "ktx2"];
 
 /// At most one open dialog and where its answer arrives.
 #[derive(Default)]

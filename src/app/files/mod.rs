@@ -22,10 +22,11 @@ use super::watch::Debouncer;
 /// Extensions of mesh files the loaders read (lower case).
 const MESH_EXTENSIONS: [&str; 3] = ["gltf", "glb", "obj"];
 /// Extensions of texture files the loaders read (lower case).
-const IMAGE_EXTENSIONS: [&str; 5] = ["png", "jpg", "jpeg", "tga", "bmp"];
+const IMAGE_EXTENSIONS: [&str; 8] = ["png", "jpg", "jpeg", "tga", "bmp", "webp", "dds", "ktx2"];
 /// Files next to a mesh that it may read (buffers, materials, textures): a change to one of
 /// them reloads the mesh.
-const MESH_COMPANION_EXTENSIONS: [&str; 9] = ["gltf", "glb", "obj", "bin", "mtl", "png", "jpg", "jpeg", "tga"];
+const MESH_COMPANION_EXTENSIONS: [&str; 13] =
+    ["gltf", "glb", "obj", "bin", "mtl", "png", "jpg", "jpeg", "tga", "bmp", "webp", "dds", "ktx2"];
 /// The slot a texture file probably belongs in, from its name (case-insensitive):
 /// `*normal*`, `*nrm*` or a `_n`/`-n` suffix → normal map; `*height*`, `*disp*`, `*bump*`,
 /// `*depth*` → height map; `*rough*`, `*gloss*`, `*spec*` → gloss; anything else → colour.
