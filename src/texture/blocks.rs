@@ -50,6 +50,32 @@ impl Block {
     }
 }
 
+/// How a level's texels are stored when no transcoder is needed: BCn blocks, or uncompressed
+/// texels of 8 to 32 bits read through their red, green, blue and alpha masks (0: absent).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Texels {
+    Blocks(Block),
+    Masks { bits: u32, masks: [u32; 4] },
+}
+
+impl Texels {
+    /// Bytes of a `width`×`height` level.
+    pub fn level_bytes(self, width: u32, height: u32) -> u64 {
+        match self {
+            Texels::Blocks(block) => block.level_bytes(width, height),
+            Texels::Masks { bits, .. } => (width as u64 * bits as u64).div_ceil(8) * height as u64,
+        }
+    }
+
+    /// The `width`×`height` level in `data` as RGBA8 ([`decode_level`], [`decode_masked`]).
+    pub fn decode(self, data: &[u8], width: u32, height: u32) -> Option<Vec<u8>> {
+        match self {
+            Texels::Blocks(block) => decode_level(block, data, width, height),
+            Texels::Masks { bits, masks } => decode_masked(data, width, height, bits, masks),
+        }
+    }
+}
+
 /// Decodes the `width`×`height` level in `data` (at least [`Block::level_bytes`] bytes, else
 /// `None`) into `rgba` (cleared; `width · height · 4` bytes reserved fallibly, `None` when the
 /// system refuses them).
@@ -102,7 +128,7 @@ fn decode_block(block: Block, bytes: &[u8], texels: &mut [u8; 64]) {
 /// Texels of `bits` bits (little-endian) read through `masks` (red, green, blue, alpha), each
 /// channel scaled to 0..255: a red-only layout is grey (red in red, green and blue), an absent
 /// colour channel 0 and an absent alpha 255. `None`: too little data or no memory.
-pub fn decode_masked(data: &[u8], width: u32, height: u32, bits: u32, masks: [u32; 4]) -> Option<Vec<u8>> {
+fn decode_masked(data: &[u8], width: u32, height: u32, bits: u32, masks: [u32; 4]) -> Option<Vec<u8>> {
     let texel_bytes = bits as usize / 8;
     let pitch = width as usize * texel_bytes;
     let data = data.get(..pitch.checked_mul(height as usize)?)?;

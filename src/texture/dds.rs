@@ -6,7 +6,7 @@
 //! A BC3 file is DXT5nm (x in alpha, y in green) when its pixel format carries the
 //! `DDPF_NORMAL` flag (`0x80000000`, written by NVIDIA's tools) or the `RXGB` code.
 
-use super::blocks::{Block, decode_level, decode_masked};
+use super::blocks::{Block, Texels};
 use super::stored::{Decoded, Stored, StoredChannels, no_memory};
 use ddsfile::DxgiFormat;
 
@@ -15,16 +15,6 @@ const HEADER_BYTES: usize = 128;
 
 /// The pixel format flag NVIDIA's tools set on a normal map (DXT5nm when the code is DXT5).
 const DDPF_NORMAL: u32 = 0x8000_0000;
-
-/// How the texels of a DDS file are stored.
-enum Layout {
-    Blocks(Block),
-    /// Bits per texel and the red, green, blue and alpha masks (0: absent).
-    Masks {
-        bits: u32,
-        masks: [u32; 4],
-    },
-}
 
 /// Decodes a DDS file's top level once `admit(width, height)` accepts its size.
 pub fn decode(bytes: &[u8], admit: impl FnOnce(u32, u32) -> Result<(), String>) -> Result<Decoded, String> {
@@ -40,29 +30,22 @@ pub fn decode(bytes: &[u8], admit: impl FnOnce(u32, u32) -> Result<(), String>) 
     let (layout, stored) = layout(&dds, flags)?;
     admit(width, height)?;
     let data = dds.data.as_slice();
-    let needed = match layout {
-        Layout::Blocks(block) => block.level_bytes(width, height),
-        Layout::Masks { bits, .. } => (width as u64 * bits as u64).div_ceil(8) * height as u64,
-    };
+    let needed = layout.level_bytes(width, height);
     if (data.len() as u64) < needed {
         return Err(format!(
             "the DDS texels end after {} of the {needed} bytes its {width}x{height} top level needs (truncated)",
             data.len()
         ));
     }
-    let rgba = match layout {
-        Layout::Blocks(block) => decode_level(block, data, width, height),
-        Layout::Masks { bits, masks } => decode_masked(data, width, height, bits, masks),
-    };
-    let rgba = rgba.ok_or_else(|| no_memory(width, height))?;
+    let rgba = layout.decode(data, width, height).ok_or_else(|| no_memory(width, height))?;
     Ok(Decoded { width, height, rgba, stored })
 }
 
 /// The texel layout of `dds` and what it says about the channels; `flags` are the pixel
 /// format's raw flags.
-fn layout(dds: &ddsfile::Dds, flags: u32) -> Result<(Layout, Stored), String> {
+fn layout(dds: &ddsfile::Dds, flags: u32) -> Result<(Texels, Stored), String> {
     let stored = |format: &str, channels| Stored { format: format!("{format} DDS"), channels };
-    let block = |b: Block, channels| Ok((Layout::Blocks(b), stored(b.name(), channels)));
+    let block = |b: Block, channels| Ok((Texels::Blocks(b), stored(b.name(), channels)));
     let spf = &dds.header.spf;
     let fourcc = spf.fourcc.as_ref().map(|f| f.0.to_le_bytes());
     match (&dds.header10, fourcc.as_ref()) {
@@ -83,18 +66,18 @@ fn layout(dds: &ddsfile::Dds, flags: u32) -> Result<(Layout, Stored), String> {
             }
             let two = masks[0] != 0 && masks[1] != 0 && masks[2] == 0 && masks[3] == 0;
             let channels = if two { StoredChannels::Rg } else { StoredChannels::Plain };
-            Ok((Layout::Masks { bits, masks }, stored(&format!("uncompressed {bits}-bit"), channels)))
+            Ok((Texels::Masks { bits, masks }, stored(&format!("uncompressed {bits}-bit"), channels)))
         }
     }
 }
 
 /// The layout of a `DX10` header's DXGI format.
-fn dxgi_layout(format: DxgiFormat) -> Result<(Layout, Stored), String> {
+fn dxgi_layout(format: DxgiFormat) -> Result<(Texels, Stored), String> {
     use DxgiFormat as F;
     let masked = |bits, masks, name: &str, channels| {
-        Ok((Layout::Masks { bits, masks }, Stored { format: format!("{name} DDS"), channels }))
+        Ok((Texels::Masks { bits, masks }, Stored { format: format!("{name} DDS"), channels }))
     };
-    let block = |b: Block, channels| Ok((Layout::Blocks(b), Stored { format: format!("{} DDS", b.name()), channels }));
+    let block = |b: Block, channels| Ok((Texels::Blocks(b), Stored { format: format!("{} DDS", b.name()), channels }));
     match format {
         F::BC1_Typeless | F::BC1_UNorm | F::BC1_UNorm_sRGB => block(Block::Bc1, StoredChannels::ColourBlock),
         F::BC2_Typeless | F::BC2_UNorm | F::BC2_UNorm_sRGB => block(Block::Bc2, StoredChannels::ColourBlock),

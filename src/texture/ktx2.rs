@@ -10,7 +10,7 @@ use std::io::Read;
 
 use ktx2::{ColorModel, Format, SupercompressionScheme};
 
-use super::blocks::{Block, decode_level, decode_masked};
+use super::blocks::{Block, Texels};
 use super::stored::{Decoded, Stored, StoredChannels, no_memory};
 
 /// DFD channel ids of two-channel Basis files: UASTC RRRG and RG, ETC1S RRR and GGG.
@@ -21,12 +21,8 @@ const ETC1S_GGG: u8 = 4;
 
 /// How the texels of a KTX2 file are stored.
 enum Layout {
-    Blocks(Block),
-    /// Bytes per texel and the red, green, blue and alpha masks of a little-endian word.
-    Masks {
-        bits: u32,
-        masks: [u32; 4],
-    },
+    /// BCn blocks, or texels read through the masks of a little-endian word.
+    Plain(Texels),
     /// UASTC blocks; `true`: x in red, green and blue, y in alpha.
     Uastc(bool),
     /// ETC1S with BasisLZ; `true`: x in the RGB slice, y in the alpha slice.
@@ -80,8 +76,7 @@ fn decode_level_data(
     height: u32,
 ) -> Result<Option<Vec<u8>>, String> {
     let needed = match *layout {
-        Layout::Blocks(block) => block.level_bytes(width, height),
-        Layout::Masks { bits, .. } => width as u64 * height as u64 * (bits as u64 / 8),
+        Layout::Plain(texels) => texels.level_bytes(width, height),
         Layout::Uastc(_) => width.div_ceil(4) as u64 * height.div_ceil(4) as u64 * 16,
         Layout::Etc1s(_) => return Err("an ETC1S level is BasisLZ-supercompressed".to_owned()),
     };
@@ -93,8 +88,7 @@ fn decode_level_data(
         ));
     }
     Ok(match *layout {
-        Layout::Blocks(block) => decode_level(block, &data, width, height),
-        Layout::Masks { bits, masks } => decode_masked(&data, width, height, bits, masks),
+        Layout::Plain(texels) => texels.decode(&data, width, height),
         Layout::Uastc(swizzle) => {
             let rgba = super::basis::transcode_uastc(&data, width, height)?;
             rgba.map(|rgba| if swizzle { alpha_to_green(rgba) } else { rgba })
@@ -118,8 +112,10 @@ fn layout(
     format: Option<Format>,
     scheme: Option<SupercompressionScheme>,
 ) -> Result<(Layout, String, StoredChannels), String> {
-    let block = |b: Block, channels| Ok((Layout::Blocks(b), b.name().to_owned(), channels));
-    let masked = |bits, masks, name: &str, channels| Ok((Layout::Masks { bits, masks }, name.to_owned(), channels));
+    let block = |b: Block, channels| Ok((Layout::Plain(Texels::Blocks(b)), b.name().to_owned(), channels));
+    let masked = |bits, masks, name: &str, channels| {
+        Ok((Layout::Plain(Texels::Masks { bits, masks }), name.to_owned(), channels))
+    };
     let colour = StoredChannels::ColourBlock;
     match format {
         Some(Format::BC1_RGB_UNORM_BLOCK | Format::BC1_RGB_SRGB_BLOCK) => block(Block::Bc1, colour),
