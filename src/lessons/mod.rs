@@ -111,9 +111,9 @@ pub struct Lesson {
     pub sides: Vec<Side>,
     /// Whether the sides are the halves of the preset's split view (else a grid).
     pub split: bool,
-    /// The angle, degrees from the wall's normal, at which a claim's `{uv_error}` is measured
-    /// ([`uv_claim`]).
-    pub uv_error_angle_deg: Option<f32>,
+    /// What the claim's `{uv_error}` says: each side's UV error, measured once when the lesson
+    /// is read ([`uv_claim`]).
+    pub uv_errors: Option<String>,
     /// The inset's magnification, for a lesson that shows one ([`inset`]).
     pub inset: Option<u32>,
 }
@@ -234,11 +234,11 @@ impl Lesson {
             preset,
             sides,
             split: split && file.tiles.is_empty(),
-            uv_error_angle_deg: file.uv_error_angle_deg,
+            uv_errors: None,
             inset,
         };
-        uv_claim::check(&lesson).map_err(fail)?;
-        Ok(lesson)
+        let uv_errors = uv_claim::measured(&lesson, file.uv_error_angle_deg).map_err(fail)?;
+        Ok(Lesson { uv_errors, ..lesson })
     }
 
     /// The preset the viewer shows: the split view itself, or a grid's last tile (the
@@ -257,8 +257,8 @@ impl Lesson {
     /// `{uv_error}` ([`uv_claim`]).
     pub fn claim_with(&self, changed_percent: f32) -> String {
         let claim = self.claim.replace("{changed}", &format!("{changed_percent:.1} %"));
-        match self.uv_error_angle_deg {
-            Some(angle) => claim.replace("{uv_error}", &uv_claim::uv_error_text(self, angle)),
+        match &self.uv_errors {
+            Some(errors) => claim.replace("{uv_error}", errors),
             None => claim,
         }
     }

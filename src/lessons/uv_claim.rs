@@ -2,7 +2,8 @@
 //! UV its parallax technique reads and the UV of the view ray's exact first intersection with
 //! the height field ([`crate::report::uv_error`], the measure of the UV-error study in
 //! docs/parallax.md), on the built-in wall's bricks seen from the lesson's
-//! `uv_error_angle_deg` at the lesson's relief depth, over a [`GRID`]² grid of the tile. It depends on the technique's
+//! `uv_error_angle_deg` at the lesson's relief depth, over a [`GRID`]² grid of the tile,
+//! measured once when the lesson is read. It depends on the technique's
 //! settings and the angle only, not on the picture: the texture-space error a parallax lesson
 //! is about, free of shading.
 
@@ -23,17 +24,17 @@ static WALL: LazyLock<Relief> = LazyLock::new(|| Relief::wall_with_cones(false))
 static WALL_WITH_CONES: LazyLock<Relief> = LazyLock::new(|| Relief::wall_with_cones(true));
 
 /// Each side's parallax settings, as its picture is drawn.
-pub fn side_parallax(lesson: &Lesson) -> Result<Vec<ParallaxSettings>, PresetError> {
+fn side_parallax(lesson: &Lesson) -> Result<Vec<ParallaxSettings>, PresetError> {
     lesson.sides.iter().map(|side| Ok(side.preset.shading_of(side.half)?.parallax)).collect()
 }
 
-/// "LABEL: X.XX texels" for each side, joined by "; ", seen from `angle_deg`.
-pub fn uv_error_text(lesson: &Lesson, angle_deg: f32) -> String {
-    let Ok(settings) = side_parallax(lesson) else { return "(not measured: a side's settings do not read)".into() };
+/// "LABEL: X.XX texels" for each side drawn with `settings`, joined by "; ", seen from
+/// `angle_deg`.
+fn uv_error_text(lesson: &Lesson, settings: &[ParallaxSettings], angle_deg: f32) -> String {
     let texts: Vec<String> = lesson
         .sides
         .iter()
-        .zip(&settings)
+        .zip(settings)
         .map(|(side, parallax)| {
             let wall: &Relief = if parallax.technique.reads_cones() { &WALL_WITH_CONES } else { &WALL };
             // The lesson's depth where it sets one, as its picture has it.
@@ -44,18 +45,19 @@ pub fn uv_error_text(lesson: &Lesson, angle_deg: f32) -> String {
     texts.join("; ")
 }
 
-/// A lesson's `{uv_error}` and `uv_error_angle_deg` come together, the angle within
+/// What `lesson`'s claim says for `{uv_error}` at its file's `uv_error_angle_deg`
+/// ([`uv_error_text`]), `None` without one. The two come together, the angle within
 /// 0..=[`MAX_ANGLE_DEG`] and every side's settings read.
-pub fn check(lesson: &Lesson) -> Result<(), String> {
+pub fn measured(lesson: &Lesson, angle_deg: Option<f32>) -> Result<Option<String>, String> {
     let says = lesson.claim.contains("{uv_error}");
-    match lesson.uv_error_angle_deg {
+    match angle_deg {
         None if says => Err("the claim says {uv_error}: give uv_error_angle_deg, the angle it is measured at".into()),
-        None => Ok(()),
+        None => Ok(None),
         Some(_) if !says => Err("uv_error_angle_deg is given: the claim says {uv_error} where the errors go".into()),
         Some(angle) if !(0.0..=MAX_ANGLE_DEG).contains(&angle) => {
             Err(format!("uv_error_angle_deg = {angle}: an angle from 0 to {MAX_ANGLE_DEG} degrees"))
         }
-        Some(_) => side_parallax(lesson).map(|_| ()).map_err(|e| e.0),
+        Some(angle) => Ok(Some(uv_error_text(lesson, &side_parallax(lesson).map_err(|e| e.0)?, angle))),
     }
 }
 
