@@ -12,6 +12,7 @@ mod mip_filter;
 mod normal_mips;
 mod stored;
 
+pub use dds::dxgi_file;
 pub use lean::{LeanLevel, LeanTexels, MIN_LEAN_NZ, half_bits, half_value, round_to_half, slopes};
 pub use mip_filter::MipFilter;
 pub use normal_mips::decode_unit_normal;

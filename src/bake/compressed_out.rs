@@ -4,7 +4,9 @@
 //! (`ruzstd`), or ETC1S with BasisLZ ([`super::ktx2_out`]). One level each (viewers make the
 //! mips). Sides must be multiples of 4.
 
-use ddsfile::{AlphaMode, D3D10ResourceDimension, Dds, DxgiFormat, NewDxgiParams};
+use ddsfile::DxgiFormat;
+
+use crate::texture::dxgi_file;
 
 /// A GPU texture file format the bake writes; named `dds-bc1`, `dds-dxt5nm`, `dds-bc5`,
 /// `dds-bc7`, `ktx2-uastc`, `ktx2-etc1s` (`bake --format`).
@@ -46,7 +48,7 @@ pub fn encode(rgba: &[u8], width: u32, height: u32, format: CompressedFormat) ->
     match format {
         CompressedFormat::DdsBc1 => {
             let surface = intel_tex_2::RgbaSurface { data: rgba, width, height, stride: width * 4 };
-            dds(intel_tex_2::bc1::compress_blocks(&surface), width, height, DxgiFormat::BC1_UNorm)
+            dxgi_file(intel_tex_2::bc1::compress_blocks(&surface), width, height, DxgiFormat::BC1_UNorm)
         }
         CompressedFormat::DdsDxt5nm => {
             let swizzled: Vec<u8> = rgba.chunks_exact(4).flat_map(|t| [255, t[1], 0, t[0]]).collect();
@@ -56,37 +58,16 @@ pub fn encode(rgba: &[u8], width: u32, height: u32, format: CompressedFormat) ->
         CompressedFormat::DdsBc5 => {
             let rg: Vec<u8> = rgba.chunks_exact(4).flat_map(|t| [t[0], t[1]]).collect();
             let surface = intel_tex_2::RgSurface { data: &rg, width, height, stride: width * 2 };
-            dds(intel_tex_2::bc5::compress_blocks(&surface), width, height, DxgiFormat::BC5_UNorm)
+            dxgi_file(intel_tex_2::bc5::compress_blocks(&surface), width, height, DxgiFormat::BC5_UNorm)
         }
         CompressedFormat::DdsBc7 => {
             let surface = intel_tex_2::RgbaSurface { data: rgba, width, height, stride: width * 4 };
             let settings = intel_tex_2::bc7::alpha_basic_settings();
-            dds(intel_tex_2::bc7::compress_blocks(&settings, &surface), width, height, DxgiFormat::BC7_UNorm)
+            dxgi_file(intel_tex_2::bc7::compress_blocks(&settings, &surface), width, height, DxgiFormat::BC7_UNorm)
         }
         CompressedFormat::Ktx2Uastc => super::ktx2_out::uastc(rgba, width, height),
         CompressedFormat::Ktx2Etc1s => super::ktx2_out::etc1s(rgba, width, height),
     }
-}
-
-/// A DDS file (with a `DX10` header) of one level of `blocks`.
-fn dds(blocks: Vec<u8>, width: u32, height: u32, format: DxgiFormat) -> Result<Vec<u8>, String> {
-    let params = NewDxgiParams {
-        height,
-        width,
-        depth: None,
-        format,
-        mipmap_levels: Some(1),
-        array_layers: None,
-        caps2: None,
-        is_cubemap: false,
-        resource_dimension: D3D10ResourceDimension::Texture2D,
-        alpha_mode: AlphaMode::Unknown,
-    };
-    let mut dds = Dds::new_dxgi(params).map_err(|e| format!("cannot make the DDS header: {e}"))?;
-    dds.data = blocks;
-    let mut bytes = Vec::new();
-    dds.write(&mut bytes).map_err(|e| format!("cannot write the DDS file: {e}"))?;
-    Ok(bytes)
 }
 
 /// A legacy-header DDS file of BC3 `blocks` with the `DXT5` code and the pixel format flag
@@ -100,7 +81,7 @@ fn dxt5nm(blocks: Vec<u8>, width: u32, height: u32) -> Result<Vec<u8>, String> {
         mipmap_levels: Some(1),
         caps2: None,
     };
-    let mut dds = Dds::new_d3d(params).map_err(|e| format!("cannot make the DDS header: {e}"))?;
+    let mut dds = ddsfile::Dds::new_d3d(params).map_err(|e| format!("cannot make the DDS header: {e}"))?;
     dds.data = blocks;
     let mut bytes = Vec::new();
     dds.write(&mut bytes).map_err(|e| format!("cannot write the DDS file: {e}"))?;

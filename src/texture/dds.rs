@@ -100,10 +100,32 @@ fn dxgi_layout(format: DxgiFormat) -> Result<(Texels, Stored), String> {
     }
 }
 
+/// A DDS file (with a `DX10` header) holding one `width`×`height` level of `texels` in
+/// `format`: what `bake --format dds-…` writes.
+pub fn dxgi_file(texels: Vec<u8>, width: u32, height: u32, format: DxgiFormat) -> Result<Vec<u8>, String> {
+    let params = ddsfile::NewDxgiParams {
+        height,
+        width,
+        depth: None,
+        format,
+        mipmap_levels: Some(1),
+        array_layers: None,
+        caps2: None,
+        is_cubemap: false,
+        resource_dimension: ddsfile::D3D10ResourceDimension::Texture2D,
+        alpha_mode: ddsfile::AlphaMode::Unknown,
+    };
+    let mut dds = ddsfile::Dds::new_dxgi(params).map_err(|e| format!("cannot make the DDS header: {e}"))?;
+    dds.data = texels;
+    let mut bytes = Vec::new();
+    dds.write(&mut bytes).map_err(|e| format!("cannot write the DDS file: {e}"))?;
+    Ok(bytes)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use ddsfile::{AlphaMode, D3D10ResourceDimension, D3DFormat, NewD3dParams, NewDxgiParams};
+    use ddsfile::{D3DFormat, NewD3dParams};
 
     fn written(mut dds: ddsfile::Dds, texels: &[u8]) -> Vec<u8> {
         dds.data = texels.to_vec();
@@ -114,19 +136,7 @@ mod tests {
 
     #[test]
     fn uncompressed_layouts_decode_through_their_masks_and_r8g8_is_two_channels() {
-        let params = NewDxgiParams {
-            height: 1,
-            width: 2,
-            depth: None,
-            format: DxgiFormat::R8G8_UNorm,
-            mipmap_levels: Some(1),
-            array_layers: None,
-            caps2: None,
-            is_cubemap: false,
-            resource_dimension: D3D10ResourceDimension::Texture2D,
-            alpha_mode: AlphaMode::Unknown,
-        };
-        let rg = written(ddsfile::Dds::new_dxgi(params).unwrap(), &[10, 20, 30, 40]);
+        let rg = dxgi_file(vec![10, 20, 30, 40], 2, 1, DxgiFormat::R8G8_UNorm).unwrap();
         let decoded = decode(&rg, |_, _| Ok(())).unwrap();
         assert_eq!(decoded.rgba, [10, 20, 0, 255, 30, 40, 0, 255]);
         assert_eq!((decoded.stored.format.as_str(), decoded.stored.channels), ("R8G8 DDS", StoredChannels::Rg));
