@@ -187,30 +187,55 @@ pub const MAX_DISPLACEMENT_LEVEL: u32 = 10;
 /// The most triangles a displaced scene draws (about 48 bytes per vertex, 12 per triangle).
 pub const MAX_DISPLACED_TRIANGLES: usize = 8 << 20;
 
+/// The edge length in pixels the GPU tessellation aims at by default ([`Displacement::gpu`]).
+pub const DEFAULT_PIXELS_PER_EDGE: f32 = 2.0;
+/// The most segments a base edge is cut into on the GPU (level 9 of the CPU tessellation).
+pub const MAX_GPU_EDGE_SEGMENTS: u32 = 512;
+/// The most triangles the GPU tessellation makes in a frame: above it the target edge grows
+/// (a notice says so). With [`MAX_GPU_DISPLACED_VERTICES`] its buffers hold at most 16 MiB.
+pub const MAX_GPU_DISPLACED_TRIANGLES: u32 = 1 << 19;
+/// The most vertices the GPU tessellation makes in a frame (32 bytes each).
+pub const MAX_GPU_DISPLACED_VERTICES: u32 = 5 << 16;
+
 /// Displacement mapping, the parallax family's ground truth: every instance whose material
-/// has a height map (and whose mesh has texture coordinates) is tessellated on the CPU, each
-/// triangle's edges cut into `2^level` segments, and each vertex moved along its normal by
-/// `(h − 1) · depth` — the same convention as [`Parallax`]: the mesh surface is the top of the
-/// relief, a texel of height `h` lies `(1 − h) · depth` metres below it. It is shaded with the
-/// displaced surface's normals instead of the normal map. A scene option: it makes geometry.
+/// has a height map (and whose mesh has texture coordinates) is tessellated, and each vertex
+/// moved along its normal by `(h − 1) · depth` — the same convention as [`Parallax`]: the mesh
+/// surface is the top of the relief, a texel of height `h` lies `(1 − h) · depth` metres below
+/// it. It is shaded with the displaced surface's normals instead of the normal map. Either on
+/// the CPU once (each triangle's edges cut into `2^level` segments), or on the GPU every time
+/// the view changes (each edge cut to about [`Self::gpu`] pixels). A scene option: it makes
+/// geometry.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Displacement {
-    /// Tessellation level, 0 (off) to [`MAX_DISPLACEMENT_LEVEL`]: `4^level` triangles per
-    /// triangle.
+    /// CPU tessellation level, 0 (off) to [`MAX_DISPLACEMENT_LEVEL`]: `4^level` triangles per
+    /// triangle. Ignored while [`Self::gpu`] is set.
     pub level: u32,
     /// The relief's depth, metres: `None` takes each material's height range. The viewer
     /// sets it from [`ParallaxSettings::depth_m`] so both mean the same relief.
     pub depth_m: Option<f32>,
+    /// Tessellated on the GPU instead, each edge cut into segments about this many pixels long
+    /// on screen (above 0; [`DEFAULT_PIXELS_PER_EDGE`]).
+    pub gpu: Option<f32>,
 }
 
 impl Displacement {
-    /// Whether meshes are displaced.
-    pub fn is_on(&self) -> bool {
-        self.level > 0
+    /// Displacement on the GPU at `pixels_per_edge`, the depth from the materials.
+    pub fn on_gpu(pixels_per_edge: f32) -> Displacement {
+        Displacement { gpu: Some(pixels_per_edge), ..Default::default() }
     }
 
-    /// A caption: `displacement, level L` or `no displacement`.
+    /// Whether meshes are displaced.
+    pub fn is_on(&self) -> bool {
+        self.level > 0 || self.gpu.is_some()
+    }
+
+    /// A caption: `displacement, level L`, `displacement on the GPU, 2 px edges` or `no
+    /// displacement`.
     pub fn caption(&self) -> String {
-        if self.is_on() { format!("displacement, level {}", self.level) } else { "no displacement".to_owned() }
+        match self.gpu {
+            Some(pixels) => format!("displacement on the GPU, {pixels} px edges"),
+            None if self.is_on() => format!("displacement, level {}", self.level),
+            None => "no displacement".to_owned(),
+        }
     }
 }

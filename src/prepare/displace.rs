@@ -25,7 +25,7 @@ use rayon::prelude::*;
 use super::weld::{EdgeVertex, weld};
 use crate::frame::{Displacement, MAX_DISPLACED_TRIANGLES, MAX_DISPLACEMENT_LEVEL};
 use crate::scene::sample::sample_bilinear;
-use crate::scene::{Material, Mesh, Scene, TextureImage};
+use crate::scene::{Material, Mesh, SamplerWrap, Scene, TextureImage};
 use crate::shading::height_sample;
 
 /// Bytes a displaced vertex takes on the GPU: position and normal (3 × f32 each) and UV
@@ -75,14 +75,14 @@ impl DisplacementStats {
 /// The height field a material's height map describes, as the GPU's sampler reads level 0.
 struct HeightLookup<'a> {
     texture: &'a TextureImage,
-    material: &'a Material,
+    wrap: SamplerWrap,
     depth: bool,
 }
 
 impl HeightLookup<'_> {
     /// The height (0..1, white = high) at `uv`.
     fn at(&self, uv: Vec2) -> f32 {
-        let sample = height_sample(sample_bilinear(self.texture, uv, self.material.detail_wrap).truncate());
+        let sample = height_sample(sample_bilinear(self.texture, uv, self.wrap).truncate());
         if self.depth { 1.0 - sample } else { sample }
     }
 
@@ -100,15 +100,16 @@ impl HeightLookup<'_> {
 /// `scene` with every instance whose material has a height map (and whose mesh has texture
 /// coordinates and normals per vertex, indices in range; non-finite data is left to the
 /// prepare stage's repair, which drops such triangles) drawing a displaced copy of its mesh with a copy of its material without
-/// normal and height maps; the stats when anything was displaced. Notices say when the
-/// level was lowered.
+/// normal and height maps; the stats when anything was displaced on the CPU. Notices say when
+/// the level was lowered. With [`Displacement::gpu`] the copies are of the base mesh, and what
+/// the GPU displaces them with is returned instead ([`GpuDisplacedMesh`]).
 pub fn displaced(
     mut scene: Scene,
     displacement: &Displacement,
     notices: &mut Vec<String>,
-) -> (Scene, Option<DisplacementStats>) {
+) -> (Scene, Option<DisplacementStats>, Vec<GpuDisplacedMesh>) {
     if !displacement.is_on() {
-        return (scene, None);
+        return (scene, None, vec![]);
     }
     let displaceable = |mesh: usize, material: usize| {
         let mesh = &scene.meshes[mesh];
@@ -124,7 +125,11 @@ pub fn displaced(
     pairs.sort_unstable();
     pairs.dedup();
     if pairs.is_empty() {
-        return (scene, None);
+        return (scene, None, vec![]);
+    }
+    if displacement.gpu.is_some() {
+        let on_gpu = pairs.iter().map(|&pair| displaced_on_gpu(&mut scene, pair, displacement)).collect();
+        return (scene, None, on_gpu);
     }
     let base_triangles: usize = pairs.iter().map(|&(mesh, _)| scene.meshes[mesh].indices.len() / 3).sum();
     let asked = displacement.level.min(MAX_DISPLACEMENT_LEVEL);
@@ -145,31 +150,92 @@ pub fn displaced(
         let map = material.height_map.as_ref().expect("displaceable");
         let depth_m = displacement.depth_m.unwrap_or(map.range_m);
         let depth_m = if depth_m.is_finite() { depth_m } else { 0.0 };
-        let heights = HeightLookup { texture: &scene.textures[map.texture], material, depth: map.depth };
+        let heights =
+            HeightLookup { texture: &scene.textures[map.texture], wrap: material.detail_wrap, depth: map.depth };
         let (mesh, edges) = displace_mesh(&scene.meshes[mesh_index], level, depth_m, &heights);
         stats.vertices += mesh.positions.len();
         stats.triangles += mesh.indices.len() / 3;
         stats.bytes += mesh.positions.len() * VERTEX_BYTES + mesh.indices.len() * 4;
-        let flat = Material {
-            name: format!("{} (displaced)", material.name),
-            normal_map: None,
-            height_map: None,
-            ..material.clone()
-        };
-        made.push(((mesh_index, material_index), mesh, flat, edges));
+        made.push(((mesh_index, material_index), mesh, flat_copy(material), edges));
     }
     weld_where_drawn_alike(&scene, &mut made);
-    for ((mesh_index, material_index), mesh, material, _) in made {
-        scene.meshes.push(mesh);
-        scene.materials.push(material);
-        let (new_mesh, new_material) = (scene.meshes.len() - 1, scene.materials.len() - 1);
-        for instance in &mut scene.instances {
-            if (instance.mesh, instance.material) == (mesh_index, material_index) {
-                (instance.mesh, instance.material) = (new_mesh, new_material);
-            }
+    for (pair, mesh, material, _) in made {
+        draw_instead(&mut scene, pair, mesh, material);
+    }
+    (scene, Some(stats), vec![])
+}
+
+/// `material` without normal and height maps: the displaced surface's own normals shade it.
+fn flat_copy(material: &Material) -> Material {
+    Material { name: format!("{} (displaced)", material.name), normal_map: None, height_map: None, ..material.clone() }
+}
+
+/// Appends `mesh` and `material` to `scene`, and makes the instances that drew the pair
+/// `(mesh, material)` draw them instead; the new mesh's index.
+fn draw_instead(
+    scene: &mut Scene,
+    (mesh_index, material_index): (usize, usize),
+    mesh: Mesh,
+    material: Material,
+) -> usize {
+    scene.meshes.push(mesh);
+    scene.materials.push(material);
+    let (new_mesh, new_material) = (scene.meshes.len() - 1, scene.materials.len() - 1);
+    for instance in &mut scene.instances {
+        if (instance.mesh, instance.material) == (mesh_index, material_index) {
+            (instance.mesh, instance.material) = (new_mesh, new_material);
         }
     }
-    (scene, Some(stats))
+    new_mesh
+}
+
+/// A mesh the GPU tessellates and displaces every time the view changes
+/// ([`crate::render`]'s tessellation): a copy of a base mesh drawn with a flat material, and
+/// the height map it is displaced by.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GpuDisplacedMesh {
+    /// The base mesh's copy in the prepared scene, which its instances draw.
+    pub mesh: usize,
+    /// The height map, a texture of the prepared scene (level 0 read, bilinear, as
+    /// [`HeightLookup`] reads it).
+    pub height_texture: usize,
+    /// Metres the full height range spans.
+    pub depth_m: f32,
+    /// The map holds depth (`1 − sample` is the height).
+    pub depth_map: bool,
+    /// How the height map wraps (the material's detail wrap, as on the CPU).
+    pub wrap: crate::scene::SamplerWrap,
+}
+
+impl GpuDisplacedMesh {
+    /// The CPU twin of the GPU's displaced vertex (shaders/displace.wgsl): position and normal
+    /// (as long as the interpolated one) at barycentric weights `w` of triangle `triangle` of
+    /// `mesh`, displaced by this mesh's height map in `scene`.
+    pub fn displaced_point(&self, scene: &Scene, mesh: &Mesh, triangle: usize, w: [f32; 3]) -> (Vec3, Vec3) {
+        let corners = [0, 1, 2].map(|k| mesh.indices[3 * triangle + k] as usize);
+        let (p, nrm, uv) =
+            (corners.map(|i| mesh.positions[i]), corners.map(|i| mesh.normals[i]), corners.map(|i| mesh.uvs[i]));
+        let heights =
+            HeightLookup { texture: &scene.textures[self.height_texture], wrap: self.wrap, depth: self.depth_map };
+        let (position, normal, _) = displaced_vertex(&p, &nrm, &uv, w, self.depth_m, &heights);
+        (position, normal)
+    }
+}
+
+/// Makes the instances drawing `pair` draw a copy of its mesh with a flat material, and says
+/// what the GPU displaces that copy with.
+fn displaced_on_gpu(scene: &mut Scene, pair: (usize, usize), displacement: &Displacement) -> GpuDisplacedMesh {
+    let material = &scene.materials[pair.1];
+    let map = material.height_map.as_ref().expect("displaceable");
+    let depth_m = displacement.depth_m.unwrap_or(map.range_m);
+    let (height_texture, depth_map, wrap) = (map.texture, map.depth, material.detail_wrap);
+    let mut mesh = scene.meshes[pair.0].clone();
+    mesh.name = format!("{} (displaced on the GPU)", mesh.name);
+    mesh.tangents = None;
+    mesh.analytic_tangents = None;
+    let flat = flat_copy(material);
+    let mesh = draw_instead(scene, pair, mesh, flat);
+    GpuDisplacedMesh { mesh, height_texture, depth_m: if depth_m.is_finite() { depth_m } else { 0.0 }, depth_map, wrap }
 }
 
 /// Welds (see [`weld`](super::weld)) the displaced meshes drawn with one and the same
@@ -305,7 +371,7 @@ mod tests {
     fn a_level_cuts_each_triangle_into_four_to_the_level_and_shares_no_index_across_patches() {
         let scene = teaching_scene();
         let wall = &scene.meshes[0];
-        let heights = HeightLookup { texture: &scene.textures[2], material: &scene.materials[0], depth: false };
+        let heights = HeightLookup { texture: &scene.textures[2], wrap: scene.materials[0].detail_wrap, depth: false };
         let (mesh, _) = displace_mesh(wall, 3, 0.0, &heights);
         let base = wall.indices.len() / 3;
         assert_eq!(mesh.indices.len() / 3, base * 64);
@@ -325,7 +391,8 @@ mod tests {
     #[test]
     fn the_wall_and_floor_share_their_displaced_seam() {
         let mut notices = vec![];
-        let (scene, _) = displaced(teaching_scene(), &Displacement { level: 2, depth_m: Some(0.04) }, &mut notices);
+        let (scene, _, _) =
+            displaced(teaching_scene(), &Displacement { level: 2, depth_m: Some(0.04), gpu: None }, &mut notices);
         let [wall, floor] = [0, 1].map(|i| &scene.meshes[scene.instances[i].mesh]);
         let key = |p: &Vec3| p.to_array().map(f32::to_bits);
         let floor_points: std::collections::HashSet<_> = floor.positions.iter().map(key).collect();
@@ -351,8 +418,7 @@ mod tests {
         }
         let texture =
             TextureImage { name: "ramp".into(), width, height: 4, kind: crate::scene::TextureKind::Height, rgba };
-        let material = Material::default();
-        let heights = HeightLookup { texture: &texture, material: &material, depth: false };
+        let heights = HeightLookup { texture: &texture, wrap: SamplerWrap::default(), depth: false };
         let mut square = Mesh::empty("square");
         for (x, y) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
             square.positions.push(Vec3::new(x, y, 0.0));

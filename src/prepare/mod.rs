@@ -184,6 +184,9 @@ pub struct PreparedScene {
     /// a height map to displace (those instances then draw displaced copies of their mesh
     /// and material, appended to `scene`; see [`displace`]).
     pub displacement: Option<displace::DisplacementStats>,
+    /// The meshes the GPU displaces when [`SceneOptions::displacement`] asks for it on the GPU
+    /// (their instances draw copies of the base meshes with flat materials, appended to `scene`).
+    pub gpu_displaced: Vec<displace::GpuDisplacedMesh>,
 }
 
 impl PreparedScene {
@@ -191,7 +194,7 @@ impl PreparedScene {
     pub fn new(scene: &Scene, options: &SceneOptions) -> PreparedScene {
         let mut notices: Vec<String> = scene.warnings.iter().map(ToString::to_string).collect();
         let scene = options.materials.applied_with(&options.per_material, scene);
-        let (scene, displacement) = displace::displaced(scene, &options.displacement, &mut notices);
+        let (scene, displacement, gpu_displaced) = displace::displaced(scene, &options.displacement, &mut notices);
         let instances: Vec<PreparedInstance> = scene
             .instances
             .iter()
@@ -255,12 +258,14 @@ impl PreparedScene {
             tangent_frames_generated,
             mip_chains,
             displacement,
+            gpu_displaced,
         }
     }
 
-    /// Whether any instance binds texture `index` of [`Self::scene`].
+    /// Whether any instance binds texture `index` of [`Self::scene`], or the GPU displaces by it.
     pub fn uses_texture(&self, index: usize) -> bool {
         self.instances.iter().any(|i| i.textures.all().any(|t| t == index))
+            || self.gpu_displaced.iter().any(|g| g.height_texture == index)
     }
 
     /// The mip chain of texture `index` as it is sampled (level 0 first, box-filtered down to

@@ -17,6 +17,14 @@ pub enum Resource {
     TextureArray,
     /// A filtering sampler, used by the fragment stage.
     Sampler,
+    /// A uniform buffer, read by the compute stage.
+    ComputeUniform,
+    /// A storage buffer the compute stage reads.
+    StorageRead,
+    /// A storage buffer the compute stage writes.
+    StorageWrite,
+    /// A 2D float texture the compute stage loads texels of.
+    ComputeTexture,
 }
 
 /// One binding: its number, the WGSL global it declares, and what it holds.
@@ -103,6 +111,33 @@ pub const LEAN_MOMENTS: Slot = slot(0, "lean_moments", Resource::Texture);
 /// Group 2, in binding order.
 pub const LEAN_GROUP: [Slot; 1] = [LEAN_MOMENTS];
 
+/// Group 2 of GPU displacement's compute pass (shaders/displace.wgsl): one mesh's parameters.
+pub const DISPLACE_PARAMS: Slot = slot(0, "params", Resource::ComputeUniform);
+/// The pool's base vertices (`position, u` and `normal, v`, model space).
+pub const DISPLACE_BASE_VERTICES: Slot = slot(1, "base_vertices", Resource::StorageRead);
+pub const DISPLACE_BASE_INDICES: Slot = slot(2, "base_indices", Resource::StorageRead);
+/// The frame's patches ([`super::tessellation::plan::Patch`]).
+pub const DISPLACE_PATCHES: Slot = slot(3, "patches", Resource::StorageRead);
+/// The displaced vertices' streams and the triangles, which the mesh pipeline draws.
+pub const DISPLACE_POSITIONS: Slot = slot(4, "out_positions", Resource::StorageWrite);
+pub const DISPLACE_NORMALS: Slot = slot(5, "out_normals", Resource::StorageWrite);
+pub const DISPLACE_UVS: Slot = slot(6, "out_uvs", Resource::StorageWrite);
+pub const DISPLACE_INDICES: Slot = slot(7, "out_indices", Resource::StorageWrite);
+/// The mesh's height map, level 0 read texel by texel.
+pub const DISPLACE_HEIGHT_MAP: Slot = slot(8, "height_map", Resource::ComputeTexture);
+/// Group 2 of GPU displacement, in binding order.
+pub const DISPLACE_GROUP: [Slot; 9] = [
+    DISPLACE_PARAMS,
+    DISPLACE_BASE_VERTICES,
+    DISPLACE_BASE_INDICES,
+    DISPLACE_PATCHES,
+    DISPLACE_POSITIONS,
+    DISPLACE_NORMALS,
+    DISPLACE_UVS,
+    DISPLACE_INDICES,
+    DISPLACE_HEIGHT_MAP,
+];
+
 /// Group 1 of the marker shader: each light's marker centre and colour.
 pub const MARKERS: Slot = slot(0, "markers", Resource::Uniform);
 
@@ -133,6 +168,24 @@ impl Slot {
             Resource::Sampler => {
                 (wgpu::ShaderStages::FRAGMENT, wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering))
             }
+            Resource::ComputeUniform | Resource::StorageRead | Resource::StorageWrite => {
+                let ty = match self.resource {
+                    Resource::ComputeUniform => wgpu::BufferBindingType::Uniform,
+                    read => wgpu::BufferBindingType::Storage { read_only: read == Resource::StorageRead },
+                };
+                (
+                    wgpu::ShaderStages::COMPUTE,
+                    wgpu::BindingType::Buffer { ty, has_dynamic_offset: false, min_binding_size: None },
+                )
+            }
+            Resource::ComputeTexture => (
+                wgpu::ShaderStages::COMPUTE,
+                wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+            ),
         };
         wgpu::BindGroupLayoutEntry { binding: self.binding, visibility, ty, count: None }
     }
@@ -153,7 +206,7 @@ mod tests {
     use crate::frame::{LegacyLook, LegacySettings, MAX_PARALLAX_LAYERS, MAX_PARALLAX_STEPS, Mistake, Parallax};
     use crate::frame::{LightingSpace, ShadingMode, ViewMode};
     use crate::names::Named;
-    use crate::render::shaders::{MARKER, MESH, MESH_LEAN, MESH_LEAN_PER_VERTEX};
+    use crate::render::shaders::{DISPLACE, MARKER, MESH, MESH_LEAN, MESH_LEAN_PER_VERTEX};
     use crate::render::uniforms::{
         DEPTH_MAP, HAS_BUMP_CORRECTION, HAS_CLEARCOAT, HAS_CLEARCOAT_NORMAL, HAS_CLEARCOAT_ROUGHNESS_TEXTURE,
         HAS_CLEARCOAT_TEXTURE, HAS_DETAIL, HAS_EMISSIVE_TEXTURE, HAS_GLOSS, HAS_METALLIC_ROUGHNESS,
@@ -207,6 +260,13 @@ mod tests {
             (MARKERS.wgsl_name.to_owned(), (1, MARKERS.binding)),
         ]);
         assert_eq!(marker, expected, "shaders/marker.wgsl against render::bindings");
+        let expected: BTreeMap<String, (u32, u32)> =
+            DISPLACE_GROUP.iter().map(|s| (s.wgsl_name.to_owned(), (2, s.binding))).collect();
+        // Its own file's bindings: those of the module less those of the files before it.
+        let before = crate::render::shaders::Wgsl { label: "before displace", files: &DISPLACE.files[..3] };
+        let mut displace = wgsl_bindings(&module(&DISPLACE));
+        displace.retain(|name, _| !wgsl_bindings(&module(&before)).contains_key(name));
+        assert_eq!(displace, expected, "shaders/displace.wgsl against render::bindings");
         let numbers: Vec<u32> = MATERIAL.iter().map(|s| s.binding).collect();
         assert_eq!(numbers, (0..MATERIAL.len() as u32).collect::<Vec<_>>(), "one slot per number, in order");
     }

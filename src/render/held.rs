@@ -93,4 +93,21 @@ impl Renderer {
         let split = self.split_scene.as_ref().filter(|_| split_half);
         split.or(self.scene.as_ref()).map(|s| &s.prepared)
     }
+
+    /// What GPU displacement drew in the last frame of the main scene (or the split view's
+    /// right half, `split_half`): its stats, `None` where nothing is displaced on the GPU.
+    pub fn gpu_displacement(&self, split_half: bool) -> Option<super::tessellation::GpuDisplacementStats> {
+        let split = self.split_scene.as_ref().filter(|_| split_half);
+        split.or(self.scene.as_ref())?.tessellation.as_ref()?.stats()
+    }
+
+    /// The meshes GPU displacement made in the last frame, read back (`(index in the prepared
+    /// scene's meshes, mesh)`); empty where nothing is displaced on the GPU.
+    pub fn gpu_displaced_meshes(&self, split_half: bool) -> Result<Vec<(usize, crate::scene::Mesh)>, String> {
+        let split = self.split_scene.as_ref().filter(|_| split_half);
+        let Some(tessellation) = split.or(self.scene.as_ref()).and_then(|s| s.tessellation.as_ref()) else {
+            return Ok(vec![]);
+        };
+        tessellation.read_back(&self.device, &self.queue)
+    }
 }

@@ -30,6 +30,7 @@ mod scene_gpu;
 pub mod shaders;
 pub mod srgb_copy;
 mod targets;
+pub mod tessellation;
 pub mod text;
 mod texture_cache;
 pub mod timing;
@@ -48,6 +49,7 @@ pub use gpu::Gpu;
 use pipelines::{PipelineKey, Pipelines};
 use scene_gpu::GpuScene;
 use targets::{Attachments, begin_scene_pass};
+use tessellation::pipelines::DisplacePipelines;
 use uniforms::FrameUniform;
 pub use upload::{ReferenceFrames, SceneUpload, Uploader};
 
@@ -105,8 +107,11 @@ pub struct Renderer {
     /// The attachments of the last frame drawn with each sample count.
     targets: Attachments,
     counters: WorkCounters,
-    /// The scene's notices, plus one while the wireframe is asked for but unsupported.
+    /// The scene's notices, plus one while the wireframe is asked for but unsupported, and one
+    /// while GPU displacement's budget lengthens its edges.
     notices: Vec<String>,
+    /// GPU displacement's compute pipelines, made when a scene first asks for it.
+    displace_pipelines: Option<DisplacePipelines>,
 }
 
 impl Renderer {
@@ -124,6 +129,7 @@ impl Renderer {
             targets: Attachments::default(),
             counters: WorkCounters::default(),
             notices: Vec::new(),
+            displace_pipelines: None,
         }
     }
 
@@ -318,6 +324,7 @@ impl Renderer {
             self.pipelines.ensure(&self.device, key, &mut self.counters);
         }
         self.targets.ensure(&self.device, target.size, target.format, samples);
+        self.tessellate(encoder, halves, params, target.size);
         let pipelines = FramePipelines { pool: &self.pipelines, format: target.format, samples };
         let mut pass = begin_scene_pass(encoder, self.targets.get(samples), target.view, options.background);
         for (index, (half, plan)) in halves.iter().zip(&plans).enumerate() {
@@ -334,6 +341,38 @@ impl Renderer {
         drop(pass);
         self.counters.frames_drawn += 1;
         Ok(())
+    }
+
+    /// Tessellates the GPU-displaced meshes of the halves' scene uploads for this frame's view
+    /// into `encoder` (each upload once, and only when the view changed), and keeps the budget's
+    /// notice while it lengthens the edges.
+    fn tessellate(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        halves: &[Half],
+        params: &FrameParams,
+        size: [u32; 2],
+    ) {
+        let view = tessellation::plan::View {
+            view_projection: params.camera.view_projection(size[0] as f32 / size[1] as f32),
+            eye: params.camera.eye(),
+            size,
+        };
+        let mut slots: Vec<SceneSlot> = halves.iter().map(|h| h.scene).collect();
+        slots.dedup();
+        let tessellated = |this: &Self, slot: SceneSlot| this.scene_in(slot).is_some_and(|s| s.tessellation.is_some());
+        if slots.iter().any(|&slot| tessellated(self, slot)) && self.displace_pipelines.is_none() {
+            self.displace_pipelines = Some(DisplacePipelines::new(&self.device));
+        }
+        let mut notice = None;
+        for slot in slots {
+            let tessellation = self.scene_in(slot).and_then(|s| s.tessellation.as_ref());
+            let (Some(tessellation), Some(pipelines)) = (tessellation, &self.displace_pipelines) else { continue };
+            tessellation.run(&self.device, &self.queue, encoder, pipelines, view);
+            notice = notice.or(tessellation.stats().and_then(|s| s.budget_notice()));
+        }
+        self.notices.retain(|n| !n.starts_with(tessellation::BUDGET_NOTICE_START));
+        self.notices.extend(notice);
     }
 
     /// Makes what the halves' views need of their scene uploads and the uploads lack: the

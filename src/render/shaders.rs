@@ -91,8 +91,13 @@ pub const MARKER: Wgsl = Wgsl { label: "marker", files: &[FRAME, wgsl_file!("mar
 /// The adapter's floor ([`super::floor`]).
 pub const FLOOR: Wgsl = Wgsl { label: "floor", files: &[wgsl_file!("floor.wgsl")] };
 
+/// GPU displacement's compute pass ([`super::tessellation`]): common.wgsl's helpers, its own
+/// bindings in group 2 (the frame's and the object's, declared before it, unused).
+pub const DISPLACE: Wgsl =
+    Wgsl { label: "displace", files: &[FRAME, MESH_COMMON[0], MESH_COMMON[1], wgsl_file!("displace.wgsl")] };
+
 /// Every module, with the entry points the pipelines name in it.
-pub const ALL: [(Wgsl, &[&str]); 9] = [
+pub const ALL: [(Wgsl, &[&str]); 10] = [
     (MESH, &MESH_ENTRY_POINTS),
     (MESH_PER_VERTEX, &MESH_ENTRY_POINTS),
     (MESH_LEAN, &MESH_ENTRY_POINTS),
@@ -102,6 +107,7 @@ pub const ALL: [(Wgsl, &[&str]); 9] = [
     (GLYPHS, &["vs_glyph", "fs_glyph"]),
     (MARKER, &["vs_marker", "fs_marker"]),
     (FLOOR, &["vs_floor", "fs_floor"]),
+    (DISPLACE, &["cs_vertices", "cs_triangles"]),
 ];
 
 /// The mesh pass's entry points, the same in each of its modules.

@@ -188,7 +188,7 @@ impl<'a> Bench<'a> {
             let options = SceneOptions {
                 parallax: level == 0,
                 cone_maps: level == 0,
-                displacement: Displacement { level, depth_m: None },
+                displacement: Displacement { level, ..Default::default() },
                 ..Default::default()
             };
             self.renderer.set_scene(&self.specimen.scene, options);

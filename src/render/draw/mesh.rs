@@ -22,22 +22,23 @@ pub fn record(pass: &mut wgpu::RenderPass, pipelines: &FramePipelines, scene: &G
     for draw in draws {
         let instance = &scene.instances[draw.instance];
         let mesh = &scene.meshes[instance.mesh];
+        let Some(streams) = scene.drawn_streams(instance.mesh) else { continue };
         pass.set_pipeline(pipelines.get(draw.pass));
         pass.set_bind_group(1, &instance.bind_group, &[]);
         if let (Pass::Mesh { mip_filter: MipFilter::Lean, .. }, Some(lean)) = (draw.pass, &instance.lean_bind_group) {
             pass.set_bind_group(2, lean, &[]);
         }
-        pass.set_vertex_buffer(0, mesh.positions.slice(..));
-        pass.set_vertex_buffer(1, mesh.normals.slice(..));
-        pass.set_vertex_buffer(2, mesh.uvs.slice(..));
+        pass.set_vertex_buffer(0, streams.positions.slice(..));
+        pass.set_vertex_buffer(1, streams.normals.slice(..));
+        pass.set_vertex_buffer(2, streams.uvs.slice(..));
         if let Some(tangents) = &mesh.tangents {
             pass.set_vertex_buffer(3, tangents.slice(..));
         }
         if let (Pass::Difference { .. }, Some(reference)) = (draw.pass, mesh.reference_tangents.get()) {
             pass.set_vertex_buffer(4, reference.slice(..));
         }
-        pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-        pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+        pass.set_index_buffer(streams.indices.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(streams.range, 0, 0..1);
     }
 }
 

@@ -22,12 +22,12 @@ pub fn plan(scene: &GpuScene, shading: &ShadingSettings, line_mode: bool) -> Vec
 pub fn record(pass: &mut wgpu::RenderPass, pipelines: &FramePipelines, scene: &GpuScene, draws: &[InstanceDraw]) {
     for draw in draws {
         let instance = &scene.instances[draw.instance];
-        let mesh = &scene.meshes[instance.mesh];
+        let Some(streams) = scene.drawn_streams(instance.mesh) else { continue };
         pass.set_pipeline(pipelines.get(draw.pass));
         pass.set_bind_group(1, &instance.bind_group, &[]);
-        pass.set_vertex_buffer(0, mesh.positions.slice(..));
-        pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-        pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+        pass.set_vertex_buffer(0, streams.positions.slice(..));
+        pass.set_index_buffer(streams.indices.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(streams.range, 0, 0..1);
     }
 }
 
