@@ -20,7 +20,14 @@ struct Patch {
     first_vertex: u32,
     first_index: u32,
     reversed: u32,
+    // Per edge, its first point in seam_points, or NO_SEAM.
+    seams: array<u32, 3>,
+    pad: u32,
 }
+
+const NO_SEAM: u32 = 0xffffffffu;
+// Points per seam edge less one: the finest cut (MAX_GPU_EDGE_SEGMENTS).
+const SEAM_SEGMENTS: u32 = 512u;
 
 // Per mesh: its patches, where its vertices and indices go, and its height map.
 struct Params {
@@ -39,10 +46,12 @@ struct Params {
     pad: u32,
 }
 
-// A base vertex: position and u, normal and v (model space).
+// A base vertex: position and u, normal and v (model space), and its welded displaced
+// position with w = 1 where copies of it meet (src/prepare/seams.rs), else zeros.
 struct BaseVertex {
     position_u: vec4<f32>,
     normal_v: vec4<f32>,
+    welded: vec4<f32>,
 }
 
 @group(2) @binding(0) var<uniform> params: Params;
@@ -54,6 +63,7 @@ struct BaseVertex {
 @group(2) @binding(6) var<storage, read_write> out_uvs: array<f32>;
 @group(2) @binding(7) var<storage, read_write> out_indices: array<u32>;
 @group(2) @binding(8) var height_map: texture_2d<f32>;
+@group(2) @binding(9) var<storage, read> seam_points: array<vec4<f32>>;
 
 const WRAP_REPEAT: u32 = 0u;
 const WRAP_CLAMP: u32 = 1u;
@@ -114,6 +124,7 @@ struct Corners {
     p: array<vec3<f32>, 3>,
     n: array<vec3<f32>, 3>,
     uv: array<vec2<f32>, 3>,
+    welded: array<vec4<f32>, 3>,
 }
 
 fn corners_of(piece: Patch) -> Corners {
@@ -123,26 +134,34 @@ fn corners_of(piece: Patch) -> Corners {
         c.p[k] = v.position_u.xyz;
         c.n[k] = v.normal_v.xyz;
         c.uv[k] = vec2<f32>(v.position_u.w, v.normal_v.w);
+        c.welded[k] = v.welded;
     }
     return c;
 }
 
-// The undisplaced point: position, interpolated normal and UV.
+// The undisplaced point: position, interpolated normal and UV; and, where it lies on a seam,
+// its welded displaced position (w = 1; else w = 0).
 struct Point {
     p: vec3<f32>,
     n: vec3<f32>,
     uv: vec2<f32>,
+    welded: vec4<f32>,
 }
 
 fn corner_point(c: Corners, k: u32) -> Point {
-    return Point(c.p[k], c.n[k], c.uv[k]);
+    return Point(c.p[k], c.n[k], c.uv[k], c.welded[k]);
 }
 
-// Point m of the e + 1 on the edge from corner a to corner b, weighted in that order.
-fn edge_point(c: Corners, a: u32, b: u32, m: u32, e: u32) -> Point {
+// Point m of the e + 1 on the edge from corner a to corner b, weighted in that order; on a
+// seam its welded point, seam_points[seam + m · SEAM_SEGMENTS / e] from the same end.
+fn edge_point(c: Corners, a: u32, b: u32, m: u32, e: u32, seam: u32) -> Point {
     let wa = f32(e - m) / f32(e);
     let wb = f32(m) / f32(e);
-    return Point(c.p[a] * wa + c.p[b] * wb, c.n[a] * wa + c.n[b] * wb, c.uv[a] * wa + c.uv[b] * wb);
+    var welded = vec4<f32>(0.0);
+    if seam != NO_SEAM {
+        welded = seam_points[seam + m * (SEAM_SEGMENTS / e)];
+    }
+    return Point(c.p[a] * wa + c.p[b] * wb, c.n[a] * wa + c.n[b] * wb, c.uv[a] * wa + c.uv[b] * wb, welded);
 }
 
 // Grid point k of n along edge `edge` (corner edge → edge + 1), moved to the nearest of the
@@ -159,10 +178,11 @@ fn on_edge(c: Corners, piece: Patch, edge: u32, k: u32) -> Point {
     if m == e {
         return corner_point(c, end);
     }
+    let seam = piece.seams[edge];
     if (piece.reversed & (1u << edge)) != 0u {
-        return edge_point(c, end, start, e - m, e);
+        return edge_point(c, end, start, e - m, e, seam);
     }
-    return edge_point(c, start, end, m, e);
+    return edge_point(c, start, end, m, e, seam);
 }
 
 // Grid vertex (i, j) of the patch, undisplaced.
@@ -182,11 +202,12 @@ fn grid_point(c: Corners, piece: Patch, i: u32, j: u32) -> Point {
         c.p[0] * w.x + c.p[1] * w.y + c.p[2] * w.z,
         c.n[0] * w.x + c.n[1] * w.y + c.n[2] * w.z,
         c.uv[0] * w.x + c.uv[1] * w.y + c.uv[2] * w.z,
+        vec4<f32>(0.0),
     );
 }
 
-// displaced_vertex: the point moved by (h − 1) · depth along its unit normal, and the exact
-// normal of the displaced surface, as long as the interpolated one.
+// displaced_vertex: the point moved by (h − 1) · depth along its unit normal (or, on a seam, to
+// its welded point), and the exact normal of this surface, as long as the interpolated one.
 fn displaced(c: Corners, point: Point) -> Point {
     let face = cross(c.p[1] - c.p[0], c.p[2] - c.p[0]);
     let length = length(point.n);
@@ -210,7 +231,11 @@ fn displaced(c: Corners, point: Point) -> Point {
     }
     let side = select(1.0, -1.0, dot(face, unit) < 0.0);
     let exact = normalize_or(cross(along[0], along[1]) * side, unit);
-    return Point(point.p + unit * lift, exact * max(length, 1e-12), point.uv);
+    var moved = point.p + unit * lift;
+    if point.welded.w != 0.0 {
+        moved = point.welded.xyz;
+    }
+    return Point(moved, exact * max(length, 1e-12), point.uv, point.welded);
 }
 
 // ---- finding an invocation's patch ----

@@ -12,7 +12,7 @@ pub use crate::scene::DetailBlend;
 pub use lighting::{LightingSpace, SurfaceLighting};
 pub use looks::{CUBE_MAP_SIZES, LegacyLook, LegacySettings, Mistake};
 pub use parallax::{
-    DEFAULT_PIXELS_PER_EDGE, Displacement, MAX_DISPLACED_TRIANGLES, MAX_DISPLACEMENT_LEVEL,
+    DEFAULT_PIXELS_PER_EDGE, Displacement, GPU_PIXELS_PER_EDGE, MAX_DISPLACED_TRIANGLES, MAX_DISPLACEMENT_LEVEL,
     MAX_GPU_DISPLACED_TRIANGLES, MAX_GPU_DISPLACED_VERTICES, MAX_GPU_EDGE_SEGMENTS, MAX_PARALLAX_LAYERS,
     MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS, Parallax, ParallaxSettings,
 };

@@ -6,7 +6,7 @@
 
 mod common;
 
-use bumpview::frame::{Displacement, Parallax, SceneOptions};
+use bumpview::frame::{DEFAULT_PIXELS_PER_EDGE, Displacement, Parallax, SceneOptions};
 use bumpview::prepare::PreparedScene;
 use bumpview::render::capture::render_image;
 use bumpview::report::parallax::{Bench, image_error, settings, wall};
@@ -46,7 +46,7 @@ fn depth_zero_displacement_is_the_plain_picture() {
     let mut renderer = renderer_for(&scene);
     renderer.set_scene(&scene, SceneOptions::default());
     let plain = render_image(&mut renderer, SIZE, &params).unwrap();
-    let flat = Displacement { level: 2, depth_m: Some(0.0) };
+    let flat = Displacement { level: 2, depth_m: Some(0.0), gpu: None };
     renderer.set_scene(&scene, SceneOptions { displacement: flat, ..Default::default() });
     assert!(renderer.prepared(false).unwrap().displacement.is_some());
     let displaced = render_image(&mut renderer, SIZE, &params).unwrap();
@@ -94,7 +94,7 @@ fn displacement_counts_what_it_draws_and_lowers_a_level_past_the_budget() {
     let scene = teaching_scene();
     let prepared = PreparedScene::new(
         &scene,
-        &SceneOptions { displacement: Displacement { level: 1, depth_m: None }, ..Default::default() },
+        &SceneOptions { displacement: Displacement { level: 1, ..Default::default() }, ..Default::default() },
     );
     let stats = prepared.displacement.unwrap();
     let base: usize = scene.instances.iter().map(|i| scene.meshes[i.mesh].indices.len() / 3).sum();
@@ -102,7 +102,7 @@ fn displacement_counts_what_it_draws_and_lowers_a_level_past_the_budget() {
     assert_eq!(prepared.triangle_count(), base * 4);
     let huge = PreparedScene::new(
         &scene,
-        &SceneOptions { displacement: Displacement { level: 10, depth_m: None }, ..Default::default() },
+        &SceneOptions { displacement: Displacement { level: 10, ..Default::default() }, ..Default::default() },
     );
     assert!(huge.displacement.unwrap().level < 10);
     assert!(huge.notices.iter().any(|n| n.contains("displacement level 10")), "{:?}", huge.notices);
@@ -139,8 +139,10 @@ fn the_displaced_wall_and_floor_show_no_crack_along_their_seam() {
         let background = *plain.get_pixel(if yaw < 0.0 { SIZE[0] - 1 } else { 0 }, 0);
         let mut open_columns: Vec<u32> = holes(&plain, background).iter().map(|&(x, _)| x).collect();
         open_columns.dedup();
-        for depth in [0.01, 0.02, 0.03, 0.04, 0.05, 0.1] {
-            let displacement = Displacement { level: 4, depth_m: Some(depth) };
+        let depths = [0.01, 0.02, 0.03, 0.04, 0.05, 0.1];
+        let ways = [Displacement { level: 4, ..Default::default() }, Displacement::on_gpu(DEFAULT_PIXELS_PER_EDGE)];
+        for (way, depth) in ways.iter().flat_map(|way| depths.map(|depth| (way, depth))) {
+            let displacement = Displacement { depth_m: Some(depth), ..*way };
             renderer.set_scene(&scene, SceneOptions { displacement, ..Default::default() });
             let image = render_image(&mut renderer, SIZE, &params).unwrap();
             let cracks: Vec<(u32, u32)> = holes(&image, background)
@@ -149,7 +151,8 @@ fn the_displaced_wall_and_floor_show_no_crack_along_their_seam() {
                 .collect();
             assert!(
                 cracks.is_empty(),
-                "camera {yaw},{pitch},{distance}, depth {depth} m: {} crack pixels, first {:?}",
+                "camera {yaw},{pitch},{distance}, {}, depth {depth} m: {} crack pixels, first {:?}",
+                way.caption(),
                 cracks.len(),
                 &cracks[..cracks.len().min(8)]
             );

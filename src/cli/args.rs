@@ -6,7 +6,7 @@ use std::marker::PhantomData;
 
 use clap::builder::{PossibleValue, TypedValueParser};
 
-use bumpview::frame::{MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS};
+use bumpview::frame::{DEFAULT_PIXELS_PER_EDGE, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS};
 use bumpview::names::{AUTO, Named, parse_or_auto};
 use bumpview::state::{Command, SplitDifference};
 use glam::Vec3;
@@ -148,13 +148,32 @@ pub fn parse_split_sides(difference: SplitDifference, text: &str) -> Result<Comm
         SplitDifference::LightingSpace => Command::SetSplitLightingSpaces(pair(sides, parse_named)?),
         SplitDifference::MipFilter => Command::SetSplitMipFilters(pair(sides, parse_named)?),
         SplitDifference::DetailBlend => Command::SetSplitDetailBlends(pair(sides, parse_named)?),
-        SplitDifference::Displacement => {
-            let level = right.parse::<u32>().ok().filter(|l| (1..=MAX_DISPLACEMENT_LEVEL).contains(l));
-            let level = level
-                .ok_or_else(|| format!("{right:?}: expected a displacement level, 1 to {MAX_DISPLACEMENT_LEVEL}"))?;
-            Command::SetSplitDisplacement(parse_named(left)?, level)
-        }
+        SplitDifference::Displacement => match parse_displacement(right)? {
+            DisplacementArg::Gpu => Command::SetSplitDisplacement(parse_named(left)?, 1, Some(DEFAULT_PIXELS_PER_EDGE)),
+            DisplacementArg::Level(0) => {
+                return Err(format!("{right:?}: expected a displacement level, 1 to {MAX_DISPLACEMENT_LEVEL}, or gpu"));
+            }
+            DisplacementArg::Level(level) => Command::SetSplitDisplacement(parse_named(left)?, level, None),
+        },
     })
+}
+
+/// `--displacement`'s value: a CPU tessellation level, or `gpu`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DisplacementArg {
+    Level(u32),
+    Gpu,
+}
+
+/// `gpu` or a level, 0 to [`MAX_DISPLACEMENT_LEVEL`].
+pub fn parse_displacement(text: &str) -> Result<DisplacementArg, String> {
+    if text.trim() == "gpu" {
+        return Ok(DisplacementArg::Gpu);
+    }
+    let level = text.trim().parse::<u32>().ok().filter(|l| *l <= MAX_DISPLACEMENT_LEVEL);
+    level
+        .map(DisplacementArg::Level)
+        .ok_or_else(|| format!("{text:?}: expected gpu or a level, 0 to {MAX_DISPLACEMENT_LEVEL}"))
 }
 
 /// Both of `sides` parsed by `parse`.

@@ -4,8 +4,8 @@
 //! [`Command`]s, applied by [`ViewerState::apply`] as the panel's are, with the same clamps.
 
 use bumpview::frame::{
-    LegacyLook, LegacySettings, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS, Mistake,
-    Parallax, ViewMode,
+    DEFAULT_PIXELS_PER_EDGE, GPU_PIXELS_PER_EDGE, LegacyLook, LegacySettings, MAX_PARALLAX_SHADOW_STRENGTH,
+    MAX_PARALLAX_STEPS, Mistake, Parallax, ViewMode,
 };
 use bumpview::state::{Command, SplitDifference, ViewerState};
 
@@ -49,11 +49,16 @@ pub struct PictureArgs {
     #[arg(long, value_name = "STRENGTH", num_args = 0..=1, default_missing_value = "1", value_parser = args::parse_finite)]
     parallax_shadows: Option<f32>,
     /// Displacement, the ground truth: meshes whose material has a height map tessellated at
-    /// LEVEL (4^LEVEL triangles per triangle, 0 to 10; 0 is off) and moved along their
-    /// normals by the parallax depth, shaded with the displaced surface's normals. Its vertex
-    /// count and memory go to stderr [default: 0].
-    #[arg(long, value_name = "LEVEL", value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_DISPLACEMENT_LEVEL)))]
-    displacement: Option<u32>,
+    /// LEVEL on the CPU (4^LEVEL triangles per triangle, 0 to 10; 0 is off), or `gpu`: on the
+    /// GPU for each view, edges cut to --pixels-per-edge; moved along their normals by the
+    /// parallax depth, shaded with the displaced surface's normals. Its vertex count and memory
+    /// go to stderr [default: 0].
+    #[arg(long, value_name = "LEVEL|gpu", value_parser = args::parse_displacement)]
+    displacement: Option<args::DisplacementArg>,
+    /// With --displacement gpu: the target edge length on screen, pixels (0.5 to 64)
+    /// [default: 4].
+    #[arg(long, value_name = "PX", value_parser = args::parse_positive)]
+    pixels_per_edge: Option<f32>,
     /// A legacy look in the lit views: dot3 (diffuse N·L alone, L normalised per vertex and
     /// interpolated) or emboss (the 2D light-map bump on surfaces with a height map)
     /// [default: off].
@@ -112,6 +117,7 @@ impl PictureArgs {
             parallax_depth,
             parallax_shadows,
             displacement,
+            pixels_per_edge,
             legacy,
             cube_map_size,
             mistake,
@@ -132,6 +138,7 @@ impl PictureArgs {
             && parallax_depth.is_none()
             && parallax_shadows.is_none()
             && displacement.is_none()
+            && pixels_per_edge.is_none()
             && legacy.is_none()
             && cube_map_size.is_none()
             && mistake.is_none()
@@ -181,7 +188,21 @@ impl PictureArgs {
             }
             commands.push(Command::SetParallaxShadows(strength));
         }
-        commands.extend(self.displacement.map(Command::SetDisplacement));
+        match (self.displacement, self.pixels_per_edge) {
+            (Some(args::DisplacementArg::Gpu), pixels) => {
+                let pixels = pixels.unwrap_or(DEFAULT_PIXELS_PER_EDGE);
+                if !GPU_PIXELS_PER_EDGE.contains(&pixels) {
+                    let (low, high) = (GPU_PIXELS_PER_EDGE.start(), GPU_PIXELS_PER_EDGE.end());
+                    return Err(Failure::BadArguments(format!("--pixels-per-edge {pixels}: expected {low} to {high}")));
+                }
+                commands.push(Command::SetGpuDisplacement(Some(pixels)));
+            }
+            (_, Some(_)) => {
+                return Err(Failure::BadArguments("--pixels-per-edge needs --displacement gpu".into()));
+            }
+            (Some(args::DisplacementArg::Level(level)), None) => commands.push(Command::SetDisplacement(level)),
+            (None, None) => {}
+        }
         if self.no_light_marker {
             commands.push(Command::SetLightMarker(false));
         }

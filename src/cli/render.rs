@@ -220,8 +220,6 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         None => state.scene_uploads(),
     };
     renderer.set_scene_uploads(&scene, &uploads);
-    report_displacement(&renderer);
-    report_notices(&renderer, &scene);
     let options = capture.options(DEFAULT_RENDER_SIZE);
     let params = state.frame_params();
     let image = if let Some(grid) = grid {
@@ -235,6 +233,9 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         let split = split.as_ref().map(|s| (s, [labels[0].as_str(), labels[1].as_str()]));
         render_picture(&mut renderer, &options, &params, split)
     }?;
+    // After drawing: GPU displacement tessellates, and says what it drew, as it draws.
+    report_displacement(&renderer);
+    report_notices(&renderer, &scene);
     write_png_atomically(&image, &out)?;
     let (width, height) = image.dimensions();
     println!("wrote {} ({width}x{height}, {})", out.display(), gpu.adapter_name());
@@ -252,6 +253,9 @@ fn report_displacement(renderer: &Renderer) {
         }
         if let Some(stats) = renderer.prepared(half).and_then(|p| p.displacement) {
             eprintln!("bumpview: displacement{name}: {}", stats.asked_and_drawn());
+        }
+        if let Some(stats) = renderer.gpu_displacement(half) {
+            eprintln!("bumpview: displacement{name}: {}", stats.summary());
         }
     }
 }

@@ -73,15 +73,15 @@ impl DisplacementStats {
 }
 
 /// The height field a material's height map describes, as the GPU's sampler reads level 0.
-struct HeightLookup<'a> {
-    texture: &'a TextureImage,
-    wrap: SamplerWrap,
-    depth: bool,
+pub(super) struct HeightLookup<'a> {
+    pub texture: &'a TextureImage,
+    pub wrap: SamplerWrap,
+    pub depth: bool,
 }
 
 impl HeightLookup<'_> {
     /// The height (0..1, white = high) at `uv`.
-    fn at(&self, uv: Vec2) -> f32 {
+    pub fn at(&self, uv: Vec2) -> f32 {
         let sample = height_sample(sample_bilinear(self.texture, uv, self.wrap).truncate());
         if self.depth { 1.0 - sample } else { sample }
     }
@@ -341,8 +341,7 @@ fn displaced_vertex(
     let normal = nrm[0] * w[0] + nrm[1] * w[1] + nrm[2] * w[2];
     let at = uv[0] * w[0] + uv[1] * w[1] + uv[2] * w[2];
     let face = (p[1] - p[0]).cross(p[2] - p[0]);
-    let length = normal.length();
-    let unit = if length > 1e-12 && normal.is_finite() { normal / length } else { face.normalize_or(Vec3::Z) };
+    let (unit, length) = unit_normal(normal, face);
     if depth_m == 0.0 {
         return (position, normal, EdgeVertex { index: 0, base: position, unit, lift: 0.0 });
     }
@@ -360,6 +359,14 @@ fn displaced_vertex(
     let side = if face.dot(unit) < 0.0 { -1.0 } else { 1.0 };
     let exact = (cross * side).normalize_or(unit);
     (position + unit * lift, exact * length.max(1e-12), EdgeVertex { index: 0, base: position, unit, lift })
+}
+
+/// The direction a vertex with interpolated normal `normal` moves in: the unit normal (and the
+/// normal's length), or the triangle's `face` normal where the normal is zero or not finite.
+pub(super) fn unit_normal(normal: Vec3, face: Vec3) -> (Vec3, f32) {
+    let length = normal.length();
+    let unit = if length > 1e-12 && normal.is_finite() { normal / length } else { face.normalize_or(Vec3::Z) };
+    (unit, length)
 }
 
 #[cfg(test)]

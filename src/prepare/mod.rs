@@ -9,6 +9,7 @@
 mod cone;
 pub mod displace;
 mod repair;
+pub mod seams;
 mod weld;
 
 use std::borrow::Cow;

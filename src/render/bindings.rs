@@ -125,8 +125,10 @@ pub const DISPLACE_UVS: Slot = slot(6, "out_uvs", Resource::StorageWrite);
 pub const DISPLACE_INDICES: Slot = slot(7, "out_indices", Resource::StorageWrite);
 /// The mesh's height map, level 0 read texel by texel.
 pub const DISPLACE_HEIGHT_MAP: Slot = slot(8, "height_map", Resource::ComputeTexture);
+/// The welded points of the seams where displaced surfaces meet ([`crate::prepare::seams`]).
+pub const DISPLACE_SEAM_POINTS: Slot = slot(9, "seam_points", Resource::StorageRead);
 /// Group 2 of GPU displacement, in binding order.
-pub const DISPLACE_GROUP: [Slot; 9] = [
+pub const DISPLACE_GROUP: [Slot; 10] = [
     DISPLACE_PARAMS,
     DISPLACE_BASE_VERTICES,
     DISPLACE_BASE_INDICES,
@@ -136,6 +138,7 @@ pub const DISPLACE_GROUP: [Slot; 9] = [
     DISPLACE_UVS,
     DISPLACE_INDICES,
     DISPLACE_HEIGHT_MAP,
+    DISPLACE_SEAM_POINTS,
 ];
 
 /// Group 1 of the marker shader: each light's marker centre and colour.

@@ -129,12 +129,17 @@ pub enum Command {
     /// The searches' soft self-shadow strength (0 off), clamped to
     /// 0..=[`MAX_PARALLAX_SHADOW_STRENGTH`]; a non-finite value is ignored.
     SetParallaxShadows(f32),
-    /// Displacement's tessellation level (0 off), clamped to 0..=[`MAX_DISPLACEMENT_LEVEL`](crate::frame::MAX_DISPLACEMENT_LEVEL);
-    /// it makes geometry, so it is a scene option.
+    /// Displacement's CPU tessellation level (0 off), clamped to 0..=[`MAX_DISPLACEMENT_LEVEL`](crate::frame::MAX_DISPLACEMENT_LEVEL),
+    /// GPU displacement off; it makes geometry, so it is a scene option.
     SetDisplacement(u32),
-    /// The split view's [`SplitDifference::Displacement`]: the left half's parallax technique
-    /// and the right half's displacement level (clamped to 1..=[`MAX_DISPLACEMENT_LEVEL`](crate::frame::MAX_DISPLACEMENT_LEVEL)).
-    SetSplitDisplacement(Parallax, u32),
+    /// Displacement on the GPU at this many pixels per edge (clamped to
+    /// [`GPU_PIXELS_PER_EDGE`](crate::frame::GPU_PIXELS_PER_EDGE); a non-finite value is
+    /// ignored), or `None`: back to the CPU level.
+    SetGpuDisplacement(Option<f32>),
+    /// The split view's [`SplitDifference::Displacement`]: the left half's parallax technique,
+    /// the right half's displacement level (clamped to 1..=[`MAX_DISPLACEMENT_LEVEL`](crate::frame::MAX_DISPLACEMENT_LEVEL))
+    /// or, when given, GPU displacement at this many pixels per edge instead.
+    SetSplitDisplacement(Parallax, u32, Option<f32>),
 }
 
 impl Command {

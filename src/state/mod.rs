@@ -15,9 +15,9 @@ pub use lighting::LightCommand;
 pub use split::{SplitDifference, SplitView};
 
 use crate::frame::{
-    FrameParams, LegacyLook, LegacySettings, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS, MAX_PARALLAX_SHADOW_STRENGTH,
-    MAX_PARALLAX_STEPS, Mistake, Msaa, Parallax, STRENGTH_RANGE, SceneOptions, SceneUploads, ShadingSettings,
-    SplitFrame,
+    FrameParams, GPU_PIXELS_PER_EDGE, LegacyLook, LegacySettings, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS,
+    MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS, Mistake, Msaa, Parallax, STRENGTH_RANGE, SceneOptions,
+    SceneUploads, ShadingSettings, SplitFrame,
 };
 use crate::height::Kernel;
 use crate::scene::{Lights, OrbitCamera, Scene};
@@ -184,7 +184,13 @@ impl ViewerState {
             }
             Command::SetParallaxShadows(_) => {}
             Command::SetDisplacement(level) => {
-                self.scene_options.displacement.level = level.min(MAX_DISPLACEMENT_LEVEL)
+                self.scene_options.displacement.level = level.min(MAX_DISPLACEMENT_LEVEL);
+                self.scene_options.displacement.gpu = None;
+            }
+            Command::SetGpuDisplacement(Some(pixels)) if !pixels.is_finite() => {}
+            Command::SetGpuDisplacement(pixels) => {
+                self.scene_options.displacement.gpu =
+                    pixels.map(|p| p.clamp(*GPU_PIXELS_PER_EDGE.start(), *GPU_PIXELS_PER_EDGE.end()))
             }
             Command::ToggleWireframe => self.shading.wireframe = !self.shading.wireframe,
             Command::SetGlyphs(on) => self.shading.tbn_glyphs = on,

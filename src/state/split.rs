@@ -85,6 +85,8 @@ pub struct SplitView {
     pub lighting_spaces: [LightingSpace; 2],
     /// The right half's displacement level in [`SplitDifference::Displacement`].
     pub displacement_level: u32,
+    /// The right half displaced on the GPU at this many pixels per edge instead.
+    pub displacement_gpu: Option<f32>,
     /// The two methods of [`SplitDifference::MipFilter`].
     pub mip_filters: [MipFilter; 2],
     /// The two methods of [`SplitDifference::DetailBlend`].
@@ -107,6 +109,7 @@ impl Default for SplitView {
             mistakes: [Mistake::None, Mistake::TbnTypo],
             lighting_spaces: [LightingSpace::World, LightingSpace::Tangent],
             displacement_level: 6,
+            displacement_gpu: None,
             mip_filters: [MipFilter::RenormalizedBox, MipFilter::Toksvig],
             detail_blends: [DetailBlend::Udn, DetailBlend::Rnm],
         }
@@ -119,9 +122,11 @@ impl SplitView {
         match command {
             Command::SetSplitMipFilters(filters) => self.mip_filters = filters,
             Command::SetSplitDetailBlends(methods) => self.detail_blends = methods,
-            Command::SetSplitDisplacement(technique, level) => {
+            Command::SetSplitDisplacement(technique, level, gpu) => {
                 self.parallax[0] = technique;
                 self.displacement_level = level.clamp(1, MAX_DISPLACEMENT_LEVEL);
+                let range = crate::frame::GPU_PIXELS_PER_EDGE;
+                self.displacement_gpu = gpu.filter(|p| p.is_finite()).map(|p| p.clamp(*range.start(), *range.end()));
             }
             Command::SetSplit(on) => self.enabled = on,
             Command::ToggleSplit => self.enabled = !self.enabled,
@@ -186,7 +191,10 @@ impl SplitView {
                     options.per_material.retain(|_, o| !o.is_empty());
                 }
                 SplitDifference::BumpSource => options.bump_source = self.bump_sources[i],
-                SplitDifference::Displacement => options.displacement.level = [0, self.displacement_level][i],
+                SplitDifference::Displacement => {
+                    options.displacement.level = [0, self.displacement_level][i];
+                    options.displacement.gpu = [None, self.displacement_gpu][i];
+                }
                 SplitDifference::MipFilter => {
                     options.mip_filter = self.mip_filters[i];
                     options.materials.mip_filter = None;

@@ -128,7 +128,11 @@ fn split(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
             let mut level = split.displacement_level;
             let slider = egui::Slider::new(&mut level, 1..=MAX_DISPLACEMENT_LEVEL).text("right: displacement level");
             let changed = ui.add(slider).changed();
-            (changed || technique != split.parallax[0]).then_some(Command::SetSplitDisplacement(technique, level))
+            (changed || technique != split.parallax[0]).then_some(Command::SetSplitDisplacement(
+                technique,
+                level,
+                split.displacement_gpu,
+            ))
         }
         SplitDifference::Mistake => {
             let chosen = pair_combos(ui, "mistake", split.mistakes, Mistake::name).map(Command::SetSplitMistakes);

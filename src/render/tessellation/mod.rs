@@ -24,7 +24,7 @@ use self::pipelines::DisplacePipelines;
 use self::plan::{MeshEdges, Plan, PlannedMesh, View};
 use super::bindings;
 use super::gpu_errors::buffer_with;
-use crate::prepare::PreparedScene;
+use crate::prepare::{PreparedScene, seams};
 use crate::scene::Mesh;
 
 /// One mesh the GPU displaces.
@@ -33,6 +33,8 @@ struct TessellatedMesh {
     mesh: usize,
     /// The base mesh as prepared (model space).
     base: Mesh,
+    /// Per triangle, per edge: its first point in the seam table, if it is a seam.
+    seams: Vec<[Option<u32>; 3]>,
     edges: MeshEdges,
     /// The model matrices of the instances that draw it.
     transforms: Vec<Mat4>,
@@ -136,17 +138,21 @@ pub struct Tessellation {
     base_vertices: wgpu::Buffer,
     base_indices: wgpu::Buffer,
     patches: wgpu::Buffer,
+    /// The welded points of the seams ([`seams::Seams::points`], `xyz` and 1).
+    seam_points: wgpu::Buffer,
     base_bytes: u64,
     pixels_per_edge: f32,
     state: Mutex<State>,
 }
 
-/// A base vertex as the compute pass reads it: `position, u` and `normal, v`.
+/// A base vertex as the compute pass reads it: `position, u`, `normal, v`, and its welded
+/// displaced position with `w` 1 where it is welded ([`Seams::corners`]), else zeros.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct BaseVertex {
     position_u: [f32; 4],
     normal_v: [f32; 4],
+    welded: [f32; 4],
 }
 
 impl Tessellation {
@@ -161,16 +167,17 @@ impl Tessellation {
         if prepared.gpu_displaced.is_empty() {
             return None;
         }
+        let mut seams = seams::seams(prepared);
         let (mut vertices, mut indices, mut meshes) = (vec![], vec![], vec![]);
-        for displaced in &prepared.gpu_displaced {
+        for (k, displaced) in prepared.gpu_displaced.iter().enumerate() {
             let mesh = &prepared.meshes[displaced.mesh].mesh;
             let first_vertex = vertices.len() as u32;
-            vertices.extend(
-                mesh.positions.iter().zip(&mesh.normals).zip(&mesh.uvs).map(|((p, n), uv)| BaseVertex {
-                    position_u: [p.x, p.y, p.z, uv.x],
-                    normal_v: [n.x, n.y, n.z, uv.y],
-                }),
-            );
+            let streams = mesh.positions.iter().zip(&mesh.normals).zip(&mesh.uvs).zip(&seams.corners[k]);
+            vertices.extend(streams.map(|(((p, n), uv), welded)| BaseVertex {
+                position_u: [p.x, p.y, p.z, uv.x],
+                normal_v: [n.x, n.y, n.z, uv.y],
+                welded: welded.map_or([0.0; 4], |w| [w.x, w.y, w.z, 1.0]),
+            }));
             indices.extend(mesh.indices.iter().map(|i| first_vertex + i));
             let drawing = prepared.instances.iter().filter(|i| i.mesh == displaced.mesh);
             let material =
@@ -178,6 +185,7 @@ impl Tessellation {
             meshes.push(TessellatedMesh {
                 mesh: displaced.mesh,
                 base: mesh.clone(),
+                seams: std::mem::take(&mut seams.edges[k]),
                 edges: MeshEdges::of(mesh),
                 transforms: drawing.map(|i| i.transform).collect(),
                 depth_m: displaced.depth_m,
@@ -203,7 +211,13 @@ impl Tessellation {
         });
         let base_bytes = (vertices.len() * std::mem::size_of::<BaseVertex>() + indices.len() * 4) as u64
             + base_triangles * std::mem::size_of::<plan::Patch>() as u64;
+        // At least one point: a binding holds one element or more.
+        let mut points: Vec<[f32; 4]> = seams.points.iter().map(|p| [p.x, p.y, p.z, 1.0]).collect();
+        points.resize(points.len().max(1), [0.0; 4]);
+        let seam_points = buffer_with(device, "GPU displacement seam points", bytemuck::cast_slice(&points), storage);
+        let base_bytes = base_bytes + seam_points.size();
         Some(Tessellation {
+            seam_points,
             base_vertices: buffer_with(
                 device,
                 "GPU displacement base vertices",
@@ -263,12 +277,15 @@ impl Tessellation {
                 transforms: m.transforms.clone(),
                 depth_m: m.depth_m,
                 cull_back_faces: m.cull_back_faces,
+                seams: &m.seams,
             })
             .collect();
         let plan = plan::plan(&planned, &view, self.pixels_per_edge, plan::BUDGET);
         let capacity = state.pool.as_ref().map_or((0, 0), |p| p.capacity);
         if plan.vertices > capacity.0 || plan.triangles > capacity.1 {
-            let grown = (grow(capacity.0, plan.vertices), grow(capacity.1, plan.triangles));
+            let (max_triangles, max_vertices) = plan::BUDGET;
+            let grown =
+                (grow(capacity.0, plan.vertices, max_vertices), grow(capacity.1, plan.triangles, max_triangles));
             state.pool = Some(self.pool(device, pipelines, grown));
         }
         let pool = state.pool.as_ref().expect("made above");
@@ -352,6 +369,7 @@ impl Tessellation {
                         bindings::DISPLACE_BASE_VERTICES.entry(wgpu::Buffer::as_entire_binding(&self.base_vertices)),
                         bindings::DISPLACE_BASE_INDICES.entry(wgpu::Buffer::as_entire_binding(&self.base_indices)),
                         bindings::DISPLACE_PATCHES.entry(wgpu::Buffer::as_entire_binding(&self.patches)),
+                        bindings::DISPLACE_SEAM_POINTS.entry(wgpu::Buffer::as_entire_binding(&self.seam_points)),
                         bindings::DISPLACE_POSITIONS.entry(wgpu::Buffer::as_entire_binding(&positions)),
                         bindings::DISPLACE_NORMALS.entry(wgpu::Buffer::as_entire_binding(&normals)),
                         bindings::DISPLACE_UVS.entry(wgpu::Buffer::as_entire_binding(&uvs)),
@@ -370,14 +388,14 @@ fn pool_bytes((vertices, triangles): (u32, u32)) -> u64 {
     u64::from(vertices) * 32 + u64::from(triangles) * 12
 }
 
-/// A capacity that holds `needed`: doubled from `current` (at least 4096), within the budget
+/// A capacity that holds `needed`: doubled from `current` (at least 4096), at most `budget`
 /// unless the need itself is larger (a base mesh past it).
-fn grow(current: u32, needed: u32) -> u32 {
+fn grow(current: u32, needed: u32, budget: u32) -> u32 {
     let mut capacity = current.max(4096);
     while capacity < needed {
         capacity = capacity.saturating_mul(2);
     }
-    capacity.min(plan::BUDGET.0.max(plan::BUDGET.1)).max(needed)
+    capacity.min(budget).max(needed)
 }
 
 /// The shader's wrap mode numbers (`WRAP_REPEAT`, `WRAP_CLAMP`, else mirrored).

@@ -37,7 +37,14 @@ pub struct Patch {
     /// Bit `k`: edge `k` runs against its canonical direction (from the larger end position
     /// to the smaller), in which both its triangles compute its points.
     pub reversed: u32,
+    /// Per edge, its first welded point in the seam table ([`crate::prepare::seams`]), or
+    /// [`NO_SEAM`].
+    pub seams: [u32; 3],
+    pub pad: u32,
 }
+
+/// [`Patch::seams`] of an edge that is no seam.
+pub const NO_SEAM: u32 = u32::MAX;
 
 impl Patch {
     /// Vertices of its grid: `(n + 1)(n + 2) / 2`.
@@ -110,6 +117,8 @@ pub struct PlannedMesh<'a> {
     pub depth_m: f32,
     /// Back faces are culled (a single-sided material).
     pub cull_back_faces: bool,
+    /// Per triangle, per edge: its first point in the seam table, if it is a seam.
+    pub seams: &'a [[Option<u32>; 3]],
 }
 
 /// This frame's tessellation of every GPU-displaced mesh, ready to upload.
@@ -159,8 +168,14 @@ fn edge_pixels(view: &View, transform: Mat4, [a, b]: [Vec3; 2]) -> f32 {
 
 /// Whether base triangle `p` (model space, drawn with `transform`) may show: some of it, or
 /// of its relief down to `depth_m` below it along the normals `n`, is inside the frustum, and
-/// unless `cull_back_faces` is off it does not face away at all three corners (by both its own
-/// normal and each corner's).
+/// unless `cull_back_faces` is off it is not far past the horizon at every corner.
+///
+/// Relief is carved inward, so near a silhouette the front's grooves uncover what lies just
+/// past the horizon, whose brick sides face the eye although the base triangle does not. On a
+/// surface curved with radius `r`, a point `φ` past the horizon lies `r (1 − cos φ)` behind
+/// the horizon's tangent plane, so grooves `depth` deep uncover at most `φ ≈ √(2 depth / r)`;
+/// a triangle is culled only where every corner is half as far again past that. The radius is
+/// estimated from how much the triangle's normals turn along its longest edge.
 fn may_show(view: &View, transform: Mat4, p: [Vec3; 3], n: [Vec3; 3], depth_m: f32, cull_back_faces: bool) -> bool {
     let world = p.map(|q| transform.transform_point3(q));
     let normals = n.map(|q| transform.transform_vector3(q).normalize_or_zero());
@@ -179,19 +194,25 @@ fn may_show(view: &View, transform: Mat4, p: [Vec3; 3], n: [Vec3; 3], depth_m: f
     if !cull_back_faces {
         return true;
     }
-    let face = (world[1] - world[0]).cross(world[2] - world[0]);
-    let mirrored = transform.determinant() < 0.0;
-    let face = if mirrored { -face } else { face };
+    let longest = (0..3).map(|k| p[k].distance(p[(k + 1) % 3])).fold(0.0, f32::max);
+    let model_normals = n.map(|q| q.normalize_or_zero());
+    let turn = (0..3).map(|k| model_normals[k].angle_between(model_normals[(k + 1) % 3])).fold(0.0, f32::max);
+    // d / r with r = longest / turn; a flat triangle (turn 0) uncovers nothing past its horizon.
+    let depth_over_radius = if longest > 0.0 { depth_m.abs() * turn / longest } else { 0.0 };
+    let past = (1.5 * (2.0 * depth_over_radius).sqrt()).min(1.0);
+    let face = (world[1] - world[0]).cross(world[2] - world[0]).normalize_or_zero();
+    let face = if transform.determinant() < 0.0 { -face } else { face };
     (0..3).any(|k| {
-        let to_eye = view.eye - world[k];
-        face.dot(to_eye) >= 0.0 || normals[k].dot(to_eye) >= 0.0
+        let to_eye = (view.eye - world[k]).normalize_or_zero();
+        face.dot(to_eye) >= -past || normals[k].dot(to_eye) >= -past
     })
 }
 
 /// Segments for an edge `pixels` long at a target of `target` pixels per segment.
 fn segments_for(pixels: f32, target: f32) -> u32 {
     let wanted = pixels / target;
-    if !(wanted < MAX_GPU_EDGE_SEGMENTS as f32) {
+    // NaN and anything past the maximum ask for the most.
+    if wanted.is_nan() || wanted >= MAX_GPU_EDGE_SEGMENTS as f32 {
         return MAX_GPU_EDGE_SEGMENTS;
     }
     (wanted.ceil().max(1.0) as u32).next_power_of_two()
@@ -261,6 +282,8 @@ fn plan_at(
                 first_vertex: vertices as u32,
                 first_index: triangles as u32 * 3,
                 reversed: m.edges.reversed[triangle],
+                seams: m.seams[triangle].map(|s| s.unwrap_or(NO_SEAM)),
+                pad: 0,
             });
             vertices += u64::from(Patch::vertex_count(n));
             triangles += u64::from(n * n);
@@ -283,3 +306,123 @@ fn plan_at(
 
 /// The budget GPU displacement is drawn within: (triangles, vertices).
 pub const BUDGET: (u32, u32) = (MAX_GPU_DISPLACED_TRIANGLES, MAX_GPU_DISPLACED_VERTICES);
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec2;
+
+    use super::*;
+    use crate::scene::OrbitCamera;
+
+    /// A `cells × cells` grid of quads, two triangles each, in the z = 0 plane facing +Z,
+    /// `side` metres wide, centred on the origin.
+    fn grid(cells: u32, side: f32) -> Mesh {
+        let mut mesh = Mesh::empty("grid");
+        for y in 0..=cells {
+            for x in 0..=cells {
+                let (u, v) = (x as f32 / cells as f32, y as f32 / cells as f32);
+                mesh.positions.push(Vec3::new((u - 0.5) * side, (v - 0.5) * side, 0.0));
+                mesh.normals.push(Vec3::Z);
+                mesh.uvs.push(Vec2::new(u, 1.0 - v));
+            }
+        }
+        let at = |x: u32, y: u32| y * (cells + 1) + x;
+        for y in 0..cells {
+            for x in 0..cells {
+                mesh.indices.extend([
+                    at(x, y),
+                    at(x + 1, y),
+                    at(x + 1, y + 1),
+                    at(x, y),
+                    at(x + 1, y + 1),
+                    at(x, y + 1),
+                ]);
+            }
+        }
+        mesh
+    }
+
+    fn view_from(yaw_deg: f32, distance: f32) -> View {
+        let camera = OrbitCamera {
+            target: Vec3::ZERO,
+            yaw: yaw_deg.to_radians(),
+            pitch: 0.0,
+            distance,
+            fov_y: 50f32.to_radians(),
+        };
+        View { view_projection: camera.view_projection(16.0 / 9.0), eye: camera.eye(), size: [1280, 720] }
+    }
+
+    fn planned<'a>(mesh: &'a Mesh, edges: &'a MeshEdges, seams: &'a [[Option<u32>; 3]]) -> PlannedMesh<'a> {
+        PlannedMesh { mesh, edges, transforms: vec![Mat4::IDENTITY], depth_m: 0.01, cull_back_faces: true, seams }
+    }
+
+    /// Each shared edge is one edge (a 4 × 4 grid has 40 sides and 16 diagonals), and a
+    /// triangle's edges run against their canonical direction exactly where the shared edge's
+    /// other triangle runs with it.
+    #[test]
+    fn shared_edges_are_one_edge_in_one_direction() {
+        let mesh = grid(4, 1.0);
+        let edges = MeshEdges::of(&mesh);
+        assert_eq!(edges.ends.len(), 56);
+        let mut seen: HashMap<u32, Vec<bool>> = HashMap::new();
+        for (ids, reversed) in edges.of_triangle.iter().zip(&edges.reversed) {
+            for k in 0..3 {
+                seen.entry(ids[k]).or_default().push(reversed & (1 << k) != 0);
+            }
+        }
+        assert!(seen.values().filter(|s| s.len() == 2).all(|s| s[0] != s[1]));
+    }
+
+    /// Segments are powers of two, at most the maximum; a patch's grid is its longest edge's;
+    /// the ranges add up; nearer the camera, more segments.
+    #[test]
+    fn segments_follow_the_edges_on_screen() {
+        let mesh = grid(4, 1.0);
+        let (edges, seams) = (MeshEdges::of(&mesh), vec![[None; 3]; 32]);
+        let far = plan(&[planned(&mesh, &edges, &seams)], &view_from(0.0, 3.0), 4.0, BUDGET);
+        let near = plan(&[planned(&mesh, &edges, &seams)], &view_from(0.0, 1.5), 4.0, BUDGET);
+        for p in &far.patches {
+            assert!(p.edge_segments.iter().all(|s| s.is_power_of_two() && *s <= MAX_GPU_EDGE_SEGMENTS));
+            assert_eq!(p.segments, *p.edge_segments.iter().max().unwrap());
+        }
+        let triangles: u32 = far.patches.iter().map(|p| p.segments * p.segments).sum();
+        assert_eq!((far.triangles, far.meshes[0].indices), (triangles, 3 * triangles));
+        assert_eq!(far.pixels_per_edge, 4.0);
+        assert!(near.triangles >= 3 * far.triangles, "{} against {}", near.triangles, far.triangles);
+    }
+
+    /// Past the budget the target edge grows by √2 until the plan fits, and says so.
+    #[test]
+    fn the_budget_lengthens_the_edges() {
+        let mesh = grid(4, 1.0);
+        let (edges, seams) = (MeshEdges::of(&mesh), vec![[None; 3]; 32]);
+        let free = plan(&[planned(&mesh, &edges, &seams)], &view_from(0.0, 1.5), 1.0, BUDGET);
+        let budget = (free.triangles / 5, free.vertices / 5);
+        let tight = plan(&[planned(&mesh, &edges, &seams)], &view_from(0.0, 1.5), 1.0, budget);
+        assert!(tight.triangles <= budget.0 && tight.vertices <= budget.1);
+        assert!(tight.pixels_per_edge > 1.0, "{}", tight.pixels_per_edge);
+        // One √2 step less would not have fitted.
+        let finer = plan(&[planned(&mesh, &edges, &seams)], &view_from(0.0, 1.5), tight.pixels_per_edge / 1.5, BUDGET);
+        assert!(finer.triangles > budget.0 || finer.vertices > budget.1);
+        // A budget below the base mesh draws the base mesh.
+        let base = plan(&[planned(&mesh, &edges, &seams)], &view_from(0.0, 1.5), 1.0, (1, 1));
+        assert_eq!(base.triangles, 32);
+    }
+
+    /// Seen from behind, the single-sided grid is culled; double-sided it is not; a grid behind
+    /// the camera is culled either way.
+    #[test]
+    fn culling_by_facing_and_frustum() {
+        let mesh = grid(4, 1.0);
+        let (edges, seams) = (MeshEdges::of(&mesh), vec![[None; 3]; 32]);
+        let behind = view_from(180.0, 2.0);
+        let single = plan(&[planned(&mesh, &edges, &seams)], &behind, 4.0, BUDGET);
+        assert_eq!((single.culled, single.triangles), (32, 0));
+        let double = PlannedMesh { cull_back_faces: false, ..planned(&mesh, &edges, &seams) };
+        assert_eq!(plan(&[double], &behind, 4.0, BUDGET).culled, 0);
+        let away =
+            PlannedMesh { transforms: vec![Mat4::from_translation(Vec3::Z * 10.0)], ..planned(&mesh, &edges, &seams) };
+        assert_eq!(plan(&[away], &view_from(0.0, 2.0), 4.0, BUDGET).culled, 32);
+    }
+}

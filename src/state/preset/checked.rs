@@ -187,7 +187,11 @@ impl ScenePreset {
             // Set by `ViewerState::scene_uploads` from the shading.
             parallax: false,
             cone_maps: false,
-            displacement: Displacement { level: scene.displacement, ..Default::default() },
+            displacement: Displacement {
+                level: scene.displacement,
+                gpu: super::gpu_pixels("scene.gpu_displacement", scene.gpu_displacement)?,
+                ..Default::default()
+            },
             tangents_without_gram_schmidt: false,
             mip_filter: named("scene.mip_filter", &scene.mip_filter)?,
         })

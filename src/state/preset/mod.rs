@@ -215,6 +215,17 @@ fn named_pair<T: Named>(key: &str, pair: &[String; 2]) -> Result<[T; 2], PresetE
     Ok([named(key, &pair[0])?, named(key, &pair[1])?])
 }
 
+/// A GPU displacement's pixels per edge, checked: `None` stays `None`.
+fn gpu_pixels(key: &str, pixels: Option<f32>) -> Result<Option<f32>, PresetError> {
+    let range = crate::frame::GPU_PIXELS_PER_EDGE;
+    match pixels {
+        Some(p) if !range.contains(&p) => {
+            Err(bad(key, &p.to_string(), &format!("pixels per edge, {} to {}", range.start(), range.end())))
+        }
+        pixels => Ok(pixels),
+    }
+}
+
 /// "`key` = "value": expected …".
 fn bad(key: &str, value: &str, expected: &str) -> PresetError {
     PresetError(format!("{key} = {value:?}: expected {expected}"))

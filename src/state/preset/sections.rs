@@ -190,6 +190,9 @@ pub struct ScenePreset {
     /// Displacement's tessellation level, 0 (off) to 10: materials with a height map drawn
     /// as displaced geometry, the depth the parallax depth.
     pub displacement: u32,
+    /// Displacement on the GPU instead, at this many pixels per edge (0.5 to 64).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gpu_displacement: Option<f32>,
     /// A [`MipFilter`](crate::texture::MipFilter) name: how every normal map is mip-filtered.
     pub mip_filter: String,
 }
@@ -283,6 +286,7 @@ impl ScenePreset {
             materials: OverridesPreset::from(&options.materials),
             per_material: options.per_material.iter().map(|(i, o)| (i.to_string(), o.into())).collect(),
             displacement: options.displacement.level,
+            gpu_displacement: options.displacement.gpu,
             mip_filter: options.mip_filter.name().to_owned(),
         }
     }

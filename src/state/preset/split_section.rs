@@ -38,6 +38,9 @@ pub struct SplitPreset {
     pub lighting_spaces: [String; 2],
     /// The right half's displacement level in the `displacement` split (1 to 10).
     pub displacement_level: u32,
+    /// The right half displaced on the GPU instead, at this many pixels per edge (0.5 to 64).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gpu_displacement: Option<f32>,
     /// [`MipFilter`](crate::texture::MipFilter) names, left and right.
     pub mip_filters: [String; 2],
     /// [`DetailBlend`](crate::frame::DetailBlend) names, left and right.
@@ -66,6 +69,7 @@ impl From<&SplitView> for SplitPreset {
             mistakes: names(s.mistakes),
             lighting_spaces: names(s.lighting_spaces),
             displacement_level: s.displacement_level,
+            gpu_displacement: s.displacement_gpu,
             mip_filters: names(s.mip_filters),
             detail_blends: names(s.detail_blends),
         }
@@ -100,6 +104,7 @@ impl SplitPreset {
             mistakes: named_pair("split.mistakes", &self.mistakes)?,
             lighting_spaces: named_pair("split.lighting_spaces", &self.lighting_spaces)?,
             displacement_level: self.displacement_level,
+            displacement_gpu: super::gpu_pixels("split.gpu_displacement", self.gpu_displacement)?,
             mip_filters: named_pair("split.mip_filters", &self.mip_filters)?,
             detail_blends: named_pair("split.detail_blends", &self.detail_blends)?,
         })
