@@ -60,12 +60,11 @@ fn every_gpu_vertex_is_the_cpu_displaced_vertex() {
     }
 }
 
-/// The picture at the default edge (4 px) is within the study's 0.01 RMSE (linear RGB) of the
+/// The picture at the default edge (3 px) is within the study's 0.01 RMSE (linear RGB) of the
 /// CPU reference at the study's size, 1280 × 720: the wall at level 8, the torus at its
-/// reference level 5, at 45° and 70°. Measured: the wall draws level 8's own triangles there
-/// (its two base triangles' edges span 256 segments; RMSE 0.00004 and 0.00014), the torus
-/// 0.0059 and 0.0057 with 236 144 and 292 312 triangles (level 5: 6.3 million); at 2 px the
-/// torus is 0.0042 and 0.0040 (the budget lengthening the edges to 2.8 px), at 8 px 0.0106.
+/// reference level 5, at 45° and 70°. Measured: the wall 0.0100 and 0.0089 with 142 628 and
+/// 154 181 triangles (level 8: 131 072), the torus 0.0059 and 0.0059 with 218 104 and 249 070
+/// (level 5: 6.3 million); at 3.5 px the wall is 0.0110 at 45°, at 6 px 0.024.
 #[test]
 fn the_gpu_picture_converges_to_the_cpu_reference() {
     for (specimen, level) in [(wall(), 8), (torus(), 5)] {

@@ -56,7 +56,7 @@ pub struct PictureArgs {
     #[arg(long, value_name = "LEVEL|gpu", value_parser = args::parse_displacement)]
     displacement: Option<args::DisplacementArg>,
     /// With --displacement gpu: the target edge length on screen, pixels (0.5 to 64)
-    /// [default: 4].
+    /// [default: 3].
     #[arg(long, value_name = "PX", value_parser = args::parse_positive)]
     pixels_per_edge: Option<f32>,
     /// A legacy look in the lit views: dot3 (diffuse N·L alone, L normalised per vertex and

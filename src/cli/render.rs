@@ -282,8 +282,6 @@ fn time(
     let gpu = Gpu::headless()?;
     let mut renderer = Renderer::from_gpu(&gpu);
     renderer.set_scene_uploads(scene, &state.scene_uploads());
-    report_displacement(&renderer);
-    report_notices(&renderer, scene);
     let params = state.frame_params();
     let split = state.split_frame();
     let mut picture =
@@ -292,6 +290,8 @@ fn time(
         picture.quality = InteractiveQuality::default().settle(&mut renderer, &picture)?;
     }
     let timing = time_frames(&mut renderer, &picture, frames)?;
+    report_displacement(&renderer);
+    report_notices(&renderer, scene);
     let [width, height] = picture.quality.render_size(size);
     let samples = renderer.samples(bumpview::render::capture::IMAGE_FORMAT, picture.quality.msaa);
     eprintln!(

@@ -189,8 +189,8 @@ pub const MAX_DISPLACED_TRIANGLES: usize = 8 << 20;
 
 /// The edge length in pixels the GPU tessellation aims at by default ([`Displacement::gpu`]):
 /// within the parallax study's 0.01 RMSE of the CPU reference on the wall and the torus at
-/// 1280 × 720 (tests/gpu_displacement.rs). Edges come out between half and all of it long.
-pub const DEFAULT_PIXELS_PER_EDGE: f32 = 4.0;
+/// 1280 × 720 (tests/gpu_displacement.rs; 3.5 px is not, on the wall).
+pub const DEFAULT_PIXELS_PER_EDGE: f32 = 3.0;
 /// The target edge lengths the GPU tessellation takes, pixels.
 pub const GPU_PIXELS_PER_EDGE: std::ops::RangeInclusive<f32> = 0.5..=64.0;
 /// The most segments a base edge is cut into on the GPU (level 9 of the CPU tessellation).
@@ -233,7 +233,7 @@ impl Displacement {
         self.level > 0 || self.gpu.is_some()
     }
 
-    /// A caption: `displacement, level L`, `displacement on the GPU, 4 px edges` or `no
+    /// A caption: `displacement, level L`, `displacement on the GPU, 3 px edges` or `no
     /// displacement`.
     pub fn caption(&self) -> String {
         match self.gpu {

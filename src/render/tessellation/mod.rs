@@ -8,8 +8,8 @@
 //!
 //! References: Khoury, Dupuy & Riccio 2018, "Adaptive GPU tessellation with compute shaders"
 //! (per-frame subdivision from projected edge lengths in compute) and the DirectX 11 hull
-//! stage's edge factors, of which the per-edge power-of-two segments here are the simplest
-//! crack-free form. The result is measured against the CPU tessellation (tests/gpu_displacement.rs).
+//! stage's integer edge factors, of which the per-edge segments here, with the inner grid's
+//! edge vertices snapped to them, are the simplest crack-free form. The result is measured against the CPU tessellation (tests/gpu_displacement.rs).
 
 pub mod pipelines;
 pub mod plan;

@@ -1,9 +1,10 @@
 //! Which base triangles the GPU tessellates this frame, and how finely: the CPU half of GPU
-//! displacement. Per base edge, the number of segments is the smallest power of two that
-//! cuts its projection on screen into pieces no longer than the target (in pixels), at most
-//! [`MAX_GPU_EDGE_SEGMENTS`]; a triangle is cut into `n²` on a barycentric grid of `n`, the
-//! most its three edges ask, and a grid vertex on an edge cut into fewer segments `e` is moved
-//! to the nearest of that edge's own `e + 1` points. Both triangles on an edge meet it in the
+//! displacement. Per base edge, the number of segments is the fewest that cut its projection
+//! on screen into pieces no longer than the target (in pixels), at most
+//! [`MAX_GPU_EDGE_SEGMENTS`] (on a seam, the next power of two: its welded points are made
+//! once, at the finest cut, [`crate::prepare::seams`]); a triangle is cut into `n²` on a
+//! barycentric grid of `n`, the most its three edges ask, and a grid vertex on an edge cut
+//! into fewer segments `e` is moved to the nearest of that edge's own `e + 1` points. Both triangles on an edge meet it in the
 //! same points, so no crack opens (the edge's segments are computed once per edge, keyed by
 //! its end positions). Triangles outside the frustum, or facing away where the material is
 //! single-sided, are not tessellated at all. When the frame would pass the budget
@@ -28,9 +29,10 @@ use crate::scene::Mesh;
 pub struct Patch {
     /// Its first index's position in the pool's base index buffer, divided by 3.
     pub triangle: u32,
-    /// `n`: the grid's segments per side (a power of two).
+    /// `n`: the grid's segments per side.
     pub segments: u32,
-    /// Segments of edge `k`, from corner `k` to corner `k + 1` (powers of two, at most `n`).
+    /// Segments of edge `k`, from corner `k` to corner `k + 1` (at most `n`; powers of two on
+    /// seams).
     pub edge_segments: [u32; 3],
     pub first_vertex: u32,
     pub first_index: u32,
@@ -208,14 +210,16 @@ fn may_show(view: &View, transform: Mat4, p: [Vec3; 3], n: [Vec3; 3], depth_m: f
     })
 }
 
-/// Segments for an edge `pixels` long at a target of `target` pixels per segment.
-fn segments_for(pixels: f32, target: f32) -> u32 {
+/// Segments for an edge `pixels` long at a target of `target` pixels per segment; a power of
+/// two on a `seam`.
+fn segments_for(pixels: f32, target: f32, seam: bool) -> u32 {
     let wanted = pixels / target;
     // NaN and anything past the maximum ask for the most.
     if wanted.is_nan() || wanted >= MAX_GPU_EDGE_SEGMENTS as f32 {
         return MAX_GPU_EDGE_SEGMENTS;
     }
-    (wanted.ceil().max(1.0) as u32).next_power_of_two()
+    let segments = wanted.ceil().max(1.0) as u32;
+    if seam { segments.next_power_of_two() } else { segments }
 }
 
 /// Plans this frame's tessellation of `meshes` seen in `view` at `pixels_per_edge` (above 0),
@@ -266,7 +270,13 @@ fn plan_at(
     let (mut vertices, mut triangles) = (0u64, 0u64);
     let mut first_triangle = 0u32;
     for ((m, lengths), shown) in meshes.iter().zip(lengths).zip(shown) {
-        let segments: Vec<u32> = lengths.iter().map(|&l| segments_for(l, target)).collect();
+        let mut seam = vec![false; lengths.len()];
+        for (edges, seams) in m.edges.of_triangle.iter().zip(m.seams) {
+            for k in 0..3 {
+                seam[edges[k] as usize] |= seams[k].is_some();
+            }
+        }
+        let segments: Vec<u32> = lengths.iter().zip(&seam).map(|(&l, &s)| segments_for(l, target, s)).collect();
         let start = (plan.patches.len() as u32, vertices as u32, triangles as u32 * 3);
         for (triangle, (edges, &visible)) in m.edges.of_triangle.iter().zip(shown).enumerate() {
             if !visible {
@@ -374,7 +384,7 @@ mod tests {
         assert!(seen.values().filter(|s| s.len() == 2).all(|s| s[0] != s[1]));
     }
 
-    /// Segments are powers of two, at most the maximum; a patch's grid is its longest edge's;
+    /// Segments are at most the maximum; a patch's grid is its longest edge's;
     /// the ranges add up; nearer the camera, more segments.
     #[test]
     fn segments_follow_the_edges_on_screen() {
@@ -383,7 +393,7 @@ mod tests {
         let far = plan(&[planned(&mesh, &edges, &seams)], &view_from(0.0, 3.0), 4.0, BUDGET);
         let near = plan(&[planned(&mesh, &edges, &seams)], &view_from(0.0, 1.5), 4.0, BUDGET);
         for p in &far.patches {
-            assert!(p.edge_segments.iter().all(|s| s.is_power_of_two() && *s <= MAX_GPU_EDGE_SEGMENTS));
+            assert!(p.edge_segments.iter().all(|s| (1..=MAX_GPU_EDGE_SEGMENTS).contains(s)));
             assert_eq!(p.segments, *p.edge_segments.iter().max().unwrap());
         }
         let triangles: u32 = far.patches.iter().map(|p| p.segments * p.segments).sum();
