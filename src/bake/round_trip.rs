@@ -8,12 +8,19 @@ use std::sync::Arc;
 
 use super::compressed_format::CompressedFormat;
 use crate::names::Named;
-use crate::scene::{NormalLayout, Scene, TextureImage, TextureKind};
-#[cfg(not(target_arch = "wasm32"))]
+use crate::scene::{NormalLayout, NormalMap, Scene, TextureImage, TextureKind};
 use crate::texture::compressed::Stored;
 
-/// An image after the trip.
 #[cfg(not(target_arch = "wasm32"))]
+use super::compressed_out::encode;
+
+/// The web build has no encoders.
+#[cfg(target_arch = "wasm32")]
+fn encode(_: &[u8], _: u32, _: u32, _: CompressedFormat) -> Result<Vec<u8>, String> {
+    Err("the web build has no texture encoders".to_owned())
+}
+
+/// An image after the trip.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RoundTrip {
     /// The decoded texels, RGBA8, rows top to bottom.
@@ -28,28 +35,17 @@ pub struct RoundTrip {
 
 /// `rgba` (`width`×`height`, RGBA8) encoded as `format`'s file and decoded again; the error is
 /// one line (sides not multiples of 4; ETC1S files without the `etc1s` feature).
-#[cfg(not(target_arch = "wasm32"))]
 pub fn round_trip(rgba: &[u8], width: u32, height: u32, format: CompressedFormat) -> Result<RoundTrip, String> {
     use crate::texture::decode::{MAX_DECODE_BYTES, decode_image};
     let started = std::time::Instant::now();
-    let file = super::compressed_out::encode(rgba, width, height, format)?;
+    let file = encode(rgba, width, height, format)?;
     let encode_seconds = started.elapsed().as_secs_f64();
     let (image, stored) = decode_image(&file, false, MAX_DECODE_BYTES, |_| Ok(()))?;
     Ok(RoundTrip { rgba: image.into_rgba8().into_raw(), stored, file_bytes: file.len(), encode_seconds })
 }
 
-/// The web build has no encoders.
-#[cfg(target_arch = "wasm32")]
-fn trip(
-    _: &TextureImage,
-    _: CompressedFormat,
-) -> Result<(TextureImage, Option<crate::texture::compressed::Stored>), String> {
-    Err("the web build has no texture encoders".to_owned())
-}
-
 /// `texture` through `format`, as the loader would hold the file: the texels and what the
 /// format says about them.
-#[cfg(not(target_arch = "wasm32"))]
 fn trip(texture: &TextureImage, format: CompressedFormat) -> Result<(TextureImage, Option<Stored>), String> {
     let done = round_trip(&texture.rgba, texture.width, texture.height, format)?;
     let name = format!("{} (through {})", texture.name, format.name());
@@ -57,40 +53,44 @@ fn trip(texture: &TextureImage, format: CompressedFormat) -> Result<(TextureImag
     Ok((TextureImage { name, width, height, kind, rgba: done.rgba }, done.stored))
 }
 
-/// `scene` with every RGB normal map replaced by its round trip through `format` (a texture
-/// added, as the loader adds a file's), read in the layout the format states
-/// ([`crate::scene::NormalMap::with_stored`]); `None`: `scene` as it is. A map that cannot
-/// make the trip stays as it is, and `notices` says why.
+/// Adds `made` (the round trip of texture `source`) to `scene` as the loader adds a file's
+/// texture, and draws every material whose RGB normal map is `source` with it instead, read in
+/// the layout `stored` states ([`NormalMap::with_stored`]).
+pub fn use_round_trip(scene: &mut Scene, source: usize, made: TextureImage, stored: Option<&Stored>) {
+    scene.textures.push(Arc::new(made));
+    let texture = scene.textures.len() - 1;
+    for material in &mut scene.materials {
+        if let Some(map) = material.normal_map.as_mut().filter(|m| m.texture == source && is_rgb(m)) {
+            *map = NormalMap { texture, ..map.clone() }.with_stored(stored);
+        }
+    }
+}
+
+fn is_rgb(map: &NormalMap) -> bool {
+    map.convention.layout == NormalLayout::Rgb
+}
+
+/// `scene` with every RGB normal map replaced by its round trip through `format`
+/// ([`use_round_trip`]); `None`: `scene` as it is. A map that cannot make the trip stays as
+/// it is, and `notices` says why.
 pub fn normal_maps_through<'a>(
     scene: &'a Scene,
     format: Option<CompressedFormat>,
     notices: &mut Vec<String>,
 ) -> Cow<'a, Scene> {
     let Some(format) = format else { return Cow::Borrowed(scene) };
+    let mut sources: Vec<usize> =
+        scene.materials.iter().filter_map(|m| m.normal_map.as_ref()).filter(|m| is_rgb(m)).map(|m| m.texture).collect();
+    sources.sort_unstable();
+    sources.dedup();
     let mut out = scene.clone();
-    let mut done: Vec<(usize, usize, _)> = vec![];
-    for index in 0..out.materials.len() {
-        let Some(map) = out.materials[index].normal_map.clone() else { continue };
-        let source = &scene.textures[map.texture];
-        if map.convention.layout != NormalLayout::Rgb || source.kind != TextureKind::NormalMap {
-            continue;
+    for source in sources.into_iter().filter(|&t| scene.textures[t].kind == TextureKind::NormalMap) {
+        match trip(&scene.textures[source], format) {
+            Ok((made, stored)) => use_round_trip(&mut out, source, made, stored.as_ref()),
+            Err(e) => {
+                notices.push(format!("{}: not drawn through {}: {e}", scene.textures[source].name, format.name()))
+            }
         }
-        let made = match done.iter().find(|d| d.0 == map.texture) {
-            Some(&(_, texture, ref stored)) => (texture, Clone::clone(stored)),
-            None => match trip(source, format) {
-                Ok((texture, stored)) => {
-                    out.textures.push(Arc::new(texture));
-                    done.push((map.texture, out.textures.len() - 1, stored.clone()));
-                    (out.textures.len() - 1, stored)
-                }
-                Err(e) => {
-                    notices.push(format!("{}: not drawn through {}: {e}", source.name, format.name()));
-                    continue;
-                }
-            },
-        };
-        let moved = crate::scene::NormalMap { texture: made.0, ..map };
-        out.materials[index].normal_map = Some(moved.with_stored(made.1.as_ref()));
     }
     Cow::Owned(out)
 }
