@@ -1,15 +1,13 @@
 //! The compression study's part of the report ([`super::compression_study`]): a table per map
 //! (angle to the source normal, lit picture's RMSE, bits per texel, encode time), CSV rows and
-//! a chart of angle error against the file's bits per texel.
+//! a chart per map of angle error against the file's bits per texel.
 
 use std::fmt::Write;
 
 use super::chart::{COLOURS, ChartError, ERROR_FLOOR_DEGREES, Marker, Series, XAxis, png};
-use super::compression_study::{CompressionPlan, CompressionRow, maps, measure_map};
+use super::compression_study::{CompressionPlan, CompressionRow, maps, measure_map, stored_lengths};
 use crate::names::Named;
 
-/// The chart's file name.
-pub const CHART: &str = "compression.png";
 /// The CSV's file name.
 pub const CSV: &str = "compression.csv";
 
@@ -22,6 +20,13 @@ pub fn study(plan: &CompressionPlan) -> (Vec<CompressionRow>, Vec<String>) {
     if let Some(gpu) = &gpu {
         let [w, h] = plan.picture;
         notes.push(format!("lit pictures: the built-in scene's opening view, {w}×{h}, on {}", gpu.adapter_name()));
+    }
+    for (name, map) in &maps {
+        let [low, high, off] = stored_lengths(map);
+        notes.push(format!(
+            "{name}: {}×{} texels, stored vectors {low:.3}–{high:.3} long (mean |1 − length| {off:.4})",
+            map.width, map.height
+        ));
     }
     let mut rows = vec![];
     for (name, map) in &maps {
@@ -46,7 +51,10 @@ pub fn markdown(rows: &[CompressionRow], notes: &[String]) -> String {
          built-in scene with the map as every material's normal map, against the same picture with the \
          source map, 8-bit sRGB values (0–255). **GPU bits**: per texel once uploaded; **file bits**: per \
          texel in the file (header and Zstandard or BasisLZ included). **Encode ms**: one run, wall clock, in \
-         this report's build.\n"
+         this report's build. Two-channel layouts (BC5, RG8: rg; DXT5nm: ag) rebuild z for a vector of length \
+         1, so a map whose stored vectors are not unit reads differently there even uncompressed; and the \
+         renderer averages their mips as data rather than renormalising RGB, so their lit RMSE includes a \
+         different mip chain: the RG8 row is their floor.\n"
     );
     for note in notes {
         let _ = writeln!(s, "- {note}");
@@ -74,7 +82,9 @@ pub fn markdown(rows: &[CompressionRow], notes: &[String]) -> String {
             }
         }
     }
-    let _ = writeln!(s, "\nEvery row: `{CSV}`; the chart: `{CHART}`.\n");
+    let mut charts: Vec<String> = rows.iter().map(|r| format!("`{}`", chart_name(&r.map))).collect();
+    charts.dedup();
+    let _ = writeln!(s, "\nEvery row: `{CSV}`; the charts: {}.\n", charts.join(", "));
     s
 }
 
@@ -100,33 +110,37 @@ pub fn csv(rows: &[CompressionRow]) -> String {
     s
 }
 
-/// Mean (circles) and p99 (triangles) angle against the file's bits per texel: a line per
-/// map joining its formats in order of bits.
-pub fn chart(rows: &[CompressionRow]) -> Result<Vec<u8>, ChartError> {
+/// The chart file of `map`.
+pub fn chart_name(map: &str) -> String {
+    format!("compression-{}.png", map.to_lowercase())
+}
+
+/// A chart per map ([`chart_name`]): each format's mean angle against the file's bits per
+/// texel, a dot per format.
+pub fn charts(rows: &[CompressionRow]) -> Result<Vec<(String, Vec<u8>)>, ChartError> {
     let mut names: Vec<&str> = vec![];
     rows.iter().for_each(|r| {
         if !names.contains(&r.map.as_str()) {
             names.push(&r.map)
         }
     });
-    let mut series = vec![];
-    for (index, name) in names.iter().enumerate() {
-        let mut measured: Vec<_> =
-            rows.iter().filter(|r| r.map == *name).filter_map(|r| r.outcome.as_ref().ok()).collect();
-        measured.sort_by(|a, b| a.file_bits.total_cmp(&b.file_bits));
-        for (at, marker, what) in [(0, Marker::Circle, "mean"), (1, Marker::Triangle, "p99")] {
-            series.push(Series {
-                label: format!("{name} · {what}"),
-                colour: COLOURS[index % COLOURS.len()],
-                marker,
-                points: measured.iter().map(|m| (m.file_bits, m.angle_deg[at].max(ERROR_FLOOR_DEGREES))).collect(),
-            });
+    let mut charts = vec![];
+    for name in names {
+        let mut series = vec![];
+        for (index, row) in rows.iter().filter(|r| r.map == name).enumerate() {
+            if let Ok(m) = &row.outcome {
+                series.push(Series {
+                    label: row.format.name().to_owned(),
+                    colour: COLOURS[index % COLOURS.len()],
+                    marker: Marker::Dots,
+                    points: vec![(m.file_bits, m.angle_deg[0].max(ERROR_FLOOR_DEGREES))],
+                });
+            }
         }
+        let title = format!("{name}: mean angle to the source normal against the file's bits per texel");
+        let png =
+            png(&title, ["bits per texel in the file", "mean angle to the source normal (°)"], &series, XAxis::Linear)?;
+        charts.push((chart_name(name), png));
     }
-    png(
-        "Normal-map compression: angle to the source normal against the file's bits per texel",
-        ["bits per texel in the file", "angle to the source normal (°)"],
-        &series,
-        XAxis::Linear,
-    )
+    Ok(charts)
 }

@@ -102,6 +102,21 @@ pub fn angle_errors(source: &TextureImage, decoded: &[u8], layout: NormalLayout)
     [angles.iter().sum::<f64>() / n as f64, p99, angles.last().copied().unwrap_or(0.0)]
 }
 
+/// The shortest and longest vector `2·rgb/255 − 1` of `map`'s texels and the mean of
+/// `|1 − length|`: two-channel layouts take x and y as they are and rebuild z for length 1, so
+/// a map whose vectors are not unit (a JPEG's) reads differently there even uncompressed.
+pub fn stored_lengths(map: &TextureImage) -> [f64; 3] {
+    let lengths = map
+        .rgba
+        .chunks_exact(4)
+        .map(|t| DVec3::new(t[0].into(), t[1].into(), t[2].into()).map(|c: f64| c / 255.0 * 2.0 - 1.0).length());
+    let (mut low, mut high, mut off, mut n) = (f64::MAX, 0.0f64, 0.0, 0.0);
+    for length in lengths {
+        (low, high, off, n) = (low.min(length), high.max(length), off + (1.0 - length).abs(), n + 1.0);
+    }
+    [low, high, off / f64::max(n, 1.0)]
+}
+
 /// What one format did to one map.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Measured {

@@ -341,10 +341,10 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
         (detail_page::CSV.to_owned(), detail_page::csv(&detail_rows).into_bytes()),
         (detail_page::CHART.to_owned(), detail_page::chart(&detail_rows)?),
         (compression_page::CSV.to_owned(), compression_page::csv(&compression).into_bytes()),
-        (compression_page::CHART.to_owned(), compression_page::chart(&compression)?),
     ]
     .into_iter()
-    .chain(chart_files);
+    .chain(chart_files)
+    .chain(compression_page::charts(&compression)?);
     let mut written = vec![];
     for (name, bytes) in files {
         let path = out.join(&name);
