@@ -116,7 +116,7 @@ pub fn chart_name(map: &str) -> String {
 }
 
 /// A chart per map ([`chart_name`]): each format's mean angle against the file's bits per
-/// texel, a dot per format.
+/// texel (both logarithmic), a dot per format.
 pub fn charts(rows: &[CompressionRow]) -> Result<Vec<(String, Vec<u8>)>, ChartError> {
     let mut names: Vec<&str> = vec![];
     rows.iter().for_each(|r| {
@@ -139,7 +139,7 @@ pub fn charts(rows: &[CompressionRow]) -> Result<Vec<(String, Vec<u8>)>, ChartEr
         }
         let title = format!("{name}: mean angle to the source normal against the file's bits per texel");
         let png =
-            png(&title, ["bits per texel in the file", "mean angle to the source normal (°)"], &series, XAxis::Linear)?;
+            png(&title, ["bits per texel in the file", "mean angle to the source normal (°)"], &series, XAxis::Log)?;
         charts.push((chart_name(name), png));
     }
     Ok(charts)
