@@ -54,7 +54,7 @@ pub fn markdown(rows: &[CompressionRow], notes: &[String]) -> String {
          this report's build. Two-channel layouts (BC5, RG8: rg; DXT5nm: ag) rebuild z for a vector of length \
          1, so a map whose stored vectors are not unit reads differently there even uncompressed; and the \
          renderer averages their mips as data rather than renormalising RGB, so their lit RMSE includes a \
-         different mip chain: the RG8 row is their floor.\n"
+         different mip chain (the RG8 row shows how much).\n"
     );
     for note in notes {
         let _ = writeln!(s, "- {note}");
