@@ -391,6 +391,9 @@ fn the_compression_splits_right_half_is_the_map_read_from_its_file() {
     state.apply(Command::SetSplit(true));
     state.apply(Command::SetSplitDifference(SplitDifference::Compression));
     state.apply(Command::SetSplitCompression(CompressedFormat::DdsBc5));
+    let preset = bumpview::state::preset::Preset::from_state(&state, Default::default());
+    let kept = bumpview::state::preset::Preset::from_toml(&preset.to_toml()).unwrap().to_state(&scene).unwrap();
+    assert_eq!(kept.split, state.split, "a preset keeps the split's format");
     let uploads = state.scene_uploads();
     assert_eq!(uploads.split_right.as_ref().unwrap().normal_maps_through, Some(CompressedFormat::DdsBc5));
     renderer.set_scene_uploads(&scene, &uploads);
