@@ -348,6 +348,10 @@ pub struct SceneOptions {
     /// How every material's normal map is mip-filtered ([`MipFilter`]): it decides the mip
     /// chain baked and uploaded, and the pipeline variant (`MIP_FILTER`).
     pub mip_filter: MipFilter,
+    /// Every RGB normal map drawn after a round trip through this GPU texture format (encoded
+    /// and decoded on the CPU, [`crate::bake::round_trip::normal_maps_through`]): the
+    /// `compression` split's right half. `None`: as loaded.
+    pub normal_maps_through: Option<crate::bake::compressed_format::CompressedFormat>,
 }
 
 impl SceneOptions {

@@ -50,7 +50,7 @@ fn render_writes_a_png_of_the_requested_size() {
 /// Bad flags and values exit 2, failures of the work itself 1; either prints one line.
 #[test]
 fn failures_exit_non_zero_with_one_line() {
-    let cases: [(&[&str], i32); 20] = [
+    let cases: [(&[&str], i32); 22] = [
         (&["render", "--out", "x.png", "--frobnicate"], 2),
         (&["render", "--out", "x.png", "--view", "sideways"], 2),
         (&["render", "--out", "x.png", "--size", "0x10"], 2),
@@ -61,6 +61,8 @@ fn failures_exit_non_zero_with_one_line() {
         (&["render", "--out", "x.png", "--camera=0,0,-1"], 2),
         (&["render", "--out", "x.png", "--split", "view", "--split-at", "1.5"], 2),
         (&["render", "--out", "x.png", "--split", "tangents", "--split-sides", "mikktspace,bogus"], 2),
+        (&["render", "--out", "x.png", "--split", "compression", "--split-sides", "dds-bc1,dds-bc5"], 2),
+        (&["render", "--out", "x.png", "--split", "compression", "--split-sides", "uncompressed,bc6h"], 2),
         (&["render", "--out", "x.png", "--grid", "flat,shiny"], 2),
         (&["render", "--out", "x.png", "--grid", "flat;bumped,tangent"], 2),
         (&["render", "--out", "x.png", "--row", "--grid"], 2),

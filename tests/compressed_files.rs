@@ -372,3 +372,46 @@ fn bake_format_writes_the_fixtures_again() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The `compression` split draws its right half with the normal map the loader reads from the
+/// bake's file: with the brick PNG loaded, the BC5 split's right half equals, pixel for pixel,
+/// the scene opened with the committed BC5 fixture (the same encoder's output, byte for byte),
+/// and its left half the PNG's picture. 2× supersampled, so every 2×2 block lies in one half.
+#[test]
+fn the_compression_splits_right_half_is_the_map_read_from_its_file() {
+    use bumpview::bake::compressed_format::CompressedFormat;
+    use bumpview::frame::FrameParams;
+    use bumpview::render::capture::{CaptureOptions, render_capture, render_capture_split};
+    use bumpview::state::{Command, SplitDifference, ViewerState};
+    let size = [160, 96];
+    let scene = with_normal_map(&fixtures().join("brick_normal.png"));
+    let mut renderer = renderer_for(&scene);
+    let mut state = ViewerState::new(&scene);
+    state.shading.show_light_marker = false;
+    state.apply(Command::SetSplit(true));
+    state.apply(Command::SetSplitDifference(SplitDifference::Compression));
+    state.apply(Command::SetSplitCompression(CompressedFormat::DdsBc5));
+    let preset = bumpview::state::preset::Preset::from_state(&state, Default::default());
+    let kept = bumpview::state::preset::Preset::from_toml(&preset.to_toml()).unwrap().to_state(&scene).unwrap();
+    assert_eq!(kept.split, state.split, "a preset keeps the split's format");
+    let uploads = state.scene_uploads();
+    assert_eq!(uploads.split_right.as_ref().unwrap().normal_maps_through, Some(CompressedFormat::DdsBc5));
+    renderer.set_scene_uploads(&scene, &uploads);
+    let (params, split) = (state.frame_params(), state.split_frame().unwrap());
+    let options = CaptureOptions { supersample: 2, ..CaptureOptions::plain(size) };
+    let image = render_capture_split(&mut renderer, &options, &params, &split).unwrap();
+    let divider = split.divider_pixels(size[0]);
+    let mut full = |scene: &Scene, shading| {
+        renderer.set_scene(scene, uploads.main.clone());
+        render_capture(&mut renderer, &options, &FrameParams { shading, ..params }).unwrap()
+    };
+    let left = full(&scene, split.left);
+    let right = full(&with_normal_map(&fixtures().join("brick_normal_bc5.dds")), split.right);
+    assert_ne!(left, right, "BC5 must change the picture for the test to mean anything");
+    for y in 0..size[1] {
+        for x in 0..size[0] {
+            let expected = if x < divider { &left } else { &right };
+            assert_eq!(image.get_pixel(x, y), expected.get_pixel(x, y), "pixel ({x}, {y})");
+        }
+    }
+}

@@ -43,6 +43,7 @@ fn every_enum_keeps_its_names_in_order() {
         "displacement",
         "mip-filter",
         "detail-blend",
+        "compression",
     ];
     assert_eq!(SplitDifference::names(), differences);
     let methods = [

@@ -230,6 +230,18 @@ fn quick_report_writes_a_row_for_every_method_and_kernel_and_valid_charts() {
     }
     assert!(markdown_mentions(&dir, "## Normal maps at a distance: mip filters against a supersampled reference"));
     assert!(markdown_mentions(&dir, "At 16× on the plane, **"));
+    // The compression study (64² bricks and noise): a row per map and format (ETC1S with its
+    // feature), the section and a chart per map.
+    let compression = std::fs::read_to_string(dir.join("compression.csv")).unwrap();
+    for map in ["bricks", "noise"] {
+        for &format in bumpview::bake::compressed_format::CompressedFormat::all() {
+            let row = format!("{map},{},", format.name());
+            let expected = format.name() != "ktx2-etc1s" || cfg!(feature = "etc1s");
+            assert_eq!(compression.lines().any(|l| l.starts_with(&row)), expected, "{row} in {compression}");
+        }
+    }
+    assert!(markdown_mentions(&dir, "## Texture compression: what each format does to a normal map"));
+    assert!(cfg!(feature = "etc1s") || markdown_mentions(&dir, "| ktx2-etc1s | not built (feature etc1s) |"));
     // The UV rows' CSV: a row per technique, layer count (the quick plan's two) and angle (the
     // techniques without a search once), every line as long as the header.
     let uv = std::fs::read_to_string(dir.join("uv-error.csv")).unwrap();
@@ -255,6 +267,8 @@ fn quick_report_writes_a_row_for_every_method_and_kernel_and_valid_charts() {
         "uv-ms-wall-70.png",
         "uv-angle-wall.png",
         "mip-filters.png",
+        "compression-bricks.png",
+        "compression-noise.png",
     ] {
         let image = image::open(dir.join(chart)).unwrap_or_else(|e| panic!("{chart}: {e}"));
         let rgb = image.to_rgb8();

@@ -6,36 +6,8 @@
 
 use ddsfile::DxgiFormat;
 
+pub use super::compressed_format::CompressedFormat;
 use crate::texture::dxgi_file;
-
-/// A GPU texture file format the bake writes; named `dds-bc1`, `dds-dxt5nm`, `dds-bc5`,
-/// `dds-bc7`, `ktx2-uastc`, `ktx2-etc1s` (`bake --format`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, strum::IntoStaticStr, strum::VariantArray)]
-#[strum(serialize_all = "kebab-case")]
-pub enum CompressedFormat {
-    /// DDS, BC1 (DXT1): RGB in 4 bits a texel, the block format made for colour.
-    DdsBc1,
-    /// DDS, BC3 as DXT5nm: x in alpha, y in green (red 255, blue 0), flagged `DDPF_NORMAL`.
-    DdsDxt5nm,
-    /// DDS, BC5: red and green only (a two-channel normal map: x, y).
-    DdsBc5,
-    /// DDS, BC7 (RGBA).
-    DdsBc7,
-    /// KTX2, UASTC 4×4 (RGBA), Zstandard supercompression.
-    Ktx2Uastc,
-    /// KTX2, ETC1S (RGB) with BasisLZ supercompression.
-    Ktx2Etc1s,
-}
-
-impl CompressedFormat {
-    /// The file extension of the format's files.
-    pub fn extension(self) -> &'static str {
-        match self {
-            CompressedFormat::Ktx2Uastc | CompressedFormat::Ktx2Etc1s => "ktx2",
-            _ => "dds",
-        }
-    }
-}
 
 /// Encodes a `width`×`height` RGBA8 image (rows top to bottom) as `format`'s file bytes.
 pub fn encode(rgba: &[u8], width: u32, height: u32, format: CompressedFormat) -> Result<Vec<u8>, String> {
@@ -65,7 +37,14 @@ pub fn encode(rgba: &[u8], width: u32, height: u32, format: CompressedFormat) ->
             let settings = intel_tex_2::bc7::alpha_basic_settings();
             dxgi_file(intel_tex_2::bc7::compress_blocks(&settings, &surface), width, height, DxgiFormat::BC7_UNorm)
         }
-        CompressedFormat::Ktx2Uastc => super::ktx2_out::uastc(rgba, width, height),
+        CompressedFormat::DdsRg8 => {
+            let rg: Vec<u8> = rgba.chunks_exact(4).flat_map(|t| [t[0], t[1]]).collect();
+            dxgi_file(rg, width, height, DxgiFormat::R8G8_UNorm)
+        }
+        CompressedFormat::Ktx2Uastc => super::ktx2_out::uastc(rgba, width, height, None),
+        CompressedFormat::Ktx2UastcRdo => {
+            super::ktx2_out::uastc(rgba, width, height, Some(super::compressed_format::UASTC_RDO_QUALITY))
+        }
         CompressedFormat::Ktx2Etc1s => super::ktx2_out::etc1s(rgba, width, height),
     }
 }

@@ -6,9 +6,17 @@
 
 use basis_universal::{BasisTextureFormat, Compressor, CompressorParams};
 
-/// Basis Universal's `.basis` file of `rgba` in `format` (linear, one level).
-fn basis_file(rgba: &[u8], width: u32, height: u32, format: BasisTextureFormat) -> Result<Vec<u8>, String> {
+/// Basis Universal's `.basis` file of `rgba` in `format` (linear, one level), UASTC after
+/// rate-distortion optimisation at quality scalar `rdo` where given.
+fn basis_file(
+    rgba: &[u8],
+    width: u32,
+    height: u32,
+    format: BasisTextureFormat,
+    rdo: Option<f32>,
+) -> Result<Vec<u8>, String> {
     let mut params = CompressorParams::new();
+    params.set_rdo_uastc(rdo);
     params.set_basis_format(format);
     params.set_uastc_quality_level(basis_universal::UASTC_QUALITY_DEFAULT);
     params.set_etc1s_quality_level(basis_universal::ETC1S_QUALITY_DEFAULT);
@@ -41,9 +49,10 @@ fn first_slice(file: &[u8]) -> Result<&[u8], String> {
     part(file, field(file, slice + 13, 4)?, field(file, slice + 17, 4)?)
 }
 
-/// A KTX2 file of UASTC blocks of `rgba`, Zstandard-supercompressed.
-pub fn uastc(rgba: &[u8], width: u32, height: u32) -> Result<Vec<u8>, String> {
-    let file = basis_file(rgba, width, height, BasisTextureFormat::UASTC4x4)?;
+/// A KTX2 file of UASTC blocks of `rgba` (rate-distortion optimised at quality scalar `rdo`
+/// where given), Zstandard-supercompressed.
+pub fn uastc(rgba: &[u8], width: u32, height: u32, rdo: Option<f32>) -> Result<Vec<u8>, String> {
+    let file = basis_file(rgba, width, height, BasisTextureFormat::UASTC4x4, rdo)?;
     let blocks = first_slice(&file)?;
     let expected = width.div_ceil(4) as usize * height.div_ceil(4) as usize * 16;
     if blocks.len() != expected {
@@ -61,7 +70,7 @@ pub fn uastc(rgba: &[u8], width: u32, height: u32) -> Result<Vec<u8>, String> {
 /// slice offset and length) and the codebooks and tables; the level is the RGB slice.
 pub fn etc1s(rgba: &[u8], width: u32, height: u32) -> Result<Vec<u8>, String> {
     let rgb: Vec<u8> = rgba.chunks_exact(4).flat_map(|t| [t[0], t[1], t[2], 255]).collect();
-    let file = basis_file(&rgb, width, height, BasisTextureFormat::ETC1S)?;
+    let file = basis_file(&rgb, width, height, BasisTextureFormat::ETC1S, None)?;
     let endpoints = part(&file, field(&file, 41, 4)?, field(&file, 45, 3)?)?;
     let selectors = part(&file, field(&file, 50, 4)?, field(&file, 54, 3)?)?;
     let tables = part(&file, field(&file, 57, 4)?, field(&file, 61, 4)?)?;

@@ -10,6 +10,7 @@
 //! written atomically ([`crate::atomic`]); many files are baked in parallel ([`bake_all`]),
 //! except backward, where one solve already uses every core and memory is budgeted per file.
 
+pub mod compressed_format;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod compressed_out;
 pub mod cone;
@@ -18,6 +19,7 @@ pub mod image_io;
 #[cfg(not(target_arch = "wasm32"))]
 mod ktx2_out;
 pub mod mips;
+pub mod round_trip;
 pub mod to_height;
 
 use std::path::{Path, PathBuf};

@@ -128,7 +128,8 @@ fn invalid_value(
 
 /// `"LEFT,RIGHT"` → the command that sets the split view's pair for `difference`: two views,
 /// strengths, modes, tangent methods, conventions (`opengl`, `directx`), bump sources,
-/// parallax techniques, or a parallax technique and a displacement level (`occlusion,6`).
+/// parallax techniques, a parallax technique and a displacement level or `gpu` (`occlusion,6`), or
+/// `uncompressed` and a texture format (`uncompressed,dds-bc5`).
 pub fn parse_split_sides(difference: SplitDifference, text: &str) -> Result<Command, String> {
     let (left, right) = text
         .split_once(',')
@@ -155,6 +156,10 @@ pub fn parse_split_sides(difference: SplitDifference, text: &str) -> Result<Comm
             }
             DisplacementArg::Level(level) => Command::SetSplitDisplacement(parse_named(left)?, level, None),
         },
+        SplitDifference::Compression if left == "uncompressed" => Command::SetSplitCompression(parse_named(right)?),
+        SplitDifference::Compression => {
+            return Err(format!("{left:?}: the compression split's left half is `uncompressed`"));
+        }
     })
 }
 

@@ -14,7 +14,7 @@ pub struct ReportArgs {
     /// and 70°, 8 and 32 layers, 320x180).
     #[arg(long)]
     quick: bool,
-    /// The shared assets folder holding textures/ambientCG_Rock058 for the parallax study
+    /// The shared assets folder holding textures/ambientCG_Rock058 for the parallax and compression studies
     /// [default: $BUMPVIEW_TEST_ASSETS; without either the rock is left out].
     #[arg(long, value_name = "DIR")]
     assets: Option<PathBuf>,
@@ -34,6 +34,7 @@ pub fn run(args: &ReportArgs) -> Result<(), Failure> {
     if !args.quick {
         plan.parallax.assets =
             args.assets.clone().or_else(|| std::env::var_os("BUMPVIEW_TEST_ASSETS").map(PathBuf::from));
+        plan.compression.assets = plan.parallax.assets.clone();
     }
     let bar = progress::bar(0, "report");
     let files = bumpview::report::run(&args.out, &plan, &mut |done, total| {

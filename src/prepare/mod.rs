@@ -194,7 +194,8 @@ impl PreparedScene {
     /// Prepares `scene` for drawing with `options`.
     pub fn new(scene: &Scene, options: &SceneOptions) -> PreparedScene {
         let mut notices: Vec<String> = scene.warnings.iter().map(ToString::to_string).collect();
-        let scene = options.materials.applied_with(&options.per_material, scene);
+        let scene = crate::bake::round_trip::normal_maps_through(scene, options.normal_maps_through, &mut notices);
+        let scene = options.materials.applied_with(&options.per_material, &scene);
         let (scene, displacement, gpu_displaced) = displace::displaced(scene, &options.displacement, &mut notices);
         let instances: Vec<PreparedInstance> = scene
             .instances

@@ -21,7 +21,7 @@ const SIZE: (u32, u32) = (1100, 760);
 /// Errors below this many degrees (the analytic frame's ≈ 0) are drawn at it.
 pub const ERROR_FLOOR_DEGREES: f64 = 1e-6;
 /// One colour per method, in the order methods first appear.
-pub(super) const COLOURS: [RGBColor; 7] = [
+pub(super) const COLOURS: [RGBColor; 8] = [
     RGBColor(31, 119, 180),
     RGBColor(255, 127, 14),
     RGBColor(44, 160, 44),
@@ -29,6 +29,7 @@ pub(super) const COLOURS: [RGBColor; 7] = [
     RGBColor(148, 103, 189),
     RGBColor(140, 86, 75),
     RGBColor(23, 190, 207),
+    RGBColor(227, 119, 194),
 ];
 
 /// How a series's points are marked.
@@ -38,6 +39,8 @@ pub(super) enum Marker {
     Triangle,
     /// No marker: a line alone (a floor, a front), drawn thicker.
     Line,
+    /// Circles alone, not joined (a scatter).
+    Dots,
 }
 
 /// One line of points, in the order they are joined.
@@ -175,6 +178,12 @@ where
         .map_err(|e| failed(&e))?;
     for s in series {
         let colour = s.colour;
+        if s.marker == Marker::Dots {
+            let dots = s.points.iter().map(|&p| Circle::new(p, 5, colour.filled()));
+            let legend = chart.draw_series(dots).map_err(|e| failed(&e))?.label(&s.label);
+            legend.legend(move |(x, y)| Circle::new((x + 9, y), 5, colour.filled()));
+            continue;
+        }
         let width = if s.marker == Marker::Line { 4 } else { 2 };
         let line = LineSeries::new(s.points.iter().copied(), colour.stroke_width(width));
         let legend = chart.draw_series(line).map_err(|e| failed(&e))?.label(&s.label);
@@ -191,7 +200,8 @@ where
                 let markers = s.points.iter().map(|&p| Circle::new(p, 4, colour.filled()));
                 chart.draw_series(markers).map_err(|e| failed(&e))?;
             }
-            Marker::Line => {
+            // Dots are drawn above, alone.
+            Marker::Line | Marker::Dots => {
                 legend.legend(stroke);
             }
         }

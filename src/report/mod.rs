@@ -7,6 +7,8 @@
 
 pub mod blinn;
 mod chart;
+pub mod compression_page;
+pub mod compression_study;
 pub mod convergence;
 mod csv;
 pub mod cube_map;
@@ -94,6 +96,8 @@ pub struct Plan {
     pub mip: mip_study::MipPlan,
     /// The detail blends against the two exact answers (CPU), timed on the GPU.
     pub detail: detail_study::DetailPlan,
+    /// Normal maps through each GPU texture format.
+    pub compression: compression_study::CompressionPlan,
 }
 
 impl Plan {
@@ -113,6 +117,7 @@ impl Plan {
             uv_grid: 64,
             mip: mip_study::MipPlan::full(),
             detail: detail_study::DetailPlan::full(),
+            compression: compression_study::CompressionPlan::full(None),
         }
     }
 
@@ -133,6 +138,7 @@ impl Plan {
             uv_grid: 32,
             mip: mip_study::MipPlan::quick(),
             detail: detail_study::DetailPlan { phases: 8, azimuths: 4, ..detail_study::DetailPlan::full() },
+            compression: compression_study::CompressionPlan::quick(),
         }
     }
 }
@@ -319,7 +325,10 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
     let mip_section = mip_page::markdown(&mip, &plan.mip, &mip_adapter, &mip_notes);
     let (detail_rows, detail_timing, detail_notes) = detail_page::study(&plan.detail);
     let detail_section = detail_page::markdown(&detail_rows, &plan.detail, &detail_timing, &detail_notes);
-    let sections = [markdown::render(&page), parallax_section, uv_section, mip_section, detail_section];
+    let (compression, compression_notes) = compression_page::study(&plan.compression);
+    let compression_section = compression_page::markdown(&compression, &compression_notes);
+    let sections =
+        [markdown::render(&page), parallax_section, uv_section, mip_section, detail_section, compression_section];
     let files = [
         (MARKDOWN.to_owned(), sections.join("\n").into_bytes()),
         (CSV.to_owned(), csv::render(&rows, &orders).into_bytes()),
@@ -331,9 +340,11 @@ pub fn run(out: &Path, plan: &Plan, progress: &mut dyn FnMut(usize, usize)) -> R
         (mip_page::CHART.to_owned(), mip_page::chart(&mip.rows)?),
         (detail_page::CSV.to_owned(), detail_page::csv(&detail_rows).into_bytes()),
         (detail_page::CHART.to_owned(), detail_page::chart(&detail_rows)?),
+        (compression_page::CSV.to_owned(), compression_page::csv(&compression).into_bytes()),
     ]
     .into_iter()
-    .chain(chart_files);
+    .chain(chart_files)
+    .chain(compression_page::charts(&compression)?);
     let mut written = vec![];
     for (name, bytes) in files {
         let path = out.join(&name);

@@ -59,6 +59,8 @@ pub enum Command {
     SetMipFilter(MipFilter),
     /// The two methods of [`SplitDifference::MipFilter`].
     SetSplitMipFilters([MipFilter; 2]),
+    /// The right half's format of [`SplitDifference::Compression`].
+    SetSplitCompression(crate::bake::compressed_format::CompressedFormat),
     /// Height→normal kernel of the built-in brick normal map.
     SetKernel(Kernel),
     /// The Difference view's colour scale spans 0 to this many degrees.

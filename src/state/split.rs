@@ -2,6 +2,7 @@
 //! upload) or in GPU data (a second upload for the right half).
 
 use super::Command;
+use crate::bake::compressed_format::CompressedFormat;
 use crate::frame::{
     BumpSource, DetailBlend, LightingSpace, MAX_DISPLACEMENT_LEVEL, Mistake, Parallax, STRENGTH_RANGE, SceneOptions,
     ShadingMode, ShadingSettings, ViewMode,
@@ -16,7 +17,7 @@ use crate::texture::MipFilter;
 /// ([`SplitDifference::changes_gpu_data`]), so the right half is drawn from a second upload of
 /// the scene. Named `bump`, `view`, `strength`, `mode`, `tangents`, `convention`,
 /// `bump-source`, `parallax`, `mistake`, `lighting-space`, `displacement`, `mip-filter`,
-/// `detail-blend`.
+/// `detail-blend`, `compression`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, strum::IntoStaticStr, strum::VariantArray)]
 #[strum(serialize_all = "kebab-case")]
 pub enum SplitDifference {
@@ -50,6 +51,9 @@ pub enum SplitDifference {
     /// Two detail-blend methods ([`DetailBlend`]; UDN │ RNM by default) for every material's
     /// detail normal map: pipeline variants, one upload.
     DetailBlend,
+    /// Every RGB normal map as loaded │ after a round trip through a GPU texture format
+    /// ([`CompressedFormat`], BC1 by default; encoded and decoded on the CPU): a second upload.
+    Compression,
 }
 
 impl SplitDifference {
@@ -63,6 +67,7 @@ impl SplitDifference {
                 | SplitDifference::BumpSource
                 | SplitDifference::Displacement
                 | SplitDifference::MipFilter
+                | SplitDifference::Compression
         )
     }
 }
@@ -91,6 +96,8 @@ pub struct SplitView {
     pub mip_filters: [MipFilter; 2],
     /// The two methods of [`SplitDifference::DetailBlend`].
     pub detail_blends: [DetailBlend; 2],
+    /// The right half's format in [`SplitDifference::Compression`].
+    pub compression: CompressedFormat,
 }
 
 impl Default for SplitView {
@@ -112,6 +119,7 @@ impl Default for SplitView {
             displacement_gpu: None,
             mip_filters: [MipFilter::RenormalizedBox, MipFilter::Toksvig],
             detail_blends: [DetailBlend::Udn, DetailBlend::Rnm],
+            compression: CompressedFormat::DdsBc1,
         }
     }
 }
@@ -122,6 +130,7 @@ impl SplitView {
         match command {
             Command::SetSplitMipFilters(filters) => self.mip_filters = filters,
             Command::SetSplitDetailBlends(methods) => self.detail_blends = methods,
+            Command::SetSplitCompression(format) => self.compression = format,
             Command::SetSplitDisplacement(technique, level, gpu) => {
                 self.parallax[0] = technique;
                 self.displacement_level = level.clamp(1, MAX_DISPLACEMENT_LEVEL);
@@ -168,7 +177,8 @@ impl SplitView {
                 SplitDifference::Tangents
                 | SplitDifference::Convention
                 | SplitDifference::BumpSource
-                | SplitDifference::MipFilter => {}
+                | SplitDifference::MipFilter
+                | SplitDifference::Compression => {}
             }
             s
         };
@@ -203,6 +213,7 @@ impl SplitView {
                     }
                     options.per_material.retain(|_, o| !o.is_empty());
                 }
+                SplitDifference::Compression => options.normal_maps_through = [None, Some(self.compression)][i],
                 SplitDifference::Bump
                 | SplitDifference::View
                 | SplitDifference::Strength
@@ -250,6 +261,8 @@ impl SplitView {
             SplitDifference::Displacement => format!("displacement, level {}", self.displacement_level),
             SplitDifference::MipFilter => format!("mips: {}", self.mip_filters[i].name()),
             SplitDifference::DetailBlend => format!("detail blend: {}", self.detail_blends[i].name()),
+            SplitDifference::Compression if i == 0 => "normal map: uncompressed".to_owned(),
+            SplitDifference::Compression => format!("normal map through {}", self.compression.name()),
         })
     }
 }

@@ -1,6 +1,7 @@
 //! The top of the panel, always in sight: bump on/off and strength, the view, the split view
 //! and the light.
 
+use bumpview::bake::compressed_format::CompressedFormat;
 use bumpview::frame::{
     BumpSource, DetailBlend, LightingSpace, MAX_DISPLACEMENT_LEVEL, Mistake, Parallax, STRENGTH_RANGE, ShadingMode,
     ViewMode,
@@ -114,6 +115,16 @@ fn split(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
         }
         SplitDifference::DetailBlend => {
             pair_combos(ui, "detail blend", split.detail_blends, DetailBlend::name).map(Command::SetSplitDetailBlends)
+        }
+        SplitDifference::Compression => {
+            let mut format = split.compression;
+            egui::ComboBox::from_label("right: normal map through").selected_text(format.name()).show_ui(ui, |ui| {
+                for &choice in CompressedFormat::all() {
+                    ui.selectable_value(&mut format, choice, choice.name());
+                }
+            });
+            ui.weak("left: as loaded; right: encoded and decoded on the CPU");
+            (format != split.compression).then_some(Command::SetSplitCompression(format))
         }
         SplitDifference::Parallax => {
             pair_combos(ui, "parallax", split.parallax, Parallax::name).map(Command::SetSplitParallax)

@@ -194,6 +194,8 @@ impl ScenePreset {
             },
             tangents_without_gram_schmidt: false,
             mip_filter: named("scene.mip_filter", &scene.mip_filter)?,
+            // Set by `ViewerState::scene_uploads` for the compression split's right half.
+            normal_maps_through: None,
         })
     }
 }

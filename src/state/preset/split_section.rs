@@ -14,8 +14,8 @@ use crate::state::{SplitDifference, SplitView};
 pub struct SplitPreset {
     pub enabled: bool,
     /// A [`SplitDifference`] name: `bump`, `view`, `strength`, `mode`, `tangents`,
-    /// `convention`, `bump-source`, `parallax`, `lighting-space`, `displacement`, `mip-filter` or
-    /// `detail-blend`.
+    /// `convention`, `bump-source`, `parallax`, `lighting-space`, `displacement`, `mip-filter`,
+    /// `detail-blend` or `compression`.
     pub difference: String,
     /// The divider, a fraction of the width (0..1).
     pub divider: f32,
@@ -45,6 +45,9 @@ pub struct SplitPreset {
     pub mip_filters: [String; 2],
     /// [`DetailBlend`](crate::frame::DetailBlend) names, left and right.
     pub detail_blends: [String; 2],
+    /// The right half's [`CompressedFormat`](crate::bake::compressed_format::CompressedFormat)
+    /// name in the `compression` split, e.g. `dds-bc1`.
+    pub compression: String,
 }
 
 impl Default for SplitPreset {
@@ -72,6 +75,7 @@ impl From<&SplitView> for SplitPreset {
             gpu_displacement: s.displacement_gpu,
             mip_filters: names(s.mip_filters),
             detail_blends: names(s.detail_blends),
+            compression: s.compression.name().to_owned(),
         }
     }
 }
@@ -107,6 +111,7 @@ impl SplitPreset {
             displacement_gpu: super::gpu_pixels("split.gpu_displacement", self.gpu_displacement)?,
             mip_filters: named_pair("split.mip_filters", &self.mip_filters)?,
             detail_blends: named_pair("split.detail_blends", &self.detail_blends)?,
+            compression: named("split.compression", &self.compression)?,
         })
     }
 }
