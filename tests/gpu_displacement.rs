@@ -116,3 +116,21 @@ fn the_budget_lengthens_the_edges_and_says_so() {
     let notice = stats.budget_notice().unwrap();
     assert!(renderer.notices().contains(&notice), "{:?}", renderer.notices());
 }
+
+/// The probe picks and shades the triangles the GPU drew (read back once per tessellation):
+/// on the wall at 45°, its lit colour and shading normal at a grid of pixels equal the GPU's
+/// within 10 steps of 8 bits (a pixel holds several 3 px triangles, averaged by 4× MSAA:
+/// measured 7.4 and 6.2 steps; probing the undisplaced wall is 40 steps off at the first pixel).
+#[test]
+fn the_probe_reads_the_gpu_displaced_surface() {
+    let specimen = wall();
+    let options = SceneOptions { displacement: Displacement::on_gpu(DEFAULT_PIXELS_PER_EDGE), ..Default::default() };
+    let params = specimen.params(45.0, settings(Parallax::Off, None));
+    let probe_of = |renderer: &bumpview::render::Renderer| {
+        let drawn = renderer.drawn_prepared(false).unwrap();
+        assert!(drawn.meshes[drawn.gpu_displaced[0].mesh].mesh.indices.len() > 3000, "read back");
+        bumpview::probe::ProbeScene::wrap(drawn)
+    };
+    let readouts = gpu_against_probe_of(&specimen.scene, &options, &params, [320, 180], 16, [10.0, 10.0], probe_of);
+    assert!(readouts.len() > 50, "{}", readouts.len());
+}

@@ -91,7 +91,11 @@ impl Probe {
         let Some(pinned) = &mut self.pinned else { return };
         pinned.half = half;
         if self.probed.as_ref().is_none_or(|probed| !Arc::ptr_eq(probed.prepared(), prepared)) {
-            // Geometry and triangle order do not depend on the scene options: the point stays.
+            // Geometry and triangle order do not depend on the scene options: the point stays,
+            // unless the GPU displaces meshes, whose triangles follow the view.
+            if !prepared.gpu_displaced.is_empty() {
+                pinned.point = None;
+            }
             self.probed = Some(ProbeScene::wrap(Arc::clone(prepared)));
             pinned.last = None;
         }

@@ -101,6 +101,17 @@ impl Renderer {
         split.or(self.scene.as_ref())?.tessellation.as_ref()?.stats()
     }
 
+    /// The prepared scene of the main picture (or the split view's right half) with its meshes
+    /// as the last frame drew them: with GPU displacement, its displaced meshes read back.
+    pub fn drawn_prepared(&self, split_half: bool) -> Option<Arc<PreparedScene>> {
+        let split = self.split_scene.as_ref().filter(|_| split_half);
+        let scene = split.or(self.scene.as_ref())?;
+        Some(match &scene.tessellation {
+            Some(tessellation) => tessellation.drawn_prepared(&self.device, &self.queue, &scene.prepared),
+            None => Arc::clone(&scene.prepared),
+        })
+    }
+
     /// The meshes GPU displacement made in the last frame, read back (`(index in the prepared
     /// scene's meshes, mesh)`); empty where nothing is displaced on the GPU.
     pub fn gpu_displaced_meshes(&self, split_half: bool) -> Result<Vec<(usize, crate::scene::Mesh)>, String> {

@@ -222,13 +222,27 @@ pub fn gpu_against_probe(
     step: usize,
     tolerance: [f32; 2],
 ) -> Vec<([u32; 2], ProbeReadout)> {
-    let probe = ProbeScene::new(scene, options);
+    gpu_against_probe_of(scene, options, params, size, step, tolerance, |_| ProbeScene::new(scene, options))
+}
+
+/// [`gpu_against_probe`] with the probe `probe_of` makes from the renderer once it has drawn
+/// the pictures (the scene it drew, for geometry made while drawing).
+pub fn gpu_against_probe_of(
+    scene: &Scene,
+    options: &SceneOptions,
+    params: &FrameParams,
+    size: [u32; 2],
+    step: usize,
+    tolerance: [f32; 2],
+    probe_of: impl FnOnce(&bumpview::render::Renderer) -> ProbeScene,
+) -> Vec<([u32; 2], ProbeReadout)> {
     let mut renderer = renderer_for(scene);
     renderer.set_scene(scene, options.clone());
-    let lit = render_image(&mut renderer, size, params).unwrap();
     let mut normal_params = *params;
     normal_params.shading.view = ViewMode::ShadingNormal;
     let normals = render_image(&mut renderer, size, &normal_params).unwrap();
+    let lit = render_image(&mut renderer, size, params).unwrap();
+    let probe = probe_of(&renderer);
     let mut worst = [0.0f32; 2];
     let mut readouts = vec![];
     for y in (4..size[1] - 1).step_by(step) {

@@ -390,9 +390,9 @@ impl Controller {
         let Some(size) = self.view_size.filter(|_| self.probe.is_pinned()) else { return };
         let column = self.probe.shown_at(&self.state.camera, size).map_or(0, |p| p.x.max(0.0) as u32);
         let (params, _, half) = self.state.picture_at(column, size[0]);
-        let Some(prepared) = self.renderer.prepared(half == Some(1)) else { return };
+        let Some(prepared) = self.renderer.drawn_prepared(half == Some(1)) else { return };
         let half = half.map(|i| format!("{}: {}", ["left", "right"][i], self.state.split.labels()[i]));
-        self.probe.update(prepared, &params, size, half);
+        self.probe.update(&prepared, &params, size, half);
     }
 
     /// Advances the light orbit by `seconds`; whether it runs (frames must keep coming).

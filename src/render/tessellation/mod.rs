@@ -130,6 +130,8 @@ struct State {
     pool: Option<Pool>,
     plan: Option<Plan>,
     stats: Option<GpuDisplacementStats>,
+    /// The prepared scene with the meshes of this tessellation, once read back.
+    drawn: Option<std::sync::Arc<PreparedScene>>,
 }
 
 /// A scene's GPU displacement: its base meshes on the GPU, and the pool of the last frame.
@@ -335,6 +337,7 @@ impl Tessellation {
         });
         state.plan = Some(plan);
         state.key = Some(key);
+        state.drawn = None;
     }
 
     /// A pool holding `(vertices, triangles)`, with each mesh's bind group over it.

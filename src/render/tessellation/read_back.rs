@@ -1,9 +1,12 @@
 //! The last tessellation read back from the GPU, as meshes: for the probe, which picks and
 //! shades the triangles drawn, and for the tests that hold the GPU's vertices to the CPU's.
 
+use std::sync::Arc;
+
 use glam::{Vec2, Vec3};
 
-use super::Tessellation;
+use super::{State, Tessellation};
+use crate::prepare::PreparedScene;
 use crate::scene::Mesh;
 
 impl Tessellation {
@@ -11,6 +14,41 @@ impl Tessellation {
     /// scene's meshes, mesh)`, indices from 0 within the mesh); empty before the first.
     pub fn read_back(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Vec<(usize, Mesh)>, String> {
         let state = self.state.lock().expect("tessellation state");
+        self.read_back_from(&state, device, queue)
+    }
+
+    /// `prepared` (the scene this tessellation displaces) with the GPU-displaced meshes as the
+    /// last tessellation drew them, for the probe to pick and shade; read back once per
+    /// tessellation. `prepared` itself where reading back failed or nothing was drawn yet.
+    pub fn drawn_prepared(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        prepared: &Arc<PreparedScene>,
+    ) -> Arc<PreparedScene> {
+        let mut state = self.state.lock().expect("tessellation state");
+        if let Some(drawn) = &state.drawn {
+            return Arc::clone(drawn);
+        }
+        let Ok(meshes) = self.read_back_from(&state, device, queue) else { return Arc::clone(prepared) };
+        if meshes.is_empty() {
+            return Arc::clone(prepared);
+        }
+        let mut drawn = PreparedScene::clone(prepared);
+        for (index, mesh) in meshes {
+            drawn.meshes[index].mesh = mesh;
+        }
+        let drawn = Arc::new(drawn);
+        state.drawn = Some(Arc::clone(&drawn));
+        drawn
+    }
+
+    fn read_back_from(
+        &self,
+        state: &State,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<Vec<(usize, Mesh)>, String> {
         let (Some(pool), Some(plan)) = (state.pool.as_ref(), state.plan.as_ref()) else { return Ok(vec![]) };
         let streams = [
             (&pool.positions, u64::from(plan.vertices) * 12),
