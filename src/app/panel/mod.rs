@@ -50,7 +50,9 @@ pub fn show(
             let renderer = controller.renderer();
             let split_upload = renderer.uploads().is_some_and(|u| u.split_right.is_some());
             let displaced = [false, true].map(|half| {
-                (!half || split_upload).then(|| renderer.prepared(half).and_then(|p| p.displacement)).flatten()
+                let cpu = || renderer.prepared(half).and_then(|p| p.displacement).map(parallax::Displaced::Cpu);
+                let gpu = || renderer.gpu_displacement(half).map(parallax::Displaced::Gpu);
+                (!half || split_upload).then(|| cpu().or_else(gpu)).flatten()
             });
             parallax::show(ui, &controller.state, &mut actions);
             parallax::displacement(ui, &controller.state, displaced, &mut actions);

@@ -1,11 +1,14 @@
 //! The parallax family: technique, depth, the search's layers and relief's steps (uniforms);
-//! displacement, its ground truth: the tessellation level and what it costs.
+//! displacement, its ground truth: on the CPU at a level or on the GPU at an edge length, and
+//! what it costs.
 
 use bumpview::frame::{
-    MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS, MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS, Parallax,
+    DEFAULT_PIXELS_PER_EDGE, GPU_PIXELS_PER_EDGE, MAX_DISPLACEMENT_LEVEL, MAX_PARALLAX_LAYERS,
+    MAX_PARALLAX_SHADOW_STRENGTH, MAX_PARALLAX_STEPS, Parallax,
 };
 use bumpview::names::Named;
 use bumpview::prepare::displace::DisplacementStats;
+use bumpview::render::tessellation::GpuDisplacementStats;
 use bumpview::state::{Command, ViewerState};
 
 use crate::app::action::Action;
@@ -72,32 +75,58 @@ pub(super) fn show(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Act
     }
 }
 
-/// Displacement's level (0 off) and, per drawn scene (the split view's right half may have its
-/// own), the displaced meshes' vertices, triangles and memory; the level drawn and why, in the
-/// warning colour, when it is below the slider's.
+/// What displacement drew in one drawn scene: the CPU's mesh or the GPU's last tessellation.
+pub(super) enum Displaced {
+    Cpu(DisplacementStats),
+    Gpu(GpuDisplacementStats),
+}
+
+/// Displacement: on the CPU at a level (0 off) or on the GPU at a target edge, and, per drawn
+/// scene (the split view's right half may have its own), the displaced geometry's vertices,
+/// triangles and memory; in the warning colour when a budget made it coarser than asked.
 pub(super) fn displacement(
     ui: &mut egui::Ui,
     state: &ViewerState,
-    displaced: [Option<DisplacementStats>; 2],
+    displaced: [Option<Displaced>; 2],
     actions: &mut Vec<Action>,
 ) {
-    let mut level = state.scene_options.displacement.level;
-    let slider = egui::Slider::new(&mut level, 0..=MAX_DISPLACEMENT_LEVEL).text("displacement level");
-    let hint = "the ground truth: height-mapped meshes tessellated (4^level triangles each) and moved along \
-                their normals by the depth above; 0 is off";
-    if ui.add(slider).on_hover_text(hint).changed() {
-        actions.push(Command::SetDisplacement(level).into());
+    let displacement = state.scene_options.displacement;
+    let mut on_gpu = displacement.gpu.is_some();
+    let hint = "tessellate on the GPU for each view, edges cut to a length on screen, instead of once on the CPU";
+    if ui.checkbox(&mut on_gpu, "on the GPU").on_hover_text(hint).changed() {
+        let command = if on_gpu {
+            Command::SetGpuDisplacement(Some(DEFAULT_PIXELS_PER_EDGE))
+        } else {
+            Command::SetGpuDisplacement(None)
+        };
+        actions.push(command.into());
     }
-    // A level lowered past the triangle budget is said here, under the slider that asked for it.
-    for (stats, half) in displaced.iter().zip(["", "split right: "]) {
-        match stats {
-            Some(stats) if stats.asked > stats.level => {
-                ui.colored_label(ui.visuals().warn_fg_color, format!("{half}{}", stats.asked_and_drawn()));
-            }
-            Some(stats) => {
-                ui.weak(format!("{half}{}", stats.summary()));
-            }
-            None => {}
+    if let Some(mut pixels) = displacement.gpu {
+        let slider = egui::Slider::new(&mut pixels, GPU_PIXELS_PER_EDGE).logarithmic(true).text("pixels per edge");
+        let hint = "the target edge length on screen: shorter is closer to the true surface and costs more";
+        if ui.add(slider).on_hover_text(hint).changed() {
+            actions.push(Command::SetGpuDisplacement(Some(pixels)).into());
+        }
+    } else {
+        let mut level = displacement.level;
+        let slider = egui::Slider::new(&mut level, 0..=MAX_DISPLACEMENT_LEVEL).text("displacement level");
+        let hint = "the ground truth: height-mapped meshes tessellated (4^level triangles each) and moved along \
+                    their normals by the depth above; 0 is off";
+        if ui.add(slider).on_hover_text(hint).changed() {
+            actions.push(Command::SetDisplacement(level).into());
+        }
+    }
+    // A level or edge made coarser by a budget is said here, under the control that asked for it.
+    for (drawn, half) in displaced.iter().zip(["", "split right: "]) {
+        let (text, coarser) = match drawn {
+            Some(Displaced::Cpu(stats)) => (stats.asked_and_drawn(), stats.asked > stats.level),
+            Some(Displaced::Gpu(stats)) => (stats.summary(), stats.budget_notice().is_some()),
+            None => continue,
+        };
+        if coarser {
+            ui.colored_label(ui.visuals().warn_fg_color, format!("{half}{text}"));
+        } else {
+            ui.weak(format!("{half}{text}"));
         }
     }
 }

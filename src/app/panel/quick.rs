@@ -3,8 +3,8 @@
 
 use bumpview::bake::compressed_format::CompressedFormat;
 use bumpview::frame::{
-    BumpSource, DetailBlend, LightingSpace, MAX_DISPLACEMENT_LEVEL, Mistake, Parallax, STRENGTH_RANGE, ShadingMode,
-    ViewMode,
+    BumpSource, DEFAULT_PIXELS_PER_EDGE, DetailBlend, LightingSpace, MAX_DISPLACEMENT_LEVEL, Mistake, Parallax,
+    STRENGTH_RANGE, ShadingMode, ViewMode,
 };
 use bumpview::names::Named;
 use bumpview::scene::GreenAxis;
@@ -136,14 +136,16 @@ fn split(ui: &mut egui::Ui, state: &ViewerState, actions: &mut Vec<Action>) {
                     ui.selectable_value(&mut technique, choice, choice.name());
                 }
             });
+            let mut on_gpu = split.displacement_gpu.is_some();
+            let mut changed = ui.checkbox(&mut on_gpu, "right: on the GPU").changed();
             let mut level = split.displacement_level;
-            let slider = egui::Slider::new(&mut level, 1..=MAX_DISPLACEMENT_LEVEL).text("right: displacement level");
-            let changed = ui.add(slider).changed();
-            (changed || technique != split.parallax[0]).then_some(Command::SetSplitDisplacement(
-                technique,
-                level,
-                split.displacement_gpu,
-            ))
+            if !on_gpu {
+                let slider =
+                    egui::Slider::new(&mut level, 1..=MAX_DISPLACEMENT_LEVEL).text("right: displacement level");
+                changed |= ui.add(slider).changed();
+            }
+            let gpu = on_gpu.then(|| split.displacement_gpu.unwrap_or(DEFAULT_PIXELS_PER_EDGE));
+            (changed || technique != split.parallax[0]).then_some(Command::SetSplitDisplacement(technique, level, gpu))
         }
         SplitDifference::Mistake => {
             let chosen = pair_combos(ui, "mistake", split.mistakes, Mistake::name).map(Command::SetSplitMistakes);
