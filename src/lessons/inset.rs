@@ -12,11 +12,9 @@ use super::visibility::{VISIBLE_DELTA_E, delta_e_2000, lab};
 
 /// The magnifications a lesson's `inset = { zoom = N }` may ask for.
 pub const ZOOMS: std::ops::RangeInclusive<u32> = 2..=8;
-/// The largest picture side a magnified side is drawn at (a software adapter draws 4096² in
-/// well under a second; larger slides' insets are drawn at this size and scaled up).
-pub const MAX_DRAWN: u32 = 4096;
 
-/// The windows magnified from each side, and the magnified pictures, one per side.
+/// The windows magnified from each side, and the magnified pictures, one per side (each drawn
+/// as its window alone, [`crate::render::Renderer::set_window`]).
 #[derive(Debug, Clone)]
 pub struct Inset {
     /// The window `[x, y, width, height]` in the side's picture.
@@ -34,12 +32,6 @@ pub fn inset_size(lesson: &Lesson, picture: [u32; 2]) -> [u32; 2] {
 /// The window an inset of `size` shows at `zoom`: `size / zoom` (rounded up), at most `picture`.
 pub fn window_size(size: [u32; 2], zoom: u32, picture: [u32; 2]) -> [u32; 2] {
     [0, 1].map(|i| size[i].div_ceil(zoom.max(1)).clamp(1, picture[i].max(1)))
-}
-
-/// The integer factor a side of `picture` pixels is drawn magnified at for `zoom`: `zoom`, or
-/// less so that no side exceeds [`MAX_DRAWN`]; at least 1.
-pub fn drawn_factor(picture: [u32; 2], zoom: u32) -> u32 {
-    zoom.min(MAX_DRAWN / picture[0].max(picture[1]).max(1)).max(1)
 }
 
 /// The window of `size` in which the neighbouring `sides` (pictures of one size) differ
@@ -87,20 +79,6 @@ fn summed_visible(a: &RgbaImage, b: &RgbaImage) -> Vec<u32> {
     table
 }
 
-/// `window` (in pixels of a picture drawn `factor` times smaller than `magnified`) cut out of
-/// `magnified` and scaled to `size`.
-pub fn cut(magnified: &RgbaImage, window: [u32; 4], factor: u32, size: [u32; 2]) -> RgbaImage {
-    let [x, y, w, h] = window.map(|c| c * factor);
-    let w = w.min(magnified.width().saturating_sub(x)).max(1);
-    let h = h.min(magnified.height().saturating_sub(y)).max(1);
-    let crop = image::imageops::crop_imm(magnified, x, y, w, h).to_image();
-    if crop.dimensions() == (size[0], size[1]) {
-        crop
-    } else {
-        image::imageops::resize(&crop, size[0], size[1], image::imageops::FilterType::Triangle)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -125,11 +103,5 @@ mod tests {
     fn sizes_follow_the_zoom_and_stay_inside_the_picture() {
         assert_eq!(window_size([300, 169], 4, [603, 339]), [75, 43]);
         assert_eq!(window_size([300, 169], 4, [50, 30]), [50, 30]);
-        assert_eq!(drawn_factor([603, 339], 4), 4);
-        assert_eq!(drawn_factor([1206, 678], 4), 3);
-        let picture = RgbaImage::from_fn(8, 8, |x, y| Rgba([(x * 30) as u8, (y * 30) as u8, 0, 255]));
-        let cut = cut(&picture, [1, 2, 2, 2], 2, [4, 4]);
-        assert_eq!(cut.get_pixel(0, 0), picture.get_pixel(2, 4));
-        assert_eq!(cut.get_pixel(3, 3), picture.get_pixel(5, 7));
     }
 }

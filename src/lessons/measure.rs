@@ -9,8 +9,8 @@ use crate::error::RenderError;
 use crate::frame::SceneUploads;
 use crate::height::Kernel;
 use crate::load::SceneFiles;
-use crate::render::Renderer;
 use crate::render::capture::{CaptureOptions, render_capture, render_capture_split};
+use crate::render::{PictureWindow, Renderer};
 use crate::scene::{Lights, OrbitCamera, Scene};
 use crate::state::preset::{Preset, PresetSceneError};
 use crate::state::{Command, ViewerState};
@@ -109,10 +109,12 @@ pub fn measure(
         Some(zoom) => {
             let shown = inset::inset_size(lesson, size);
             let window = inset::most_different_window(&sides, inset::window_size(shown, zoom, size));
-            let factor = inset::drawn_factor(size, zoom);
+            // Only the window is drawn, magnified to the inset's size.
             let magnified = lesson.sides.iter().map(|side| {
-                let picture = draw(renderer, scenes, lesson, side, size.map(|c| c * factor), false, None)?;
-                Ok(inset::cut(&picture, window, factor, shown))
+                renderer.set_window(Some(PictureWindow { picture: size, window }));
+                let picture = draw(renderer, scenes, lesson, side, shown, false, None);
+                renderer.set_window(None);
+                picture
             });
             Some(Inset { window, sides: magnified.collect::<Result<_, LessonRenderError>>()? })
         }

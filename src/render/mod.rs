@@ -112,6 +112,16 @@ pub struct Renderer {
     notices: Vec<String>,
     /// GPU displacement's compute pipelines, made when a scene first asks for it.
     displace_pipelines: Option<DisplacePipelines>,
+    /// The part of the picture frames show ([`Self::set_window`]); `None`: all of it.
+    window: Option<PictureWindow>,
+}
+
+/// A part of a picture: `window` (`[x, y, width, height]`, pixels from the top left) of a
+/// picture `picture` pixels large.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PictureWindow {
+    pub picture: [u32; 2],
+    pub window: [u32; 4],
 }
 
 impl Renderer {
@@ -130,6 +140,7 @@ impl Renderer {
             counters: WorkCounters::default(),
             notices: Vec::new(),
             displace_pipelines: None,
+            window: None,
         }
     }
 
@@ -343,6 +354,31 @@ impl Renderer {
         Ok(())
     }
 
+    /// Draws only `window` of the pictures from now on (`None`: the whole picture again): each
+    /// frame, whatever its size, shows that part of the picture the camera would show, magnified
+    /// to fill it. Lessons draw their insets so, drawing only what they show.
+    pub fn set_window(&mut self, window: Option<PictureWindow>) {
+        self.window = window;
+    }
+
+    /// The view-projection (world → clip space) of a frame `size` pixels large: the camera's,
+    /// or with a window set, the camera's over the whole picture, cropped to the window.
+    fn view_projection(&self, camera: &crate::scene::OrbitCamera, size: [u32; 2]) -> glam::Mat4 {
+        let Some(window) = self.window else { return camera.view_projection(size[0] as f32 / size[1] as f32) };
+        let [width, height] = window.picture.map(|c| c.max(1) as f32);
+        let [x, y, w, h] = window.window.map(|c| c as f32);
+        // Window → NDC: x from x..x + w to −1..1, y (down in pixels) from y..y + h to 1..−1.
+        let (sx, sy) = (width / w.max(1.0), height / h.max(1.0));
+        let (cx, cy) = ((2.0 * x + w) / width - 1.0, 1.0 - (2.0 * y + h) / height);
+        let crop = glam::Mat4::from_cols(
+            glam::Vec4::new(sx, 0.0, 0.0, 0.0),
+            glam::Vec4::new(0.0, sy, 0.0, 0.0),
+            glam::Vec4::Z,
+            glam::Vec4::new(-cx * sx, -cy * sy, 0.0, 1.0),
+        );
+        crop * camera.view_projection(width / height)
+    }
+
     /// Tessellates the GPU-displaced meshes of the halves' scene uploads for this frame's view
     /// into `encoder` (each upload once, and only when the view changed), and keeps the budget's
     /// notice while it lengthens the edges.
@@ -354,7 +390,7 @@ impl Renderer {
         size: [u32; 2],
     ) {
         let view = tessellation::plan::View {
-            view_projection: params.camera.view_projection(size[0] as f32 / size[1] as f32),
+            view_projection: self.view_projection(&params.camera, size),
             eye: params.camera.eye(),
             size,
         };
@@ -395,12 +431,12 @@ impl Renderer {
     /// Writes each half's frame uniform (its shading over `params`, for a target of `size`
     /// pixels) and the light markers of its scene upload.
     fn write_uniforms(&self, halves: &[Half], params: &FrameParams, size: [u32; 2]) -> Result<(), RenderError> {
-        let aspect = size[0] as f32 / size[1] as f32;
+        let view_projection = self.view_projection(&params.camera, size);
         let markers = draw::markers::uniforms(params);
         for (index, half) in halves.iter().enumerate() {
             let scene = self.scene_in(half.scene).ok_or(RenderError::NoScene)?;
             let frame = FrameParams { shading: half.shading, ..*params };
-            self.frame_groups.write(&self.queue, index, &FrameUniform::new(&frame, aspect));
+            self.frame_groups.write(&self.queue, index, &FrameUniform::new(&frame, view_projection));
             if let Some(marker) = &scene.marker {
                 self.queue.write_buffer(&marker.lights, 0, bytemuck::bytes_of(&markers));
             }

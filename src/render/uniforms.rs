@@ -68,7 +68,8 @@ pub struct FrameUniform {
 }
 
 impl FrameUniform {
-    pub fn new(params: &FrameParams, aspect: f32) -> Self {
+    /// The frame of `params` seen through `view_projection` (world → clip space).
+    pub fn new(params: &FrameParams, view_projection: glam::Mat4) -> Self {
         let parallax = params.shading.parallax;
         let mut lights = [LightUniform::zeroed(); MAX_LIGHTS];
         let on = params.lights.as_slice().iter().filter(|light| light.enabled);
@@ -78,7 +79,7 @@ impl FrameUniform {
             light_count += 1;
         }
         FrameUniform {
-            view_proj: params.camera.view_projection(aspect).to_cols_array_2d(),
+            view_proj: view_projection.to_cols_array_2d(),
             camera_pos: params.camera.eye().extend(1.0).to_array(),
             lights,
             ambient: params.lights.ambient().extend(1.0).to_array(),
