@@ -2,8 +2,9 @@
 # Every row of the frame table in docs/benchmarks.md in one run: `bumpview render --frames N`
 # per scene (each draws the frame and the adapter's floor alternately in one process, so the
 # ratio is the number to read on a loaded machine) and one Markdown row per scene: frame, floor,
-# ratio. The last row is LEAN's frame against the renormalised box mips' frame (the ratio of
-# the two rows' ratios, each to its own floor).
+# ratio. Displacement on the CPU and on the GPU at a range of edge lengths (its frame time
+# against pixels per edge). The last row is LEAN's frame against the renormalised box mips'
+# frame (the ratio of the two rows' ratios, each to its own floor).
 #
 # Usage: scripts/frames.sh [FRAMES]        (default 30)
 #   BUMPVIEW_BIN=path/to/bumpview          the binary (default: target/release/bumpview, built
@@ -59,6 +60,12 @@ row "built-in, \`--parallax occlusion --parallax-depth 0.04 --parallax-layers 8,
     --parallax occlusion --parallax-depth 0.04 --parallax-layers 8,8
 row "built-in, \`--parallax occlusion --parallax-depth 0.04\` (layers 8–32 by the view angle)" occlusion \
     --parallax occlusion --parallax-depth 0.04
+row "built-in, \`--displacement 5\` (CPU, 6.6 M triangles)" cpu5 --displacement 5
+for px in 2 3 4 6 8 12; do
+    row "built-in, \`--displacement gpu --pixels-per-edge $px\`" "gpu$px" --displacement gpu --pixels-per-edge "$px"
+done
+row "built-in, \`--displacement gpu --turning 0.5\` (tessellated every frame)" gputurning \
+    --displacement gpu --turning 0.5
 model "DamagedHelmet (glTF, PBR)" DamagedHelmet DamagedHelmet.gltf
 model "StainedGlassLamp (glTF, PBR, many materials)" StainedGlassLamp StainedGlassLamp.gltf
 model "WaterBottle (glTF, PBR)" WaterBottle WaterBottle.gltf

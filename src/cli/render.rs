@@ -10,7 +10,7 @@ use bumpview::error::{LoadWarning, escape_controls};
 use bumpview::frame::{FrameQuality, SceneUploads, ShadingSettings};
 use bumpview::render::capture::{MAX_SUPERSAMPLE, write_png_atomically};
 use bumpview::render::export::{MAX_EXPORT_PIXELS, TileGrid, caption, render_grid, render_picture};
-use bumpview::render::timing::{TimedPicture, time_frames};
+use bumpview::render::timing::{TimedPicture, time_turning_frames};
 use bumpview::render::{Gpu, Renderer};
 use bumpview::state::interactive::InteractiveQuality;
 use bumpview::state::preset::{CapturePreset, Preset};
@@ -49,6 +49,11 @@ pub struct RenderArgs {
     /// at the render scale it settles on) instead of full-quality ones (4× MSAA).
     #[arg(long, requires = "frames", conflicts_with_all = ["out", "transparent", "supersample", "tiles"])]
     interactive: bool,
+    /// With --frames: turn the camera by DEGREES about its target before each frame, as while
+    /// dragging, so that what is done once per view (GPU displacement's tessellation) is timed
+    /// in every frame [default: 0].
+    #[arg(long, value_name = "DEGREES", requires = "frames", value_parser = args::parse_finite)]
+    turning: Option<f32>,
     /// Start from this preset (TOML, as the viewer's "Save preset" writes); flags given as well
     /// override it.
     #[arg(long, value_name = "FILE")]
@@ -207,7 +212,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     }
     if let Some(frames) = args.frames {
         let size = capture.size.unwrap_or(DEFAULT_RENDER_SIZE);
-        return time(&scene, &state, size, frames, args.interactive);
+        return time(&scene, &state, size, frames, args.interactive, args.turning.unwrap_or(0.0));
     }
     let Some(out) = args.out_path() else {
         unreachable!("clap requires --out without --preset or --frames");
@@ -278,6 +283,7 @@ fn time(
     size: [u32; 2],
     frames: NonZeroU32,
     interactive: bool,
+    turning_degrees: f32,
 ) -> Result<(), Failure> {
     let gpu = Gpu::headless()?;
     let mut renderer = Renderer::from_gpu(&gpu);
@@ -289,7 +295,7 @@ fn time(
     if interactive {
         picture.quality = InteractiveQuality::default().settle(&mut renderer, &picture)?;
     }
-    let timing = time_frames(&mut renderer, &picture, frames)?;
+    let timing = time_turning_frames(&mut renderer, &picture, frames, turning_degrees)?;
     report_displacement(&renderer);
     report_notices(&renderer, scene);
     let [width, height] = picture.quality.render_size(size);

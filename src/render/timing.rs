@@ -56,6 +56,18 @@ pub fn time_frames(
     picture: &TimedPicture,
     frames: NonZeroU32,
 ) -> Result<FrameTiming, RenderError> {
+    time_turning_frames(renderer, picture, frames, 0.0)
+}
+
+/// [`time_frames`] with the camera turned by `degrees_per_frame` about its target before each
+/// frame (yaw), as while the view is dragged: work done once per view (GPU displacement's
+/// tessellation) is then done every frame.
+pub fn time_turning_frames(
+    renderer: &mut Renderer,
+    picture: &TimedPicture,
+    frames: NonZeroU32,
+    degrees_per_frame: f32,
+) -> Result<FrameTiming, RenderError> {
     let render_size = picture.quality.render_size(picture.view_size);
     renderer.check_target_size(picture.view_size)?;
     let frame_texture = target_texture(renderer.device(), render_size);
@@ -65,10 +77,12 @@ pub fn time_frames(
     let frame_target = RenderTarget { view: &frame_view, format: IMAGE_FORMAT, size: render_size };
     let floor_target = RenderTarget { view: &floor_view, format: IMAGE_FORMAT, size: picture.view_size };
     let options = DrawOptions { msaa: picture.quality.msaa, ..Default::default() };
-    let frame = |renderer: &mut Renderer| {
-        timed(renderer, |renderer, encoder| {
-            renderer.draw(encoder, &frame_target, picture.params, picture.split, options)
-        })
+    let mut params = *picture.params;
+    let mut frame = |renderer: &mut Renderer| {
+        if degrees_per_frame != 0.0 {
+            params.camera.orbit(degrees_per_frame.to_radians(), 0.0);
+        }
+        timed(renderer, |renderer, encoder| renderer.draw(encoder, &frame_target, &params, picture.split, options))
     };
     let floor = |renderer: &mut Renderer| {
         timed(renderer, |renderer, encoder| renderer.draw_floor(encoder, &floor_target, options.msaa))
