@@ -81,6 +81,7 @@ const FILES: &[(&str, &str)] = &[
     ("mip-distance", include_str!("../../assets/lessons/mip-distance.toml")),
     ("clearcoat", include_str!("../../assets/lessons/clearcoat.toml")),
     ("detail-blend", include_str!("../../assets/lessons/detail-blend.toml")),
+    ("compression", include_str!("../../assets/lessons/compression.toml")),
 ];
 
 /// One side of a comparison: its label and the whole preset it is drawn from.

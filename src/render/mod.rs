@@ -36,6 +36,7 @@ mod texture_cache;
 pub mod timing;
 mod uniforms;
 pub mod upload;
+mod window;
 
 use std::sync::Arc;
 
@@ -52,6 +53,7 @@ use targets::{Attachments, begin_scene_pass};
 use tessellation::pipelines::DisplacePipelines;
 use uniforms::FrameUniform;
 pub use upload::{ReferenceFrames, SceneUpload, Uploader};
+pub use window::PictureWindow;
 
 /// Where to draw: a view of a 2D texture of `format`, `size` pixels.
 pub struct RenderTarget<'a> {
@@ -114,14 +116,6 @@ pub struct Renderer {
     displace_pipelines: Option<DisplacePipelines>,
     /// The part of the picture frames show ([`Self::set_window`]); `None`: all of it.
     window: Option<PictureWindow>,
-}
-
-/// A part of a picture: `window` (`[x, y, width, height]`, pixels from the top left) of a
-/// picture `picture` pixels large.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct PictureWindow {
-    pub picture: [u32; 2],
-    pub window: [u32; 4],
 }
 
 impl Renderer {
@@ -354,31 +348,6 @@ impl Renderer {
         Ok(())
     }
 
-    /// Draws only `window` of the pictures from now on (`None`: the whole picture again): each
-    /// frame, whatever its size, shows that part of the picture the camera would show, magnified
-    /// to fill it. Lessons draw their insets so, drawing only what they show.
-    pub fn set_window(&mut self, window: Option<PictureWindow>) {
-        self.window = window;
-    }
-
-    /// The view-projection (world → clip space) of a frame `size` pixels large: the camera's,
-    /// or with a window set, the camera's over the whole picture, cropped to the window.
-    fn view_projection(&self, camera: &crate::scene::OrbitCamera, size: [u32; 2]) -> glam::Mat4 {
-        let Some(window) = self.window else { return camera.view_projection(size[0] as f32 / size[1] as f32) };
-        let [width, height] = window.picture.map(|c| c.max(1) as f32);
-        let [x, y, w, h] = window.window.map(|c| c as f32);
-        // Window → NDC: x from x..x + w to −1..1, y (down in pixels) from y..y + h to 1..−1.
-        let (sx, sy) = (width / w.max(1.0), height / h.max(1.0));
-        let (cx, cy) = ((2.0 * x + w) / width - 1.0, 1.0 - (2.0 * y + h) / height);
-        let crop = glam::Mat4::from_cols(
-            glam::Vec4::new(sx, 0.0, 0.0, 0.0),
-            glam::Vec4::new(0.0, sy, 0.0, 0.0),
-            glam::Vec4::Z,
-            glam::Vec4::new(-cx * sx, -cy * sy, 0.0, 1.0),
-        );
-        crop * camera.view_projection(width / height)
-    }
-
     /// Tessellates the GPU-displaced meshes of the halves' scene uploads for this frame's view
     /// into `encoder` (each upload once, and only when the view changed), and keeps the budget's
     /// notice while it lengthens the edges.
@@ -397,7 +366,14 @@ impl Renderer {
         let mut slots: Vec<SceneSlot> = halves.iter().map(|h| h.scene).collect();
         slots.dedup();
         let tessellated = |this: &Self, slot: SceneSlot| this.scene_in(slot).is_some_and(|s| s.tessellation.is_some());
-        if slots.iter().any(|&slot| tessellated(self, slot)) && self.displace_pipelines.is_none() {
+        let wanted = slots.iter().any(|&slot| tessellated(self, slot));
+        let compute = self.adapter.get_downlevel_capabilities().flags.contains(wgpu::DownlevelFlags::COMPUTE_SHADERS);
+        self.notices.retain(|n| n != tessellation::NO_COMPUTE_NOTICE);
+        if wanted && !compute {
+            self.notices.push(tessellation::NO_COMPUTE_NOTICE.to_owned());
+            return;
+        }
+        if wanted && self.displace_pipelines.is_none() {
             self.displace_pipelines = Some(DisplacePipelines::new(&self.device));
         }
         let mut notice = None;

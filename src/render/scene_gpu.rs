@@ -253,11 +253,12 @@ pub struct DrawnStreams {
 }
 
 impl GpuScene {
-    /// What mesh `index` is drawn with this frame: its own streams, or the GPU displacement's
-    /// pool where it is displaced there (`None` before its first tessellation).
+    /// What mesh `index` is drawn with this frame: the GPU displacement's pool where it is
+    /// displaced there and tessellated, else its own streams (a GPU-displaced mesh's base mesh,
+    /// undisplaced, on a device without compute shaders).
     pub fn drawn_streams(&self, index: usize) -> Option<DrawnStreams> {
-        if let Some(tessellation) = self.tessellation.as_ref().filter(|t| t.displaces(index)) {
-            let (positions, normals, uvs, indices, range) = tessellation.drawn(index)?;
+        let tessellated = self.tessellation.as_ref().filter(|t| t.displaces(index)).and_then(|t| t.drawn(index));
+        if let Some((positions, normals, uvs, indices, range)) = tessellated {
             return Some(DrawnStreams { positions, normals, uvs, indices, range });
         }
         let mesh = &self.meshes[index];

@@ -114,6 +114,10 @@ impl GpuDisplacementStats {
     }
 }
 
+/// Said where the device has no compute shaders (WebGL2): the meshes are drawn undisplaced.
+pub const NO_COMPUTE_NOTICE: &str =
+    "GPU displacement needs compute shaders, which this device does not have: drawn undisplaced";
+
 /// How [`GpuDisplacementStats::budget_notice`] begins.
 pub const BUDGET_NOTICE_START: &str = "GPU displacement drawn with";
 

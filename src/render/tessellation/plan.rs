@@ -377,8 +377,8 @@ mod tests {
         assert_eq!(edges.ends.len(), 56);
         let mut seen: HashMap<u32, Vec<bool>> = HashMap::new();
         for (ids, reversed) in edges.of_triangle.iter().zip(&edges.reversed) {
-            for k in 0..3 {
-                seen.entry(ids[k]).or_default().push(reversed & (1 << k) != 0);
+            for (k, id) in ids.iter().enumerate() {
+                seen.entry(*id).or_default().push(reversed & (1 << k) != 0);
             }
         }
         assert!(seen.values().filter(|s| s.len() == 2).all(|s| s[0] != s[1]));
