@@ -95,12 +95,19 @@ pub fn slides(args: &SlidesArgs) -> Result<(), Failure> {
     std::fs::create_dir_all(&args.out)
         .map_err(|e| Failure::Failed(format!("could not make {}: {e}", args.out.display())))?;
     let started = std::time::Instant::now();
+    // A renderer keeps every pipeline it built, and lavapipe the code it compiled for each
+    // until the pipeline goes: a fresh renderer every few lessons bounds the deck's memory.
+    const RENDERER_LESSONS: usize = 6;
     let gpu = Gpu::headless()?;
     let mut renderer = Renderer::from_gpu(&gpu);
     let mut scenes = SceneCache::default();
     let layout = SlideLayout::new(args.size).with_theme(args.theme);
     let (mut entries, mut pages) = (vec![], vec![]);
     for (i, lesson) in chosen.iter().enumerate() {
+        if i % RENDERER_LESSONS == 0 && i > 0 {
+            renderer = Renderer::from_gpu(&gpu);
+            scenes.renderer_replaced();
+        }
         let size = layout.picture_size(lesson);
         let measured =
             measure(&mut renderer, &mut scenes, lesson, size, true).map_err(|e| Failure::Failed(e.to_string()))?;

@@ -61,6 +61,11 @@ impl SceneCache {
         }
     }
 
+    /// The renderer was replaced by a new one: the next draw uploads its scene again.
+    pub fn renderer_replaced(&mut self) {
+        self.uploaded = None;
+    }
+
     /// Gives `renderer` scene `index` with `uploads`, unless it has them already.
     fn upload(&mut self, renderer: &mut Renderer, index: usize, uploads: SceneUploads) {
         let wanted = Some((index, uploads));
