@@ -26,8 +26,6 @@ struct Patch {
 }
 
 const NO_SEAM: u32 = 0xffffffffu;
-// Points per seam edge less one: the finest cut (MAX_GPU_EDGE_SEGMENTS).
-const SEAM_SEGMENTS: u32 = 512u;
 
 // Per mesh: its patches, where its vertices and indices go, and its height map.
 struct Params {
@@ -43,7 +41,8 @@ struct Params {
     depth_m: f32,
     // Invocations per row of workgroups (the dispatch may be two-dimensional).
     row: u32,
-    pad: u32,
+    // Points per seam edge less one: the finest cut of the seams (Seams::segments).
+    seam_segments: u32,
 }
 
 // A base vertex: position and u, normal and v (model space), and its welded displaced
@@ -153,13 +152,13 @@ fn corner_point(c: Corners, k: u32) -> Point {
 }
 
 // Point m of the e + 1 on the edge from corner a to corner b, weighted in that order; on a
-// seam its welded point, seam_points[seam + m · SEAM_SEGMENTS / e] from the same end.
+// seam its welded point, seam_points[seam + m · seam_segments / e] from the same end.
 fn edge_point(c: Corners, a: u32, b: u32, m: u32, e: u32, seam: u32) -> Point {
     let wa = f32(e - m) / f32(e);
     let wb = f32(m) / f32(e);
     var welded = vec4<f32>(0.0);
     if seam != NO_SEAM {
-        welded = seam_points[seam + m * (SEAM_SEGMENTS / e)];
+        welded = seam_points[seam + m * (params.seam_segments / e)];
     }
     return Point(c.p[a] * wa + c.p[b] * wb, c.n[a] * wa + c.n[b] * wb, c.uv[a] * wa + c.uv[b] * wb, welded);
 }

@@ -6,7 +6,7 @@
 //! A seam is a base edge (keyed by its end positions) whose triangles displace it differently:
 //! two surfaces along a crease (the built-in wall and floor), or one surface split along a UV
 //! seam (the torus, whose copies sample the height map at u = 0 and u = 1). Each seam edge
-//! gets [`SEAM_POINTS`] points, one per segment end at the finest cut, so every power-of-two
+//! gets a point per segment end at the finest cut ([`Seams::segments`]), so every power-of-two
 //! cut reads its points from it; each vertex whose position has copies that move differently
 //! gets its welded position. Meshes are welded together where their instances draw them with
 //! one and the same transform, as on the CPU.
@@ -21,9 +21,6 @@ use super::weld::common_offset;
 use crate::frame::MAX_GPU_EDGE_SEGMENTS;
 use crate::scene::Mesh;
 
-/// Points per seam edge: both ends and every cut between at [`MAX_GPU_EDGE_SEGMENTS`].
-pub const SEAM_POINTS: u32 = MAX_GPU_EDGE_SEGMENTS + 1;
-
 /// The welded points of the GPU-displaced meshes of a prepared scene, per mesh in the order of
 /// [`PreparedScene::gpu_displaced`].
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -34,8 +31,35 @@ pub struct Seams {
     /// Per mesh, per triangle, per edge (corner `k` to `k + 1`): the index in `points` of its
     /// first point, the rest following from its canonical end (the smaller end position).
     pub edges: Vec<Vec<[Option<u32>; 3]>>,
-    /// Welded, displaced positions along the seam edges (model space).
+    /// Welded, displaced positions along the seam edges (model space): `segments + 1` per edge.
     pub points: Vec<Vec3>,
+    /// The finest cut of a seam edge: [`MAX_GPU_EDGE_SEGMENTS`], or a smaller power of two
+    /// where many seams would pass [`MAX_SEAM_POINTS`]; the plan cuts seams no finer.
+    pub segments: u32,
+}
+
+/// The most welded points the seams hold (16 bytes each on the GPU: 4 MiB).
+pub const MAX_SEAM_POINTS: usize = 1 << 18;
+
+/// The finest cut `edges` seam edges can have within [`MAX_SEAM_POINTS`]: a power of two, at
+/// most [`MAX_GPU_EDGE_SEGMENTS`], at least 1.
+fn seam_segments(edges: usize) -> u32 {
+    let mut segments = MAX_GPU_EDGE_SEGMENTS;
+    while segments > 1 && edges * (segments as usize + 1) > MAX_SEAM_POINTS {
+        segments /= 2;
+    }
+    segments
+}
+
+/// Where `side` moves point `m` of `segments` along its edge from corner `e` (counted from the
+/// edge's canonical end), and the undisplaced point.
+fn along((side, reversed): &(Side, bool), e: usize, m: u32, segments: u32) -> ((Vec3, f32), Vec3) {
+    let mut w = [0.0; 3];
+    let (start, end) = if *reversed { ((e + 1) % 3, e) } else { (e, (e + 1) % 3) };
+    w[start] = (segments - m) as f32 / segments as f32;
+    w[end] = m as f32 / segments as f32;
+    let base = side.mesh.positions[side.corners[start]] * w[start] + side.mesh.positions[side.corners[end]] * w[end];
+    (side.moves(w), base)
 }
 
 /// How one side of a seam moves a point: its mesh's heights and the corners' data.
@@ -75,7 +99,9 @@ pub fn seams(prepared: &PreparedScene) -> Seams {
         corners: displaced.iter().map(|g| vec![None; mesh_of(g).positions.len()]).collect(),
         edges: displaced.iter().map(|g| vec![[None; 3]; mesh_of(g).indices.len() / 3]).collect(),
         points: vec![],
+        segments: MAX_GPU_EDGE_SEGMENTS,
     };
+    let mut pending: Vec<(Vec<Corner>, Vec<(Side, bool)>)> = vec![];
     for group in weld_groups(prepared) {
         // Every corner of every triangle of the group, by position and by edge.
         let mut by_position: HashMap<[u32; 3], Vec<Corner>> = HashMap::new();
@@ -116,39 +142,36 @@ pub fn seams(prepared: &PreparedScene) -> Seams {
                 seams.corners[k][vertex] = Some(welded);
             }
         }
-        for copies in by_edge.values() {
-            let sides: Vec<(Side, bool)> = copies
-                .iter()
-                .map(|&(k, t, e)| {
-                    let side = side((k, t, e));
-                    let (a, b) = (side.mesh.positions[side.corners[e]], side.mesh.positions[side.corners[(e + 1) % 3]]);
-                    (side, key(a) > key(b))
-                })
-                .collect();
-            let along = |(s, reversed): &(Side, bool), m: u32, e: usize| {
-                let mut w = [0.0; 3];
-                let (start, end) = if *reversed { ((e + 1) % 3, e) } else { (e, (e + 1) % 3) };
-                w[start] = (MAX_GPU_EDGE_SEGMENTS - m) as f32 / MAX_GPU_EDGE_SEGMENTS as f32;
-                w[end] = m as f32 / MAX_GPU_EDGE_SEGMENTS as f32;
-                (s.moves(w), s.mesh.positions[s.corners[start]] * w[start] + s.mesh.positions[s.corners[end]] * w[end])
-            };
-            let edge_of = |i: usize| copies[i].2;
-            let differ = (0..SEAM_POINTS).step_by(16).chain([SEAM_POINTS - 1]).any(|m| {
-                let first = along(&sides[0], m, edge_of(0)).0;
-                (1..sides.len()).any(|i| along(&sides[i], m, edge_of(i)).0 != first)
-            });
-            if !differ {
-                continue;
-            }
-            let start = seams.points.len() as u32;
-            for m in 0..SEAM_POINTS {
-                let moves: Vec<((Vec3, f32), Vec3)> =
-                    (0..sides.len()).map(|i| along(&sides[i], m, edge_of(i))).collect();
-                seams.points.push(moves[0].1 + common_offset(moves.iter().map(|(mv, _)| *mv)));
-            }
-            for &(k, t, e) in copies {
-                seams.edges[k][t][e] = Some(start);
-            }
+        // Seam edges first: how many decides how finely their points are made.
+        let seam_edges: Vec<(&Vec<Corner>, Vec<(Side, bool)>)> = by_edge
+            .values()
+            .filter_map(|copies| {
+                let sides: Vec<(Side, bool)> = copies
+                    .iter()
+                    .map(|&(k, t, e)| {
+                        let side = side((k, t, e));
+                        let ends = (side.corners[e], side.corners[(e + 1) % 3]);
+                        let reversed = key(side.mesh.positions[ends.0]) > key(side.mesh.positions[ends.1]);
+                        (side, reversed)
+                    })
+                    .collect();
+                let moves = |i: usize, m: u32| along(&sides[i], copies[i].2, m, 16).0;
+                let differ = (0..=16).any(|m| (1..sides.len()).any(|i| moves(i, m) != moves(0, m)));
+                differ.then_some((copies, sides))
+            })
+            .collect();
+        pending.extend(seam_edges.into_iter().map(|(copies, sides)| (copies.clone(), sides)));
+    }
+    seams.segments = seam_segments(pending.len());
+    for (copies, sides) in pending {
+        let start = seams.points.len() as u32;
+        for m in 0..=seams.segments {
+            let moves: Vec<((Vec3, f32), Vec3)> =
+                sides.iter().zip(&copies).map(|(side, &(_, _, e))| along(side, e, m, seams.segments)).collect();
+            seams.points.push(moves[0].1 + common_offset(moves.iter().map(|(mv, _)| *mv)));
+        }
+        for (k, t, e) in copies {
+            seams.edges[k][t][e] = Some(start);
         }
     }
     seams
@@ -179,4 +202,34 @@ fn weld_groups(prepared: &PreparedScene) -> Vec<Vec<usize>> {
         }
     }
     groups.into_iter().map(|(_, members)| members).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Few seams take the finest cut; many take the finest power of two within the points'
+    /// budget, down to one segment.
+    #[test]
+    fn many_seams_are_cut_more_coarsely() {
+        assert_eq!(seam_segments(0), MAX_GPU_EDGE_SEGMENTS);
+        assert_eq!(seam_segments(500), MAX_GPU_EDGE_SEGMENTS);
+        assert_eq!(seam_segments(1000), 256);
+        assert!(1000 * 257 <= MAX_SEAM_POINTS && 1000 * 513 > MAX_SEAM_POINTS);
+        assert_eq!(seam_segments(10_000_000), 1);
+    }
+
+    /// The built-in scene on the GPU: the wall and floor meet along seams, and so do the
+    /// torus's copies along its UV seams; every seam holds a point per segment end.
+    #[test]
+    fn the_built_in_scene_has_its_seams() {
+        let options =
+            crate::frame::SceneOptions { displacement: crate::frame::Displacement::on_gpu(3.0), ..Default::default() };
+        let prepared = PreparedScene::new(&crate::scene::builtin::teaching_scene(), &options);
+        let seams = seams(&prepared);
+        let seam_edges: usize = seams.edges.iter().flatten().flatten().flatten().count();
+        assert!(seam_edges > 0 && seams.corners.iter().flatten().any(Option::is_some));
+        assert_eq!(seams.segments, MAX_GPU_EDGE_SEGMENTS);
+        assert_eq!(seams.points.len() % (MAX_GPU_EDGE_SEGMENTS as usize + 1), 0);
+    }
 }

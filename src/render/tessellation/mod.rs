@@ -62,7 +62,7 @@ struct Params {
     wrap_v: u32,
     depth_m: f32,
     row: u32,
-    pad: u32,
+    seam_segments: u32,
 }
 
 /// The buffers a frame's tessellation is written into, and the bind groups over them.
@@ -146,6 +146,8 @@ pub struct Tessellation {
     patches: wgpu::Buffer,
     /// The welded points of the seams ([`seams::Seams::points`], `xyz` and 1).
     seam_points: wgpu::Buffer,
+    /// The seams' finest cut ([`seams::Seams::segments`]).
+    seam_segments: u32,
     base_bytes: u64,
     pixels_per_edge: f32,
     state: Mutex<State>,
@@ -224,6 +226,7 @@ impl Tessellation {
         let base_bytes = base_bytes + seam_points.size();
         Some(Tessellation {
             seam_points,
+            seam_segments: seams.segments,
             base_vertices: buffer_with(
                 device,
                 "GPU displacement base vertices",
@@ -284,6 +287,7 @@ impl Tessellation {
                 depth_m: m.depth_m,
                 cull_back_faces: m.cull_back_faces,
                 seams: &m.seams,
+                seam_segments: self.seam_segments,
             })
             .collect();
         let plan = plan::plan(&planned, &view, self.pixels_per_edge, plan::BUDGET);
@@ -320,7 +324,7 @@ impl Tessellation {
                 wrap_v: mesh.wrap[1],
                 depth_m: mesh.depth_m,
                 row: row * 64,
-                pad: 0,
+                seam_segments: self.seam_segments,
             };
             queue.write_buffer(&mesh.params, 0, bytemuck::bytes_of(&params));
             pass.set_bind_group(2, bind_group, &[]);

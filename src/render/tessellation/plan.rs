@@ -121,6 +121,8 @@ pub struct PlannedMesh<'a> {
     pub cull_back_faces: bool,
     /// Per triangle, per edge: its first point in the seam table, if it is a seam.
     pub seams: &'a [[Option<u32>; 3]],
+    /// The finest cut of a seam edge (a power of two): its welded points are made at it.
+    pub seam_segments: u32,
 }
 
 /// This frame's tessellation of every GPU-displaced mesh, ready to upload.
@@ -210,16 +212,20 @@ fn may_show(view: &View, transform: Mat4, p: [Vec3; 3], n: [Vec3; 3], depth_m: f
     })
 }
 
-/// Segments for an edge `pixels` long at a target of `target` pixels per segment; a power of
-/// two on a `seam`.
-fn segments_for(pixels: f32, target: f32, seam: bool) -> u32 {
+/// Segments for an edge `pixels` long at a target of `target` pixels per segment; on a seam, a
+/// power of two, at most `seam` (its finest cut).
+fn segments_for(pixels: f32, target: f32, seam: Option<u32>) -> u32 {
     let wanted = pixels / target;
     // NaN and anything past the maximum ask for the most.
-    if wanted.is_nan() || wanted >= MAX_GPU_EDGE_SEGMENTS as f32 {
-        return MAX_GPU_EDGE_SEGMENTS;
+    let segments = if wanted.is_nan() || wanted >= MAX_GPU_EDGE_SEGMENTS as f32 {
+        MAX_GPU_EDGE_SEGMENTS
+    } else {
+        wanted.ceil().max(1.0) as u32
+    };
+    match seam {
+        Some(finest) => segments.next_power_of_two().min(finest),
+        None => segments,
     }
-    let segments = wanted.ceil().max(1.0) as u32;
-    if seam { segments.next_power_of_two() } else { segments }
 }
 
 /// Plans this frame's tessellation of `meshes` seen in `view` at `pixels_per_edge` (above 0),
@@ -276,7 +282,8 @@ fn plan_at(
                 seam[edges[k] as usize] |= seams[k].is_some();
             }
         }
-        let segments: Vec<u32> = lengths.iter().zip(&seam).map(|(&l, &s)| segments_for(l, target, s)).collect();
+        let segments: Vec<u32> =
+            lengths.iter().zip(&seam).map(|(&l, &s)| segments_for(l, target, s.then_some(m.seam_segments))).collect();
         let start = (plan.patches.len() as u32, vertices as u32, triangles as u32 * 3);
         for (triangle, (edges, &visible)) in m.edges.of_triangle.iter().zip(shown).enumerate() {
             if !visible {
@@ -364,7 +371,15 @@ mod tests {
     }
 
     fn planned<'a>(mesh: &'a Mesh, edges: &'a MeshEdges, seams: &'a [[Option<u32>; 3]]) -> PlannedMesh<'a> {
-        PlannedMesh { mesh, edges, transforms: vec![Mat4::IDENTITY], depth_m: 0.01, cull_back_faces: true, seams }
+        PlannedMesh {
+            mesh,
+            edges,
+            transforms: vec![Mat4::IDENTITY],
+            depth_m: 0.01,
+            cull_back_faces: true,
+            seams,
+            seam_segments: MAX_GPU_EDGE_SEGMENTS,
+        }
     }
 
     /// Each shared edge is one edge (a 4 × 4 grid has 40 sides and 16 diagonals), and a
