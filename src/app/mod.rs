@@ -207,6 +207,7 @@ impl eframe::App for ViewerApp {
             ctx.request_repaint_after(wait);
         }
         self.controller.refresh_probe();
+        self.controller.tell_budget();
         let fullscreen = self.controller.lessons.fullscreen;
         if fullscreen != self.fullscreen {
             ctx.send_viewport_cmd(egui::ViewportCommand::Fullscreen(fullscreen));

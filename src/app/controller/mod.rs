@@ -135,6 +135,8 @@ pub struct Controller {
     floor: Option<([u32; 2], f64)>,
     /// What the last interactive frame cost.
     last_interactive: Option<InteractiveFrame>,
+    /// GPU displacement's budget notice last told on stderr.
+    said_budget: Option<String>,
 }
 
 impl Controller {
@@ -179,6 +181,7 @@ impl Controller {
             preset: PresetForm::default(),
             lessons: LessonsForm::new(false),
             probe: Probe::default(),
+            said_budget: None,
             jobs: SceneJobs::new(build, uploader),
             last_job: None,
             failed: None,
@@ -382,6 +385,18 @@ impl Controller {
         finished.into_iter().for_each(|ready| self.scene_ready(ready));
         self.apply(reload);
         wait
+    }
+
+    /// Tells stderr when GPU displacement's budget starts lengthening the edges, or lengthens
+    /// them differently (the panel says it on screen): never silently.
+    pub fn tell_budget(&mut self) {
+        let notice = self.renderer.gpu_displacement(false).and_then(|s| s.budget_notice());
+        if notice != self.said_budget {
+            if let Some(notice) = &notice {
+                eprintln!("bumpview: {notice}");
+            }
+            self.said_budget = notice;
+        }
     }
 
     /// Recomputes the probe's readout, if one is pinned, from the renderer's prepared scene of
