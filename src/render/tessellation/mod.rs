@@ -417,3 +417,28 @@ fn wrap_index(wrap: crate::scene::Wrap) -> u32 {
         crate::scene::Wrap::MirroredRepeat => 2,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use wgpu::naga;
+
+    use super::*;
+
+    /// The compute pass's buffers hold what shaders/displace.wgsl reads: each Rust struct has
+    /// its WGSL twin's size.
+    #[test]
+    fn the_structs_have_the_wgsl_sizes() {
+        let source = crate::render::shaders::DISPLACE.source();
+        let module = naga::front::wgsl::parse_str(&source).expect("displace.wgsl parses");
+        let mut layouter = naga::proc::Layouter::default();
+        layouter.update(module.to_ctx()).expect("its types have a layout");
+        for (name, rust_size) in [
+            ("Params", std::mem::size_of::<Params>()),
+            ("Patch", std::mem::size_of::<plan::Patch>()),
+            ("BaseVertex", std::mem::size_of::<BaseVertex>()),
+        ] {
+            let (handle, _) = module.types.iter().find(|(_, t)| t.name.as_deref() == Some(name)).expect(name);
+            assert_eq!(layouter[handle].size as usize, rust_size, "WGSL {name} against its Rust struct");
+        }
+    }
+}
