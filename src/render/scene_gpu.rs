@@ -258,8 +258,8 @@ impl GpuScene {
     /// undisplaced, on a device without compute shaders).
     pub fn drawn_streams(&self, index: usize) -> Option<DrawnStreams> {
         let tessellated = self.tessellation.as_ref().filter(|t| t.displaces(index)).and_then(|t| t.drawn(index));
-        if let Some((positions, normals, uvs, indices, range)) = tessellated {
-            return Some(DrawnStreams { positions, normals, uvs, indices, range });
+        if tessellated.is_some() {
+            return tessellated;
         }
         let mesh = &self.meshes[index];
         Some(DrawnStreams {

@@ -15,7 +15,6 @@ pub mod pipelines;
 pub mod plan;
 mod read_back;
 
-use std::ops::Range;
 use std::sync::Mutex;
 
 use glam::Mat4;
@@ -24,6 +23,7 @@ use self::pipelines::DisplacePipelines;
 use self::plan::{MeshEdges, Plan, PlannedMesh, View};
 use super::bindings;
 use super::gpu_errors::buffer_with;
+use super::scene_gpu::DrawnStreams;
 use crate::prepare::{PreparedScene, seams};
 use crate::scene::Mesh;
 
@@ -252,15 +252,21 @@ impl Tessellation {
         self.state.lock().expect("tessellation state").stats
     }
 
-    /// The vertex streams and the index range mesh `mesh` is drawn with this frame:
-    /// `(positions, normals, uvs, indices, range)`; `None` before the first tessellation.
-    pub fn drawn(&self, mesh: usize) -> Option<(wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, Range<u32>)> {
+    /// The vertex streams and the index range mesh `mesh` is drawn with this frame; `None`
+    /// before the first tessellation.
+    pub fn drawn(&self, mesh: usize) -> Option<DrawnStreams> {
         let state = self.state.lock().expect("tessellation state");
         let (pool, plan) = (state.pool.as_ref()?, state.plan.as_ref()?);
         let k = self.meshes.iter().position(|m| m.mesh == mesh)?;
         let ranges = &plan.meshes[k];
         let range = ranges.first_index..ranges.first_index + ranges.indices;
-        Some((pool.positions.clone(), pool.normals.clone(), pool.uvs.clone(), pool.indices.clone(), range))
+        Some(DrawnStreams {
+            positions: pool.positions.clone(),
+            normals: pool.normals.clone(),
+            uvs: pool.uvs.clone(),
+            indices: pool.indices.clone(),
+            range,
+        })
     }
 
     /// Tessellates for `view` into `encoder` unless the pool already holds this view's.
