@@ -9,7 +9,7 @@ use super::glyphs::{MAX_GLYPHS_PER_MESH, glyph_lines};
 use super::gpu_errors::{buffer_with, caught};
 use super::marker_gpu::GpuMarker;
 use super::pipelines::Layouts;
-use super::tessellation::Tessellation;
+use super::tessellation::{DrawnStreams, Tessellation};
 use super::texture_cache::{SamplerCache, TextureCache};
 use super::uniforms::ObjectUniform;
 use crate::counters::WorkCounters;
@@ -241,15 +241,6 @@ fn upload_mesh(device: &wgpu::Device, prepared: &PreparedMesh) -> GpuMesh {
         index_count: mesh.indices.len() as u32,
         indices: buffer(device, "indices", &mesh.indices, wgpu::BufferUsages::INDEX),
     }
-}
-
-/// The vertex streams and the index range a mesh is drawn with this frame.
-pub struct DrawnStreams {
-    pub positions: wgpu::Buffer,
-    pub normals: wgpu::Buffer,
-    pub uvs: wgpu::Buffer,
-    pub indices: wgpu::Buffer,
-    pub range: std::ops::Range<u32>,
 }
 
 impl GpuScene {

@@ -23,9 +23,17 @@ use self::pipelines::DisplacePipelines;
 use self::plan::{MeshEdges, Plan, PlannedMesh, View};
 use super::bindings;
 use super::gpu_errors::buffer_with;
-use super::scene_gpu::DrawnStreams;
 use crate::prepare::{PreparedScene, seams};
 use crate::scene::Mesh;
+
+/// The vertex streams and the index range a mesh is drawn with this frame.
+pub struct DrawnStreams {
+    pub positions: wgpu::Buffer,
+    pub normals: wgpu::Buffer,
+    pub uvs: wgpu::Buffer,
+    pub indices: wgpu::Buffer,
+    pub range: std::ops::Range<u32>,
+}
 
 /// One mesh the GPU displaces.
 struct TessellatedMesh {
