@@ -58,9 +58,20 @@ pub struct TextureImage {
     pub kind: TextureKind,
     /// `width · height · 4` bytes.
     pub rgba: Vec<u8>,
+    /// The file's own block levels (a DDS or KTX2 file's whole chain), whose level 0 decodes to
+    /// `rgba`: drawn as they are where the adapter samples them and no mip filter makes levels
+    /// of its own (`PreparedScene::file_blocks` decides). Whatever changes `rgba` sets it to
+    /// `None`.
+    pub file_blocks: Option<std::sync::Arc<compressed::FileBlocks>>,
 }
 
 impl TextureImage {
+    /// A `width`×`height` image of `kind` holding `rgba` (`width · height · 4` bytes), not
+    /// read from a file of blocks.
+    pub fn new(name: impl Into<String>, width: u32, height: u32, kind: TextureKind, rgba: Vec<u8>) -> TextureImage {
+        TextureImage { name: name.into(), width, height, kind, rgba, file_blocks: None }
+    }
+
     /// RGBA bytes of texel `(x, y)`, coordinates wrapped into the image.
     pub fn texel(&self, x: i64, y: i64) -> [u8; 4] {
         let x = x.rem_euclid(self.width as i64) as usize;
@@ -113,7 +124,7 @@ impl TextureImage {
                 rgba.push(alpha.round() as u8);
             }
         }
-        TextureImage { name: self.name.clone(), width: w, height: h, kind: self.kind, rgba }
+        TextureImage::new(self.name.clone(), w, h, self.kind, rgba)
     }
 
     /// This image followed by its mip levels down to 1×1; the system refusing the memory for
@@ -132,7 +143,7 @@ impl TextureImage {
         let mut rgba = Vec::new();
         rgba.try_reserve_exact(self.rgba.len())?;
         rgba.extend(self.rgba.chunks_exact(4).flat_map(|t| texel(t.try_into().expect("4 bytes"))));
-        Ok(TextureImage { name: self.name.clone(), width: self.width, height: self.height, kind: self.kind, rgba })
+        Ok(TextureImage::new(self.name.clone(), self.width, self.height, self.kind, rgba))
     }
 
     /// A 1×1 stand-in named `name` that draws as if the texture were absent: a flat normal, a
@@ -143,7 +154,7 @@ impl TextureImage {
             TextureKind::Height => [0, 0, 0, 255],
             TextureKind::Color | TextureKind::Data => [255; 4],
         };
-        TextureImage { name: name.to_owned(), width: 1, height: 1, kind, rgba: texel.to_vec() }
+        TextureImage::new(name.to_owned(), 1, 1, kind, texel.to_vec())
     }
 }
 
@@ -164,7 +175,7 @@ mod tests {
                 [a, b, 0, 255]
             })
             .collect();
-        let image = TextureImage { name: "h".into(), width: 2, height: 2, kind: TextureKind::Height, rgba };
+        let image = TextureImage::new("h", 2, 2, TextureKind::Height, rgba);
         let t = image.downsampled().texel(0, 0);
         assert!((decode_height(t[0], t[1]) - 0.5).abs() < 1e-4);
     }
@@ -172,7 +183,7 @@ mod tests {
     #[test]
     fn mip_chain_ends_at_one_texel_and_keeps_normals_unit() {
         let rgba = [[255, 128, 128, 255], [0, 128, 128, 255], [128, 255, 128, 255], [128, 128, 255, 255]].concat();
-        let image = TextureImage { name: "n".into(), width: 2, height: 2, kind: TextureKind::NormalMap, rgba };
+        let image = TextureImage::new("n", 2, 2, TextureKind::NormalMap, rgba);
         let chain = image.mip_chain().unwrap();
         assert_eq!(chain.len(), 2);
         let t = chain[1].texel(0, 0);

@@ -47,7 +47,7 @@ fn labelled(file: &str) -> Vec<(String, Label)> {
 fn load(path: &str) -> TextureImage {
     let image = image::open(fixtures().join(path)).unwrap_or_else(|e| panic!("{path}: {e}")).to_rgba8();
     let (width, height) = image.dimensions();
-    TextureImage { name: path.to_owned(), width, height, kind: TextureKind::NormalMap, rgba: image.into_raw() }
+    TextureImage::new(path.to_owned(), width, height, TextureKind::NormalMap, image.into_raw())
 }
 
 fn inverted(image: &TextureImage) -> TextureImage {

@@ -25,7 +25,7 @@ fn wall_only(transform: Mat4) -> Scene {
 }
 
 fn texture(name: &str, kind: TextureKind, width: u32, texels: &[[u8; 4]]) -> TextureImage {
-    TextureImage { name: name.into(), width, height: texels.len() as u32 / width, kind, rgba: texels.concat() }
+    TextureImage::new(name, width, texels.len() as u32 / width, kind, texels.concat())
 }
 
 fn render_with(scene: &Scene, options: SceneOptions, params: &FrameParams, size: [u32; 2]) -> image::RgbaImage {

@@ -122,7 +122,7 @@ fn gaussian_slope_map(side: u32, sigma: f32, seed: u64) -> TextureImage {
         rgba.extend(n.to_array().map(|c| (c * 255.0).round() as u8));
         rgba.push(255);
     }
-    TextureImage { name: "gaussian slopes".into(), width: side, height: side, kind: TextureKind::NormalMap, rgba }
+    TextureImage::new("gaussian slopes", side, side, TextureKind::NormalMap, rgba)
 }
 
 /// Toksvig's `σ² = (1 − |Na|)/|Na|` estimates the per-axis slope variance of a Gaussian slope

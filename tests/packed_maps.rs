@@ -98,13 +98,8 @@ fn packed_scene(layout: NormalLayout) -> Scene {
     let mut scene = scene();
     let (map, normals) = source_normals(&scene);
     let packed: Vec<_> = normals.iter().enumerate().map(|(i, &n)| pack(n, layout, i)).collect();
-    let image = |name: &str, kind, bytes: Vec<[u8; 4]>| TextureImage {
-        name: name.into(),
-        width: map.width,
-        height: map.height,
-        kind,
-        rgba: bytes.concat(),
-    };
+    let image =
+        |name: &str, kind, bytes: Vec<[u8; 4]>| TextureImage::new(name, map.width, map.height, kind, bytes.concat());
     scene.textures.push(image("packed", TextureKind::NormalMap, packed.iter().map(|p| p.0).collect()).into());
     let bump = scene.textures.len() - 1;
     let mut normal_map = NormalMap::new(bump, 1.0);

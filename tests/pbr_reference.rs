@@ -38,13 +38,13 @@ fn differences_occluded(
     if let Some(occluded) = occluded {
         let (width, height) = (8u32, 8u32);
         scene.textures.push(
-            bumpview::scene::TextureImage {
-                name: "occlusion".into(),
+            bumpview::scene::TextureImage::new(
+                "occlusion",
                 width,
                 height,
-                kind: bumpview::scene::TextureKind::Data,
-                rgba: [occluded.level, occluded.level, occluded.level, 255].repeat((width * height) as usize),
-            }
+                bumpview::scene::TextureKind::Data,
+                [occluded.level, occluded.level, occluded.level, 255].repeat((width * height) as usize),
+            )
             .into(),
         );
         let texture = scene.textures.len() - 1;

@@ -90,14 +90,8 @@ fn glossy_wall() -> Scene {
     let rgba =
         (0..width * height).flat_map(|i| [levels[(i % width / 4 % 4) as usize]; 3].into_iter().chain([255])).collect();
     scene.textures.push(
-        bumpview::scene::TextureImage {
-            name: "gloss stripes".into(),
-            width,
-            height,
-            kind: bumpview::scene::TextureKind::Data,
-            rgba,
-        }
-        .into(),
+        bumpview::scene::TextureImage::new("gloss stripes", width, height, bumpview::scene::TextureKind::Data, rgba)
+            .into(),
     );
     scene.materials[0].gloss_texture = Some(scene.textures.len() - 1);
     scene

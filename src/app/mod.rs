@@ -94,14 +94,16 @@ pub fn run(options: Options) -> Result<(), String> {
 }
 
 /// Asks eframe's device for what the renderer can use beyond egui's defaults: line polygon
-/// mode (the wireframe overlay) where the adapter has it, and the adapter's full texture size
-/// (screenshots up to its limit; egui asks for 8192 only).
+/// mode (the wireframe overlay) and BC texture sampling (a file's blocks as they are) where the
+/// adapter has them, and the adapter's full texture size (screenshots up to its limit; egui
+/// asks for 8192 only).
 fn request_device_extras(setup: &mut eframe::egui_wgpu::WgpuSetup) {
     if let eframe::egui_wgpu::WgpuSetup::CreateNew(create) = setup {
         let base = Arc::clone(&create.device_descriptor);
         create.device_descriptor = Arc::new(move |adapter| {
             let mut descriptor = base(adapter);
-            descriptor.required_features |= adapter.features() & wgpu::Features::POLYGON_MODE_LINE;
+            let wanted = wgpu::Features::POLYGON_MODE_LINE | wgpu::Features::TEXTURE_COMPRESSION_BC;
+            descriptor.required_features |= adapter.features() & wanted;
             descriptor.required_limits.max_texture_dimension_2d = adapter.limits().max_texture_dimension_2d;
             descriptor
         });

@@ -52,16 +52,29 @@ fn first_slice(file: &[u8]) -> Result<&[u8], String> {
 /// A KTX2 file of UASTC blocks of `rgba` (rate-distortion optimised at quality scalar `rdo`
 /// where given), Zstandard-supercompressed.
 pub fn uastc(rgba: &[u8], width: u32, height: u32, rdo: Option<f32>) -> Result<Vec<u8>, String> {
-    let file = basis_file(rgba, width, height, BasisTextureFormat::UASTC4x4, rdo)?;
-    let blocks = first_slice(&file)?;
-    let expected = width.div_ceil(4) as usize * height.div_ceil(4) as usize * 16;
-    if blocks.len() != expected {
-        return Err(format!("the .basis slice holds {} bytes, {expected} expected", blocks.len()));
+    uastc_levels(&[(rgba, width, height)], rdo)
+}
+
+/// [`uastc`] of a mip chain: `levels` are `(rgba, width, height)`, level 0 first, each encoded
+/// on its own.
+pub fn uastc_levels(levels: &[(&[u8], u32, u32)], rdo: Option<f32>) -> Result<Vec<u8>, String> {
+    let mut packed = Vec::with_capacity(levels.len());
+    for &(rgba, width, height) in levels {
+        let file = basis_file(rgba, width, height, BasisTextureFormat::UASTC4x4, rdo)?;
+        let blocks = first_slice(&file)?;
+        let expected = width.div_ceil(4) as usize * height.div_ceil(4) as usize * 16;
+        if blocks.len() != expected {
+            return Err(format!("the .basis slice holds {} bytes, {expected} expected", blocks.len()));
+        }
+        packed.push((
+            ruzstd::encoding::compress_to_vec(blocks, ruzstd::encoding::CompressionLevel::Fastest),
+            blocks.len(),
+        ));
     }
-    let packed = ruzstd::encoding::compress_to_vec(blocks, ruzstd::encoding::CompressionLevel::Fastest);
     // UASTC, 16 bytes a block, one RGBA sample of 128 bits.
     let dfd = Dfd { model: 166, block_bytes: 16, samples: &[(3, 0, 127)] };
-    Ok(ktx2_file(width, height, 2, &dfd, &[], &packed, blocks.len()))
+    let (width, height) = (levels[0].1, levels[0].2);
+    Ok(ktx2_file(width, height, 2, &dfd, &[], &packed))
 }
 
 /// A KTX2 file of ETC1S `rgba` (RGB) with BasisLZ: the global data is the 20-byte header
@@ -87,7 +100,7 @@ pub fn etc1s(rgba: &[u8], width: u32, height: u32) -> Result<Vec<u8>, String> {
     global.extend(endpoints.iter().chain(selectors).chain(tables));
     // ETC1S, no fixed block bytes, one sample: channel RGB (0), 64 bits.
     let dfd = Dfd { model: 163, block_bytes: 0, samples: &[(0, 0, 63)] };
-    Ok(ktx2_file(width, height, 1, &dfd, &global, slice, 0))
+    Ok(ktx2_file(width, height, 1, &dfd, &global, &[(slice.to_vec(), 0)]))
 }
 
 /// A basic data format descriptor: colour model, bytes a 4×4 block (plane 0) and its samples
@@ -98,23 +111,35 @@ struct Dfd<'a> {
     samples: &'a [(u8, u16, u8)],
 }
 
-/// A KTX2 file of one level (`level` as stored, `raw` bytes once unpacked; 0 for BasisLZ),
-/// `scheme` its supercompression (1 BasisLZ, 2 Zstandard), `global` the supercompression
-/// global data, BT.709 primaries, linear, straight alpha.
-fn ktx2_file(width: u32, height: u32, scheme: u32, dfd: &Dfd, global: &[u8], level: &[u8], raw: usize) -> Vec<u8> {
+/// A KTX2 file of `levels` (level 0 first; each as stored and its bytes once unpacked, 0 for
+/// BasisLZ), `scheme` its supercompression (1 BasisLZ, 2 Zstandard), `global` the
+/// supercompression global data, BT.709 primaries, linear, straight alpha. The levels' data
+/// lie smallest first, as the KTX2 specification orders them, each at a multiple of 8.
+fn ktx2_file(width: u32, height: u32, scheme: u32, dfd: &Dfd, global: &[u8], levels: &[(Vec<u8>, usize)]) -> Vec<u8> {
     let dfd_length = 4 + 24 + 16 * dfd.samples.len() as u32;
-    let dfd_offset = 80 + 24;
+    let dfd_offset = 80 + 24 * levels.len() as u32;
     let global_offset = dfd_offset + dfd_length;
-    let level_offset = (global_offset + global.len() as u32).next_multiple_of(8);
+    let mut level_offsets = vec![0; levels.len()];
+    let mut end = (global_offset as usize + global.len()).next_multiple_of(8);
+    for (index, (data, _)) in levels.iter().enumerate().rev() {
+        level_offsets[index] = end;
+        end = (end + data.len()).next_multiple_of(8);
+    }
     let mut out = vec![0xAB, b'K', b'T', b'X', b' ', b'2', b'0', 0xBB, b'\r', b'\n', 0x1A, b'\n'];
     // vkFormat (undefined), typeSize, width, height, depth, layers, faces, levels, scheme;
     // DFD offset and length, key/value data offset and length.
-    for word in [0, 1, width, height, 0, 0, 1, 1, scheme, dfd_offset, dfd_length, 0, 0] {
+    let count = levels.len() as u32;
+    for word in [0, 1, width, height, 0, 0, 1, count, scheme, dfd_offset, dfd_length, 0, 0] {
         out.extend(word.to_le_bytes());
     }
     let global_at = if global.is_empty() { 0 } else { global_offset as u64 };
-    for word in [global_at, global.len() as u64, level_offset as u64, level.len() as u64, raw as u64] {
+    for word in [global_at, global.len() as u64] {
         out.extend(word.to_le_bytes());
+    }
+    for ((data, raw), &offset) in levels.iter().zip(&level_offsets) {
+        for word in [offset, data.len(), *raw] {
+            out.extend((word as u64).to_le_bytes());
+        }
     }
     out.extend(dfd_length.to_le_bytes());
     out.extend(0u32.to_le_bytes()); // vendor 0 (Khronos), descriptor type 0 (basic)
@@ -131,7 +156,9 @@ fn ktx2_file(width: u32, height: u32, scheme: u32, dfd: &Dfd, global: &[u8], lev
         out.extend(u32::MAX.to_le_bytes());
     }
     out.extend(global);
-    out.resize(level_offset as usize, 0);
-    out.extend(level);
+    for (index, (data, _)) in levels.iter().enumerate().rev() {
+        out.resize(level_offsets[index], 0);
+        out.extend(data);
+    }
     out
 }

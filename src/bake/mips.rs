@@ -27,7 +27,7 @@ pub fn mip_levels(map: &TextureImage, levels_past_0: bool, alpha: impl Fn(f32) -
                 [r, g, b, (alpha(length).clamp(0.0, 1.0) * 255.0).round() as u8]
             })
             .collect();
-        TextureImage { name: map.name.clone(), width, height, kind: map.kind, rgba }
+        TextureImage::new(map.name.clone(), width, height, map.kind, rgba)
     };
     let mut levels = vec![level(map.width, map.height, &mut map.base_normals())];
     if levels_past_0 {
@@ -69,7 +69,7 @@ mod tests {
             [r, g, b, 255]
         };
         let rgba = [tilt(1.0), tilt(-1.0), tilt(-1.0), tilt(1.0)].concat();
-        let map = TextureImage { name: "n".into(), width: 2, height: 2, kind: TextureKind::NormalMap, rgba };
+        let map = TextureImage::new("n", 2, 2, TextureKind::NormalMap, rgba);
         let levels = mip_levels(&map, true, |length| length);
         assert_eq!(levels.len(), 2);
         assert_eq!(&levels[0].rgba[..3], &tilt(1.0)[..3]);

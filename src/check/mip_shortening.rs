@@ -84,7 +84,7 @@ mod tests {
                 [r, g, b, 255]
             })
             .collect();
-        TextureImage { name: "checker".into(), width: 64, height: 64, kind: TextureKind::NormalMap, rgba }
+        TextureImage::new("checker", 64, 64, TextureKind::NormalMap, rgba)
     }
 
     #[test]

@@ -166,12 +166,14 @@ mod tests {
 
     #[test]
     fn a_flat_map_has_no_convention_and_srgb_encoding_is_spotted() {
-        let flat = |rgb: [u8; 3]| TextureImage {
-            name: "flat".into(),
-            width: 8,
-            height: 8,
-            kind: crate::scene::TextureKind::NormalMap,
-            rgba: [rgb[0], rgb[1], rgb[2], 255].repeat(64),
+        let flat = |rgb: [u8; 3]| {
+            TextureImage::new(
+                "flat",
+                8,
+                8,
+                crate::scene::TextureKind::NormalMap,
+                [rgb[0], rgb[1], rgb[2], 255].repeat(64),
+            )
         };
         let linear = check_normal_map(&flat([128, 128, 255]), NormalLayout::Rgb);
         assert!(linear.convention.is_none() && !linear.looks_srgb);
@@ -208,7 +210,7 @@ mod tests {
             }
         }
         let kind = crate::scene::TextureKind::NormalMap;
-        let sphere = TextureImage { name: "sphere".into(), width, height, kind, rgba };
+        let sphere = TextureImage::new("sphere", width, height, kind, rgba);
         let findings = check_normal_map(&sphere, NormalLayout::Rgb);
         assert!(findings.looks_object_space && !findings.looks_srgb);
         assert_eq!(findings.convention, None);

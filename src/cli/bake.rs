@@ -132,6 +132,11 @@ pub struct BakeArgs {
         "border", "normal_convention", "bits", "height_in_alpha", "two_channel", "mips", "detail", "cone_map",
     ])]
     format: Option<CompressedFormat>,
+    /// With --format dds-… or ktx2-uastc…: write the normal map's whole mip chain into the file
+    /// (each level the re-normalised mean of the one above, as the viewer makes it), which the
+    /// viewer then draws as the file's own blocks where the adapter samples BC formats.
+    #[arg(long, requires = "format")]
+    with_mips: bool,
     /// Replace outputs that exist (without it, an existing output is kept and nothing is
     /// baked). An input is never written over, even with --force.
     #[arg(long)]
@@ -181,7 +186,7 @@ pub fn run(args: &BakeArgs) -> Result<(), Failure> {
         return run_mips(args, filter);
     }
     if let Some(format) = args.format {
-        return super::bake_compressed::run(&args.inputs, &args.out, format, args.force);
+        return super::bake_compressed::run(&args.inputs, &args.out, format, args.with_mips, args.force);
     }
     if args.cone_map {
         return super::bake_cone::run(&args.inputs, &args.out, args.depth_map, args.force);

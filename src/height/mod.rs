@@ -93,13 +93,7 @@ impl HeightField {
                 texel.copy_from_slice(&[rows::unorm8(x), rows::unorm8(y), rows::unorm8(z), 255]);
             }
         });
-        TextureImage {
-            name: name.to_owned(),
-            width: self.width,
-            height: self.height,
-            kind: TextureKind::NormalMap,
-            rgba,
-        }
+        TextureImage::new(name.to_owned(), self.width, self.height, TextureKind::NormalMap, rgba)
     }
 
     /// The field as a 16-bit [`TextureKind::Height`] texture (red high byte, green low byte).
@@ -112,7 +106,7 @@ impl HeightField {
                 [high, low, 0, 255]
             })
             .collect();
-        TextureImage { name: name.to_owned(), width: self.width, height: self.height, kind: TextureKind::Height, rgba }
+        TextureImage::new(name.to_owned(), self.width, self.height, TextureKind::Height, rgba)
     }
 
     /// The field stored with `bits` bits per sample (8 or 16 in image files): every sample

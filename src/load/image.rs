@@ -15,7 +15,7 @@ use image::{DynamicImage, ImageFormat};
 
 use crate::error::LoadError;
 use crate::scene::{Scene, TextureImage, TextureKind, encode_height};
-use crate::texture::compressed::Stored;
+use crate::texture::compressed::{GpuTexels, Stored};
 use crate::texture::decode::{MAX_DECODE_BYTES, decode_image};
 
 /// The largest side of a texture, texels: the largest 2D texture most GPUs take (wgpu's
@@ -117,8 +117,12 @@ pub fn decode_texture_stored(
     };
     let (image, stored) =
         decode_image(bytes, tga_by_name, MAX_DECODE_BYTES, admit).map_err(|problem| LoadError::new(path, problem))?;
-    let texture = to_texture(image, path.to_string_lossy().into_owned(), kind)
+    let mut texture = to_texture(image, path.to_string_lossy().into_owned(), kind)
         .ok_or_else(|| LoadError::new(path, "no memory for the decoded texture"))?;
+    // A height map's texels are re-encoded (16 bits in red and green): its blocks no longer apply.
+    if let Some(GpuTexels::Blocks(chain)) = stored.as_ref().map(|s| &s.gpu).filter(|_| kind != TextureKind::Height) {
+        texture.file_blocks = Some(chain.clone());
+    }
     Ok((texture, stored))
 }
 
@@ -139,5 +143,5 @@ pub fn to_texture(image: DynamicImage, name: String, kind: TextureKind) -> Optio
             rgba
         }
     };
-    Some(TextureImage { name, width, height, kind, rgba })
+    Some(TextureImage::new(name, width, height, kind, rgba))
 }

@@ -423,8 +423,7 @@ mod tests {
                 rgba.extend([hi, lo, 0, 255]);
             }
         }
-        let texture =
-            TextureImage { name: "ramp".into(), width, height: 4, kind: crate::scene::TextureKind::Height, rgba };
+        let texture = TextureImage::new("ramp", width, 4, crate::scene::TextureKind::Height, rgba);
         let heights = HeightLookup { texture: &texture, wrap: SamplerWrap::default(), depth: false };
         let mut square = Mesh::empty("square");
         for (x, y) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {

@@ -8,6 +8,7 @@
 
 mod cone;
 pub mod displace;
+mod file_blocks;
 mod repair;
 pub mod seams;
 mod weld;
@@ -272,7 +273,8 @@ impl PreparedScene {
 
     /// The mip chain of texture `index` as it is sampled (level 0 first, box-filtered down to
     /// one texel; see [`TextureImage::mip_chain`]; a normal map's by its instances' method,
-    /// [`TextureImage::mip_chain_filtered`]): the one made ahead, else made now; the notice
+    /// [`TextureImage::mip_chain_filtered`]; a file's own levels decoded where
+    /// [`Self::file_blocks`] draws them): the one made ahead, else made now; the notice
     /// when the system refused its memory (draw [`Self::neutral_chain`] then).
     pub fn mip_chain(&self, index: usize) -> Result<Cow<'_, [TextureImage]>, String> {
         match &self.mip_chains[index] {
@@ -301,15 +303,19 @@ impl PreparedScene {
     /// Texture `index`'s mip chain, made now; the system refusing its memory is a notice.
     fn made_mip_chain(&self, index: usize) -> Result<Vec<TextureImage>, String> {
         let texture = &self.scene.textures[index];
+        let no_memory = |problem: &dyn std::fmt::Display| {
+            let (name, w, h) = (&texture.name, texture.width, texture.height);
+            format!("texture {name:?} ({w}x{h}): no memory for its mip chain ({problem}): drawn without it")
+        };
+        if let Some(chain) = self.file_mip_chain(index) {
+            return chain.ok_or_else(|| no_memory(&"its file's levels decoded"));
+        }
         let chain = match (self.normal_map_filter(index), self.marched_height_map(index)) {
             (Some(filter), _) => texture.mip_chain_filtered(filter),
             (None, Some(slot)) if self.options.cone_maps => cone::with_cone_map(texture, slot).mip_chain(),
             (None, _) => texture.mip_chain(),
         };
-        chain.map_err(|problem| {
-            let (name, w, h) = (&texture.name, texture.width, texture.height);
-            format!("texture {name:?} ({w}x{h}): no memory for its mip chain ({problem}): drawn without it")
-        })
+        chain.map_err(|problem| no_memory(&problem))
     }
 
     /// The chain texture `index` is drawn with when its own could not be made: a neutral 1×1.

@@ -22,10 +22,12 @@ impl Gpu {
             reason: e.to_string(),
         })?;
         // The wireframe overlay needs line polygon mode; without it the overlay is skipped.
-        // Timestamps inside encoders time the report's frames on the GPU where available.
+        // Timestamps inside encoders time the report's frames on the GPU where available. BC
+        // sampling takes a DDS or KTX2 file's blocks as they are.
         let wanted = wgpu::Features::POLYGON_MODE_LINE
             | wgpu::Features::TIMESTAMP_QUERY
-            | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
+            | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS
+            | wgpu::Features::TEXTURE_COMPRESSION_BC;
         let required_features = adapter.features() & wanted;
         let descriptor = wgpu::DeviceDescriptor {
             label: Some("bumpview"),

@@ -94,6 +94,13 @@ impl Renderer {
         split.or(self.scene.as_ref()).map(|s| &s.prepared)
     }
 
+    /// How the textures of the main scene (or the split view's right half, `split_half`) went
+    /// to the GPU: a file's own blocks or RGBA8, and their bytes.
+    pub fn texture_uploads(&self, split_half: bool) -> &[super::texture_cache::TextureUpload] {
+        let split = self.split_scene.as_ref().filter(|_| split_half);
+        split.or(self.scene.as_ref()).map_or(&[], |s| &s.uploads)
+    }
+
     /// What GPU displacement drew in the last frame of the main scene (or the split view's
     /// right half, `split_half`): its stats, `None` where nothing is displaced on the GPU.
     pub fn gpu_displacement(&self, split_half: bool) -> Option<super::tessellation::GpuDisplacementStats> {

@@ -51,6 +51,7 @@ use pipelines::{PipelineKey, Pipelines};
 use scene_gpu::GpuScene;
 use targets::{Attachments, begin_scene_pass};
 use tessellation::pipelines::DisplacePipelines;
+pub use texture_cache::TextureUpload;
 use uniforms::FrameUniform;
 pub use upload::{ReferenceFrames, SceneUpload, Uploader};
 pub use window::PictureWindow;

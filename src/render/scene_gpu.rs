@@ -65,6 +65,8 @@ pub struct GpuScene {
     pub instances: Vec<GpuInstance>,
     /// The light markers' geometry; `None` where the device refused it (a notice says so).
     pub marker: Option<GpuMarker>,
+    /// How each texture the scene draws went to the GPU, in upload order.
+    pub uploads: Vec<super::texture_cache::TextureUpload>,
     /// What was uploaded: kept for what is made on first use (reference frames), and for the
     /// probe of the picture drawn from it.
     pub prepared: Arc<PreparedScene>,
@@ -106,6 +108,7 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, pre
     });
     let marker = caught(device, || GpuMarker::upload(device, layouts, scene));
     let mut notices: Vec<String> = prepared.notices.iter().cloned().chain(textures.notices).collect();
+    let uploads = textures.uploads;
     let marker =
         marker.map_err(|problem| notices.push(format!("the light markers could not be uploaded ({problem})"))).ok();
     // Geometry the device could not hold (out of memory, or past its limits): nothing is drawn
@@ -114,7 +117,7 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, pre
         notices.push(format!("the scene's geometry could not be uploaded ({problem}): nothing drawn"));
         (vec![], vec![], None)
     });
-    GpuScene { meshes, instances, marker, notices, prepared, tessellation, work }
+    GpuScene { meshes, instances, marker, notices, uploads, prepared, tessellation, work }
 }
 
 /// Uploads what `instance` binds (its object uniform and textures, once each through

@@ -51,13 +51,7 @@ pub fn normal_map() -> TextureImage {
             rgba.push(255);
         }
     }
-    TextureImage {
-        name: "fine bumps (normal map)".into(),
-        width: MAP_SIDE,
-        height: MAP_SIDE,
-        kind: TextureKind::NormalMap,
-        rgba,
-    }
+    TextureImage::new("fine bumps (normal map)", MAP_SIDE, MAP_SIDE, TextureKind::NormalMap, rgba)
 }
 
 /// Which surface.

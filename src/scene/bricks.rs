@@ -112,13 +112,7 @@ pub fn brick_color_texture() -> TextureImage {
             rgba.push(255);
         }
     }
-    TextureImage {
-        name: "bricks (colour)".into(),
-        width: TILE_TEXELS,
-        height: TILE_TEXELS,
-        kind: TextureKind::Color,
-        rgba,
-    }
+    TextureImage::new("bricks (colour)", TILE_TEXELS, TILE_TEXELS, TextureKind::Color, rgba)
 }
 
 #[cfg(test)]

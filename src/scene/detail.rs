@@ -85,7 +85,7 @@ pub fn sine_pair_normal_map(size: u32, periods: u32, slope: f32) -> super::Textu
         }
     }
     let name = format!("sine-pair detail ({periods} periods, slope {slope})");
-    super::TextureImage { name, width: size, height: size, kind: super::TextureKind::NormalMap, rgba }
+    super::TextureImage::new(name, size, size, super::TextureKind::NormalMap, rgba)
 }
 
 #[cfg(test)]

@@ -221,13 +221,7 @@ fn gloss_texture() -> TextureImage {
             [g, g, g, 255]
         })
         .collect();
-    TextureImage {
-        name: "bricks (gloss)".into(),
-        width: field.width,
-        height: field.height,
-        kind: TextureKind::Data,
-        rgba,
-    }
+    TextureImage::new("bricks (gloss)", field.width, field.height, TextureKind::Data, rgba)
 }
 
 /// `normal_map` (RGB, OpenGL) packed as X-Ray's bump texture: A, B, G = R, G, B of the map, R
@@ -243,7 +237,7 @@ fn xray_texture(normal_map: &TextureImage) -> TextureImage {
             [root, n[2], n[1], n[0]]
         })
         .collect();
-    TextureImage { name: "bricks (X-Ray bump)".into(), rgba, kind: TextureKind::NormalMap, ..*normal_map }
+    TextureImage::new("bricks (X-Ray bump)", normal_map.width, normal_map.height, TextureKind::NormalMap, rgba)
 }
 
 #[cfg(test)]

@@ -14,6 +14,13 @@ use super::blocks::{Block, decode_level};
 /// (`Ok(None)`: no memory for the texels).
 #[cfg(not(target_arch = "wasm32"))]
 pub fn transcode_uastc(blocks: &[u8], width: u32, height: u32) -> Result<Option<Vec<u8>>, String> {
+    let bc7 = transcode_uastc_blocks(blocks, width, height)?;
+    Ok(decode_level(Block::Bc7, &bc7, width, height))
+}
+
+/// Transcodes `width`×`height` texels of UASTC blocks to BC7 blocks (16 bytes each).
+#[cfg(not(target_arch = "wasm32"))]
+pub fn transcode_uastc_blocks(blocks: &[u8], width: u32, height: u32) -> Result<Vec<u8>, String> {
     use basis_universal::{DecodeFlags, LowLevelUastcTranscoder, SliceParametersUastc, TranscoderBlockFormat};
     let parameters = SliceParametersUastc {
         num_blocks_x: width.div_ceil(4),
@@ -22,15 +29,20 @@ pub fn transcode_uastc(blocks: &[u8], width: u32, height: u32) -> Result<Option<
         original_width: width,
         original_height: height,
     };
-    let bc7 = LowLevelUastcTranscoder::new()
+    LowLevelUastcTranscoder::new()
         .transcode_slice(blocks, parameters, DecodeFlags::empty(), TranscoderBlockFormat::BC7)
-        .map_err(|e| format!("the UASTC blocks do not transcode: {e:?}"))?;
-    Ok(decode_level(Block::Bc7, &bc7, width, height))
+        .map_err(|e| format!("the UASTC blocks do not transcode: {e:?}"))
 }
 
 /// The browser build has no Basis transcoder.
 #[cfg(target_arch = "wasm32")]
 pub fn transcode_uastc(_blocks: &[u8], _width: u32, _height: u32) -> Result<Option<Vec<u8>>, String> {
+    Err("UASTC (Basis Universal) textures cannot be transcoded in the browser build".to_owned())
+}
+
+/// The browser build has no Basis transcoder.
+#[cfg(target_arch = "wasm32")]
+pub fn transcode_uastc_blocks(_blocks: &[u8], _width: u32, _height: u32) -> Result<Vec<u8>, String> {
     Err("UASTC (Basis Universal) textures cannot be transcoded in the browser build".to_owned())
 }
 

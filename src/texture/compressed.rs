@@ -1,10 +1,11 @@
 //! GPU texture containers (DDS, KTX2) decoded to RGBA8 on the CPU, and what their format says
 //! about the channels ([`Stored`]): a BC5 or RG8 file holds two channels, a DXT5nm file x in
-//! alpha and y in green. Only the top level is decoded (mips are made from it as for any
-//! image); sizes from the header are admitted by the caller and checked against the file's
-//! length before a texel is allocated.
+//! alpha and y in green. The top level is decoded; a whole chain of BC levels is kept as the
+//! file's blocks ([`GpuTexels::Blocks`]) for the GPU to sample as they are, else the mips are
+//! made from the top level as for any image. Sizes from the header are admitted by the caller
+//! and checked against the file's length before a texel is allocated.
 
-pub use super::stored::{Decoded, Stored, StoredChannels};
+pub use super::stored::{Block, Decoded, FileBlocks, GpuTexels, Stored, StoredChannels};
 
 /// The containers recognised by their first bytes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -1,13 +1,14 @@
 //! DDS files (DirectDraw Surface): the container parsed by `ddsfile`, the top level of the
 //! first layer (or cube face) decoded to RGBA8: BC1–BC5 and BC7 blocks ([`super::blocks`]),
 //! and uncompressed layouts of 8 to 32 bits a texel read through their channel masks
-//! (legacy headers) or their DXGI format (`DX10` headers).
+//! (legacy headers) or their DXGI format (`DX10` headers). A file of blocks with its whole mip
+//! chain keeps it ([`FileBlocks`]).
 //!
 //! A BC3 file is DXT5nm (x in alpha, y in green) when its pixel format carries the
 //! `DDPF_NORMAL` flag (`0x80000000`, written by NVIDIA's tools) or the `RXGB` code.
 
 use super::blocks::{Block, Texels};
-use super::stored::{Decoded, Stored, StoredChannels, no_memory};
+use super::stored::{Decoded, FileBlocks, GpuTexels, Stored, StoredChannels, mip_size, no_memory};
 use ddsfile::DxgiFormat;
 
 /// Bytes before the texels: the magic and the 124-byte header (a `DX10` header adds 20).
@@ -27,7 +28,7 @@ pub fn decode(bytes: &[u8], admit: impl FnOnce(u32, u32) -> Result<(), String>) 
         return Err("3D (volume) DDS textures are not supported".to_owned());
     }
     let flags = u32::from_le_bytes(bytes[80..84].try_into().expect("4 bytes"));
-    let (layout, stored) = layout(&dds, flags)?;
+    let (layout, format, channels) = layout(&dds, flags)?;
     admit(width, height)?;
     let data = dds.data.as_slice();
     let needed = layout.level_bytes(width, height);
@@ -38,14 +39,28 @@ pub fn decode(bytes: &[u8], admit: impl FnOnce(u32, u32) -> Result<(), String>) 
         ));
     }
     let rgba = layout.decode(data, width, height).ok_or_else(|| no_memory(width, height))?;
-    Ok(Decoded { width, height, rgba, stored })
+    let gpu = match layout {
+        Texels::Blocks(block) => {
+            // The first layer's levels come first, each right after the one above it.
+            let mut at = 0usize;
+            let levels = dds.get_num_mipmap_levels() as usize;
+            FileBlocks::gather((block, None), width, height, levels, |level| {
+                let [w, h] = mip_size(width, height, level);
+                let bytes = block.level_bytes(w, h) as usize;
+                let slice = data.get(at..at.checked_add(bytes)?)?;
+                at += bytes;
+                Some(slice.into())
+            })
+        }
+        Texels::Masks { .. } => GpuTexels::Decoded("uncompressed"),
+    };
+    Ok(Decoded { width, height, rgba, stored: Stored { format: format!("{format} DDS"), channels, gpu } })
 }
 
-/// The texel layout of `dds` and what it says about the channels; `flags` are the pixel
-/// format's raw flags.
-fn layout(dds: &ddsfile::Dds, flags: u32) -> Result<(Texels, Stored), String> {
-    let stored = |format: &str, channels| Stored { format: format!("{format} DDS"), channels };
-    let block = |b: Block, channels| Ok((Texels::Blocks(b), stored(b.name(), channels)));
+/// The texel layout of `dds`, its format's name and what it says about the channels; `flags`
+/// are the pixel format's raw flags.
+fn layout(dds: &ddsfile::Dds, flags: u32) -> Result<(Texels, String, StoredChannels), String> {
+    let block = |b: Block, channels| Ok((Texels::Blocks(b), b.name().to_owned(), channels));
     let spf = &dds.header.spf;
     let fourcc = spf.fourcc.as_ref().map(|f| f.0.to_le_bytes());
     match (&dds.header10, fourcc.as_ref()) {
@@ -66,18 +81,16 @@ fn layout(dds: &ddsfile::Dds, flags: u32) -> Result<(Texels, Stored), String> {
             }
             let two = masks[0] != 0 && masks[1] != 0 && masks[2] == 0 && masks[3] == 0;
             let channels = if two { StoredChannels::Rg } else { StoredChannels::Plain };
-            Ok((Texels::Masks { bits, masks }, stored(&format!("uncompressed {bits}-bit"), channels)))
+            Ok((Texels::Masks { bits, masks }, format!("uncompressed {bits}-bit"), channels))
         }
     }
 }
 
-/// The layout of a `DX10` header's DXGI format.
-fn dxgi_layout(format: DxgiFormat) -> Result<(Texels, Stored), String> {
+/// The layout of a `DX10` header's DXGI format, its name and what it says about the channels.
+fn dxgi_layout(format: DxgiFormat) -> Result<(Texels, String, StoredChannels), String> {
     use DxgiFormat as F;
-    let masked = |bits, masks, name: &str, channels| {
-        Ok((Texels::Masks { bits, masks }, Stored { format: format!("{name} DDS"), channels }))
-    };
-    let block = |b: Block, channels| Ok((Texels::Blocks(b), Stored { format: format!("{} DDS", b.name()), channels }));
+    let masked = |bits, masks, name: &str, channels| Ok((Texels::Masks { bits, masks }, name.to_owned(), channels));
+    let block = |b: Block, channels| Ok((Texels::Blocks(b), b.name().to_owned(), channels));
     match format {
         F::BC1_Typeless | F::BC1_UNorm | F::BC1_UNorm_sRGB => block(Block::Bc1, StoredChannels::ColourBlock),
         F::BC2_Typeless | F::BC2_UNorm | F::BC2_UNorm_sRGB => block(Block::Bc2, StoredChannels::ColourBlock),
@@ -100,15 +113,15 @@ fn dxgi_layout(format: DxgiFormat) -> Result<(Texels, Stored), String> {
     }
 }
 
-/// A DDS file (with a `DX10` header) holding one `width`×`height` level of `texels` in
-/// `format`: what `bake --format dds-…` writes.
-pub fn dxgi_file(texels: Vec<u8>, width: u32, height: u32, format: DxgiFormat) -> Result<Vec<u8>, String> {
+/// A DDS file (with a `DX10` header) holding `levels` mip levels of a `width`×`height` texture
+/// in `format`, `texels` level 0 first: what `bake --format dds-…` writes.
+pub fn dxgi_file(texels: Vec<u8>, width: u32, height: u32, format: DxgiFormat, levels: u32) -> Result<Vec<u8>, String> {
     let params = ddsfile::NewDxgiParams {
         height,
         width,
         depth: None,
         format,
-        mipmap_levels: Some(1),
+        mipmap_levels: Some(levels),
         array_layers: None,
         caps2: None,
         is_cubemap: false,
@@ -136,7 +149,7 @@ mod tests {
 
     #[test]
     fn uncompressed_layouts_decode_through_their_masks_and_r8g8_is_two_channels() {
-        let rg = dxgi_file(vec![10, 20, 30, 40], 2, 1, DxgiFormat::R8G8_UNorm).unwrap();
+        let rg = dxgi_file(vec![10, 20, 30, 40], 2, 1, DxgiFormat::R8G8_UNorm, 1).unwrap();
         let decoded = decode(&rg, |_, _| Ok(())).unwrap();
         assert_eq!(decoded.rgba, [10, 20, 0, 255, 30, 40, 0, 255]);
         assert_eq!((decoded.stored.format.as_str(), decoded.stored.channels), ("R8G8 DDS", StoredChannels::Rg));

@@ -3,15 +3,17 @@
 //! R8G8 and R8. Supercompression: Zstandard (`ruzstd`, pure Rust) and zlib (`flate2`).
 //! UASTC and ETC1S with BasisLZ (`KHR_texture_basisu`) are transcoded by Binomial's transcoder
 //! ([`super::basis`]), which is native only: the browser build names the file and says it
-//! cannot. ETC1S is read only with the `etc1s` feature (Cargo.toml says why). A Basis file that keeps x in red, green and blue and y in alpha (ETC1S channels RRR
-//! and GGG, UASTC RRRG: how Basis stores normal maps) is handed on as x in red, y in green.
+//! cannot. A Basis file that keeps x in red, green and blue and y in alpha (ETC1S channels
+//! RRR and GGG, UASTC RRRG: how Basis stores normal maps) is handed on as x in red, y in green.
+//! A whole mip chain of BC blocks, or of UASTC ones (transcoded level by level to BC7), is kept
+//! for the GPU ([`FileBlocks`]).
 
 use std::io::Read;
 
 use ktx2::{ColorModel, Format, SupercompressionScheme};
 
 use super::blocks::{Block, Texels};
-use super::stored::{Decoded, Stored, StoredChannels, no_memory};
+use super::stored::{Decoded, FileBlocks, GpuTexels, Stored, StoredChannels, mip_size, no_memory};
 
 /// DFD channel ids of two-channel Basis files: UASTC RRRG and RG, ETC1S RRR and GGG.
 const UASTC_RRRG: u8 = 5;
@@ -49,11 +51,13 @@ pub fn decode(bytes: &[u8], admit: impl FnOnce(u32, u32) -> Result<(), String>) 
         Some(SupercompressionScheme::BasisLZ) => " (BasisLZ)".to_owned(),
         Some(other) => return Err(format!("KTX2 supercompression {other:?} is not supported")),
     };
-    let stored = Stored { format: format!("{name} KTX2{packed}"), channels };
     admit(width, height)?;
     let level = reader.levels().next().ok_or("the KTX2 file has no mip level")?;
-    let rgba = match layout {
-        Layout::Etc1s(swizzle) => {
+    // Level 0 is decoded from the blocks the GPU would take, so a UASTC level is transcoded once.
+    let gpu = gpu_texels(&reader, &layout, scheme, width, height);
+    let rgba = match (&gpu, &layout) {
+        (GpuTexels::Blocks(chain), _) => chain.decoded_level(0),
+        (_, &Layout::Etc1s(swizzle)) => {
             let images = header.level_count.max(1) as usize * header.layer_count.max(1) as usize;
             let images = images * header.face_count.max(1) as usize;
             let global = reader.supercompression_global_data();
@@ -63,7 +67,37 @@ pub fn decode(bytes: &[u8], admit: impl FnOnce(u32, u32) -> Result<(), String>) 
         _ => decode_level_data(&layout, level.data, scheme, width, height)?,
     };
     let rgba = rgba.ok_or_else(|| no_memory(width, height))?;
-    Ok(Decoded { width, height, rgba, stored })
+    Ok(Decoded { width, height, rgba, stored: Stored { format: format!("{name} KTX2{packed}"), channels, gpu } })
+}
+
+/// The file's levels as BC blocks where its layout keeps them: BCn as stored, UASTC
+/// transcoded level by level to BC7 (the transcoder's near-lossless target).
+fn gpu_texels(
+    reader: &ktx2::Reader<&[u8]>,
+    layout: &Layout,
+    scheme: Option<SupercompressionScheme>,
+    width: u32,
+    height: u32,
+) -> GpuTexels {
+    let levels = reader.header().level_count.max(1) as usize;
+    let unpacked_level = |level: usize, needed: u64| {
+        let data = reader.levels().nth(level)?.data;
+        unpacked(data, scheme, needed).ok()
+    };
+    match *layout {
+        Layout::Plain(Texels::Blocks(block)) => FileBlocks::gather((block, None), width, height, levels, |level| {
+            let [w, h] = mip_size(width, height, level);
+            unpacked_level(level, block.level_bytes(w, h)).map(Into::into)
+        }),
+        Layout::Uastc(false) => FileBlocks::gather((Block::Bc7, Some("UASTC")), width, height, levels, |level| {
+            let [w, h] = mip_size(width, height, level);
+            let uastc = unpacked_level(level, Block::Bc7.level_bytes(w, h))?;
+            super::basis::transcode_uastc_blocks(&uastc, w, h).ok().map(Into::into)
+        }),
+        Layout::Uastc(true) | Layout::Etc1s(true) => GpuTexels::Decoded("x and y moved to red and green"),
+        Layout::Etc1s(false) => GpuTexels::Decoded("ETC1S"),
+        Layout::Plain(Texels::Masks { .. }) => GpuTexels::Decoded("uncompressed"),
+    }
 }
 
 /// The texels of a level that is not BasisLZ: unpacked by `scheme`, checked against the bytes
@@ -140,11 +174,6 @@ fn layout(
                     let two = rrrg || channel == Some(UASTC_RG);
                     let channels = if two { StoredChannels::Rg } else { StoredChannels::Rgba };
                     Ok((Layout::Uastc(rrrg), "UASTC".to_owned(), channels))
-                }
-                Some(ColorModel::ETC1S) if !cfg!(feature = "etc1s") => {
-                    Err("ETC1S (BasisLZ) KTX2 textures are not read by this build (the `etc1s` feature: \
-                     Binomial's transcoder aborts on corrupt ETC1S data); UASTC ones are"
-                        .to_owned())
                 }
                 Some(ColorModel::ETC1S) if scheme == Some(SupercompressionScheme::BasisLZ) => {
                     let ids: Vec<u8> = dfd.sample_information.iter().map(|s| s.channel_type).collect();

@@ -181,7 +181,7 @@ mod tests {
         for (width, height) in [(1, 1), (7, 5), (1, 6), (16, 16)] {
             let rgba = (0..width * height * 4).map(|i| (i * 37 % 251) as u8).collect();
             let kind = crate::texture::TextureKind::NormalMap;
-            let image = TextureImage { name: "n".into(), width, height, kind, rgba };
+            let image = TextureImage::new("n", width, height, kind, rgba);
             let from_moments: Vec<LeanTexels> = image.lean_moments().iter().map(LeanLevel::texels).collect();
             assert_eq!(image.lean_texture(), from_moments, "{width}×{height}");
         }

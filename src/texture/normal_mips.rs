@@ -40,7 +40,7 @@ impl TextureImage {
                     [r, g, b, (mean.length().min(1.0) * 255.0).round() as u8]
                 })
                 .collect();
-            TextureImage { name: self.name.clone(), width, height, kind: self.kind, rgba }
+            TextureImage::new(self.name.clone(), width, height, self.kind, rgba)
         });
         Ok(std::iter::once(base).chain(below).collect())
     }
@@ -101,7 +101,7 @@ mod tests {
             [r, g, b, 7]
         };
         let rgba = [lean(1.0), lean(-1.0), lean(0.0), lean(0.0)].concat();
-        let image = TextureImage { name: "n".into(), width: 2, height: 2, kind: TextureKind::NormalMap, rgba };
+        let image = TextureImage::new("n", 2, 2, TextureKind::NormalMap, rgba);
         let chain = image.mip_chain_filtered(MipFilter::Toksvig).unwrap();
         assert_eq!(chain.len(), 2);
         assert_eq!(chain[0].texel(0, 0), {

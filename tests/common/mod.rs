@@ -210,8 +210,8 @@ pub fn assert_sane(scene: &Scene, what: &str) {
     }
 }
 
-/// The probe's readouts (with their pixels) on a grid of pixels (every `step`, from (4, 4)) of a `size` picture of
-/// `scene` prepared with `options`, after checking that the GPU's lit and shading-normal
+/// The probe's readouts (with their pixels) on a grid of pixels (every `step`, from (4, 4)) of
+/// a `size` picture of `scene` prepared with `options`, after checking that the GPU's lit and shading-normal
 /// pictures equal them within `tolerance` steps of 8 bits (lit, shading normal). Pixels whose
 /// neighbours see another instance or nothing are left out (silhouettes blend two surfaces).
 pub fn gpu_against_probe(

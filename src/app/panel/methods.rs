@@ -229,8 +229,9 @@ fn convention_in_use(material: &Material, remade: bool) -> String {
     format!("{normal}\n{kind} map: {kernel} kernel, {border}, {:.2} mm range", height.range_m * 1e3)
 }
 
-/// The findings of `bumpview check` for the scene, the renderer's notices, and a button for
-/// the view that highlights degenerate and mirrored triangles.
+/// The findings of `bumpview check` for the scene, how its textures went to the GPU, the
+/// renderer's notices, and a button for the view that highlights degenerate and mirrored
+/// triangles.
 pub(super) fn check(ui: &mut egui::Ui, controller: &Controller, actions: &mut Vec<Action>) {
     let (meshes, maps, warnings) = match controller.facts() {
         Some(facts) => (&facts.check.meshes[..], &facts.check.normal_maps[..], &facts.check_warnings[..]),
@@ -244,6 +245,10 @@ pub(super) fn check(ui: &mut egui::Ui, controller: &Controller, actions: &mut Ve
     }
     for map in maps {
         ui.small(format!("{}: green {}", map.material, map.findings.green_text()));
+    }
+    for upload in controller.renderer().texture_uploads(false) {
+        let name = std::path::Path::new(&upload.name).file_name().and_then(|n| n.to_str()).unwrap_or(&upload.name);
+        ui.small(format!("{name}: {} on the GPU, {:.1} KiB", upload.form, upload.bytes as f64 / 1024.0));
     }
     let warn = ui.visuals().warn_fg_color;
     for line in warnings.iter().chain(&controller.renderer().notices()) {
