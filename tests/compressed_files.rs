@@ -276,6 +276,11 @@ fn compressed_normal_maps_draw_like_the_png_and_check_reads_their_layout() {
         println!("{name}: layout {} ({})", found.layout.name(), found.layout_reason);
         assert_eq!(found.layout, layout, "{name}");
         assert!(found.layout_reason.starts_with(reason), "{name}: {}", found.layout_reason);
+        // A two-channel map's statistics read x and y, its z rebuilt: none below the surface.
+        if layout != NormalLayout::Rgb {
+            let f = &found.findings;
+            assert!(f.negative_z_share == 0.0 && f.non_unit_share < 0.01, "{name}: {f:?}");
+        }
         let warned = found.warnings().iter().any(|w| w.contains("block format made for colour"));
         assert_eq!(warned, name.contains("bc1"), "{name}: {:?}", found.warnings());
     }

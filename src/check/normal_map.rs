@@ -11,9 +11,12 @@ use crate::shading::{NormalTexel, unpack_normal};
 /// Findings about one normal map.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NormalMapFindings {
-    /// Share of texels whose decoded vector `2·rgb − 1` is more than 10% off unit length.
+    /// Share of texels whose decoded vector is more than 10% off unit length: `2·rgb − 1` read
+    /// as RGB; for a two-channel layout (RG, AG), whose z is rebuilt, `(x, y)` more than 10%
+    /// outside the unit disc.
     pub non_unit_share: f32,
-    /// Share of texels with `z < 0` (blue below 128): pointing into the surface.
+    /// Share of texels with `z < 0` (blue below 128) read as RGB: pointing into the surface;
+    /// none in a two-channel layout.
     pub negative_z_share: f32,
     /// The flat texel looks sRGB-encoded: most texels sit near (188, 188, 255) (0.5 encoded
     /// as sRGB in red and green, blue near full) instead of near (128, 128, 255).
@@ -78,21 +81,30 @@ pub fn decoded_normals(image: &TextureImage, layout: NormalLayout) -> Vec<Vec3> 
     image.rgba.chunks_exact(4).map(|t| decoded_normal(t, layout)).collect()
 }
 
-/// Checks `image` as a normal map read in `layout`; the RGB statistics (length, `z < 0`,
-/// sRGB) read red, green, blue as x, y, z.
+/// How far texel `t` read in `layout` is from unit length, and whether it points into the
+/// surface: `2·rgb − 1` for RGB and X-Ray (its channels without their correction), `(x, y)`
+/// alone where z is rebuilt from them.
+fn length_and_below(t: &[u8], layout: NormalLayout) -> (f32, bool) {
+    let unorm = |c: usize| t[c] as f32 / 127.5 - 1.0;
+    match layout {
+        NormalLayout::Rg => (glam::vec2(unorm(0), unorm(1)).length(), false),
+        NormalLayout::Ag => (glam::vec2(unorm(3), unorm(1)).length(), false),
+        NormalLayout::Rgb | NormalLayout::Xray => (Vec3::new(unorm(0), unorm(1), unorm(2)).length(), t[2] < 128),
+    }
+}
+
+/// Checks `image` as a normal map read in `layout`: the length and `z < 0` statistics in that
+/// layout ([`length_and_below`]), the sRGB test on red, green, blue.
 pub fn check_normal_map(image: &TextureImage, layout: NormalLayout) -> NormalMapFindings {
     let texels = (image.width as usize * image.height as usize).max(1) as f32;
     let (mut non_unit, mut negative_z, mut near_srgb_flat, mut near_linear_flat) = (0usize, 0usize, 0usize, 0usize);
     let first = image.rgba.get(..4).map_or([0; 4], |t| [t[0], t[1], t[2], t[3]]);
     let mut constant = [true; 4];
     for t in image.rgba.chunks_exact(4) {
-        let [x, y, z] = [0, 1, 2].map(|c| t[c] as f32 / 127.5 - 1.0);
-        if ((x * x + y * y + z * z).sqrt() - 1.0).abs() > 0.1 {
-            non_unit += 1;
-        }
-        if t[2] < 128 {
-            negative_z += 1;
-        }
+        let (length, below) = length_and_below(t, layout);
+        let two_channel = matches!(layout, NormalLayout::Rg | NormalLayout::Ag);
+        non_unit += if two_channel { length > 1.1 } else { (length - 1.0).abs() > 0.1 } as usize;
+        negative_z += below as usize;
         let near = |c: u8, centre: i32| (c as i32 - centre).abs() <= 12;
         near_srgb_flat += (near(t[0], 188) && near(t[1], 188) && t[2] >= 240) as usize;
         near_linear_flat += (near(t[0], 128) && near(t[1], 128) && t[2] >= 240) as usize;
@@ -180,6 +192,11 @@ mod tests {
         assert_eq!(linear.suggested_layout, NormalLayout::Rg);
         assert!(check_normal_map(&flat([188, 188, 255]), NormalLayout::Rgb).looks_srgb);
         assert_eq!(check_normal_map(&flat([128, 128, 0]), NormalLayout::Rgb).negative_z_share, 1.0);
+        // Two channels (a BC5 map, blue 0): z is rebuilt, nothing points into the surface, and
+        // only (x, y) outside the unit disc is off unit length.
+        let two_channel = check_normal_map(&flat([128, 128, 0]), NormalLayout::Rg);
+        assert_eq!((two_channel.negative_z_share, two_channel.non_unit_share), (0.0, 0.0));
+        assert_eq!(check_normal_map(&flat([255, 255, 0]), NormalLayout::Rg).non_unit_share, 1.0);
     }
 
     /// DXT5nm keeps red and blue constant and x in alpha; BC5 keeps blue constant.
