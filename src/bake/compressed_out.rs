@@ -74,12 +74,7 @@ fn check_size(rgba: &[u8], width: u32, height: u32) -> Result<(), String> {
 /// One level's texels in a DDS `format`: blocks (sides multiples of 4) or RG8 texels.
 fn dds_level(format: CompressedFormat, rgba: &[u8], width: u32, height: u32) -> Vec<u8> {
     let rgba_surface = |data| intel_tex_2::RgbaSurface { data, width, height, stride: width * 4 };
-    let rg: Vec<u8> = match format {
-        CompressedFormat::DdsBc5 | CompressedFormat::DdsRg8 => {
-            rgba.chunks_exact(4).flat_map(|t| [t[0], t[1]]).collect()
-        }
-        _ => vec![],
-    };
+    let rg = || rgba.chunks_exact(4).flat_map(|t| [t[0], t[1]]).collect::<Vec<u8>>();
     match format {
         CompressedFormat::DdsBc1 => intel_tex_2::bc1::compress_blocks(&rgba_surface(rgba)),
         CompressedFormat::DdsDxt5nm => {
@@ -87,12 +82,12 @@ fn dds_level(format: CompressedFormat, rgba: &[u8], width: u32, height: u32) -> 
             intel_tex_2::bc3::compress_blocks(&rgba_surface(&swizzled))
         }
         CompressedFormat::DdsBc5 => {
-            intel_tex_2::bc5::compress_blocks(&intel_tex_2::RgSurface { data: &rg, width, height, stride: width * 2 })
+            intel_tex_2::bc5::compress_blocks(&intel_tex_2::RgSurface { data: &rg(), width, height, stride: width * 2 })
         }
         CompressedFormat::DdsBc7 => {
             intel_tex_2::bc7::compress_blocks(&intel_tex_2::bc7::alpha_basic_settings(), &rgba_surface(rgba))
         }
-        _ => rg,
+        _ => rg(),
     }
 }
 
