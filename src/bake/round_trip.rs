@@ -53,8 +53,11 @@ pub const TRIPS_KEPT: usize = 4;
 /// A finished trip: its texture's name, size and texels hashed, and the format.
 type TripKey = (u64, CompressedFormat);
 
+/// A kept trip: its key, the texture it made and what its format says.
+type KeptTrip = (TripKey, Arc<TextureImage>, Option<Stored>);
+
 /// The trips kept, most recent last.
-static TRIPS: Mutex<Vec<(TripKey, Arc<TextureImage>, Option<Stored>)>> = Mutex::new(Vec::new());
+static TRIPS: Mutex<Vec<KeptTrip>> = Mutex::new(Vec::new());
 
 /// `texture` through `format`, as the loader would hold the file: the texels and what the
 /// format says about them; one of the last [`TRIPS_KEPT`] trips where it was made already.
@@ -62,9 +65,9 @@ fn trip(texture: &TextureImage, format: CompressedFormat) -> Result<(Arc<Texture
     let mut hasher = std::hash::DefaultHasher::new();
     (&texture.name, texture.width, texture.height, texture.kind, &texture.rgba).hash(&mut hasher);
     let key = (hasher.finish(), format);
-    let kept = |trips: &mut Vec<_>| {
+    let kept = |trips: &mut Vec<KeptTrip>| {
         let at = trips.iter().position(|(k, _, _)| *k == key)?;
-        let found: (TripKey, Arc<TextureImage>, Option<Stored>) = trips.remove(at);
+        let found = trips.remove(at);
         trips.push(found.clone());
         Some((found.1, found.2))
     };
